@@ -1,0 +1,113 @@
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use gcodec_source::{Diagnostic, RenderOptions, SourceFile, render_diagnostics};
+
+/// Exit code: no error diagnostics.
+pub const EXIT_CLEAN: u8 = 0;
+/// Exit code: at least one error diagnostic in a program.
+pub const EXIT_DIAGNOSTICS: u8 = 1;
+/// Exit code: usage, IO or profile error.
+pub const EXIT_USAGE: u8 = 2;
+
+/// Compile and simulate SINUMERIK 840D sl / 828D part programs.
+#[derive(Debug, Parser)]
+#[command(name = "gcodec", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Parse programs and print their syntax tree.
+    Parse {
+        /// `.mpf` / `.spf` files to parse.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Output: an indented outline, or the syntax tree as JSON.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+    },
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum Format {
+    Text,
+    Json,
+}
+
+pub fn run(cli: Cli) -> u8 {
+    match cli.command {
+        Command::Parse { files, format } => parse(&files, format),
+    }
+}
+
+fn render_options() -> RenderOptions {
+    RenderOptions {
+        color: std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
+    }
+}
+
+fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>) {
+    if diagnostics.is_empty() {
+        return;
+    }
+    let text = render_diagnostics(diagnostics, file, render_options());
+    let _ = std::io::stderr().write_all(text.as_bytes());
+}
+
+fn read(path: &PathBuf) -> Result<SourceFile, Diagnostic> {
+    SourceFile::read(path).map_err(|e| {
+        Diagnostic::error(
+            "gcodec::io::read",
+            format!("cannot read `{}`: {e}", path.display()),
+        )
+        .with_help("check the path and that the file is readable")
+    })
+}
+
+fn parse(files: &[PathBuf], format: Format) -> u8 {
+    let mut exit = EXIT_CLEAN;
+    let mut json = Vec::new();
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::new(stdout.lock());
+    for path in files {
+        let file = match read(path) {
+            Ok(f) => f,
+            Err(d) => {
+                report(&[d], None);
+                exit = EXIT_USAGE;
+                continue;
+            }
+        };
+        let parsed = gcodec_parser::parse(&file);
+        report(&parsed.diagnostics, Some(&file));
+        if parsed.has_errors() && exit == EXIT_CLEAN {
+            exit = EXIT_DIAGNOSTICS;
+        }
+        match format {
+            Format::Text => {
+                let mut text = String::new();
+                let _ = gcodec_parser::write_outline(&parsed.program, &mut text);
+                let _ = out.write_all(text.as_bytes());
+            }
+            Format::Json => json.push(parsed.program),
+        }
+    }
+    if let Format::Json = format {
+        let result = if json.len() == 1 {
+            serde_json::to_writer_pretty(&mut out, &json[0])
+        } else {
+            serde_json::to_writer_pretty(&mut out, &json)
+        };
+        if result.is_ok() {
+            let _ = writeln!(out);
+        }
+    }
+    if out.flush().is_err() && exit == EXIT_CLEAN {
+        exit = EXIT_USAGE;
+    }
+    exit
+}

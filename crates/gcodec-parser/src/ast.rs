@@ -1,0 +1,781 @@
+//! The typed syntax tree of a SINUMERIK part program.
+//!
+//! The tree is *flat at block level*: a program is a list of blocks (one per
+//! line), and control structures are statements that open or close a
+//! structure (`If`, `Else`, `EndIf`, …). The pairing of openers and closers is
+//! computed by the parser and recorded in [`Program::structures`] and in each
+//! block's `depth`. This mirrors the control, which runs control structures
+//! interpretively, keeps every block addressable by index for jumps, and
+//! means no part of gcodec recurses over nesting depth.
+//!
+//! Every node carries a [`Span`]; names keep the spelling of the source, and
+//! lookups are case-insensitive in later stages.
+
+use compact_str::CompactString;
+use gcodec_source::Span;
+use serde::Serialize;
+
+/// A name as written (case kept).
+pub type Name = CompactString;
+
+/// One parsed file.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Program {
+    /// The file name as given to the parser.
+    pub file: String,
+    /// `%_N_NAME_MPF` / `%MPF123` header line, if the file has one.
+    pub header: Option<Header>,
+    /// `;$PATH=/_N_…_DIR` line, if the file has one.
+    pub path: Option<PathDirective>,
+    /// Every line of the file in order (blank and comment-only lines too).
+    pub blocks: Vec<Block>,
+    /// Control structures, each with the blocks that open, split and close it.
+    pub structures: Vec<ControlStructure>,
+}
+
+/// An archive header line (`%_N_SHAFT_MPF`, `%MPF123`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Header {
+    pub span: Span,
+    /// The text after `%`.
+    pub text: CompactString,
+    /// The program name for `_N_<NAME>_<TYPE>` headers.
+    pub program: Option<CompactString>,
+    /// The file type (`MPF`, `SPF`, `DEF`, …) for `_N_<NAME>_<TYPE>` headers.
+    pub file_type: Option<CompactString>,
+}
+
+/// A `;$PATH=` line giving the program's directory on the control.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PathDirective {
+    pub span: Span,
+    /// The path, e.g. `/_N_WKS_DIR/_N_PART_WPD`.
+    pub path: CompactString,
+}
+
+/// One NC block: one line of the file.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Block {
+    /// The line without its line end.
+    pub span: Span,
+    /// `/` or `/0`…`/9` at the start of the block.
+    pub skip: Option<SkipLevel>,
+    /// `N10` or `:10`.
+    pub number: Option<BlockNumber>,
+    /// `NAME:` jump label.
+    pub label: Option<LabelDef>,
+    /// The statements in source order.
+    pub statements: Vec<Statement>,
+    /// `; …` to the end of the line.
+    pub comment: Option<Comment>,
+    /// How many control structures enclose this block.
+    pub depth: u32,
+}
+
+/// A skip mark. `/` is level 0.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SkipLevel {
+    pub span: Span,
+    pub level: u8,
+}
+
+/// `N<number>` (sub block) or `:<number>` (main block).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BlockNumber {
+    pub span: Span,
+    pub main: bool,
+    pub value: u64,
+}
+
+/// A jump label definition `NAME:`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LabelDef {
+    pub span: Span,
+    pub name: Name,
+}
+
+/// A comment, text decoded for display (UTF-8, else CP1252).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Comment {
+    pub span: Span,
+    pub text: CompactString,
+}
+
+/// One statement of a block.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Statement {
+    pub span: Span,
+    #[serde(flatten)]
+    pub kind: StatementKind,
+}
+
+/// What a statement is.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum StatementKind {
+    /// An address word: `G1`, `X-10`, `X=R1+5`, `M2=3`, `G[8]=2`, `CR=5`.
+    Word(Word),
+    /// `R1=5`, `A[2,3]=7`, `$P_UIFR[1,X,TR]=10`, `NAME=…`.
+    Assign(Assign),
+    /// `DEF …`.
+    Def(Def),
+    /// `REDEF name attributes`: kept for later stages.
+    Redef(Redef),
+    /// `DEFINE NAME AS …`.
+    Define(Define),
+    /// `PROC name(params) attributes`.
+    Proc(Proc),
+    /// `ENDPROC`.
+    EndProc,
+    /// `EXTERN name(types)`.
+    Extern(Extern),
+    /// A subprogram or procedure call by name or `L` number.
+    Call(Call),
+    /// `CALL <expr>` and `CALL … BLOCK … TO …`.
+    IndirectCall(IndirectCall),
+    /// `PCALL path(args)`.
+    PCall(PCall),
+    /// `MCALL name(args)` or `MCALL` alone (cancels the modal call).
+    MCall(MCall),
+    /// `RET` with optional arguments.
+    Ret(Ret),
+    /// `GOTO… target`.
+    Goto(Jump),
+    /// `IF cond GOTO… target` in one block.
+    IfGoto(IfGoto),
+    /// `IF cond` opening a structure.
+    If(Condition),
+    Else,
+    EndIf,
+    While(Condition),
+    EndWhile,
+    For(For),
+    EndFor,
+    Loop,
+    EndLoop,
+    /// `REPEAT` alone opening a REPEAT … UNTIL structure.
+    Repeat,
+    Until(Condition),
+    /// `REPEAT label [label] [P=n]`, `REPEATB label [P=n]`.
+    RepeatSection(RepeatSection),
+    /// `CASE expr OF c GOTOF l … DEFAULT GOTOF l`.
+    Case(Case),
+    /// `TRANS X10`, `ROT RPL=45`, `MIRROR X0`, … (`words` empty = reset).
+    Frame(Frame),
+    /// `ID=1 WHEN cond DO actions` and friends.
+    SyncAction(SyncAction),
+}
+
+/// An address word.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Word {
+    /// The address in upper case: `X`, `G`, `CR`, `SPOS`, `AX`.
+    pub address: Name,
+    pub address_span: Span,
+    /// `M2=`, `X1=` (numeric) or `M[R1]=`, `AX[X1]=` (bracketed).
+    pub extension: Option<Extension>,
+    pub value: WordValue,
+}
+
+/// The extension of an extended address.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "form", rename_all = "snake_case")]
+pub enum Extension {
+    /// `M2=3`: digits touching the address, then `=`.
+    Number { span: Span, value: u32 },
+    /// `M[R1]=3`, `AX[X1]=10`.
+    Index { span: Span, index: Box<Expr> },
+}
+
+/// The value of a word.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "form", rename_all = "snake_case")]
+pub enum WordValue {
+    /// `X10`, `X-10`, `S.5`: a constant touching the address.
+    Constant(NumberLit),
+    /// `X=…`: a value after `=`, with its dimension modifier if one wraps it.
+    Assigned {
+        modifier: Option<DimensionModifier>,
+        expr: Box<Expr>,
+    },
+}
+
+/// A numeric literal.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct NumberLit {
+    pub span: Span,
+    pub value: f64,
+    /// Written without decimal point or exponent.
+    pub integer: bool,
+}
+
+/// `AC(…)`, `IC(…)`, `DC(…)`, `ACP(…)`, `ACN(…)` (and the indexing and
+/// diameter forms) wrapping a word's value.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DimensionModifier {
+    pub span: Span,
+    pub kind: DimensionKind,
+}
+
+/// Which dimension modifier.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "UPPERCASE")]
+pub enum DimensionKind {
+    Ac,
+    Ic,
+    Dc,
+    Acp,
+    Acn,
+    Cac,
+    Cic,
+    Cdc,
+    Cacp,
+    Cacn,
+    Dac,
+    Dic,
+    Rac,
+    Ric,
+}
+
+impl DimensionKind {
+    /// The modifier as the control spells it.
+    pub const fn keyword(self) -> &'static str {
+        use DimensionKind::*;
+        match self {
+            Ac => "AC",
+            Ic => "IC",
+            Dc => "DC",
+            Acp => "ACP",
+            Acn => "ACN",
+            Cac => "CAC",
+            Cic => "CIC",
+            Cdc => "CDC",
+            Cacp => "CACP",
+            Cacn => "CACN",
+            Dac => "DAC",
+            Dic => "DIC",
+            Rac => "RAC",
+            Ric => "RIC",
+        }
+    }
+
+    /// The modifier named `name` (case-insensitive).
+    pub fn from_name(name: &str) -> Option<Self> {
+        use DimensionKind::*;
+        Some(match name.to_ascii_uppercase().as_str() {
+            "AC" => Ac,
+            "IC" => Ic,
+            "DC" => Dc,
+            "ACP" => Acp,
+            "ACN" => Acn,
+            "CAC" => Cac,
+            "CIC" => Cic,
+            "CDC" => Cdc,
+            "CACP" => Cacp,
+            "CACN" => Cacn,
+            "DAC" => Dac,
+            "DIC" => Dic,
+            "RAC" => Rac,
+            "RIC" => Ric,
+            _ => return None,
+        })
+    }
+}
+
+/// An assignment.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Assign {
+    pub target: VarRef,
+    pub value: Initializer,
+}
+
+/// A reference to a variable: R parameter, user variable or system variable,
+/// possibly indexed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct VarRef {
+    pub span: Span,
+    pub kind: VarKind,
+    /// The name as written (`R` for R parameters, `$P_UIFR`, `COUNTER`).
+    pub name: Name,
+    /// `R1` has index `1`; `A[i,j]` has two.
+    pub indices: Vec<Expr>,
+}
+
+/// What kind of variable.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VarKind {
+    /// `R1`, `R[expr]`.
+    RParameter,
+    /// A user variable, constant or axis name (resolved by later stages).
+    Name,
+    /// `$…`.
+    System,
+}
+
+/// The right side of `=` in an assignment or `DEF`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "form", rename_all = "snake_case")]
+pub enum Initializer {
+    Expr(Expr),
+    /// `(a, b, c)` or `SET(a, , c)`: one value per element, omitted ones empty.
+    List {
+        span: Span,
+        set: bool,
+        items: Vec<Option<Expr>>,
+    },
+    /// `REP(value [, count])`.
+    Rep { span: Span, args: Vec<Expr> },
+}
+
+/// `DEF [NCK|CHAN] [attributes] TYPE name[dims]=init, …`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Def {
+    /// Attributes before the type (`NCK`, `CHAN`, `SYNR`, `LLI 0`, …).
+    pub attributes: Vec<Attribute>,
+    pub ty: TypeSpec,
+    pub vars: Vec<DefVar>,
+}
+
+/// A definition attribute, with its value where it takes one.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Attribute {
+    pub span: Span,
+    pub name: Name,
+    pub value: Option<Expr>,
+}
+
+/// A data type.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TypeSpec {
+    pub span: Span,
+    pub kind: TypeKind,
+}
+
+/// The data types of the NC language.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "type", rename_all = "UPPERCASE")]
+pub enum TypeKind {
+    Int,
+    Real,
+    Bool,
+    Char,
+    /// `STRING[n]`.
+    String {
+        length: Option<Box<Expr>>,
+    },
+    Axis,
+    Frame,
+}
+
+impl TypeKind {
+    /// The type named `name`, without a string length.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Some(match name.to_ascii_uppercase().as_str() {
+            "INT" => TypeKind::Int,
+            "REAL" => TypeKind::Real,
+            "BOOL" => TypeKind::Bool,
+            "CHAR" => TypeKind::Char,
+            "STRING" => TypeKind::String { length: None },
+            "AXIS" => TypeKind::Axis,
+            "FRAME" => TypeKind::Frame,
+            _ => return None,
+        })
+    }
+}
+
+/// One variable of a `DEF`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DefVar {
+    pub span: Span,
+    pub name: Name,
+    /// Array dimensions (up to three).
+    pub dims: Vec<Expr>,
+    pub init: Option<Initializer>,
+}
+
+/// `REDEF name attributes`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Redef {
+    pub name: Name,
+    pub attributes: Vec<Attribute>,
+}
+
+/// `DEFINE NAME AS text`: the text is kept as written.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Define {
+    pub name: Name,
+    pub body: CompactString,
+    pub body_span: Span,
+}
+
+/// `PROC name(params) attributes`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Proc {
+    pub name: Name,
+    pub name_span: Span,
+    pub params: Vec<Param>,
+    /// `SAVE`, `DISPLOF`, `SBLOF`, …
+    pub attributes: Vec<Attribute>,
+}
+
+/// A formal parameter.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Param {
+    pub span: Span,
+    /// `VAR`: passed by reference.
+    pub by_reference: bool,
+    pub ty: TypeSpec,
+    pub name: Name,
+    pub dims: Vec<Expr>,
+    pub default: Option<Expr>,
+}
+
+/// `EXTERN name(types)`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Extern {
+    pub name: Name,
+    pub params: Vec<ExternParam>,
+}
+
+/// A parameter type in an `EXTERN` declaration.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ExternParam {
+    pub span: Span,
+    pub by_reference: bool,
+    pub ty: TypeSpec,
+    pub dims: Vec<Expr>,
+}
+
+/// A call of a subprogram, cycle or predefined procedure.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Call {
+    pub target: CallTarget,
+    /// `None` when written without parentheses. Omitted arguments are `null`.
+    pub args: Option<Vec<Option<Expr>>>,
+    /// `P3` / `P=3` in the same block: number of passes.
+    pub passes: Option<Box<Word>>,
+}
+
+/// What a call names.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "form", rename_all = "snake_case")]
+pub enum CallTarget {
+    /// `CONTOUR`, `CYCLE81`, `MSG`, `STOPRE`.
+    Name { span: Span, name: Name },
+    /// `L123`: the digits as written (`L007` is not `L7`).
+    Number { span: Span, digits: CompactString },
+}
+
+/// `CALL <expr>` / `CALL [<expr>] BLOCK <start> TO <end>`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct IndirectCall {
+    pub program: Option<Expr>,
+    pub section: Option<(JumpTarget, JumpTarget)>,
+}
+
+/// `PCALL /path/_N_NAME_SPF(args)`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PCall {
+    pub path: CompactString,
+    pub path_span: Span,
+    pub args: Option<Vec<Option<Expr>>>,
+}
+
+/// `MCALL [call]`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MCall {
+    pub call: Option<Call>,
+}
+
+/// `RET [(args)]`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Ret {
+    pub args: Option<Vec<Option<Expr>>>,
+}
+
+/// Which jump.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "UPPERCASE")]
+pub enum GotoKind {
+    Goto,
+    GotoF,
+    GotoB,
+    GotoC,
+    GotoS,
+}
+
+impl GotoKind {
+    /// The keyword as the control spells it.
+    pub const fn keyword(self) -> &'static str {
+        match self {
+            GotoKind::Goto => "GOTO",
+            GotoKind::GotoF => "GOTOF",
+            GotoKind::GotoB => "GOTOB",
+            GotoKind::GotoC => "GOTOC",
+            GotoKind::GotoS => "GOTOS",
+        }
+    }
+}
+
+/// A jump.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Jump {
+    pub goto: GotoKind,
+    /// `None` only for `GOTOS`.
+    pub target: Option<JumpTarget>,
+}
+
+/// Where a jump goes.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "form", rename_all = "snake_case")]
+pub enum JumpTarget {
+    Label { span: Span, name: Name },
+    BlockNumber { span: Span, value: u64 },
+    /// A STRING expression naming a label or block number.
+    Expr(Expr),
+}
+
+/// `IF cond GOTO… target`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct IfGoto {
+    pub condition: Expr,
+    pub jump: Jump,
+}
+
+/// The condition of `IF`, `WHILE`, `UNTIL`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Condition {
+    pub condition: Expr,
+}
+
+/// `FOR var = start TO end`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct For {
+    pub var: VarRef,
+    pub start: Expr,
+    pub end: Expr,
+}
+
+/// `REPEAT start [end] [P=n]`, `REPEATB label [P=n]`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RepeatSection {
+    /// `REPEATB`: repeat the one block carrying the label.
+    pub single_block: bool,
+    pub start: JumpTarget,
+    pub end: Option<JumpTarget>,
+    pub passes: Option<Box<Word>>,
+}
+
+/// `CASE expr OF …`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Case {
+    pub selector: Expr,
+    pub arms: Vec<CaseArm>,
+    pub default: Option<Jump>,
+}
+
+/// `<constant> GOTO… <target>` inside `CASE`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CaseArm {
+    pub value: Expr,
+    pub jump: Jump,
+}
+
+/// Programmable frame instructions.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "UPPERCASE")]
+pub enum FrameOp {
+    Trans,
+    Atrans,
+    Rot,
+    Arot,
+    Rots,
+    Arots,
+    Crots,
+    Scale,
+    Ascale,
+    Mirror,
+    Amirror,
+}
+
+impl FrameOp {
+    /// The frame instruction named `name` (case-insensitive).
+    pub fn from_name(name: &str) -> Option<Self> {
+        use FrameOp::*;
+        Some(match name.to_ascii_uppercase().as_str() {
+            "TRANS" => Trans,
+            "ATRANS" => Atrans,
+            "ROT" => Rot,
+            "AROT" => Arot,
+            "ROTS" => Rots,
+            "AROTS" => Arots,
+            "CROTS" => Crots,
+            "SCALE" => Scale,
+            "ASCALE" => Ascale,
+            "MIRROR" => Mirror,
+            "AMIRROR" => Amirror,
+            _ => return None,
+        })
+    }
+}
+
+/// A frame statement.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Frame {
+    pub op: FrameOp,
+    pub words: Vec<Word>,
+}
+
+/// A synchronous action.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SyncAction {
+    /// `ID=n` (modal, program-local) or `IDS=n` (static).
+    pub id: Option<SyncId>,
+    /// `WHEN`, `WHENEVER`, `EVERY`, `FROM` with its condition.
+    pub trigger: Option<SyncTrigger>,
+    /// The statements after `DO`.
+    pub actions: Vec<Statement>,
+}
+
+/// `ID=`/`IDS=` of a synchronous action.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SyncId {
+    pub span: Span,
+    pub is_static: bool,
+    pub value: Expr,
+}
+
+/// The trigger of a synchronous action.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SyncTrigger {
+    pub span: Span,
+    pub kind: SyncTriggerKind,
+    pub condition: Expr,
+}
+
+/// Which trigger.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "UPPERCASE")]
+pub enum SyncTriggerKind {
+    When,
+    Whenever,
+    Every,
+    From,
+}
+
+impl SyncTriggerKind {
+    /// The keyword as the control spells it.
+    pub const fn keyword(self) -> &'static str {
+        match self {
+            SyncTriggerKind::When => "WHEN",
+            SyncTriggerKind::Whenever => "WHENEVER",
+            SyncTriggerKind::Every => "EVERY",
+            SyncTriggerKind::From => "FROM",
+        }
+    }
+}
+
+/// An expression.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Expr {
+    pub span: Span,
+    #[serde(flatten)]
+    pub kind: ExprKind,
+}
+
+/// What an expression is.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum ExprKind {
+    /// Decimal, `'H…'` or `'B…'` constant.
+    Number {
+        value: f64,
+        integer: bool,
+    },
+    String {
+        value: CompactString,
+    },
+    Bool {
+        value: bool,
+    },
+    Var(VarRef),
+    /// `SIN(30)`, `AC(5)`, `CTRANS(X,10)`, `USERFUNC(…)`.
+    Call {
+        name: Name,
+        name_span: Span,
+        args: Vec<Option<Expr>>,
+    },
+    Unary {
+        op: UnaryOp,
+        operand: Box<Expr>,
+    },
+    Binary {
+        op: BinaryOp,
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+    },
+}
+
+/// Unary operators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum UnaryOp {
+    Neg,
+    Plus,
+    Not,
+    BNot,
+    /// `<<x`: converts `x` to a string (as in `SETAL(61000, <<R1)`).
+    ToString,
+}
+
+/// Binary operators, in Siemens precedence classes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BinaryOp {
+    Mul,
+    Div,
+    IntDiv,
+    Mod,
+    Add,
+    Sub,
+    BAnd,
+    BXor,
+    BOr,
+    And,
+    Xor,
+    Or,
+    Concat,
+    Eq,
+    Ne,
+    Lt,
+    Gt,
+    Le,
+    Ge,
+    /// `:` frame chaining.
+    Chain,
+}
+
+/// A matched control structure.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ControlStructure {
+    pub kind: StructureKind,
+    /// Index of the opening block in [`Program::blocks`].
+    pub open: u32,
+    /// Index of the `ELSE` block.
+    pub middle: Option<u32>,
+    /// Index of the closing block; `None` if the structure is never closed
+    /// (a diagnostic says so).
+    pub close: Option<u32>,
+}
+
+/// Which structure.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StructureKind {
+    If,
+    While,
+    For,
+    Loop,
+    Repeat,
+}

@@ -1,0 +1,438 @@
+//! Splits the token stream into blocks (lines) and runs the block grammar on
+//! each, so that one malformed block never hides the rest of the program.
+
+use std::cell::Cell;
+
+use chumsky::input::Input as _;
+use chumsky::span::SimpleSpan;
+use compact_str::CompactString;
+use gcodec_lexer::{Lexer, TokenKind};
+use gcodec_source::{Diagnostic, SourceFile, Span, decode};
+
+use crate::ast::*;
+use crate::error::SyntaxError;
+use crate::grammar::{self, Ctx, Spanned};
+use crate::structure;
+
+/// Deepest nesting of `(` and `[` accepted in one block. Deeper expressions
+/// are reported instead of parsed, which bounds the recursion of every stage.
+pub const MAX_EXPRESSION_DEPTH: usize = 64;
+
+/// Blocks handed to one instance of the block grammar. The grammar borrows
+/// the token buffer, so the buffer is refilled per chunk rather than held
+/// for the whole file: memory stays proportional to the AST.
+const CHUNK_LINES: usize = 2048;
+
+/// The result of parsing: always a program, plus what was wrong with it.
+#[derive(Clone, Debug)]
+pub struct Parse {
+    pub program: Program,
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Parse {
+    /// True if any diagnostic is an error.
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(Diagnostic::is_error)
+    }
+}
+
+/// Parses one source file.
+pub fn parse(file: &SourceFile) -> Parse {
+    parse_bytes(file.name(), file.bytes())
+}
+
+/// Parses bytes under a file name.
+pub fn parse_bytes(name: &str, src: &[u8]) -> Parse {
+    let mut driver = Driver {
+        src,
+        program: Program {
+            file: name.to_owned(),
+            header: None,
+            path: None,
+            blocks: Vec::with_capacity(src.len() / 32 + 1),
+            structures: Vec::new(),
+        },
+        diagnostics: Vec::new(),
+        tokens: Vec::with_capacity(1024),
+        lines: Vec::with_capacity(CHUNK_LINES),
+    };
+    driver.run();
+    let Driver {
+        mut program,
+        mut diagnostics,
+        ..
+    } = driver;
+    structure::pair(&mut program, src.len() as u32, &mut diagnostics);
+    Parse {
+        program,
+        diagnostics,
+    }
+}
+
+/// One line waiting for the grammar.
+struct Line {
+    tokens: std::ops::Range<usize>,
+    number: u32,
+    start: u32,
+    end: u32,
+    comment: Option<(u32, u32)>,
+    header: Option<(u32, u32)>,
+    /// A lexical problem already reported: the grammar is not run.
+    broken: bool,
+}
+
+struct Driver<'s> {
+    src: &'s [u8],
+    program: Program,
+    diagnostics: Vec<Diagnostic>,
+    tokens: Vec<Spanned>,
+    lines: Vec<Line>,
+}
+
+impl<'s> Driver<'s> {
+    fn run(&mut self) {
+        let src = self.src;
+        let mut line = Line {
+            tokens: 0..0,
+            number: 1,
+            start: 0,
+            end: 0,
+            comment: None,
+            header: None,
+            broken: false,
+        };
+        for tok in Lexer::new(src) {
+            match tok.kind {
+                TokenKind::Whitespace => {}
+                TokenKind::Comment => line.comment = Some((tok.start, tok.end)),
+                TokenKind::Newline => {
+                    line.end = tok.start;
+                    line.tokens.end = self.tokens.len();
+                    let next = Line {
+                        tokens: self.tokens.len()..self.tokens.len(),
+                        number: line.number + 1,
+                        start: tok.end,
+                        end: tok.end,
+                        comment: None,
+                        header: None,
+                        broken: false,
+                    };
+                    self.lines.push(std::mem::replace(&mut line, next));
+                    if self.lines.len() >= CHUNK_LINES {
+                        self.flush();
+                    }
+                }
+                TokenKind::Header if self.tokens.len() == line.tokens.start && !line.broken => {
+                    line.header = Some((tok.start, tok.end));
+                }
+                TokenKind::Error | TokenKind::Header => {
+                    if !line.broken {
+                        let span = self.span_in(&line, tok.start, tok.end);
+                        self.diagnostics.push(lexical_error(tok.kind, span, src));
+                        line.broken = true;
+                    }
+                }
+                kind => {
+                    if line.header.is_some() && !line.broken {
+                        let span = self.span_in(&line, tok.start, tok.end);
+                        self.diagnostics.push(
+                            Diagnostic::error(
+                                "gcodec::parse::header_not_alone",
+                                "a program header line holds nothing but the header",
+                            )
+                            .with_label(span, "unexpected after the header")
+                            .with_help("put the NC blocks on the following lines"),
+                        );
+                        line.broken = true;
+                    }
+                    self.tokens
+                        .push((kind, SimpleSpan::from(tok.start as usize..tok.end as usize)));
+                }
+            }
+        }
+        // The last line has no line end.
+        line.end = src.len() as u32;
+        line.tokens.end = self.tokens.len();
+        if line.start < line.end || self.program.blocks.is_empty() && self.lines.is_empty() {
+            self.lines.push(line);
+        }
+        self.flush();
+    }
+
+    fn span_in(&self, line: &Line, start: u32, end: u32) -> Span {
+        Span::new(start, end, line.number, start - line.start + 1)
+    }
+
+    /// Parses the buffered lines and empties the buffers.
+    fn flush(&mut self) {
+        let mut lines = std::mem::take(&mut self.lines);
+        let mut tokens = std::mem::take(&mut self.tokens);
+        {
+            let cell = Cell::new((1u32, 0u32));
+            let ctx = Ctx {
+                src: self.src,
+                line: &cell,
+            };
+            let parser = grammar::block(ctx);
+            for line in &lines {
+                cell.set((line.number, line.start));
+                let block = self.parse_line(line, &tokens[line.tokens.clone()], &ctx, &parser);
+                self.program.blocks.push(block);
+            }
+        }
+        lines.clear();
+        tokens.clear();
+        self.lines = lines;
+        self.tokens = tokens;
+    }
+
+    fn parse_line<'t>(
+        &mut self,
+        line: &Line,
+        tokens: &'t [Spanned],
+        ctx: &Ctx<'_>,
+        parser: &impl chumsky::Parser<'t, grammar::In<'t>, grammar::BlockBody, grammar::Ex>,
+    ) -> Block {
+        let mut end = line.end;
+        if end > line.start && self.src[end as usize - 1] == b'\r' {
+            end -= 1;
+        }
+        let mut block = Block {
+            span: Span::new(line.start, end, line.number, 1),
+            skip: None,
+            number: None,
+            label: None,
+            statements: Vec::new(),
+            comment: line.comment.map(|(s, e)| Comment {
+                span: Span::new(s, e, line.number, s - line.start + 1),
+                text: CompactString::from(decode(&self.src[s as usize + 1..e as usize])),
+            }),
+            depth: 0,
+        };
+        if let Some(c) = &block.comment {
+            self.note_path_directive(c);
+        }
+        if let Some((s, e)) = line.header {
+            self.note_header(Span::new(s, e, line.number, s - line.start + 1));
+        }
+        if line.broken || tokens.is_empty() {
+            return block;
+        }
+        if let Some(deep) = too_deep(tokens) {
+            self.diagnostics.push(
+                Diagnostic::error(
+                    "gcodec::parse::nesting_too_deep",
+                    format!(
+                        "brackets nested more than {MAX_EXPRESSION_DEPTH} deep in one block"
+                    ),
+                )
+                .with_label(ctx.span(deep), "this bracket is too deep")
+                .with_help("split the expression using intermediate variables"),
+            );
+            return block;
+        }
+        let eoi = SimpleSpan::from(end as usize..end as usize);
+        let (body, errors) = parser
+            .parse(tokens.split_token_span(eoi))
+            .into_output_errors();
+        match (body, errors.into_iter().next()) {
+            (Some(body), None) => {
+                block.skip = body.skip;
+                block.number = body.number;
+                block.label = body.label;
+                block.statements = body.statements;
+                self.check_statements(&mut block.statements);
+            }
+            (_, Some(error)) => self.diagnostics.push(syntax_diagnostic(error, ctx)),
+            (None, None) => {}
+        }
+        block
+    }
+
+    fn note_header(&mut self, span: Span) {
+        let text = decode(&self.src[span.start as usize + 1..span.end as usize]);
+        let text = text.trim_end();
+        let before_any_block = self
+            .program
+            .blocks
+            .iter()
+            .all(|b| b.statements.is_empty() && b.label.is_none() && b.number.is_none());
+        if self.program.header.is_some() || !before_any_block {
+            self.diagnostics.push(
+                Diagnostic::error(
+                    "gcodec::parse::misplaced_header",
+                    "a `%` program header may only open the file",
+                )
+                .with_label(span, "header after the program started")
+                .with_help("one file holds one program; split the file or remove the line"),
+            );
+            return;
+        }
+        let (program, file_type) = split_internal_name(text);
+        self.program.header = Some(Header {
+            span,
+            text: text.into(),
+            program,
+            file_type,
+        });
+    }
+
+    fn note_path_directive(&mut self, comment: &Comment) {
+        let text = comment.text.trim_end();
+        let is_path = text.get(..6).is_some_and(|p| p.eq_ignore_ascii_case("$PATH="));
+        if self.program.path.is_none() && is_path {
+            self.program.path = Some(PathDirective {
+                span: comment.span,
+                path: text[6..].into(),
+            });
+        }
+    }
+
+    /// Checks that need a block's whole statement list.
+    fn check_statements(&mut self, statements: &mut Vec<Statement>) {
+        // A value after `=` ends at a blank: `R3=200G0` is not two statements.
+        for pair in statements.windows(2) {
+            let ends_in_value = matches!(
+                &pair[0].kind,
+                StatementKind::Assign(_)
+                    | StatementKind::Word(Word {
+                        value: WordValue::Assigned { .. },
+                        ..
+                    })
+            );
+            if ends_in_value && pair[1].span.start == pair[0].span.end {
+                self.diagnostics.push(
+                    Diagnostic::error(
+                        "gcodec::parse::missing_separator",
+                        "a value after `=` must be followed by a blank before the next word",
+                    )
+                    .with_label(pair[1].span, "touches the value before it")
+                    .with_help("insert a blank, e.g. `R3=200 G0`"),
+                );
+            }
+        }
+        // `NAME P3`, `L12 P=2`: the P word counts the call's passes.
+        let calls = statements
+            .iter()
+            .filter(|s| matches!(s.kind, StatementKind::Call(_)))
+            .count();
+        if calls == 1 {
+            let p = statements.iter().position(|s| {
+                matches!(&s.kind, StatementKind::Word(w) if w.address == "P" && w.extension.is_none())
+            });
+            if let Some(p) = p {
+                let word = statements.remove(p);
+                if let (StatementKind::Word(w), Some(call)) = (
+                    word.kind,
+                    statements.iter_mut().find_map(|s| match &mut s.kind {
+                        StatementKind::Call(c) => Some(c),
+                        _ => None,
+                    }),
+                ) {
+                    call.passes = Some(Box::new(w));
+                }
+            }
+        }
+    }
+}
+
+/// `_N_SHAFT_MPF` → (`SHAFT`, `MPF`); `MPF123` → (None, None).
+fn split_internal_name(text: &str) -> (Option<CompactString>, Option<CompactString>) {
+    let Some(rest) = text
+        .get(..3)
+        .filter(|p| p.eq_ignore_ascii_case("_N_"))
+        .map(|_| &text[3..])
+    else {
+        return (None, None);
+    };
+    match rest.rfind('_') {
+        Some(i) if i > 0 && i + 1 < rest.len() => {
+            (Some(rest[..i].into()), Some(rest[i + 1..].to_ascii_uppercase().into()))
+        }
+        _ => (Some(rest.into()), None),
+    }
+}
+
+/// The first bracket deeper than [`MAX_EXPRESSION_DEPTH`], if any.
+fn too_deep(tokens: &[Spanned]) -> Option<SimpleSpan> {
+    let mut depth = 0usize;
+    for (kind, span) in tokens {
+        match kind {
+            TokenKind::LParen | TokenKind::LBracket => {
+                depth += 1;
+                if depth > MAX_EXPRESSION_DEPTH {
+                    return Some(*span);
+                }
+            }
+            TokenKind::RParen | TokenKind::RBracket => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    None
+}
+
+fn lexical_error(kind: TokenKind, span: Span, src: &[u8]) -> Diagnostic {
+    match kind {
+        TokenKind::Header => Diagnostic::error(
+            "gcodec::parse::misplaced_header",
+            "`%` may only start a program header line",
+        )
+        .with_label(span, "here")
+        .with_help("a header line looks like `%_N_NAME_MPF` and stands alone on the first line"),
+        _ => {
+            let byte = src.get(span.start as usize).copied().unwrap_or(0);
+            let shown = if byte.is_ascii_graphic() {
+                format!("`{}`", byte as char)
+            } else {
+                format!("byte 0x{byte:02X}")
+            };
+            let help = match byte {
+                b'?' | b'!' => "`?` and `!` are reserved characters in SINUMERIK programs",
+                b'$' => "system variables are written `$` followed by their name, e.g. `$P_UIFR`",
+                b'_' => "names are at least two characters long, e.g. `_A`",
+                _ => "comments start with `;`; this character is not part of the NC language",
+            };
+            Diagnostic::error(
+                "gcodec::parse::invalid_character",
+                format!("invalid character {shown}"),
+            )
+            .with_label(span, "not allowed here")
+            .with_help(help)
+        }
+    }
+}
+
+fn syntax_diagnostic(error: SyntaxError, ctx: &Ctx<'_>) -> Diagnostic {
+    let span = ctx.span(error.span);
+    if let Some(custom) = error.custom {
+        let mut d = Diagnostic::error(custom.code, custom.message).with_label(span, "here");
+        d.help = custom.help;
+        return d;
+    }
+    let found = match error.found {
+        Some(kind) => format!("unexpected {}", kind.describe()),
+        None => "unexpected end of block".to_owned(),
+    };
+    let expected: Vec<&str> = error
+        .label
+        .into_iter()
+        .chain(error.expected_kinds().map(TokenKind::describe))
+        .collect();
+    let label = if expected.is_empty() {
+        "not valid here".to_owned()
+    } else {
+        format!("expected {}", join_or(&expected))
+    };
+    Diagnostic::error("gcodec::parse::unexpected_token", found)
+        .with_label(span, label)
+        .with_help("each block holds words (`G1 X10`), assignments (`R1=5`), one control statement or calls; see SPEC.md")
+}
+
+fn join_or(items: &[&str]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => (*one).to_owned(),
+        [init @ .., last] => format!("{} or {}", init.join(", "), last),
+    }
+}

@@ -1,0 +1,1457 @@
+//! The chumsky grammar of one block's statements.
+//!
+//! The driver hands over the significant tokens of one line (blanks and the
+//! comment removed); adjacency, which matters in SINUMERIK (`X1=` versus
+//! `X1 A=`, `M5` versus `M 5`), is read from the byte spans.
+
+use std::cell::Cell;
+
+use chumsky::input::MappedInput;
+use chumsky::pratt::{infix, left, prefix};
+use chumsky::prelude::*;
+use compact_str::CompactString;
+use gcodec_lexer::TokenKind as T;
+use gcodec_source::Span;
+
+use crate::ast::*;
+use crate::error::SyntaxError;
+
+pub(crate) type Spanned = (T, SimpleSpan);
+pub(crate) type In<'t> = MappedInput<'t, T, SimpleSpan, &'t [Spanned]>;
+pub(crate) type Ex = extra::Err<SyntaxError>;
+
+/// Everything a block holds besides its comment.
+#[derive(Debug)]
+pub(crate) struct BlockBody {
+    pub skip: Option<SkipLevel>,
+    pub number: Option<BlockNumber>,
+    pub label: Option<LabelDef>,
+    pub statements: Vec<Statement>,
+}
+
+/// Source access for the grammar's closures: the file bytes and the line
+/// the current block sits on.
+#[derive(Clone, Copy)]
+pub(crate) struct Ctx<'s> {
+    pub src: &'s [u8],
+    /// (line, byte offset of the line start) of the block being parsed.
+    pub line: &'s Cell<(u32, u32)>,
+}
+
+impl<'s> Ctx<'s> {
+    pub fn span(&self, s: SimpleSpan) -> Span {
+        let (line, line_start) = self.line.get();
+        Span::new(
+            s.start as u32,
+            s.end as u32,
+            line,
+            (s.start as u32).saturating_sub(line_start) + 1,
+        )
+    }
+
+    pub fn bytes(&self, s: SimpleSpan) -> &'s [u8] {
+        &self.src[s.start..s.end]
+    }
+
+    /// Token text; tokens other than strings and comments are ASCII.
+    pub fn text(&self, s: SimpleSpan) -> &'s str {
+        std::str::from_utf8(self.bytes(s)).unwrap_or("")
+    }
+
+    fn name(&self, s: SimpleSpan) -> CompactString {
+        CompactString::from(self.text(s))
+    }
+}
+
+const ERR_VALUE: &str = "gcodec::parse::invalid_value";
+const ERR_WORD: &str = "gcodec::parse::invalid_word";
+const ERR_NUMBER: &str = "gcodec::parse::invalid_number";
+const ERR_STRING: &str = "gcodec::parse::unclosed_string";
+
+/// Single-letter addresses that take a numeric extension (`X1=`, `M2=`, `S1=`).
+fn letter_takes_extension(c: u8) -> bool {
+    matches!(
+        c.to_ascii_uppercase(),
+        b'A' | b'B'
+            | b'C'
+            | b'E'
+            | b'H'
+            | b'I'
+            | b'J'
+            | b'K'
+            | b'M'
+            | b'Q'
+            | b'S'
+            | b'T'
+            | b'U'
+            | b'V'
+            | b'W'
+            | b'X'
+            | b'Y'
+            | b'Z'
+    )
+}
+
+/// Single-letter addresses that take a bracketed extension (`M[R1]=`,
+/// `G[8]=`, `S[1]=`, `X[1]=`). `T[…]` and `F[…]` are rejected as the
+/// control's syntax check does.
+fn letter_takes_index(c: u8) -> bool {
+    !matches!(
+        c.to_ascii_uppercase(),
+        b'T' | b'F' | b'N' | b'L' | b'P' | b'D'
+    )
+}
+
+/// Multi-letter addresses written `NAME=value`; other names with `=` are
+/// variable assignments (later stages may still resolve them as axes).
+pub(crate) fn is_named_address(name: &str) -> bool {
+    const NAMES: &[&str] = &[
+        "ACC", "ADIS", "ADISPOS", "ANG", "AP", "AR", "AX", "CHF", "CHR", "CR", "DISC", "DITE",
+        "DITS", "DL", "FA", "FB", "FL", "FP", "FZ", "LIMS", "OFFN", "OVR", "OVRA", "PL", "PO",
+        "POS", "POSA", "PW", "RND", "RNDM", "RP", "RPL", "SD", "SF", "SPOS", "SPOSA", "TURN",
+    ];
+    NAMES.iter().any(|n| n.eq_ignore_ascii_case(name))
+}
+
+pub(crate) fn number_value(text: &str) -> Option<f64> {
+    if let Some(pos) = text.to_ascii_uppercase().find("EX") {
+        let (m, e) = (&text[..pos], &text[pos + 2..]);
+        let m: f64 = m.parse().ok()?;
+        let e: i32 = e.parse().ok()?;
+        Some(m * 10f64.powi(e))
+    } else {
+        text.parse().ok()
+    }
+}
+
+fn args<'t, 's: 't>(
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Vec<Option<Expr>>, Ex> + Clone + 't {
+    expr.or_not()
+        .separated_by(just(T::Comma))
+        .collect::<Vec<_>>()
+        .map(|v| if v.len() == 1 && v[0].is_none() { Vec::new() } else { v })
+        .delimited_by(just(T::LParen), just(T::RParen))
+}
+
+/// The expression grammar with Siemens precedence.
+pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't {
+    recursive(move |expr| {
+        let mk = move |kind, s: SimpleSpan| Expr {
+            span: g.span(s),
+            kind,
+        };
+        let number = select! { T::Number => () }.try_map(move |_, s: SimpleSpan| {
+            let text = g.text(s);
+            number_value(text)
+                .map(|value| {
+                    mk(
+                        ExprKind::Number {
+                            value,
+                            integer: text.bytes().all(|b| b.is_ascii_digit()),
+                        },
+                        s,
+                    )
+                })
+                .ok_or_else(|| {
+                    SyntaxError::custom(s, ERR_NUMBER, format!("invalid number `{text}`"), None)
+                })
+        });
+        let radix = select! { T::HexNumber => 16, T::BinNumber => 2 }.try_map(
+            move |radix, s: SimpleSpan| {
+                let text = g.text(s);
+                u64::from_str_radix(&text[2..text.len() - 1], radix)
+                    .map(|v| {
+                        mk(
+                            ExprKind::Number {
+                                value: v as f64,
+                                integer: true,
+                            },
+                            s,
+                        )
+                    })
+                    .map_err(|_| {
+                        SyntaxError::custom(
+                            s,
+                            ERR_NUMBER,
+                            format!("constant `{text}` is too large"),
+                            None,
+                        )
+                    })
+            },
+        );
+        let bad_quoted = select! { T::BadQuoted => () }.try_map(move |_, s: SimpleSpan| {
+            let text = g.text(s);
+            let (what, help) = match text.as_bytes().get(1).map(u8::to_ascii_uppercase) {
+                Some(b'H') => (
+                    "hex constant",
+                    "hex constants are written 'H' followed by the digits 0-9 and A-F, e.g. 'H1F'",
+                ),
+                Some(b'B') => (
+                    "binary constant",
+                    "binary constants are written 'B' followed by 0 and 1, e.g. 'B101'",
+                ),
+                _ => (
+                    "constant",
+                    "quoted constants are hex ('H1F') or binary ('B101'); strings use double quotes",
+                ),
+            };
+            Err::<Expr, _>(SyntaxError::custom(
+                s,
+                ERR_NUMBER,
+                format!("malformed {what} `{text}`"),
+                Some(help),
+            ))
+        });
+        let string = select! { T::String => () }.map_with(move |_, e| {
+            let s: SimpleSpan = e.span();
+            let bytes = g.bytes(s);
+            let value = gcodec_source_decode(&bytes[1..bytes.len() - 1]);
+            mk(ExprKind::String { value }, s)
+        });
+        let unclosed = select! { T::UnclosedString => () }.try_map(|_, s| {
+            Err::<Expr, _>(SyntaxError::custom(
+                s,
+                ERR_STRING,
+                "string is not closed on its line",
+                Some("add the closing `\"`; strings cannot span blocks"),
+            ))
+        });
+        let boolean = select! { T::True => true, T::False => false }
+            .map_with(move |value, e| mk(ExprKind::Bool { value }, e.span()));
+        let var = var_ref(g, expr.clone()).map(|v| Expr {
+            span: v.span,
+            kind: ExprKind::Var(v),
+        });
+        let call = select! { T::Ident => () }
+            .map_with(|_, e| e.span())
+            .then(args(expr.clone()))
+            .map_with(move |(name_span, args), e| {
+                mk(
+                    ExprKind::Call {
+                        name: g.name(name_span),
+                        name_span: g.span(name_span),
+                        args,
+                    },
+                    e.span(),
+                )
+            });
+        let paren = expr
+            .clone()
+            .delimited_by(just(T::LParen), just(T::RParen))
+            .map_with(move |mut inner: Expr, e| {
+                // The span of a parenthesised expression includes the parentheses.
+                inner.span = g.span(e.span());
+                inner
+            });
+        let atom = choice((
+            number, radix, bad_quoted, string, unclosed, boolean, call, var, paren,
+        ))
+        .labelled("expression");
+
+        let bin = move |op: BinaryOp| {
+            move |l: Expr, _, r: Expr, e: &mut chumsky::input::MapExtra<'t, '_, In<'t>, Ex>| Expr {
+                span: g.span(e.span()),
+                kind: ExprKind::Binary {
+                    op,
+                    lhs: Box::new(l),
+                    rhs: Box::new(r),
+                },
+            }
+        };
+        let un = move |op: UnaryOp| {
+            move |_, r: Expr, e: &mut chumsky::input::MapExtra<'t, '_, In<'t>, Ex>| Expr {
+                span: g.span(e.span()),
+                kind: ExprKind::Unary {
+                    op,
+                    operand: Box::new(r),
+                },
+            }
+        };
+        atom.pratt((
+            prefix(12, just(T::Minus), un(UnaryOp::Neg)),
+            prefix(12, just(T::Plus), un(UnaryOp::Plus)),
+            prefix(12, just(T::Not), un(UnaryOp::Not)),
+            prefix(12, just(T::BNot), un(UnaryOp::BNot)),
+            prefix(12, just(T::Concat), un(UnaryOp::ToString)),
+            infix(left(11), just(T::Star), bin(BinaryOp::Mul)),
+            infix(left(11), just(T::Slash), bin(BinaryOp::Div)),
+            infix(left(11), just(T::Div), bin(BinaryOp::IntDiv)),
+            infix(left(11), just(T::Mod), bin(BinaryOp::Mod)),
+            infix(left(10), just(T::Plus), bin(BinaryOp::Add)),
+            infix(left(10), just(T::Minus), bin(BinaryOp::Sub)),
+            infix(left(9), just(T::BAnd), bin(BinaryOp::BAnd)),
+            infix(left(8), just(T::BXor), bin(BinaryOp::BXor)),
+            infix(left(7), just(T::BOr), bin(BinaryOp::BOr)),
+            infix(left(6), just(T::And), bin(BinaryOp::And)),
+            infix(left(5), just(T::Xor), bin(BinaryOp::Xor)),
+            infix(left(4), just(T::Or), bin(BinaryOp::Or)),
+            infix(left(3), just(T::Concat), bin(BinaryOp::Concat)),
+            infix(left(2), just(T::EqEq), bin(BinaryOp::Eq)),
+            infix(left(2), just(T::Ne), bin(BinaryOp::Ne)),
+            infix(left(2), just(T::Lt), bin(BinaryOp::Lt)),
+            infix(left(2), just(T::Gt), bin(BinaryOp::Gt)),
+            infix(left(2), just(T::Le), bin(BinaryOp::Le)),
+            infix(left(2), just(T::Ge), bin(BinaryOp::Ge)),
+            infix(left(1), just(T::Colon), bin(BinaryOp::Chain)),
+        ))
+    })
+}
+
+fn gcodec_source_decode(bytes: &[u8]) -> CompactString {
+    CompactString::from(gcodec_source::decode(bytes))
+}
+
+/// `[a, b, c]` index list.
+fn indices<'t>(
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Vec<Expr>, Ex> + Clone + 't {
+    expr.separated_by(just(T::Comma))
+        .at_least(1)
+        .collect::<Vec<_>>()
+        .delimited_by(just(T::LBracket), just(T::RBracket))
+}
+
+/// A variable reference: `R1`, `R[i]`, `NAME`, `NAME[i,j]`, `$SYS[…]`, and
+/// axis names inside expressions (`X`, `X1`).
+pub(crate) fn var_ref<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, VarRef, Ex> + Clone + 't {
+    let r_or_axis = select! { T::Letter => () }
+        .map_with(|_, e| e.span())
+        .then(select! { T::Number => () }.map_with(|_, e| e.span()).or_not())
+        .then(indices(expr.clone()).or_not())
+        .try_map(move |((letter, digits), idx), span| {
+            let l = g.bytes(letter)[0].to_ascii_uppercase();
+            let digits = digits.filter(|d| d.start == letter.end);
+            match (l, digits, idx) {
+                (b'R', Some(d), None) => {
+                    let text = g.text(d);
+                    if !text.bytes().all(|b| b.is_ascii_digit()) {
+                        return Err(SyntaxError::custom(
+                            d,
+                            ERR_WORD,
+                            format!("R parameter number `{text}` is not an integer"),
+                            None,
+                        ));
+                    }
+                    Ok(VarRef {
+                        span: g.span(span),
+                        kind: VarKind::RParameter,
+                        name: "R".into(),
+                        indices: vec![Expr {
+                            span: g.span(d),
+                            kind: ExprKind::Number {
+                                value: number_value(text).unwrap_or(0.0),
+                                integer: true,
+                            },
+                        }],
+                    })
+                }
+                (b'R', None, Some(idx)) => Ok(VarRef {
+                    span: g.span(span),
+                    kind: VarKind::RParameter,
+                    name: "R".into(),
+                    indices: idx,
+                }),
+                (_, Some(_), Some(_)) => Err(SyntaxError::custom(
+                    span,
+                    ERR_WORD,
+                    format!(
+                        "`{}` cannot be indexed: a numbered address takes no `[…]`",
+                        g.text(SimpleSpan::from(letter.start..letter.end + 1))
+                    ),
+                    None,
+                )),
+                (_, Some(d), None) => {
+                    // An axis name with a number (`X1`) inside an expression.
+                    let text = g.text(d);
+                    if !text.bytes().all(|b| b.is_ascii_digit()) {
+                        return Err(SyntaxError::custom(span, ERR_WORD, "a number cannot follow an address letter inside an expression", Some("write `=` values as expressions: `X=R1+5`; numbered axes need an integer, e.g. `X1`")));
+                    }
+                    Ok(VarRef {
+                        span: g.span(span),
+                        kind: VarKind::Name,
+                        name: g.name(SimpleSpan::from(letter.start..d.end)),
+                        indices: Vec::new(),
+                    })
+                }
+                (_, None, idx) => Ok(VarRef {
+                    span: g.span(span),
+                    kind: VarKind::Name,
+                    name: g.name(letter),
+                    indices: idx.unwrap_or_default(),
+                }),
+            }
+        });
+    let named = select! { T::Ident => VarKind::Name, T::SystemVar => VarKind::System }
+        .map_with(|k, e| (k, e.span()))
+        .then(indices(expr).or_not())
+        .map_with(move |((kind, name), idx), e| VarRef {
+            span: g.span(e.span()),
+            kind,
+            name: g.name(name),
+            indices: idx.unwrap_or_default(),
+        });
+    choice((r_or_axis, named))
+}
+
+/// The right side of `=`: an expression, `(a, b)`, `SET(…)` or `REP(…)`.
+fn initializer<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Initializer, Ex> + Clone + 't {
+    let list_items = expr
+        .clone()
+        .or_not()
+        .separated_by(just(T::Comma))
+        .collect::<Vec<_>>()
+        .delimited_by(just(T::LParen), just(T::RParen));
+    let set = just(T::Set)
+        .ignore_then(list_items.clone())
+        .map_with(move |items, e| Initializer::List {
+            span: g.span(e.span()),
+            set: true,
+            items,
+        });
+    let rep = just(T::Rep)
+        .ignore_then(
+            expr.clone()
+                .separated_by(just(T::Comma))
+                .at_least(1)
+                .collect::<Vec<_>>()
+                .delimited_by(just(T::LParen), just(T::RParen)),
+        )
+        .map_with(move |args, e| Initializer::Rep {
+            span: g.span(e.span()),
+            args,
+        });
+    // `(a, b, …)` with at least one comma is a list; `(a)` is an expression.
+    let paren_list = list_items
+        .filter(|items: &Vec<Option<Expr>>| items.len() > 1)
+        .map_with(move |items, e| Initializer::List {
+            span: g.span(e.span()),
+            set: false,
+            items,
+        });
+    choice((set, rep, paren_list, expr.map(Initializer::Expr)))
+}
+
+/// Wraps a word's `=` value, lifting a dimension modifier (`IC(5)`) out.
+fn assigned_value(expr: Expr) -> WordValue {
+    if let ExprKind::Call {
+        name,
+        name_span,
+        args,
+    } = &expr.kind
+    {
+        if let (Some(kind), [Some(_)]) = (DimensionKind::from_name(name), args.as_slice()) {
+            let name_span = *name_span;
+            let span = expr.span;
+            if let ExprKind::Call { mut args, .. } = expr.kind {
+                let inner = args.pop().flatten().expect("one argument");
+                return WordValue::Assigned {
+                    modifier: Some(DimensionModifier {
+                        span: name_span.cover(span),
+                        kind,
+                    }),
+                    expr: Box::new(inner),
+                };
+            }
+        }
+    }
+    WordValue::Assigned {
+        modifier: None,
+        expr: Box::new(expr),
+    }
+}
+
+/// What the word grammar produced before classification.
+enum LetterStatement {
+    Word(Word),
+    Assign(Assign),
+    Call(Call),
+}
+
+/// Statements that start with a single address letter: DIN words,
+/// R-parameter assignments and `L` calls.
+fn letter_statement<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, LetterStatement, Ex> + Clone + 't {
+    let letter = select! { T::Letter => () }.map_with(|_, e| e.span());
+    let sign = select! { T::Plus => false, T::Minus => true }
+        .map_with(|neg, e| -> (bool, SimpleSpan) { (neg, e.span()) });
+    let number = select! { T::Number => () }.map_with(|_, e| e.span());
+    let bracket = expr
+        .clone()
+        .delimited_by(just(T::LBracket), just(T::RBracket))
+        .map_with(|x, e| -> (Expr, SimpleSpan) { (x, e.span()) });
+    let string_after = select! { T::String => () }.map_with(|_, e| e.span());
+    let args_p = args(expr.clone());
+    letter
+        .then(sign.or_not())
+        .then(number.or_not())
+        .then(bracket.or_not())
+        .then(just(T::Eq).ignore_then(initializer(g, expr)).or_not())
+        .then(string_after.or_not())
+        .then(args_p.or_not())
+        .try_map(move |((((((letter, sign), num), bracket), value), string), call_args), span| {
+            let l = g.bytes(letter)[0].to_ascii_uppercase();
+            let addr = (l as char).to_string();
+            let address: CompactString = addr.as_str().into();
+            let err = |s: SimpleSpan, msg: String, help: &'static str| {
+                Err(SyntaxError::custom(s, ERR_WORD, msg, Some(help)))
+            };
+            if let Some(s) = string {
+                return err(
+                    s,
+                    format!("a string after `{addr}` needs `=`"),
+                    "write the value as `T=\"NAME\"`",
+                );
+            }
+            // The sign and digits must touch the letter and each other.
+            let mut next_start = letter.end;
+            if let Some((_, s)) = sign {
+                if s.start != next_start {
+                    return err(
+                        span,
+                        format!("blank between address `{addr}` and its value"),
+                        "write the value directly after the address, e.g. `X-10`, or use `=`",
+                    );
+                }
+                next_start = s.end;
+            }
+            if let Some(n) = num {
+                if n.start != next_start {
+                    return err(
+                        span,
+                        format!("blank between address `{addr}` and its value"),
+                        "write the value directly after the address (`M5`), or use `=` (`M=5`)",
+                    );
+                }
+            } else if sign.is_some() {
+                return err(span, format!("sign without a number after `{addr}`"), "write e.g. `X-10`");
+            }
+            let a_span = g.span(letter);
+            let value_expr = |v: Initializer| -> Result<Expr, SyntaxError> {
+                match v {
+                    Initializer::Expr(e) => Ok(e),
+                    _ => Err(SyntaxError::custom(
+                        span,
+                        ERR_VALUE,
+                        format!("address `{addr}` takes one value, not a list"),
+                        None,
+                    )),
+                }
+            };
+            let int_digits = |n: SimpleSpan| -> Result<u32, SyntaxError> {
+                g.text(n).parse::<u32>().map_err(|_| {
+                    SyntaxError::custom(
+                        n,
+                        ERR_WORD,
+                        format!("`{}` is not a valid address extension", g.text(n)),
+                        Some("an address extension is a whole number, e.g. `M2=3`, `X1=10`"),
+                    )
+                })
+            };
+            // R parameters: `R1=…`, `R[i]=…`.
+            if l == b'R' && sign.is_none() {
+                let bracket_end = bracket.as_ref().map(|(_, b)| b.end);
+                let index = match (num, bracket) {
+                    (Some(n), None) => {
+                        let v = int_digits(n)?;
+                        Expr {
+                            span: g.span(n),
+                            kind: ExprKind::Number { value: v as f64, integer: true },
+                        }
+                    }
+                    (None, Some((idx, _))) => idx,
+                    (Some(_), Some((_, b))) => {
+                        return err(b, "an R parameter with a number takes no index".into(), "write `R10=4` or `R[10]=4`");
+                    }
+                    (None, None) => {
+                        return err(span, "`R` needs a parameter number".into(), "write e.g. `R1=5` or `R[R2]=5`");
+                    }
+                };
+                let Some(value) = value else {
+                    return err(span, "R parameter without assignment".into(), "assign a value, e.g. `R1=5`");
+                };
+                if call_args.is_some() {
+                    return err(span, "unexpected `(` after an R-parameter assignment".into(), "separate statements with a blank");
+                }
+                let target_end = bracket_end.or(num.map(|n| n.end)).unwrap_or(letter.end);
+                return Ok(LetterStatement::Assign(Assign {
+                    target: VarRef {
+                        span: g.span(SimpleSpan::from(letter.start..target_end)),
+                        kind: VarKind::RParameter,
+                        name: "R".into(),
+                        indices: vec![index],
+                    },
+                    value,
+                }));
+            }
+            // `L123`, `L123(args)`: subprogram call by number.
+            if l == b'L' && sign.is_none() && bracket.is_none() && value.is_none() {
+                if let Some(n) = num {
+                    let digits = g.text(n);
+                    if !digits.bytes().all(|b| b.is_ascii_digit()) {
+                        return err(n, format!("`L{digits}` is not a program number"), "program numbers are whole numbers, e.g. `L123`");
+                    }
+                    return Ok(LetterStatement::Call(Call {
+                        target: CallTarget::Number {
+                            span: g.span(SimpleSpan::from(letter.start..n.end)),
+                            digits: digits.into(),
+                        },
+                        args: call_args,
+                        passes: None,
+                    }));
+                }
+            }
+            if call_args.is_some() {
+                return err(span, format!("unexpected `(` after address `{addr}`"), "`(` groups expressions after `=`, e.g. `X=(R1+2)*3`");
+            }
+            let word = match (sign, num, bracket, value) {
+                // X10, X-10, X.5
+                (_, Some(n), None, None) => {
+                    let text = g.text(n);
+                    let Some(mut v) = number_value(text) else {
+                        return err(n, format!("invalid number `{text}`"), "numbers are written like `10`, `-0.5`, `.5` or `1.5EX-3`");
+                    };
+                    let start = sign.map(|(_, s)| s).unwrap_or(n);
+                    if sign.is_some_and(|(neg, _)| neg) {
+                        v = -v;
+                    }
+                    Word {
+                        address,
+                        address_span: a_span,
+                        extension: None,
+                        value: WordValue::Constant(NumberLit {
+                            span: g.span(SimpleSpan::from(start.start..n.end)),
+                            value: v,
+                            integer: text.bytes().all(|b| b.is_ascii_digit()),
+                        }),
+                    }
+                }
+                // X1=10, M2=3
+                (None, Some(n), None, Some(v)) => {
+                    if !letter_takes_extension(l) {
+                        return err(span, format!("address `{addr}` takes no numeric extension"), "only axes, I/J/K, M, H, S and T take an extension such as `M2=3`");
+                    }
+                    let ext = int_digits(n)?;
+                    Word {
+                        address,
+                        address_span: a_span,
+                        extension: Some(Extension::Number { span: g.span(n), value: ext }),
+                        value: assigned_value(value_expr(v)?),
+                    }
+                }
+                // X=…
+                (None, None, None, Some(v)) => Word {
+                    address,
+                    address_span: a_span,
+                    extension: None,
+                    value: assigned_value(value_expr(v)?),
+                },
+                // G[8]=2, M[R1]=3
+                (None, None, Some((idx, bs)), Some(v)) => {
+                    if !letter_takes_index(l) {
+                        return err(bs, format!("address `{addr}` takes no `[…]` extension"), "write the plain form, e.g. `T=10` or `F=1000`");
+                    }
+                    Word {
+                        address,
+                        address_span: a_span,
+                        extension: Some(Extension::Index { span: g.span(bs), index: Box::new(idx) }),
+                        value: assigned_value(value_expr(v)?),
+                    }
+                }
+                (_, Some(_), Some((_, bs)), _) => {
+                    return err(bs, format!("a numbered address `{addr}{}` takes no `[…]`", g.text(num.unwrap())), "use either the number (`M2=3`) or the index (`M[2]=3`)");
+                }
+                (_, _, Some(_), None) => {
+                    return err(span, format!("`{addr}[…]` needs `=` and a value"), "write e.g. `M[2]=3`");
+                }
+                (Some(_), Some(_), None, Some(_)) => {
+                    return err(span, "a signed number cannot be an address extension".into(), "write e.g. `X1=-10`");
+                }
+                (_, None, None, None) | (Some(_), None, _, _) => {
+                    return err(span, format!("address `{addr}` without a value"), "write a value directly after the address (`X10`) or after `=` (`X=R1`)");
+                }
+            };
+            Ok(LetterStatement::Word(word))
+        })
+}
+
+/// A jump target: label, block number or string expression.
+fn jump_target<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, JumpTarget, Ex> + Clone + 't {
+    let label = select! { T::Ident => () }
+        .map_with(|_, e| e.span())
+        .then_ignore(
+            // A label is a plain name; a name followed by an operator or
+            // parenthesis is an expression.
+            one_of([T::LParen, T::LBracket, T::Concat]).not().rewind(),
+        )
+        .map(move |s| JumpTarget::Label {
+            span: g.span(s),
+            name: g.name(s),
+        });
+    let block_number = select! { T::Letter => () }
+        .map_with(|_, e| e.span())
+        .then(select! { T::Number => () }.map_with(|_, e| e.span()))
+        .try_map(move |(l, n): (SimpleSpan, SimpleSpan), span| {
+            let is_n = g.bytes(l)[0].eq_ignore_ascii_case(&b'N') && n.start == l.end;
+            match g.text(n).parse::<u64>() {
+                Ok(value) if is_n => Ok(JumpTarget::BlockNumber {
+                    span: g.span(span),
+                    value,
+                }),
+                _ => Err(SyntaxError::custom(
+                    span,
+                    ERR_WORD,
+                    "a jump target is a label, a block number `N…` or a string",
+                    None,
+                )),
+            }
+        });
+    choice((label, block_number, expr.map(JumpTarget::Expr))).labelled("jump target")
+}
+
+/// A label or block number (REPEAT sections take no string expressions,
+/// which keeps `REPEAT A B P=3` unambiguous).
+fn section_target<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, JumpTarget, Ex> + Clone + 't {
+    let never = select! { T::Error => () }.try_map(|_, s| {
+        Err::<Expr, _>(SyntaxError::custom(s, ERR_WORD, "unreachable", None))
+    });
+    jump_target(g, never).labelled("label")
+}
+
+fn goto_kind<'t>() -> impl Parser<'t, In<'t>, GotoKind, Ex> + Clone + 't {
+    select! {
+        T::Goto => GotoKind::Goto,
+        T::GotoF => GotoKind::GotoF,
+        T::GotoB => GotoKind::GotoB,
+        T::GotoC => GotoKind::GotoC,
+        T::GotoS => GotoKind::GotoS,
+    }
+}
+
+fn jump<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Jump, Ex> + Clone + 't {
+    goto_kind()
+        .then(jump_target(g, expr).or_not())
+        .try_map(|(goto, target), span| match (goto, &target) {
+            (GotoKind::GotoS, Some(_)) => Err(SyntaxError::custom(
+                span,
+                ERR_WORD,
+                "`GOTOS` takes no target",
+                Some("GOTOS jumps back to the program start"),
+            )),
+            (GotoKind::GotoS, None) | (_, Some(_)) => Ok(Jump { goto, target }),
+            (_, None) => Err(SyntaxError::custom(
+                span,
+                "gcodec::parse::missing_jump_target",
+                "jump without a target",
+                Some("name a label, a block number (`N100`) or a string expression"),
+            )),
+        })
+}
+
+/// A data type: `INT`, `REAL`, `STRING[32]`, …
+fn type_spec<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, TypeSpec, Ex> + Clone + 't {
+    select! { T::Ident => () }
+        .map_with(|_, e| e.span())
+        .try_map(move |s, _| {
+            TypeKind::from_name(g.text(s))
+                .map(|k| (k, s))
+                .ok_or_else(|| SyntaxError {
+                    span: s,
+                    found: Some(T::Ident),
+                    expected: 0,
+                    label: Some("data type"),
+                    custom: None,
+                })
+        })
+        .then(
+            expr.delimited_by(just(T::LBracket), just(T::RBracket))
+                .or_not(),
+        )
+        .try_map(move |((kind, s), len), span| match (kind, len) {
+            (TypeKind::String { .. }, length) => Ok(TypeSpec {
+                span: g.span(span),
+                kind: TypeKind::String {
+                    length: length.map(Box::new),
+                },
+            }),
+            (kind, None) => Ok(TypeSpec {
+                span: g.span(s),
+                kind,
+            }),
+            (_, Some(_)) => Err(SyntaxError::custom(
+                span,
+                ERR_WORD,
+                "only STRING takes a length in `[…]`",
+                Some("array dimensions follow the variable name: `DEF REAL A[3]`"),
+            )),
+        })
+}
+
+/// A declared name: an identifier, or a letter with digits touching it
+/// (`R0`, `X1`; such names shadow addresses and are judged by later stages).
+fn name_token<'t>() -> impl Parser<'t, In<'t>, SimpleSpan, Ex> + Clone + 't {
+    let ident = select! { T::Ident => () }.map_with(|_, e| e.span());
+    let letter = select! { T::Letter => () }
+        .map_with(|_, e| e.span())
+        .then(
+            select! { T::Number => () }
+                .map_with(|_, e| e.span())
+                .or_not(),
+        )
+        .try_map(|(l, n): (SimpleSpan, Option<SimpleSpan>), span| match n {
+            None => Ok(l),
+            Some(n) if n.start == l.end => Ok(span),
+            Some(_) => Err(SyntaxError::custom(
+                span,
+                ERR_WORD,
+                "a name cannot contain a blank",
+                None,
+            )),
+        });
+    ident.or(letter)
+}
+
+/// Attributes such as `NCK`, `SYNR`, `LLI 0`, `DISPLOF`.
+fn attributes<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+    stop_at_types: bool,
+) -> impl Parser<'t, In<'t>, Vec<Attribute>, Ex> + Clone + 't {
+    let value = select! { T::Number => (), T::Minus => (), T::HexNumber => () }
+        .rewind()
+        .ignore_then(expr);
+    select! { T::Ident => () }
+        .map_with(|_, e| e.span())
+        .filter(move |s: &SimpleSpan| !(stop_at_types && TypeKind::from_name(g.text(*s)).is_some()))
+        .then(value.or_not())
+        .map_with(move |(name, value), e| Attribute {
+            span: g.span(e.span()),
+            name: g.name(name),
+            value,
+        })
+        .repeated()
+        .collect()
+}
+
+fn dims<'t>(
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Vec<Expr>, Ex> + Clone + 't {
+    indices(expr).or_not().map(Option::unwrap_or_default)
+}
+
+fn def<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, StatementKind, Ex> + Clone + 't {
+    let var = name_token()
+        .then(dims(expr.clone()))
+        .then(just(T::Eq).ignore_then(initializer(g, expr.clone())).or_not())
+        .map_with(move |((name, dims), init), e| DefVar {
+            span: g.span(e.span()),
+            name: g.name(name),
+            dims,
+            init,
+        });
+    just(T::Def)
+        .ignore_then(attributes(g, expr.clone(), true))
+        .then(type_spec(g, expr))
+        .then(var.separated_by(just(T::Comma)).at_least(1).collect())
+        .map(|((attributes, ty), vars)| {
+            StatementKind::Def(Def {
+                attributes,
+                ty,
+                vars,
+            })
+        })
+}
+
+fn proc_def<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, StatementKind, Ex> + Clone + 't {
+    let param = just(T::Var)
+        .or_not()
+        .then(type_spec(g, expr.clone()))
+        .then(name_token())
+        .then(dims(expr.clone()))
+        .then(just(T::Eq).ignore_then(expr.clone()).or_not())
+        .map_with(move |((((by_ref, ty), name), dims), default), e| Param {
+            span: g.span(e.span()),
+            by_reference: by_ref.is_some(),
+            ty,
+            name: g.name(name),
+            dims,
+            default,
+        });
+    just(T::Proc)
+        .ignore_then(name_token())
+        .then(
+            param
+                .separated_by(just(T::Comma))
+                .collect::<Vec<_>>()
+                .delimited_by(just(T::LParen), just(T::RParen))
+                .or_not(),
+        )
+        .then(attributes(g, expr, false))
+        .map(move |((name, params), attributes)| {
+            StatementKind::Proc(Proc {
+                name: g.name(name),
+                name_span: g.span(name),
+                params: params.unwrap_or_default(),
+                attributes,
+            })
+        })
+}
+
+fn extern_decl<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, StatementKind, Ex> + Clone + 't {
+    // Array dimensions in EXTERN may be left empty: `REAL[,]`.
+    let ext_dims = expr
+        .clone()
+        .or_not()
+        .separated_by(just(T::Comma))
+        .collect::<Vec<_>>()
+        .delimited_by(just(T::LBracket), just(T::RBracket))
+        .or_not()
+        .map(|d| d.map(|v| v.into_iter().flatten().collect()).unwrap_or_default());
+    let param = just(T::Var)
+        .or_not()
+        .then(type_spec(g, expr))
+        .then(ext_dims)
+        .map_with(move |((by_ref, ty), dims), e| ExternParam {
+            span: g.span(e.span()),
+            by_reference: by_ref.is_some(),
+            ty,
+            dims,
+        });
+    just(T::Extern)
+        .ignore_then(name_token())
+        .then(
+            param
+                .separated_by(just(T::Comma))
+                .collect::<Vec<_>>()
+                .delimited_by(just(T::LParen), just(T::RParen))
+                .or_not(),
+        )
+        .map(move |(name, params)| {
+            StatementKind::Extern(Extern {
+                name: g.name(name),
+                params: params.unwrap_or_default(),
+            })
+        })
+}
+
+/// A subprogram call by name (for `MCALL`): `NAME`, `NAME(args)`, `L12`.
+fn named_call<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Call, Ex> + Clone + 't {
+    let by_name = select! { T::Ident => () }
+        .map_with(|_, e| e.span())
+        .map(move |s| CallTarget::Name {
+            span: g.span(s),
+            name: g.name(s),
+        });
+    let by_number = select! { T::Letter => () }
+        .map_with(|_, e| e.span())
+        .then(select! { T::Number => () }.map_with(|_, e| e.span()))
+        .try_map(move |(l, n): (SimpleSpan, SimpleSpan), span| {
+            if g.bytes(l)[0].eq_ignore_ascii_case(&b'L')
+                && n.start == l.end
+                && g.bytes(n).iter().all(u8::is_ascii_digit)
+            {
+                Ok(CallTarget::Number {
+                    span: g.span(span),
+                    digits: g.name(n),
+                })
+            } else {
+                Err(SyntaxError::custom(
+                    span,
+                    ERR_WORD,
+                    "expected a program name or `L` number",
+                    None,
+                ))
+            }
+        });
+    choice((by_name, by_number))
+        .then(args(expr).or_not())
+        .map(|(target, args)| Call {
+            target,
+            args,
+            passes: None,
+        })
+}
+
+/// `P3` / `P=3` after REPEAT.
+fn passes_word<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Word, Ex> + Clone + 't {
+    letter_statement(g, expr).try_map(|s, span| match s {
+        LetterStatement::Word(w) if w.address == "P" && w.extension.is_none() => Ok(w),
+        _ => Err(SyntaxError::custom(
+            span,
+            ERR_WORD,
+            "expected the number of passes `P=n`",
+            None,
+        )),
+    })
+}
+
+/// All statements that may follow a block's number and label.
+pub(crate) fn statements<'t, 's: 't>(
+    g: Ctx<'s>,
+) -> impl Parser<'t, In<'t>, Vec<Statement>, Ex> + 't {
+    let expr = expr(g).boxed();
+    let st = move |kind: StatementKind, s: SimpleSpan| Statement {
+        span: g.span(s),
+        kind,
+    };
+
+    let cond = expr.clone().map(|condition| Condition { condition });
+    let if_stmt = just(T::If)
+        .ignore_then(expr.clone())
+        .then(jump(g, expr.clone()).or_not())
+        .map(|(condition, jump)| match jump {
+            Some(jump) => StatementKind::IfGoto(IfGoto { condition, jump }),
+            None => StatementKind::If(Condition { condition }),
+        });
+    let simple_kw = select! {
+        T::Else => StatementKind::Else,
+        T::EndIf => StatementKind::EndIf,
+        T::EndWhile => StatementKind::EndWhile,
+        T::EndFor => StatementKind::EndFor,
+        T::Loop => StatementKind::Loop,
+        T::EndLoop => StatementKind::EndLoop,
+        T::EndProc => StatementKind::EndProc,
+    };
+    let while_stmt = just(T::While)
+        .ignore_then(cond.clone())
+        .map(StatementKind::While);
+    let until = just(T::Until)
+        .ignore_then(cond.clone())
+        .map(StatementKind::Until);
+    let for_stmt = just(T::For)
+        .ignore_then(var_ref(g, expr.clone()))
+        .then_ignore(just(T::Eq))
+        .then(expr.clone())
+        .then_ignore(just(T::To))
+        .then(expr.clone())
+        .map(|((var, start), end)| StatementKind::For(For { var, start, end }));
+    let repeat_section = select! { T::Repeat => false, T::RepeatB => true }
+        .then(section_target(g))
+        .then(section_target(g).or_not())
+        .then(passes_word(g, expr.clone()).or_not())
+        .map(|(((single_block, start), end), passes)| {
+            StatementKind::RepeatSection(RepeatSection {
+                single_block,
+                start,
+                end,
+                passes: passes.map(Box::new),
+            })
+        });
+    let repeat = just(T::Repeat).to(StatementKind::Repeat);
+    let case_value = expr.clone();
+    let case = just(T::Case)
+        .ignore_then(expr.clone())
+        .then_ignore(just(T::Of))
+        .then(
+            case_value
+                .then(jump(g, expr.clone()))
+                .map(|(value, jump)| CaseArm { value, jump })
+                .repeated()
+                .collect::<Vec<_>>(),
+        )
+        .then(just(T::Default).ignore_then(jump(g, expr.clone())).or_not())
+        .map(|((selector, arms), default)| {
+            StatementKind::Case(Case {
+                selector,
+                arms,
+                default,
+            })
+        });
+    let goto = jump(g, expr.clone()).map(StatementKind::Goto);
+    let redef = just(T::Redef)
+        .ignore_then(name_token())
+        .then(attributes(g, expr.clone(), false))
+        .map(move |(name, attributes)| {
+            StatementKind::Redef(Redef {
+                name: g.name(name),
+                attributes,
+            })
+        });
+    let define = just(T::Define)
+        .ignore_then(name_token())
+        .then_ignore(just(T::As))
+        .then(any().repeated().at_least(1).to_span())
+        .map(move |(name, body): (SimpleSpan, SimpleSpan)| {
+            StatementKind::Define(Define {
+                name: g.name(name),
+                body: gcodec_source_decode(g.bytes(body)),
+                body_span: g.span(body),
+            })
+        });
+    let ret = just(T::Ret)
+        .ignore_then(args(expr.clone()).or_not())
+        .map(|args| StatementKind::Ret(Ret { args }));
+    let call_section = just(T::Block)
+        .ignore_then(jump_target(g, expr.clone()))
+        .then_ignore(just(T::To))
+        .then(jump_target(g, expr.clone()));
+    let indirect_call = just(T::Call)
+        .ignore_then(
+            just(T::Block)
+                .not()
+                .rewind()
+                .ignore_then(expr.clone())
+                .or_not(),
+        )
+        .then(call_section.or_not())
+        .try_map(|(program, section), span| {
+            if program.is_none() && section.is_none() {
+                Err(SyntaxError::custom(
+                    span,
+                    ERR_WORD,
+                    "`CALL` needs a program name or `BLOCK … TO …`",
+                    Some("write e.g. `CALL \"PART1\"`"),
+                ))
+            } else {
+                Ok(StatementKind::IndirectCall(IndirectCall { program, section }))
+            }
+        });
+    let pcall = just(T::PCall)
+        .ignore_then(
+            select! { T::Slash => (), T::Ident => (), T::Letter => (), T::Number => () }
+                .repeated()
+                .at_least(1)
+                .to_span(),
+        )
+        .then(args(expr.clone()).or_not())
+        .map(move |(path, args): (SimpleSpan, _)| {
+            StatementKind::PCall(PCall {
+                path: g.name(path),
+                path_span: g.span(path),
+                args,
+            })
+        });
+    let mcall = just(T::MCall)
+        .ignore_then(named_call(g, expr.clone()).or_not())
+        .map(|call| StatementKind::MCall(MCall { call }));
+
+    // Statements led by a name.
+    let frame = select! { T::Ident => () }
+        .map_with(|_, e| e.span())
+        .try_map(move |s, _| {
+            FrameOp::from_name(g.text(s)).ok_or(SyntaxError {
+                span: s,
+                found: Some(T::Ident),
+                expected: 0,
+                label: None,
+                custom: None,
+            })
+        })
+        .then(
+            letter_statement(g, expr.clone())
+                .try_map(|s, span| match s {
+                    LetterStatement::Word(w) => Ok(w),
+                    _ => Err(SyntaxError::custom(
+                        span,
+                        ERR_WORD,
+                        "frame instructions take axis words only",
+                        Some("write e.g. `TRANS X10 Y5` in a block of its own"),
+                    )),
+                })
+                .or(named_word(g, expr.clone()))
+                .repeated()
+                .collect::<Vec<_>>(),
+        )
+        .map(|(op, words)| StatementKind::Frame(Frame { op, words }));
+    let assign_or_named = var_ref(g, expr.clone())
+        .then_ignore(just(T::Eq))
+        .then(initializer(g, expr.clone()))
+        .try_map(move |(target, value), span| {
+            named_address_word(g, &target, &value, span).map_or_else(
+                || {
+                    Ok(StatementKind::Assign(Assign {
+                        target,
+                        value,
+                    }))
+                },
+                |w| w.map(StatementKind::Word),
+            )
+        });
+    let call = select! { T::Ident => () }
+        .map_with(|_, e| e.span())
+        .then(args(expr.clone()).or_not())
+        .map(move |(s, args)| {
+            StatementKind::Call(Call {
+                target: CallTarget::Name {
+                    span: g.span(s),
+                    name: g.name(s),
+                },
+                args,
+                passes: None,
+            })
+        });
+    let letter = letter_statement(g, expr.clone()).map(|s| match s {
+        LetterStatement::Word(w) => StatementKind::Word(w),
+        LetterStatement::Assign(a) => StatementKind::Assign(a),
+        LetterStatement::Call(c) => StatementKind::Call(c),
+    });
+
+    // Synchronous actions: `[ID=n] [WHEN cond] DO actions`.
+    let action = choice((
+        letter.clone(),
+        assign_or_named.clone(),
+        call.clone(),
+    ))
+    .map_with(move |kind, e| st(kind, e.span()));
+    let sync_id = select! { T::Id => false, T::Ids => true }
+        .then_ignore(just(T::Eq))
+        .then(expr.clone())
+        .map_with(move |(is_static, value), e| SyncId {
+            span: g.span(e.span()),
+            is_static,
+            value,
+        });
+    let trigger = select! {
+        T::When => SyncTriggerKind::When,
+        T::Whenever => SyncTriggerKind::Whenever,
+        T::Every => SyncTriggerKind::Every,
+        T::From => SyncTriggerKind::From,
+    }
+    .then(expr.clone())
+    .map_with(move |(kind, condition), e| SyncTrigger {
+        span: g.span(e.span()),
+        kind,
+        condition,
+    });
+    let sync = sync_id
+        .or_not()
+        .then(trigger.or_not())
+        .then_ignore(just(T::Do))
+        .then(action.repeated().at_least(1).collect::<Vec<_>>())
+        .map(|((id, trigger), actions)| {
+            StatementKind::SyncAction(SyncAction {
+                id,
+                trigger,
+                actions,
+            })
+        });
+
+    let statement = choice((
+        if_stmt,
+        simple_kw,
+        while_stmt,
+        until,
+        for_stmt,
+        repeat_section,
+        repeat,
+        case,
+        goto,
+        def(g, expr.clone()),
+        redef,
+        define,
+        proc_def(g, expr.clone()),
+        extern_decl(g, expr.clone()),
+        ret,
+        indirect_call,
+        pcall,
+        mcall,
+        sync,
+        frame,
+        choice((letter, assign_or_named, call)),
+    ))
+    .map_with(move |kind, e| st(kind, e.span()));
+
+    statement.repeated().collect::<Vec<_>>()
+}
+
+/// `CR=5`, `SPOS=90`, `AX[X1]=10` inside frame statements.
+fn named_word<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Word, Ex> + Clone + 't {
+    var_ref(g, expr.clone())
+        .then_ignore(just(T::Eq))
+        .then(initializer(g, expr))
+        .try_map(move |(target, value), span| {
+            named_address_word(g, &target, &value, span)
+                .unwrap_or_else(|| {
+                    Ok(Word {
+                        address: target.name.to_ascii_uppercase().into(),
+                        address_span: target.span,
+                        extension: None,
+                        value: match value {
+                            Initializer::Expr(e) => assigned_value(e),
+                            _ => {
+                                return Err(SyntaxError::custom(
+                                    span,
+                                    ERR_VALUE,
+                                    "a word takes one value, not a list",
+                                    None,
+                                ));
+                            }
+                        },
+                    })
+                })
+        })
+}
+
+/// Turns `NAME=…` / `NAME[i]=…` into a word when NAME is a multi-letter
+/// address; `None` for ordinary assignments.
+fn named_address_word(
+    g: Ctx<'_>,
+    target: &VarRef,
+    value: &Initializer,
+    span: SimpleSpan,
+) -> Option<Result<Word, SyntaxError>> {
+    if target.kind != VarKind::Name || !is_named_address(&target.name) {
+        return None;
+    }
+    let _ = g;
+    let Initializer::Expr(e) = value else {
+        return Some(Err(SyntaxError::custom(
+            span,
+            ERR_VALUE,
+            format!("address `{}` takes one value, not a list", target.name),
+            None,
+        )));
+    };
+    let extension = match target.indices.as_slice() {
+        [] => None,
+        [one] => Some(Extension::Index {
+            span: one.span,
+            index: Box::new(one.clone()),
+        }),
+        _ => {
+            return Some(Err(SyntaxError::custom(
+                span,
+                ERR_WORD,
+                format!("address `{}` takes one index", target.name),
+                None,
+            )));
+        }
+    };
+    let name_len = target.name.len() as u32;
+    let mut address_span = target.span;
+    address_span.end = address_span.start + name_len;
+    Some(Ok(Word {
+        address: target.name.to_ascii_uppercase().into(),
+        address_span,
+        extension,
+        value: assigned_value(e.clone()),
+    }))
+}
+
+/// The block prefix: skip mark, block number, label.
+pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody, Ex> + 't {
+    let skip = just(T::Slash)
+        .map_with(|_, e| e.span())
+        .then(select! { T::Number => () }.map_with(|_, e| e.span()).or_not())
+        .try_map(move |(slash, level): (SimpleSpan, Option<SimpleSpan>), span: SimpleSpan| {
+            match level.filter(|n: &SimpleSpan| n.start == slash.end) {
+                None => Ok(SkipLevel {
+                    span: g.span(slash),
+                    level: 0,
+                }),
+                Some(n) => match g.text(n).parse::<u8>() {
+                    Ok(level) if level <= 9 => Ok(SkipLevel {
+                        span: g.span(span),
+                        level,
+                    }),
+                    _ => Err(SyntaxError::custom(
+                        span,
+                        "gcodec::parse::invalid_skip_level",
+                        format!("skip level `/{}` is not 0 to 9", g.text(n)),
+                        Some("skip levels are `/` and `/0` … `/9`"),
+                    )),
+                },
+            }
+        });
+    let number = select! { T::Letter => () }
+        .map_with(|_, e| e.span())
+        .then(select! { T::Number => () }.map_with(|_, e| e.span()))
+        .try_map(move |(l, n): (SimpleSpan, SimpleSpan), span| {
+            if !g.bytes(l)[0].eq_ignore_ascii_case(&b'N') || n.start != l.end {
+                return Err(SyntaxError {
+                    span,
+                    found: Some(T::Letter),
+                    expected: 0,
+                    label: None,
+                    custom: None,
+                });
+            }
+            g.text(n)
+                .parse::<u64>()
+                .map(|value| BlockNumber {
+                    span: g.span(span),
+                    main: false,
+                    value,
+                })
+                .map_err(|_| {
+                    SyntaxError::custom(
+                        span,
+                        "gcodec::parse::invalid_block_number",
+                        format!("block number `N{}` is not a whole number", g.text(n)),
+                        None,
+                    )
+                })
+        })
+        .then_ignore(just(T::Eq).not().rewind());
+    let main_number = just(T::Colon)
+        .ignore_then(select! { T::Number => () }.map_with(|_, e| e.span()))
+        .try_map(move |n, span| {
+            g.text(n)
+                .parse::<u64>()
+                .map(|value| BlockNumber {
+                    span: g.span(span),
+                    main: true,
+                    value,
+                })
+                .map_err(|_| {
+                    SyntaxError::custom(
+                        span,
+                        "gcodec::parse::invalid_block_number",
+                        format!("main block number `:{}` is not a whole number", g.text(n)),
+                        None,
+                    )
+                })
+        });
+    let label = select! { T::Ident => () }
+        .map_with(|_, e| e.span())
+        .then_ignore(just(T::Colon))
+        .map_with(move |name, e| LabelDef {
+            span: g.span(e.span()),
+            name: g.name(name),
+        });
+    skip.or_not()
+        .then(choice((number, main_number)).or_not())
+        .then(label.or_not())
+        .then(statements(g))
+        .map(|(((skip, number), label), statements)| BlockBody {
+            skip,
+            number,
+            label,
+            statements,
+        })
+}

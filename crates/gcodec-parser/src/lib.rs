@@ -1,0 +1,24 @@
+//! Parser and syntax tree for SINUMERIK part programs.
+//!
+//! Parsing never fails: [`parse`] always returns a [`Program`] together with
+//! the diagnostics found on the way. A malformed block yields one diagnostic
+//! and parsing resumes at the next block; an unclosed control structure
+//! names both its opener and where its end was expected.
+//!
+//! ```
+//! use gcodec_source::SourceFile;
+//! let file = SourceFile::new("demo.mpf", "N10 G1 X=R1+5 F200 ; cut\nM30\n");
+//! let parsed = gcodec_parser::parse(&file);
+//! assert!(parsed.diagnostics.is_empty());
+//! assert_eq!(parsed.program.blocks[0].statements.len(), 3);
+//! ```
+
+pub mod ast;
+mod driver;
+mod error;
+mod grammar;
+mod outline;
+mod structure;
+
+pub use driver::{MAX_EXPRESSION_DEPTH, Parse, parse, parse_bytes};
+pub use outline::write_outline;

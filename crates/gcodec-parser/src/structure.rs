@@ -1,0 +1,155 @@
+//! Pairs control-structure openers with their closers.
+//!
+//! The control runs structures interpretively and only finds a missing
+//! `ENDIF` when it gets there; gcodec reports it up front, naming both the
+//! opener and where the end was expected.
+
+use gcodec_source::{Diagnostic, Span};
+
+use crate::ast::*;
+
+/// SINUMERIK allows this many nested control structures per program level.
+pub const CONTROL_NESTING_LIMIT: usize = 16;
+
+struct Open {
+    kind: StructureKind,
+    index: usize,
+    span: Span,
+}
+
+pub(crate) fn pair(program: &mut Program, file_len: u32, diagnostics: &mut Vec<Diagnostic>) {
+    let mut stack: Vec<Open> = Vec::new();
+    let mut structures: Vec<ControlStructure> = Vec::new();
+    for (bi, block) in program.blocks.iter_mut().enumerate() {
+        let mut depth = stack.len();
+        for st in &block.statements {
+            let opens = match &st.kind {
+                StatementKind::If(_) => Some(StructureKind::If),
+                StatementKind::While(_) => Some(StructureKind::While),
+                StatementKind::For(_) => Some(StructureKind::For),
+                StatementKind::Loop => Some(StructureKind::Loop),
+                StatementKind::Repeat => Some(StructureKind::Repeat),
+                _ => None,
+            };
+            if let Some(kind) = opens {
+                structures.push(ControlStructure {
+                    kind,
+                    open: bi as u32,
+                    middle: None,
+                    close: None,
+                });
+                stack.push(Open {
+                    kind,
+                    index: structures.len() - 1,
+                    span: st.span,
+                });
+                if stack.len() == CONTROL_NESTING_LIMIT + 1 {
+                    diagnostics.push(
+                        Diagnostic::warning(
+                            "gcodec::parse::deep_nesting",
+                            format!(
+                                "control structures nested more than {CONTROL_NESTING_LIMIT} deep"
+                            ),
+                        )
+                        .with_label(st.span, "this structure is too deep for the control")
+                        .with_help("SINUMERIK allows 16 nested control structures per program level; move inner parts into a subprogram"),
+                    );
+                }
+                continue;
+            }
+            let closes = match &st.kind {
+                StatementKind::EndIf => Some((StructureKind::If, "ENDIF")),
+                StatementKind::EndWhile => Some((StructureKind::While, "ENDWHILE")),
+                StatementKind::EndFor => Some((StructureKind::For, "ENDFOR")),
+                StatementKind::EndLoop => Some((StructureKind::Loop, "ENDLOOP")),
+                StatementKind::Until(_) => Some((StructureKind::Repeat, "UNTIL")),
+                _ => None,
+            };
+            if let StatementKind::Else = st.kind {
+                match stack.last() {
+                    Some(top)
+                        if top.kind == StructureKind::If
+                            && structures[top.index].middle.is_none() =>
+                    {
+                        structures[top.index].middle = Some(bi as u32);
+                        depth = stack.len() - 1;
+                    }
+                    _ => diagnostics.push(
+                        Diagnostic::error(
+                            "gcodec::parse::unmatched_end",
+                            "`ELSE` without an open `IF`",
+                        )
+                        .with_label(st.span, "no IF to belong to")
+                        .with_help("ELSE stands between `IF cond` and `ENDIF`, once per IF"),
+                    ),
+                }
+                continue;
+            }
+            let Some((kind, word)) = closes else { continue };
+            match stack.iter().rposition(|o| o.kind == kind) {
+                Some(pos) => {
+                    // Everything opened after the match is left unclosed.
+                    for inner in stack.drain(pos + 1..).rev() {
+                        diagnostics.push(unclosed(&inner, st.span, "before this"));
+                    }
+                    let open = stack.pop().expect("matched position");
+                    structures[open.index].close = Some(bi as u32);
+                    depth = depth.min(stack.len());
+                }
+                None => diagnostics.push(
+                    Diagnostic::error(
+                        "gcodec::parse::unmatched_end",
+                        format!("`{word}` without an open `{}`", opener_word(kind)),
+                    )
+                    .with_label(st.span, "nothing to close")
+                    .with_help(format!(
+                        "remove it, or add the `{}` it should close",
+                        opener_word(kind)
+                    )),
+                ),
+            }
+        }
+        block.depth = depth as u32;
+    }
+    let eof = program
+        .blocks
+        .last()
+        .map(|b| Span::new(file_len, file_len, b.span.line, b.span.end - b.span.start + 1))
+        .unwrap_or_default();
+    for open in stack.iter().rev() {
+        diagnostics.push(unclosed(open, eof, "end of program reached here"));
+    }
+    program.structures = structures;
+}
+
+fn opener_word(kind: StructureKind) -> &'static str {
+    match kind {
+        StructureKind::If => "IF",
+        StructureKind::While => "WHILE",
+        StructureKind::For => "FOR",
+        StructureKind::Loop => "LOOP",
+        StructureKind::Repeat => "REPEAT",
+    }
+}
+
+fn closer_word(kind: StructureKind) -> &'static str {
+    match kind {
+        StructureKind::If => "ENDIF",
+        StructureKind::While => "ENDWHILE",
+        StructureKind::For => "ENDFOR",
+        StructureKind::Loop => "ENDLOOP",
+        StructureKind::Repeat => "UNTIL",
+    }
+}
+
+fn unclosed(open: &Open, expected_at: Span, where_: &'static str) -> Diagnostic {
+    let opener = opener_word(open.kind);
+    let closer = closer_word(open.kind);
+    Diagnostic::error(
+        "gcodec::parse::unclosed_structure",
+        format!("`{opener}` is never closed by `{closer}`"),
+    )
+    .with_label(open.span, format!("`{opener}` opened here"))
+    .with_label(expected_at, format!("`{closer}` expected {where_}"))
+    .with_help(format!("add `{closer}` in a block of its own where the structure ends"))
+}

@@ -1,0 +1,145 @@
+use std::path::{Path, PathBuf};
+
+use crate::Span;
+
+/// One part program as read from disk: its name and its bytes.
+#[derive(Clone, Debug)]
+pub struct SourceFile {
+    name: String,
+    path: Option<PathBuf>,
+    bytes: Vec<u8>,
+    line_starts: Vec<u32>,
+}
+
+/// Files larger than this cannot be addressed by 32-bit spans.
+pub const MAX_SOURCE_LEN: usize = u32::MAX as usize - 1;
+
+impl SourceFile {
+    /// A source held in memory, named `name` in diagnostics and dumps.
+    ///
+    /// # Panics
+    /// Never for files up to [`MAX_SOURCE_LEN`] bytes; callers reading from
+    /// disk use [`SourceFile::read`], which reports larger files as an error.
+    pub fn new(name: impl Into<String>, bytes: impl Into<Vec<u8>>) -> Self {
+        let bytes = bytes.into();
+        let mut bytes = bytes;
+        if bytes.len() > MAX_SOURCE_LEN {
+            // Spans are u32: keep the addressable prefix rather than wrap.
+            bytes.truncate(MAX_SOURCE_LEN);
+        }
+        let mut line_starts = Vec::with_capacity(bytes.len() / 24 + 1);
+        line_starts.push(0);
+        line_starts.extend(
+            bytes
+                .iter()
+                .enumerate()
+                .filter(|&(_, &b)| b == b'\n')
+                .map(|(i, _)| i as u32 + 1),
+        );
+        Self {
+            name: name.into(),
+            path: None,
+            bytes,
+            line_starts,
+        }
+    }
+
+    /// Reads a file from disk.
+    pub fn read(path: &Path) -> std::io::Result<Self> {
+        let bytes = std::fs::read(path)?;
+        if bytes.len() > MAX_SOURCE_LEN {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("file is larger than {MAX_SOURCE_LEN} bytes"),
+            ));
+        }
+        let mut file = Self::new(path.display().to_string(), bytes);
+        file.path = Some(path.to_path_buf());
+        Ok(file)
+    }
+
+    /// The name used in diagnostics and dumps (the path as given).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The path the file was read from, if it came from disk.
+    pub fn path(&self) -> Option<&Path> {
+        self.path.as_deref()
+    }
+
+    /// The bytes as stored.
+    pub fn bytes(&self) -> &[u8] {
+        &self.bytes
+    }
+
+    /// Byte offsets at which each line starts (the first is 0).
+    pub fn line_starts(&self) -> &[u32] {
+        &self.line_starts
+    }
+
+    /// 1-based line and byte column of a byte offset.
+    pub fn line_col(&self, offset: u32) -> (u32, u32) {
+        let line = self.line_starts.partition_point(|&s| s <= offset);
+        let line_start = self.line_starts[line.saturating_sub(1)];
+        (line as u32, offset - line_start + 1)
+    }
+
+    /// A span for a byte range, with its line and column filled in.
+    pub fn span(&self, start: u32, end: u32) -> Span {
+        let (line, col) = self.line_col(start);
+        Span::new(start, end, line, col)
+    }
+
+    /// The text of a span, decoded for display (see [`decode`]).
+    pub fn text(&self, span: Span) -> String {
+        let end = (span.end as usize).min(self.bytes.len());
+        let start = (span.start as usize).min(end);
+        decode(&self.bytes[start..end])
+    }
+}
+
+/// Decodes program bytes for display: UTF-8 where the bytes are valid UTF-8,
+/// otherwise each byte as its Windows-1252 character (a superset of the
+/// printable Latin-1 range). CP1251 comments therefore display as Latin
+/// letters, but never fail and never lose a byte.
+pub fn decode(bytes: &[u8]) -> String {
+    match std::str::from_utf8(bytes) {
+        Ok(s) => s.to_owned(),
+        Err(_) => bytes.iter().map(|&b| cp1252(b)).collect(),
+    }
+}
+
+fn cp1252(b: u8) -> char {
+    const HIGH: [char; 32] = [
+        '€', '\u{81}', '‚', 'ƒ', '„', '…', '†', '‡', 'ˆ', '‰', 'Š', '‹', 'Œ', '\u{8d}', 'Ž',
+        '\u{8f}', '\u{90}', '‘', '’', '“', '”', '•', '–', '—', '˜', '™', 'š', '›', 'œ', '\u{9d}',
+        'ž', 'Ÿ',
+    ];
+    match b {
+        0x80..=0x9f => HIGH[(b - 0x80) as usize],
+        _ => b as char,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_col_is_one_based() {
+        let f = SourceFile::new("t", "G0\nX1\n\nY2");
+        assert_eq!(f.line_col(0), (1, 1));
+        assert_eq!(f.line_col(1), (1, 2));
+        assert_eq!(f.line_col(3), (2, 1));
+        assert_eq!(f.line_col(7), (4, 1));
+        assert_eq!(f.line_col(9), (4, 3));
+    }
+
+    #[test]
+    fn decode_falls_back_to_cp1252() {
+        assert_eq!(decode(b"abc"), "abc");
+        assert_eq!(decode("Grüße".as_bytes()), "Grüße");
+        assert_eq!(decode(b"Gr\xfc\xdfe \x80"), "Grüße €");
+    }
+}
