@@ -49,7 +49,10 @@ fn identifiers_need_two_leading_letters() {
 #[test]
 fn keywords_are_case_insensitive_and_longest_match_wins() {
     assert_eq!(kinds("IF if If")[..], [(If, "IF"), (If, "if"), (If, "If")]);
-    assert_eq!(kinds("ENDIF ENDIFX")[..], [(EndIf, "ENDIF"), (Ident, "ENDIFX")]);
+    assert_eq!(
+        kinds("ENDIF ENDIFX")[..],
+        [(EndIf, "ENDIF"), (Ident, "ENDIFX")]
+    );
     assert_eq!(kinds("B_AND b_or")[..], [(BAnd, "B_AND"), (BOr, "b_or")]);
 }
 
@@ -69,7 +72,12 @@ fn strings_keep_case_and_unclosed_strings_stop_at_line_end() {
     assert_eq!(kinds("\"Drill_10\""), vec![(String, "\"Drill_10\"")]);
     assert_eq!(
         kinds("\"abc\nX1"),
-        vec![(UnclosedString, "\"abc"), (Newline, "\n"), (Letter, "X"), (Number, "1")]
+        vec![
+            (UnclosedString, "\"abc"),
+            (Newline, "\n"),
+            (Letter, "X"),
+            (Number, "1")
+        ]
     );
 }
 

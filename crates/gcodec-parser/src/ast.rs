@@ -325,7 +325,10 @@ pub enum Initializer {
         items: Vec<Option<Expr>>,
     },
     /// `REP(value [, count])`.
-    Rep { span: Span, args: Vec<Expr> },
+    Rep {
+        span: Span,
+        args: Vec<Expr>,
+    },
 }
 
 /// `DEF [NCK|CHAN] [attributes] TYPE name[dims]=init, …`.
@@ -530,8 +533,14 @@ pub struct Jump {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "form", rename_all = "snake_case")]
 pub enum JumpTarget {
-    Label { span: Span, name: Name },
-    BlockNumber { span: Span, value: u64 },
+    Label {
+        span: Span,
+        name: Name,
+    },
+    BlockNumber {
+        span: Span,
+        value: u64,
+    },
     /// A STRING expression naming a label or block number.
     Expr(Expr),
 }

@@ -154,7 +154,7 @@ impl<'s> Driver<'s> {
         // The last line has no line end.
         line.end = src.len() as u32;
         line.tokens.end = self.tokens.len();
-        if line.start < line.end || self.program.blocks.is_empty() && self.lines.is_empty() {
+        if line.start < line.end {
             self.lines.push(line);
         }
         self.flush();
@@ -223,9 +223,7 @@ impl<'s> Driver<'s> {
             self.diagnostics.push(
                 Diagnostic::error(
                     "gcodec::parse::nesting_too_deep",
-                    format!(
-                        "brackets nested more than {MAX_EXPRESSION_DEPTH} deep in one block"
-                    ),
+                    format!("brackets nested more than {MAX_EXPRESSION_DEPTH} deep in one block"),
                 )
                 .with_label(ctx.span(deep), "this bracket is too deep")
                 .with_help("split the expression using intermediate variables"),
@@ -280,7 +278,9 @@ impl<'s> Driver<'s> {
 
     fn note_path_directive(&mut self, comment: &Comment) {
         let text = comment.text.trim_end();
-        let is_path = text.get(..6).is_some_and(|p| p.eq_ignore_ascii_case("$PATH="));
+        let is_path = text
+            .get(..6)
+            .is_some_and(|p| p.eq_ignore_ascii_case("$PATH="));
         if self.program.path.is_none() && is_path {
             self.program.path = Some(PathDirective {
                 span: comment.span,
@@ -347,9 +347,10 @@ fn split_internal_name(text: &str) -> (Option<CompactString>, Option<CompactStri
         return (None, None);
     };
     match rest.rfind('_') {
-        Some(i) if i > 0 && i + 1 < rest.len() => {
-            (Some(rest[..i].into()), Some(rest[i + 1..].to_ascii_uppercase().into()))
-        }
+        Some(i) if i > 0 && i + 1 < rest.len() => (
+            Some(rest[..i].into()),
+            Some(rest[i + 1..].to_ascii_uppercase().into()),
+        ),
         _ => (Some(rest.into()), None),
     }
 }

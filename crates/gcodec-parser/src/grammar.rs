@@ -130,7 +130,13 @@ fn args<'t, 's: 't>(
     expr.or_not()
         .separated_by(just(T::Comma))
         .collect::<Vec<_>>()
-        .map(|v| if v.len() == 1 && v[0].is_none() { Vec::new() } else { v })
+        .map(|v| {
+            if v.len() == 1 && v[0].is_none() {
+                Vec::new()
+            } else {
+                v
+            }
+        })
         .delimited_by(just(T::LParen), just(T::RParen))
 }
 
@@ -180,7 +186,8 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
                     })
             },
         );
-        let bad_quoted = select! { T::BadQuoted => () }.try_map(move |_, s: SimpleSpan| {
+        let bad_quoted = select! { T::BadQuoted => () }.validate(move |_, e, emitter| {
+            let s: SimpleSpan = e.span();
             let text = g.text(s);
             let (what, help) = match text.as_bytes().get(1).map(u8::to_ascii_uppercase) {
                 Some(b'H') => (
@@ -196,12 +203,13 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
                     "quoted constants are hex ('H1F') or binary ('B101'); strings use double quotes",
                 ),
             };
-            Err::<Expr, _>(SyntaxError::custom(
+            emitter.emit(SyntaxError::custom(
                 s,
                 ERR_NUMBER,
                 format!("malformed {what} `{text}`"),
                 Some(help),
-            ))
+            ));
+            placeholder(g, s)
         });
         let string = select! { T::String => () }.map_with(move |_, e| {
             let s: SimpleSpan = e.span();
@@ -209,13 +217,15 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
             let value = gcodec_source_decode(&bytes[1..bytes.len() - 1]);
             mk(ExprKind::String { value }, s)
         });
-        let unclosed = select! { T::UnclosedString => () }.try_map(|_, s| {
-            Err::<Expr, _>(SyntaxError::custom(
+        let unclosed = select! { T::UnclosedString => () }.validate(move |_, e, emitter| {
+            let s: SimpleSpan = e.span();
+            emitter.emit(SyntaxError::custom(
                 s,
                 ERR_STRING,
                 "string is not closed on its line",
                 Some("add the closing `\"`; strings cannot span blocks"),
-            ))
+            ));
+            placeholder(g, s)
         });
         let boolean = select! { T::True => true, T::False => false }
             .map_with(move |value, e| mk(ExprKind::Bool { value }, e.span()));
@@ -300,6 +310,18 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
 
 fn gcodec_source_decode(bytes: &[u8]) -> CompactString {
     CompactString::from(gcodec_source::decode(bytes))
+}
+
+/// Stands in for a malformed literal after its error was emitted, so the
+/// rest of the block still parses (the driver discards the block).
+fn placeholder(g: Ctx<'_>, s: SimpleSpan) -> Expr {
+    Expr {
+        span: g.span(s),
+        kind: ExprKind::Number {
+            value: 0.0,
+            integer: true,
+        },
+    }
 }
 
 /// `[a, b, c]` index list.
@@ -472,6 +494,9 @@ enum LetterStatement {
     Word(Word),
     Assign(Assign),
     Call(Call),
+    /// Malformed; a non-fatal error was emitted and the driver reports the
+    /// block.
+    Invalid,
 }
 
 /// Statements that start with a single address letter: DIN words,
@@ -497,7 +522,9 @@ fn letter_statement<'t, 's: 't>(
         .then(just(T::Eq).ignore_then(initializer(g, expr)).or_not())
         .then(string_after.or_not())
         .then(args_p.or_not())
-        .try_map(move |((((((letter, sign), num), bracket), value), string), call_args), span| {
+        .map_with(move |((((((letter, sign), num), bracket), value), string), call_args), e| {
+            let span: SimpleSpan = e.span();
+            let classify = || -> Result<LetterStatement, SyntaxError> {
             let l = g.bytes(letter)[0].to_ascii_uppercase();
             let addr = (l as char).to_string();
             let address: CompactString = addr.as_str().into();
@@ -680,6 +707,15 @@ fn letter_statement<'t, 's: 't>(
                 }
             };
             Ok(LetterStatement::Word(word))
+            };
+            classify()
+        })
+        .validate(|r, _, emitter| match r {
+            Ok(s) => s,
+            Err(err) => {
+                emitter.emit(err);
+                LetterStatement::Invalid
+            }
         })
 }
 
@@ -723,9 +759,8 @@ fn jump_target<'t, 's: 't>(
 /// A label or block number (REPEAT sections take no string expressions,
 /// which keeps `REPEAT A B P=3` unambiguous).
 fn section_target<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, JumpTarget, Ex> + Clone + 't {
-    let never = select! { T::Error => () }.try_map(|_, s| {
-        Err::<Expr, _>(SyntaxError::custom(s, ERR_WORD, "unreachable", None))
-    });
+    let never = select! { T::Error => () }
+        .try_map(|_, s| Err::<Expr, _>(SyntaxError::custom(s, ERR_WORD, "unreachable", None)));
     jump_target(g, never).labelled("label")
 }
 
@@ -862,7 +897,11 @@ fn def<'t, 's: 't>(
 ) -> impl Parser<'t, In<'t>, StatementKind, Ex> + Clone + 't {
     let var = name_token()
         .then(dims(expr.clone()))
-        .then(just(T::Eq).ignore_then(initializer(g, expr.clone())).or_not())
+        .then(
+            just(T::Eq)
+                .ignore_then(initializer(g, expr.clone()))
+                .or_not(),
+        )
         .map_with(move |((name, dims), init), e| DefVar {
             span: g.span(e.span()),
             name: g.name(name),
@@ -932,7 +971,10 @@ fn extern_decl<'t, 's: 't>(
         .collect::<Vec<_>>()
         .delimited_by(just(T::LBracket), just(T::RBracket))
         .or_not()
-        .map(|d| d.map(|v| v.into_iter().flatten().collect()).unwrap_or_default());
+        .map(|d| {
+            d.map(|v| v.into_iter().flatten().collect())
+                .unwrap_or_default()
+        });
     let param = just(T::Var)
         .or_not()
         .then(type_spec(g, expr))
@@ -1008,6 +1050,16 @@ fn passes_word<'t, 's: 't>(
 ) -> impl Parser<'t, In<'t>, Word, Ex> + Clone + 't {
     letter_statement(g, expr).try_map(|s, span| match s {
         LetterStatement::Word(w) if w.address == "P" && w.extension.is_none() => Ok(w),
+        LetterStatement::Invalid => Ok(Word {
+            address: "P".into(),
+            address_span: Span::default(),
+            extension: None,
+            value: WordValue::Constant(NumberLit {
+                span: Span::default(),
+                value: 0.0,
+                integer: true,
+            }),
+        }),
         _ => Err(SyntaxError::custom(
             span,
             ERR_WORD,
@@ -1135,7 +1187,10 @@ pub(crate) fn statements<'t, 's: 't>(
                     Some("write e.g. `CALL \"PART1\"`"),
                 ))
             } else {
-                Ok(StatementKind::IndirectCall(IndirectCall { program, section }))
+                Ok(StatementKind::IndirectCall(IndirectCall {
+                    program,
+                    section,
+                }))
             }
         });
     let pcall = just(T::PCall)
@@ -1172,7 +1227,8 @@ pub(crate) fn statements<'t, 's: 't>(
         .then(
             letter_statement(g, expr.clone())
                 .try_map(|s, span| match s {
-                    LetterStatement::Word(w) => Ok(w),
+                    LetterStatement::Word(w) => Ok(Some(w)),
+                    LetterStatement::Invalid => Ok(None),
                     _ => Err(SyntaxError::custom(
                         span,
                         ERR_WORD,
@@ -1180,22 +1236,22 @@ pub(crate) fn statements<'t, 's: 't>(
                         Some("write e.g. `TRANS X10 Y5` in a block of its own"),
                     )),
                 })
-                .or(named_word(g, expr.clone()))
+                .or(named_word(g, expr.clone()).map(Some))
                 .repeated()
                 .collect::<Vec<_>>(),
         )
-        .map(|(op, words)| StatementKind::Frame(Frame { op, words }));
+        .map(|(op, words)| {
+            StatementKind::Frame(Frame {
+                op,
+                words: words.into_iter().flatten().collect(),
+            })
+        });
     let assign_or_named = var_ref(g, expr.clone())
         .then_ignore(just(T::Eq))
         .then(initializer(g, expr.clone()))
         .try_map(move |(target, value), span| {
             named_address_word(g, &target, &value, span).map_or_else(
-                || {
-                    Ok(StatementKind::Assign(Assign {
-                        target,
-                        value,
-                    }))
-                },
+                || Ok(StatementKind::Assign(Assign { target, value })),
                 |w| w.map(StatementKind::Word),
             )
         });
@@ -1212,19 +1268,21 @@ pub(crate) fn statements<'t, 's: 't>(
                 passes: None,
             })
         });
+    // A malformed word yields an empty frame statement as placeholder; the
+    // emitted error makes the driver discard the block's statements.
     let letter = letter_statement(g, expr.clone()).map(|s| match s {
         LetterStatement::Word(w) => StatementKind::Word(w),
         LetterStatement::Assign(a) => StatementKind::Assign(a),
         LetterStatement::Call(c) => StatementKind::Call(c),
+        LetterStatement::Invalid => StatementKind::Frame(Frame {
+            op: FrameOp::Trans,
+            words: Vec::new(),
+        }),
     });
 
     // Synchronous actions: `[ID=n] [WHEN cond] DO actions`.
-    let action = choice((
-        letter.clone(),
-        assign_or_named.clone(),
-        call.clone(),
-    ))
-    .map_with(move |kind, e| st(kind, e.span()));
+    let action = choice((letter.clone(), assign_or_named.clone(), call.clone()))
+        .map_with(move |kind, e| st(kind, e.span()));
     let sync_id = select! { T::Id => false, T::Ids => true }
         .then_ignore(just(T::Eq))
         .then(expr.clone())
@@ -1295,25 +1353,24 @@ fn named_word<'t, 's: 't>(
         .then_ignore(just(T::Eq))
         .then(initializer(g, expr))
         .try_map(move |(target, value), span| {
-            named_address_word(g, &target, &value, span)
-                .unwrap_or_else(|| {
-                    Ok(Word {
-                        address: target.name.to_ascii_uppercase().into(),
-                        address_span: target.span,
-                        extension: None,
-                        value: match value {
-                            Initializer::Expr(e) => assigned_value(e),
-                            _ => {
-                                return Err(SyntaxError::custom(
-                                    span,
-                                    ERR_VALUE,
-                                    "a word takes one value, not a list",
-                                    None,
-                                ));
-                            }
-                        },
-                    })
+            named_address_word(g, &target, &value, span).unwrap_or_else(|| {
+                Ok(Word {
+                    address: target.name.to_ascii_uppercase().into(),
+                    address_span: target.span,
+                    extension: None,
+                    value: match value {
+                        Initializer::Expr(e) => assigned_value(e),
+                        _ => {
+                            return Err(SyntaxError::custom(
+                                span,
+                                ERR_VALUE,
+                                "a word takes one value, not a list",
+                                None,
+                            ));
+                        }
+                    },
                 })
+            })
         })
 }
 
@@ -1367,9 +1424,15 @@ fn named_address_word(
 pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody, Ex> + 't {
     let skip = just(T::Slash)
         .map_with(|_, e| e.span())
-        .then(select! { T::Number => () }.map_with(|_, e| e.span()).or_not())
-        .try_map(move |(slash, level): (SimpleSpan, Option<SimpleSpan>), span: SimpleSpan| {
-            match level.filter(|n: &SimpleSpan| n.start == slash.end) {
+        .then(
+            select! { T::Number => () }
+                .map_with(|_, e| e.span())
+                .or_not(),
+        )
+        .try_map(
+            move |(slash, level): (SimpleSpan, Option<SimpleSpan>), span: SimpleSpan| match level
+                .filter(|n: &SimpleSpan| n.start == slash.end)
+            {
                 None => Ok(SkipLevel {
                     span: g.span(slash),
                     level: 0,
@@ -1386,8 +1449,8 @@ pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody
                         Some("skip levels are `/` and `/0` … `/9`"),
                     )),
                 },
-            }
-        });
+            },
+        );
     let number = select! { T::Letter => () }
         .map_with(|_, e| e.span())
         .then(select! { T::Number => () }.map_with(|_, e| e.span()))

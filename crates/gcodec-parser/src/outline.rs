@@ -168,7 +168,11 @@ fn write_statement(st: &Statement, out: &mut impl Write) -> fmt::Result {
         S::Repeat => out.write_str("REPEAT"),
         S::Until(c) => write_cond("UNTIL", c, out),
         S::RepeatSection(r) => {
-            out.write_str(if r.single_block { "REPEATB " } else { "REPEAT " })?;
+            out.write_str(if r.single_block {
+                "REPEATB "
+            } else {
+                "REPEAT "
+            })?;
             write_target(&r.start, out)?;
             if let Some(e) = &r.end {
                 out.write_char(' ')?;
@@ -248,8 +252,8 @@ fn write_cond(kw: &str, c: &Condition, out: &mut impl Write) -> fmt::Result {
 
 fn write_call(c: &Call, out: &mut impl Write) -> fmt::Result {
     match &c.target {
-        CallTarget::Name { name, .. } => write!(out, "call {name}")?,
-        CallTarget::Number { digits, .. } => write!(out, "call L{digits}")?,
+        CallTarget::Name { name, .. } => out.write_str(name)?,
+        CallTarget::Number { digits, .. } => write!(out, "L{digits}")?,
     }
     if let Some(args) = &c.args {
         write_args(args, out)?;

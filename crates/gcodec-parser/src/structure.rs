@@ -114,7 +114,14 @@ pub(crate) fn pair(program: &mut Program, file_len: u32, diagnostics: &mut Vec<D
     let eof = program
         .blocks
         .last()
-        .map(|b| Span::new(file_len, file_len, b.span.line, b.span.end - b.span.start + 1))
+        .map(|b| {
+            Span::new(
+                file_len,
+                file_len,
+                b.span.line,
+                b.span.end - b.span.start + 1,
+            )
+        })
         .unwrap_or_default();
     for open in stack.iter().rev() {
         diagnostics.push(unclosed(open, eof, "end of program reached here"));
@@ -151,5 +158,7 @@ fn unclosed(open: &Open, expected_at: Span, where_: &'static str) -> Diagnostic 
     )
     .with_label(open.span, format!("`{opener}` opened here"))
     .with_label(expected_at, format!("`{closer}` expected {where_}"))
-    .with_help(format!("add `{closer}` in a block of its own where the structure ends"))
+    .with_help(format!(
+        "add `{closer}` in a block of its own where the structure ends"
+    ))
 }

@@ -33,6 +33,9 @@ pub fn render_diagnostics(
             diagnostic,
             source: display.as_ref(),
         };
+        if !out.is_empty() {
+            out.push('\n');
+        }
         if handler.render_report(&mut out, &report).is_err() {
             out.push_str(&format!("{}: {}\n", diagnostic.code, diagnostic.message));
         }

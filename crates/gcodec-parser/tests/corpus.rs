@@ -1,0 +1,93 @@
+//! The shared corpus of real programs must parse without a false error.
+//!
+//! The corpus belongs to others and lives outside the repository
+//! (`../shared/corpus` beside the checkout, or `GCODEC_CORPUS_DIR`). Where it
+//! is absent the tests print a notice and pass, so the README's test command
+//! works in any clone.
+
+use std::path::{Path, PathBuf};
+
+use gcodec_parser::parse;
+use gcodec_source::{RenderOptions, SourceFile, render_diagnostics};
+
+fn corpus_dir() -> Option<PathBuf> {
+    let dir = std::env::var_os("GCODEC_CORPUS_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus"));
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        eprintln!(
+            "notice: corpus not found at {}; corpus tests skipped",
+            dir.display()
+        );
+        None
+    }
+}
+
+fn programs(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            programs(&path, out);
+        } else if path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| ["mpf", "spf", "def"].contains(&e.to_ascii_lowercase().as_str()))
+        {
+            out.push(path);
+        }
+    }
+}
+
+/// The conformance list annotates deliberate syntax errors; it is checked
+/// line by line in `syntax_check.rs` instead.
+fn is_syntax_check(path: &Path) -> bool {
+    path.file_name()
+        .is_some_and(|n| n.eq_ignore_ascii_case("SYNTAX_CHECK.SPF"))
+}
+
+#[test]
+fn every_corpus_program_parses_without_errors() {
+    let Some(dir) = corpus_dir() else { return };
+    let mut files = Vec::new();
+    programs(&dir, &mut files);
+    files.sort();
+    assert!(
+        files.len() >= 50,
+        "expected the whole corpus, found {} files",
+        files.len()
+    );
+    let mut failures = String::new();
+    let mut checked = 0;
+    for path in files.iter().filter(|p| !is_syntax_check(p)) {
+        let file = SourceFile::read(path).expect("readable corpus file");
+        let parsed = parse(&file);
+        checked += 1;
+        let errors: Vec<_> = parsed
+            .diagnostics
+            .iter()
+            .filter(|d| d.is_error())
+            .cloned()
+            .collect();
+        if !errors.is_empty() {
+            failures.push_str(&render_diagnostics(
+                &errors,
+                Some(&file),
+                RenderOptions::default(),
+            ));
+        }
+        let bytes = file.bytes();
+        let lines = bytes.iter().filter(|&&b| b == b'\n').count()
+            + usize::from(bytes.last().is_some_and(|&b| b != b'\n'));
+        assert_eq!(parsed.program.blocks.len(), lines, "{}", path.display());
+    }
+    eprintln!("parsed {checked} corpus programs");
+    assert!(
+        failures.is_empty(),
+        "false errors in the corpus:\n{failures}"
+    );
+}
