@@ -1,5 +1,5 @@
 use std::io::{IsTerminal, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Parser, Subcommand, ValueEnum};
 use gcodec_source::{Diagnostic, RenderOptions, SourceFile, render_diagnostics};
@@ -58,7 +58,7 @@ fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>) {
     let _ = std::io::stderr().write_all(text.as_bytes());
 }
 
-fn read(path: &PathBuf) -> Result<SourceFile, Diagnostic> {
+fn read(path: &Path) -> Result<SourceFile, Diagnostic> {
     SourceFile::read(path).map_err(|e| {
         Diagnostic::error(
             "gcodec::io::read",

@@ -447,7 +447,8 @@ pub struct ExternParam {
     pub span: Span,
     pub by_reference: bool,
     pub ty: TypeSpec,
-    pub dims: Vec<Expr>,
+    /// One entry per array dimension; `REAL[,]` has two empty ones.
+    pub dims: Vec<Option<Expr>>,
 }
 
 /// A call of a subprogram, cycle or predefined procedure.
@@ -708,7 +709,9 @@ pub enum ExprKind {
     Bool {
         value: bool,
     },
-    Var(VarRef),
+    Var {
+        var: VarRef,
+    },
     /// `SIN(30)`, `AC(5)`, `CTRANS(X,10)`, `USERFUNC(…)`.
     Call {
         name: Name,

@@ -63,7 +63,10 @@ pub fn parse_bytes(name: &str, src: &[u8]) -> Parse {
         mut diagnostics,
         ..
     } = driver;
-    structure::pair(&mut program, src.len() as u32, &mut diagnostics);
+    structure::pair(&mut program, &mut diagnostics);
+    // Lexical errors are found while reading and syntax errors per chunk:
+    // report everything in source order.
+    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
     Parse {
         program,
         diagnostics,
@@ -105,7 +108,9 @@ impl<'s> Driver<'s> {
         for tok in Lexer::new(src) {
             match tok.kind {
                 TokenKind::Whitespace => {}
-                TokenKind::Comment => line.comment = Some((tok.start, tok.end)),
+                TokenKind::Comment => {
+                    line.comment = Some((tok.start, trim_cr(src, tok.start, tok.end)))
+                }
                 TokenKind::Newline => {
                     line.end = tok.start;
                     line.tokens.end = self.tokens.len();
@@ -124,9 +129,12 @@ impl<'s> Driver<'s> {
                     }
                 }
                 TokenKind::Header if self.tokens.len() == line.tokens.start && !line.broken => {
-                    line.header = Some((tok.start, tok.end));
+                    line.header = Some((tok.start, trim_cr(src, tok.start, tok.end)));
                 }
-                TokenKind::Error | TokenKind::Header => {
+                TokenKind::Error
+                | TokenKind::Header
+                | TokenKind::BadQuoted
+                | TokenKind::UnclosedString => {
                     if !line.broken {
                         let span = self.span_in(&line, tok.start, tok.end);
                         self.diagnostics.push(lexical_error(tok.kind, span, src));
@@ -234,7 +242,10 @@ impl<'s> Driver<'s> {
         let (body, errors) = parser
             .parse(tokens.split_token_span(eoi))
             .into_output_errors();
-        match (body, errors.into_iter().next()) {
+        // A specific diagnosis (emitted by `validate`) explains more than
+        // the generic error it may have caused further on.
+        let first = errors.iter().position(|e| e.custom.is_some()).unwrap_or(0);
+        match (body, errors.into_iter().nth(first)) {
             (Some(body), None) => {
                 block.skip = body.skip;
                 block.number = body.number;
@@ -323,17 +334,29 @@ impl<'s> Driver<'s> {
             });
             if let Some(p) = p {
                 let word = statements.remove(p);
+                let word_span = word.span;
                 if let (StatementKind::Word(w), Some(call)) = (
                     word.kind,
-                    statements.iter_mut().find_map(|s| match &mut s.kind {
-                        StatementKind::Call(c) => Some(c),
-                        _ => None,
-                    }),
+                    statements
+                        .iter_mut()
+                        .find(|s| matches!(s.kind, StatementKind::Call(_))),
                 ) {
-                    call.passes = Some(Box::new(w));
+                    call.span = call.span.cover(word_span);
+                    if let StatementKind::Call(c) = &mut call.kind {
+                        c.passes = Some(Box::new(w));
+                    }
                 }
             }
         }
+    }
+}
+
+/// The end of a to-end-of-line token without the CR of a CRLF line end.
+fn trim_cr(src: &[u8], start: u32, end: u32) -> u32 {
+    if end > start && src[end as usize - 1] == b'\r' {
+        end - 1
+    } else {
+        end
     }
 }
 
@@ -373,8 +396,39 @@ fn too_deep(tokens: &[Spanned]) -> Option<SimpleSpan> {
     None
 }
 
+/// Diagnoses a token that cannot be part of any block; the block is then
+/// reported without running the grammar.
 fn lexical_error(kind: TokenKind, span: Span, src: &[u8]) -> Diagnostic {
+    let text = decode(&src[span.range()]);
     match kind {
+        TokenKind::UnclosedString => Diagnostic::error(
+            "gcodec::parse::unclosed_string",
+            "string is not closed on its line",
+        )
+        .with_label(span, "opened here")
+        .with_help("add the closing `\"`; strings cannot span blocks"),
+        TokenKind::BadQuoted => {
+            let (what, help) = match text.as_bytes().get(1).map(u8::to_ascii_uppercase) {
+                Some(b'H') => (
+                    "hex constant",
+                    "hex constants are written 'H' followed by the digits 0-9 and A-F, e.g. 'H1F'",
+                ),
+                Some(b'B') => (
+                    "binary constant",
+                    "binary constants are written 'B' followed by 0 and 1, e.g. 'B101'",
+                ),
+                _ => (
+                    "constant",
+                    "quoted constants are hex ('H1F') or binary ('B101'); strings use double quotes",
+                ),
+            };
+            Diagnostic::error(
+                "gcodec::parse::invalid_number",
+                format!("malformed {what} `{text}`"),
+            )
+            .with_label(span, "here")
+            .with_help(help)
+        }
         TokenKind::Header => Diagnostic::error(
             "gcodec::parse::misplaced_header",
             "`%` may only start a program header line",

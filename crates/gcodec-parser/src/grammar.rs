@@ -66,7 +66,6 @@ impl<'s> Ctx<'s> {
 const ERR_VALUE: &str = "gcodec::parse::invalid_value";
 const ERR_WORD: &str = "gcodec::parse::invalid_word";
 const ERR_NUMBER: &str = "gcodec::parse::invalid_number";
-const ERR_STRING: &str = "gcodec::parse::unclosed_string";
 
 /// Single-letter addresses that take a numeric extension (`X1=`, `M2=`, `S1=`).
 fn letter_takes_extension(c: u8) -> bool {
@@ -186,52 +185,17 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
                     })
             },
         );
-        let bad_quoted = select! { T::BadQuoted => () }.validate(move |_, e, emitter| {
-            let s: SimpleSpan = e.span();
-            let text = g.text(s);
-            let (what, help) = match text.as_bytes().get(1).map(u8::to_ascii_uppercase) {
-                Some(b'H') => (
-                    "hex constant",
-                    "hex constants are written 'H' followed by the digits 0-9 and A-F, e.g. 'H1F'",
-                ),
-                Some(b'B') => (
-                    "binary constant",
-                    "binary constants are written 'B' followed by 0 and 1, e.g. 'B101'",
-                ),
-                _ => (
-                    "constant",
-                    "quoted constants are hex ('H1F') or binary ('B101'); strings use double quotes",
-                ),
-            };
-            emitter.emit(SyntaxError::custom(
-                s,
-                ERR_NUMBER,
-                format!("malformed {what} `{text}`"),
-                Some(help),
-            ));
-            placeholder(g, s)
-        });
         let string = select! { T::String => () }.map_with(move |_, e| {
             let s: SimpleSpan = e.span();
             let bytes = g.bytes(s);
             let value = gcodec_source_decode(&bytes[1..bytes.len() - 1]);
             mk(ExprKind::String { value }, s)
         });
-        let unclosed = select! { T::UnclosedString => () }.validate(move |_, e, emitter| {
-            let s: SimpleSpan = e.span();
-            emitter.emit(SyntaxError::custom(
-                s,
-                ERR_STRING,
-                "string is not closed on its line",
-                Some("add the closing `\"`; strings cannot span blocks"),
-            ));
-            placeholder(g, s)
-        });
         let boolean = select! { T::True => true, T::False => false }
             .map_with(move |value, e| mk(ExprKind::Bool { value }, e.span()));
-        let var = var_ref(g, expr.clone()).map(|v| Expr {
-            span: v.span,
-            kind: ExprKind::Var(v),
+        let var = var_ref(g, expr.clone()).map(|var| Expr {
+            span: var.span,
+            kind: ExprKind::Var { var },
         });
         let call = select! { T::Ident => () }
             .map_with(|_, e| e.span())
@@ -254,10 +218,8 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
                 inner.span = g.span(e.span());
                 inner
             });
-        let atom = choice((
-            number, radix, bad_quoted, string, unclosed, boolean, call, var, paren,
-        ))
-        .labelled("expression");
+        let atom =
+            choice((number, radix, string, boolean, call, var, paren)).labelled("expression");
 
         let bin = move |op: BinaryOp| {
             move |l: Expr, _, r: Expr, e: &mut chumsky::input::MapExtra<'t, '_, In<'t>, Ex>| Expr {
@@ -310,18 +272,6 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
 
 fn gcodec_source_decode(bytes: &[u8]) -> CompactString {
     CompactString::from(gcodec_source::decode(bytes))
-}
-
-/// Stands in for a malformed literal after its error was emitted, so the
-/// rest of the block still parses (the driver discards the block).
-fn placeholder(g: Ctx<'_>, s: SimpleSpan) -> Expr {
-    Expr {
-        span: g.span(s),
-        kind: ExprKind::Number {
-            value: 0.0,
-            integer: true,
-        },
-    }
 }
 
 /// `[a, b, c]` index list.
@@ -689,7 +639,7 @@ fn letter_statement<'t, 's: 't>(
                     Word {
                         address,
                         address_span: a_span,
-                        extension: Some(Extension::Index { span: g.span(bs), index: Box::new(idx) }),
+                        extension: Some(Extension::Index { span: idx.span, index: Box::new(idx) }),
                         value: assigned_value(value_expr(v)?),
                     }
                 }
@@ -807,7 +757,7 @@ fn type_spec<'t, 's: 't>(
         .try_map(move |s, _| {
             TypeKind::from_name(g.text(s))
                 .map(|k| (k, s))
-                .ok_or_else(|| SyntaxError {
+                .ok_or(SyntaxError {
                     span: s,
                     found: Some(T::Ident),
                     expected: 0,
@@ -885,6 +835,32 @@ fn attributes<'t, 's: 't>(
         .collect()
 }
 
+/// Attributes written after the type (`PHU 1 LLI 0 ULI 10 APWP 3`): only
+/// known attribute names, since the variable name follows.
+fn type_attributes<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Vec<Attribute>, Ex> + Clone + 't {
+    const KNOWN: &[&str] = &[
+        "PHU", "LLI", "ULI", "APR", "APW", "APRP", "APWP", "APRB", "APWB", "APX", "SYNR", "SYNW",
+        "SYNRW", "INIPO", "INIRE", "INICF", "PRLOC", "DCM", "DCI", "DCU",
+    ];
+    let value = select! { T::Number => (), T::Minus => (), T::HexNumber => () }
+        .rewind()
+        .ignore_then(expr);
+    select! { T::Ident => () }
+        .map_with(|_, e| e.span())
+        .filter(move |s: &SimpleSpan| KNOWN.iter().any(|k| k.eq_ignore_ascii_case(g.text(*s))))
+        .then(value.or_not())
+        .map_with(move |(name, value), e| Attribute {
+            span: g.span(e.span()),
+            name: g.name(name),
+            value,
+        })
+        .repeated()
+        .collect()
+}
+
 fn dims<'t>(
     expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
 ) -> impl Parser<'t, In<'t>, Vec<Expr>, Ex> + Clone + 't {
@@ -910,9 +886,11 @@ fn def<'t, 's: 't>(
         });
     just(T::Def)
         .ignore_then(attributes(g, expr.clone(), true))
-        .then(type_spec(g, expr))
+        .then(type_spec(g, expr.clone()))
+        .then(type_attributes(g, expr))
         .then(var.separated_by(just(T::Comma)).at_least(1).collect())
-        .map(|((attributes, ty), vars)| {
+        .map(|(((mut attributes, ty), after), vars)| {
+            attributes.extend(after);
             StatementKind::Def(Def {
                 attributes,
                 ty,
@@ -963,27 +941,73 @@ fn extern_decl<'t, 's: 't>(
     g: Ctx<'s>,
     expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
 ) -> impl Parser<'t, In<'t>, StatementKind, Ex> + Clone + 't {
-    // Array dimensions in EXTERN may be left empty: `REAL[,]`.
+    // Array dimensions in EXTERN may be left empty: `REAL[,]`. For STRING
+    // the first bracket is the length: `STRING[32]`, `STRING[32][3]`.
     let ext_dims = expr
         .clone()
         .or_not()
         .separated_by(just(T::Comma))
         .collect::<Vec<_>>()
-        .delimited_by(just(T::LBracket), just(T::RBracket))
-        .or_not()
-        .map(|d| {
-            d.map(|v| v.into_iter().flatten().collect())
-                .unwrap_or_default()
+        .delimited_by(just(T::LBracket), just(T::RBracket));
+    let type_name = select! { T::Ident => () }
+        .map_with(|_, e| e.span())
+        .try_map(move |s, _| {
+            TypeKind::from_name(g.text(s))
+                .map(|k| (k, s))
+                .ok_or(SyntaxError {
+                    span: s,
+                    found: Some(T::Ident),
+                    expected: 0,
+                    label: Some("data type"),
+                    custom: None,
+                })
         });
     let param = just(T::Var)
         .or_not()
-        .then(type_spec(g, expr))
-        .then(ext_dims)
-        .map_with(move |((by_ref, ty), dims), e| ExternParam {
-            span: g.span(e.span()),
-            by_reference: by_ref.is_some(),
-            ty,
-            dims,
+        .then(type_name)
+        .then(ext_dims.clone().or_not())
+        .then(ext_dims.or_not())
+        .try_map(move |(((by_ref, (kind, ts)), first), second), span| {
+            let (ty, dims) = match kind {
+                TypeKind::String { .. } => {
+                    let length = match first {
+                        Some(mut l) if l.len() == 1 && l[0].is_some() => {
+                            l.pop().flatten().map(Box::new)
+                        }
+                        None => None,
+                        Some(_) => {
+                            return Err(SyntaxError::custom(
+                                span,
+                                ERR_WORD,
+                                "a STRING length is one number, e.g. `STRING[32]`",
+                                None,
+                            ));
+                        }
+                    };
+                    (TypeKind::String { length }, second.unwrap_or_default())
+                }
+                kind => {
+                    if second.is_some() {
+                        return Err(SyntaxError::custom(
+                            span,
+                            ERR_WORD,
+                            "only STRING takes a length before its dimensions",
+                            None,
+                        ));
+                    }
+                    (kind, first.unwrap_or_default())
+                }
+            };
+            let ts_end = span.end;
+            Ok(ExternParam {
+                span: g.span(span),
+                by_reference: by_ref.is_some(),
+                ty: TypeSpec {
+                    span: g.span(SimpleSpan::from(ts.start..ts_end)),
+                    kind: ty,
+                },
+                dims,
+            })
         });
     just(T::Extern)
         .ignore_then(name_token())
@@ -1355,7 +1379,7 @@ fn named_word<'t, 's: 't>(
         .try_map(move |(target, value), span| {
             named_address_word(g, &target, &value, span).unwrap_or_else(|| {
                 Ok(Word {
-                    address: target.name.to_ascii_uppercase().into(),
+                    address: target.name.to_ascii_uppercase(),
                     address_span: target.span,
                     extension: None,
                     value: match value {
@@ -1413,7 +1437,7 @@ fn named_address_word(
     let mut address_span = target.span;
     address_span.end = address_span.start + name_len;
     Some(Ok(Word {
-        address: target.name.to_ascii_uppercase().into(),
+        address: target.name.to_ascii_uppercase(),
         address_span,
         extension,
         value: assigned_value(e.clone()),

@@ -102,6 +102,9 @@ fn write_statement(st: &Statement, out: &mut impl Write) -> fmt::Result {
                     out.write_str("VAR ")?;
                 }
                 write_type(&p.ty, out)?;
+                if !p.dims.is_empty() {
+                    write_args(&p.dims, out)?;
+                }
             }
             out.write_char(')')
         }
@@ -400,12 +403,13 @@ fn write_expr(e: &Expr, out: &mut impl Write) -> fmt::Result {
         ExprKind::Number { value, .. } => write!(out, "{value}"),
         ExprKind::String { value } => write!(out, "\"{value}\""),
         ExprKind::Bool { value } => out.write_str(if *value { "TRUE" } else { "FALSE" }),
-        ExprKind::Var(v) => write_var(v, out),
+        ExprKind::Var { var } => write_var(var, out),
         ExprKind::Call { name, args, .. } => {
             out.write_str(name)?;
             write_args(args, out)
         }
         ExprKind::Unary { op, operand } => {
+            out.write_char('(')?;
             out.write_str(match op {
                 UnaryOp::Neg => "-",
                 UnaryOp::Plus => "+",
@@ -413,7 +417,8 @@ fn write_expr(e: &Expr, out: &mut impl Write) -> fmt::Result {
                 UnaryOp::BNot => "B_NOT ",
                 UnaryOp::ToString => "<<",
             })?;
-            write_expr(operand, out)
+            write_expr(operand, out)?;
+            out.write_char(')')
         }
         ExprKind::Binary { op, lhs, rhs } => {
             out.write_char('(')?;

@@ -17,7 +17,7 @@ struct Open {
     span: Span,
 }
 
-pub(crate) fn pair(program: &mut Program, file_len: u32, diagnostics: &mut Vec<Diagnostic>) {
+pub(crate) fn pair(program: &mut Program, diagnostics: &mut Vec<Diagnostic>) {
     let mut stack: Vec<Open> = Vec::new();
     let mut structures: Vec<ControlStructure> = Vec::new();
     for (bi, block) in program.blocks.iter_mut().enumerate() {
@@ -111,20 +111,24 @@ pub(crate) fn pair(program: &mut Program, file_len: u32, diagnostics: &mut Vec<D
         }
         block.depth = depth as u32;
     }
+    // The end is expected at the end of the last block that has content.
     let eof = program
         .blocks
-        .last()
+        .iter()
+        .rev()
+        .find(|b| !b.span.is_empty())
+        .or(program.blocks.last())
         .map(|b| {
             Span::new(
-                file_len,
-                file_len,
+                b.span.end,
+                b.span.end,
                 b.span.line,
                 b.span.end - b.span.start + 1,
             )
         })
         .unwrap_or_default();
     for open in stack.iter().rev() {
-        diagnostics.push(unclosed(open, eof, "end of program reached here"));
+        diagnostics.push(unclosed(open, eof, "by the end of the program"));
     }
     program.structures = structures;
 }

@@ -1,0 +1,336 @@
+//! End-to-end tests of the `gcodec` binary: exit codes, output formats and
+//! diagnostics, run on the parse fixtures in `tests/fixtures/parse/`.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+/// Exit codes documented in `commands.rs`.
+const EXIT_CLEAN: i32 = 0;
+const EXIT_DIAGNOSTICS: i32 = 1;
+const EXIT_USAGE: i32 = 2;
+
+fn fixture(relative: &str) -> PathBuf {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/fixtures/parse")
+        .join(relative);
+    assert!(path.is_file(), "missing fixture {}", path.display());
+    path
+}
+
+/// Runs `gcodec` with `args`, as a pipe (not a terminal), with a backtrace
+/// requested so that any panic would show.
+fn gcodec<I, S>(args: I) -> Output
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<std::ffi::OsStr>,
+{
+    Command::new(env!("CARGO_BIN_EXE_gcodec"))
+        .args(args)
+        .env("RUST_BACKTRACE", "1")
+        .env_remove("NO_COLOR")
+        .output()
+        .expect("gcodec runs")
+}
+
+fn stdout(out: &Output) -> String {
+    String::from_utf8(out.stdout.clone()).expect("stdout is UTF-8")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8(out.stderr.clone()).expect("stderr is UTF-8")
+}
+
+fn code(out: &Output) -> i32 {
+    out.status
+        .code()
+        .expect("gcodec exited normally, not by a signal")
+}
+
+/// A failure must be a message, not a crash.
+fn assert_no_panic(out: &Output) {
+    let err = stderr(out);
+    assert!(!err.contains("panicked"), "gcodec panicked:\n{err}");
+    assert!(
+        !err.contains("stack backtrace"),
+        "backtrace on stderr:\n{err}"
+    );
+    assert!(
+        !err.contains("RUST_BACKTRACE"),
+        "panic hint on stderr:\n{err}"
+    );
+}
+
+fn json(out: &Output) -> Value {
+    serde_json::from_str(&stdout(out)).expect("stdout is JSON")
+}
+
+fn assert_span(span: &Value) {
+    for key in ["start", "end", "line", "col"] {
+        assert!(span[key].is_u64(), "span without `{key}`: {span}");
+    }
+    assert!(
+        span["line"].as_u64() >= Some(1),
+        "lines are 1-based: {span}"
+    );
+    assert!(
+        span["col"].as_u64() >= Some(1),
+        "columns are 1-based: {span}"
+    );
+}
+
+#[test]
+fn clean_file_text_outline_exits_0() {
+    let path = fixture("frames.mpf");
+    let out = gcodec(["parse".as_ref(), path.as_os_str()]);
+    assert_eq!(code(&out), EXIT_CLEAN, "stderr:\n{}", stderr(&out));
+    assert_eq!(stderr(&out), "", "no diagnostics for a clean file");
+    let text = stdout(&out);
+    assert!(text.contains("TRANS X10 Y5"), "outline:\n{text}");
+    assert!(text.contains("N120 M30"), "outline:\n{text}");
+}
+
+#[test]
+fn clean_file_json_has_blocks_with_spans() {
+    let path = fixture("words_and_addresses.mpf");
+    let out = gcodec([
+        "parse".as_ref(),
+        "--format".as_ref(),
+        "json".as_ref(),
+        path.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_CLEAN, "stderr:\n{}", stderr(&out));
+    assert_eq!(stderr(&out), "");
+    let program = json(&out);
+    assert!(program.is_object(), "one file gives one program object");
+    assert!(
+        program["file"]
+            .as_str()
+            .is_some_and(|f| f.ends_with("words_and_addresses.mpf")),
+        "file name: {}",
+        program["file"]
+    );
+    let blocks = program["blocks"].as_array().expect("`blocks` array");
+    let source = std::fs::read_to_string(&path).expect("fixture");
+    assert_eq!(blocks.len(), source.lines().count(), "one block per line");
+
+    // Line 3: `N20 S1200 M3 F250 H2`.
+    let block = &blocks[2];
+    assert_span(&block["span"]);
+    assert_eq!(block["span"]["line"], 3);
+    assert_eq!(block["span"]["col"], 1);
+    assert_eq!(block["number"]["value"], 20);
+    let statements = block["statements"].as_array().expect("statements");
+    assert_eq!(statements.len(), 4);
+    let m3 = &statements[1];
+    assert_eq!(m3["kind"], "word");
+    assert_eq!(m3["address"], "M");
+    assert_eq!(m3["value"]["value"], 3.0);
+    assert_span(&m3["span"]);
+    assert_eq!(m3["span"]["line"], 3);
+    assert_eq!(m3["span"]["col"], 11);
+}
+
+#[test]
+fn bad_file_exits_1_with_rendered_diagnostic() {
+    let path = fixture("errors/word_blank_after_address.mpf");
+    let out = gcodec(["parse".as_ref(), path.as_os_str()]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS, "stderr:\n{}", stderr(&out));
+    assert_no_panic(&out);
+    let err = stderr(&out);
+    assert!(
+        err.contains("gcodec::parse::invalid_word"),
+        "stderr:\n{err}"
+    );
+    assert!(
+        err.contains("blank between address `M` and its value"),
+        "stderr:\n{err}"
+    );
+    // The report points into the file: name, line and column, source line.
+    assert!(
+        err.contains("word_blank_after_address.mpf:1:5"),
+        "stderr:\n{err}"
+    );
+    assert!(err.contains("N10 M 5"), "stderr:\n{err}");
+    // Not a terminal: no colour escapes.
+    assert!(
+        !err.contains('\u{1b}'),
+        "ANSI escapes in piped stderr:\n{err}"
+    );
+}
+
+#[test]
+fn bad_file_json_still_prints_the_program() {
+    let path = fixture("errors/several_errors.mpf");
+    let out = gcodec([
+        "parse".as_ref(),
+        "--format".as_ref(),
+        "json".as_ref(),
+        path.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS, "stderr:\n{}", stderr(&out));
+    assert_no_panic(&out);
+    let err = stderr(&out);
+    for code in [
+        "gcodec::parse::invalid_word",
+        "gcodec::parse::invalid_number",
+        "gcodec::parse::invalid_character",
+        "gcodec::parse::missing_jump_target",
+        "gcodec::parse::unmatched_end",
+    ] {
+        assert!(err.contains(code), "`{code}` missing from stderr:\n{err}");
+    }
+    let program = json(&out);
+    assert_eq!(program["blocks"].as_array().map(Vec::len), Some(10));
+}
+
+#[test]
+fn unclosed_structure_exits_1() {
+    let path = fixture("errors/unclosed_if.mpf");
+    let out = gcodec(["parse".as_ref(), path.as_os_str()]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    assert!(stderr(&out).contains("gcodec::parse::unclosed_structure"));
+}
+
+#[test]
+fn missing_file_exits_2_with_a_message() {
+    let path = fixture("frames.mpf").with_file_name("does_not_exist.mpf");
+    let out = gcodec(["parse".as_ref(), path.as_os_str()]);
+    assert_eq!(code(&out), EXIT_USAGE, "stderr:\n{}", stderr(&out));
+    assert_no_panic(&out);
+    let err = stderr(&out);
+    assert!(err.contains("gcodec::io::read"), "stderr:\n{err}");
+    assert!(err.contains("cannot read"), "stderr:\n{err}");
+    assert!(err.contains("does_not_exist.mpf"), "stderr:\n{err}");
+    assert_eq!(stdout(&out), "");
+}
+
+#[test]
+fn missing_file_among_good_ones_exits_2_and_parses_the_rest() {
+    let good = fixture("frames.mpf");
+    let missing = good.with_file_name("does_not_exist.mpf");
+    let out = gcodec(["parse".as_ref(), missing.as_os_str(), good.as_os_str()]);
+    assert_eq!(code(&out), EXIT_USAGE);
+    assert_no_panic(&out);
+    assert!(stdout(&out).contains("TRANS X10 Y5"));
+}
+
+#[test]
+fn unknown_flag_is_a_usage_error() {
+    let path = fixture("frames.mpf");
+    let out = gcodec(["parse".as_ref(), "--bogus".as_ref(), path.as_os_str()]);
+    assert_eq!(code(&out), EXIT_USAGE, "stderr:\n{}", stderr(&out));
+    assert_no_panic(&out);
+    let err = stderr(&out);
+    assert!(err.contains("--bogus"), "stderr:\n{err}");
+    assert!(err.contains("Usage:"), "stderr:\n{err}");
+    assert_eq!(stdout(&out), "");
+}
+
+#[test]
+fn unknown_format_is_a_usage_error() {
+    let path = fixture("frames.mpf");
+    let out = gcodec([
+        "parse".as_ref(),
+        "--format".as_ref(),
+        "yaml".as_ref(),
+        path.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_USAGE);
+    assert_no_panic(&out);
+    assert!(stderr(&out).contains("yaml"));
+}
+
+#[test]
+fn missing_arguments_are_a_usage_error() {
+    for args in [&[][..], &["parse"][..]] {
+        let out = gcodec(args);
+        assert_eq!(
+            code(&out),
+            EXIT_USAGE,
+            "args {args:?}, stderr:\n{}",
+            stderr(&out)
+        );
+        assert_no_panic(&out);
+        assert!(stderr(&out).contains("Usage:"), "args {args:?}");
+    }
+}
+
+#[test]
+fn several_files_json_is_an_array() {
+    let a = fixture("frames.mpf");
+    let b = fixture("procs_and_calls.spf");
+    let out = gcodec([
+        "parse".as_ref(),
+        "--format".as_ref(),
+        "json".as_ref(),
+        a.as_os_str(),
+        b.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_CLEAN, "stderr:\n{}", stderr(&out));
+    let programs = json(&out);
+    let programs = programs.as_array().expect("several files give an array");
+    assert_eq!(programs.len(), 2);
+    assert!(
+        programs[0]["file"]
+            .as_str()
+            .is_some_and(|f| f.ends_with("frames.mpf"))
+    );
+    assert!(
+        programs[1]["file"]
+            .as_str()
+            .is_some_and(|f| f.ends_with("procs_and_calls.spf"))
+    );
+    assert_eq!(programs[1]["header"]["program"], "PROCS");
+    for program in programs {
+        assert!(program["blocks"].as_array().is_some_and(|b| !b.is_empty()));
+    }
+}
+
+#[test]
+fn several_files_text_outlines_each_and_worst_exit_wins() {
+    let good = fixture("frames.mpf");
+    let bad = fixture("errors/unclosed_while.mpf");
+    let out = gcodec(["parse".as_ref(), good.as_os_str(), bad.as_os_str()]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    let text = stdout(&out);
+    assert!(text.contains("frames.mpf"), "stdout:\n{text}");
+    assert!(text.contains("unclosed_while.mpf"), "stdout:\n{text}");
+    assert!(stderr(&out).contains("unclosed_while.mpf"));
+}
+
+#[test]
+fn latin1_file_is_read_and_decoded() {
+    let path = fixture("messages.mpf");
+    let out = gcodec([
+        "parse".as_ref(),
+        "--format".as_ref(),
+        "json".as_ref(),
+        path.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_CLEAN, "stderr:\n{}", stderr(&out));
+    let program = json(&out);
+    let comments: Vec<&str> = program["blocks"]
+        .as_array()
+        .expect("blocks")
+        .iter()
+        .filter_map(|b| b["comment"]["text"].as_str())
+        .collect();
+    assert!(
+        comments.iter().any(|c| c.contains("Frühstück")),
+        "comments: {comments:?}"
+    );
+}
+
+#[test]
+fn version_and_help_exit_0() {
+    for flag in ["--version", "--help"] {
+        let out = gcodec([flag]);
+        assert_eq!(code(&out), EXIT_CLEAN, "{flag}");
+        assert!(
+            stdout(&out).contains("gcodec") || stdout(&out).contains("Usage"),
+            "{flag}"
+        );
+    }
+}
