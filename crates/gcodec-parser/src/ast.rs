@@ -687,16 +687,67 @@ impl SyncTriggerKind {
 }
 
 /// An expression.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+///
+/// Serialised as one object: `span`, `kind` and the variant's fields
+/// (written by hand because `#[serde(flatten)]` buffers
+/// every level, which is slow and deep on the stack for long chains).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Expr {
     pub span: Span,
-    #[serde(flatten)]
     pub kind: ExprKind,
 }
 
+impl Serialize for Expr {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(None)?;
+        map.serialize_entry("span", &self.span)?;
+        match &self.kind {
+            ExprKind::Number { value, integer } => {
+                map.serialize_entry("kind", "number")?;
+                map.serialize_entry("value", value)?;
+                map.serialize_entry("integer", integer)?;
+            }
+            ExprKind::String { value } => {
+                map.serialize_entry("kind", "string")?;
+                map.serialize_entry("value", value)?;
+            }
+            ExprKind::Bool { value } => {
+                map.serialize_entry("kind", "bool")?;
+                map.serialize_entry("value", value)?;
+            }
+            ExprKind::Var { var } => {
+                map.serialize_entry("kind", "var")?;
+                map.serialize_entry("var", var)?;
+            }
+            ExprKind::Call {
+                name,
+                name_span,
+                args,
+            } => {
+                map.serialize_entry("kind", "call")?;
+                map.serialize_entry("name", name)?;
+                map.serialize_entry("name_span", name_span)?;
+                map.serialize_entry("args", args)?;
+            }
+            ExprKind::Unary { op, operand } => {
+                map.serialize_entry("kind", "unary")?;
+                map.serialize_entry("op", op)?;
+                map.serialize_entry("operand", operand)?;
+            }
+            ExprKind::Binary { op, lhs, rhs } => {
+                map.serialize_entry("kind", "binary")?;
+                map.serialize_entry("op", op)?;
+                map.serialize_entry("lhs", lhs)?;
+                map.serialize_entry("rhs", rhs)?;
+            }
+        }
+        map.end()
+    }
+}
+
 /// What an expression is.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
+#[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
     /// Decimal, `'H…'` or `'B…'` constant.
     Number {

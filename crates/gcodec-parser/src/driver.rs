@@ -18,6 +18,13 @@ use crate::structure;
 /// are reported instead of parsed, which bounds the recursion of every stage.
 pub const MAX_EXPRESSION_DEPTH: usize = 64;
 
+/// Most operators accepted in one block (the sign of a DIN constant such as
+/// `X-10` does not count). Expression trees are as deep as their operator
+/// chains; the bound keeps cloning, serialising and later stages' walks
+/// within a 2 MiB thread stack even in debug builds. A SINUMERIK block has
+/// at most 512 characters, so real programs stay far below it.
+pub const MAX_OPERATORS_PER_BLOCK: usize = 1000;
+
 /// Blocks handed to one instance of the block grammar. The grammar borrows
 /// the token buffer, so the buffer is refilled per chunk rather than held
 /// for the whole file: memory stays proportional to the AST.
@@ -126,6 +133,8 @@ impl<'s> Driver<'s> {
                     self.lines.push(std::mem::replace(&mut line, next));
                     if self.lines.len() >= CHUNK_LINES {
                         self.flush();
+                        // The buffer starts afresh for the line just begun.
+                        line.tokens = 0..0;
                     }
                 }
                 TokenKind::Header if self.tokens.len() == line.tokens.start && !line.broken => {
@@ -225,6 +234,19 @@ impl<'s> Driver<'s> {
             self.note_header(Span::new(s, e, line.number, s - line.start + 1));
         }
         if line.broken || tokens.is_empty() {
+            return block;
+        }
+        if let Some(op) = too_many_operators(tokens) {
+            self.diagnostics.push(
+                Diagnostic::error(
+                    "gcodec::parse::block_too_complex",
+                    format!("more than {MAX_OPERATORS_PER_BLOCK} operators in one block"),
+                )
+                .with_label(ctx.span(op), "this operator is over the limit")
+                .with_help(
+                    "split the calculation over several blocks using intermediate variables",
+                ),
+            );
             return block;
         }
         if let Some(deep) = too_deep(tokens) {
@@ -376,6 +398,53 @@ fn split_internal_name(text: &str) -> (Option<CompactString>, Option<CompactStri
         ),
         _ => (Some(rest.into()), None),
     }
+}
+
+/// The first operator past [`MAX_OPERATORS_PER_BLOCK`], if any.
+fn too_many_operators(tokens: &[Spanned]) -> Option<SimpleSpan> {
+    use TokenKind as T;
+    let mut count = 0;
+    for (i, (kind, span)) in tokens.iter().enumerate() {
+        let is_operator = match kind {
+            // `X-10`: a sign touching its letter and number is part of a word.
+            T::Plus | T::Minus => {
+                let after_letter =
+                    i > 0 && tokens[i - 1].0 == T::Letter && tokens[i - 1].1.end == span.start;
+                let before_number = tokens
+                    .get(i + 1)
+                    .is_some_and(|(k, s)| *k == T::Number && s.start == span.end);
+                !(after_letter && before_number)
+            }
+            T::Star
+            | T::Slash
+            | T::Div
+            | T::Mod
+            | T::And
+            | T::Or
+            | T::Xor
+            | T::Not
+            | T::BAnd
+            | T::BOr
+            | T::BXor
+            | T::BNot
+            | T::Concat
+            | T::EqEq
+            | T::Ne
+            | T::Lt
+            | T::Gt
+            | T::Le
+            | T::Ge
+            | T::Colon => true,
+            _ => false,
+        };
+        if is_operator {
+            count += 1;
+            if count > MAX_OPERATORS_PER_BLOCK {
+                return Some(*span);
+            }
+        }
+    }
+    None
 }
 
 /// The first bracket deeper than [`MAX_EXPRESSION_DEPTH`], if any.

@@ -469,12 +469,33 @@ fn letter_statement<'t, 's: 't>(
         .then(sign.or_not())
         .then(number.or_not())
         .then(bracket.or_not())
-        .then(just(T::Eq).ignore_then(initializer(g, expr)).or_not())
+        .then(
+            just(T::Eq)
+                .map_with(|_, e| -> SimpleSpan { e.span() })
+                .then(initializer(g, expr).or_not())
+                .or_not(),
+        )
         .then(string_after.or_not())
         .then(args_p.or_not())
         .map_with(move |((((((letter, sign), num), bracket), value), string), call_args), e| {
             let span: SimpleSpan = e.span();
             let classify = || -> Result<LetterStatement, SyntaxError> {
+            // `X=` must be followed by a complete value.
+            let value = match value {
+                Some((eq, None)) => {
+                    return Err(SyntaxError::custom(
+                        SimpleSpan::from(eq.start..span.end.max(eq.end)),
+                        ERR_VALUE,
+                        format!(
+                            "`{}=` is not followed by a complete value",
+                            g.text(SimpleSpan::from(letter.start..eq.start)).trim_end()
+                        ),
+                        Some("write an expression after `=`, e.g. `X=R1+5`; check brackets and operators"),
+                    ));
+                }
+                Some((_, Some(v))) => Some(v),
+                None => None,
+            };
             let l = g.bytes(letter)[0].to_ascii_uppercase();
             let addr = (l as char).to_string();
             let address: CompactString = addr.as_str().into();

@@ -20,5 +20,5 @@ mod grammar;
 mod outline;
 mod structure;
 
-pub use driver::{MAX_EXPRESSION_DEPTH, Parse, parse, parse_bytes};
+pub use driver::{MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, parse, parse_bytes};
 pub use outline::write_outline;

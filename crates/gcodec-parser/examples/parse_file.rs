@@ -1,0 +1,129 @@
+//! Parses one file and reports what it took: the measuring tool behind
+//! `docs/performance.md`.
+//!
+//! ```text
+//! cargo run --release -p gcodec-parser --example parse_file -- FILE
+//! cargo run --release -p gcodec-parser --example parse_file -- --generate BLOCKS FILE
+//! cargo run --release -p gcodec-parser --example parse_file -- --sizes
+//! ```
+//!
+//! The first form reads FILE, lexes it once on its own (for the lexer's
+//! throughput), then parses it and prints the block count, the diagnostics
+//! count and the elapsed times. Run it under `/usr/bin/time -v` for the whole
+//! process's wall time and peak RSS. `--generate` writes the benchmark's
+//! deterministic program of BLOCKS lines to FILE; `--sizes` prints the size
+//! of the main AST types.
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use gcodec_parser::ast::*;
+
+#[path = "../benches/program/mod.rs"]
+mod program;
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match args
+        .iter()
+        .map(String::as_str)
+        .collect::<Vec<_>>()
+        .as_slice()
+    {
+        ["--sizes"] => {
+            sizes();
+            ExitCode::SUCCESS
+        }
+        ["--generate", blocks, path] => {
+            let Ok(blocks) = blocks.parse::<usize>() else {
+                eprintln!("BLOCKS must be a whole number");
+                return ExitCode::FAILURE;
+            };
+            let bytes = program::generate(blocks);
+            if let Err(e) = std::fs::write(path, &bytes) {
+                eprintln!("cannot write {path}: {e}");
+                return ExitCode::FAILURE;
+            }
+            println!(
+                "wrote {path}: {blocks} blocks, {} bytes ({:.1} bytes/block)",
+                bytes.len(),
+                bytes.len() as f64 / blocks.max(1) as f64
+            );
+            ExitCode::SUCCESS
+        }
+        [path] if !path.starts_with("--") => parse_file(path),
+        _ => {
+            eprintln!("usage: parse_file FILE | --generate BLOCKS FILE | --sizes");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn parse_file(path: &str) -> ExitCode {
+    let start = Instant::now();
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => {
+            eprintln!("cannot read {path}: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let read = start.elapsed();
+    let mb = bytes.len() as f64 / 1e6;
+
+    let t = Instant::now();
+    let tokens = gcodec_lexer::Lexer::new(&bytes).count();
+    let lex = t.elapsed();
+
+    let t = Instant::now();
+    let parsed = gcodec_parser::parse_bytes(path, &bytes);
+    let parse = t.elapsed();
+
+    println!("input:        {} bytes ({mb:.2} MB)", bytes.len());
+    println!("tokens:       {tokens}");
+    println!("blocks:       {}", parsed.program.blocks.len());
+    println!("diagnostics:  {}", parsed.diagnostics.len());
+    println!("read:         {:.3} s", read.as_secs_f64());
+    println!(
+        "lex only:     {:.3} s ({:.1} MB/s)",
+        lex.as_secs_f64(),
+        mb / lex.as_secs_f64()
+    );
+    println!(
+        "lex+parse:    {:.3} s ({:.1} MB/s)",
+        parse.as_secs_f64(),
+        mb / parse.as_secs_f64()
+    );
+
+    let t = Instant::now();
+    drop(parsed);
+    println!("drop AST:     {:.3} s", t.elapsed().as_secs_f64());
+    println!("total:        {:.3} s", start.elapsed().as_secs_f64());
+    ExitCode::SUCCESS
+}
+
+fn sizes() {
+    macro_rules! size {
+        ($($t:ty),* $(,)?) => {
+            $(println!("{:<16} {:>4} bytes", stringify!($t), std::mem::size_of::<$t>());)*
+        };
+    }
+    size!(
+        Block,
+        Statement,
+        StatementKind,
+        Word,
+        WordValue,
+        Extension,
+        Expr,
+        ExprKind,
+        VarRef,
+        Assign,
+        Initializer,
+        Comment,
+        BlockNumber,
+        Name,
+        gcodec_source::Span,
+        gcodec_source::Diagnostic,
+    );
+}
