@@ -59,15 +59,15 @@ pub struct Block {
     /// The line without its line end.
     pub span: Span,
     /// `/` or `/0`…`/9` at the start of the block.
-    pub skip: Option<SkipLevel>,
+    pub skip: Option<Box<SkipLevel>>,
     /// `N10` or `:10`.
     pub number: Option<BlockNumber>,
     /// `NAME:` jump label.
-    pub label: Option<LabelDef>,
+    pub label: Option<Box<LabelDef>>,
     /// The statements in source order.
     pub statements: Vec<Statement>,
     /// `; …` to the end of the line.
-    pub comment: Option<Comment>,
+    pub comment: Option<Box<Comment>>,
     /// How many control structures enclose this block.
     pub depth: u32,
 }
@@ -116,7 +116,7 @@ pub enum StatementKind {
     /// An address word: `G1`, `X-10`, `X=R1+5`, `M2=3`, `G[8]=2`, `CR=5`.
     Word(Word),
     /// `R1=5`, `A[2,3]=7`, `$P_UIFR[1,X,TR]=10`, `NAME=…`.
-    Assign(Assign),
+    Assign(Box<Assign>),
     /// `DEF …`.
     Def(Def),
     /// `REDEF name attributes`: kept for later stages.
@@ -124,7 +124,7 @@ pub enum StatementKind {
     /// `DEFINE NAME AS …`.
     Define(Define),
     /// `PROC name(params) attributes`.
-    Proc(Proc),
+    Proc(Box<Proc>),
     /// `ENDPROC`.
     EndProc,
     /// `EXTERN name(types)`.
@@ -132,24 +132,24 @@ pub enum StatementKind {
     /// A subprogram or procedure call by name or `L` number.
     Call(Call),
     /// `CALL <expr>` and `CALL … BLOCK … TO …`.
-    IndirectCall(IndirectCall),
+    IndirectCall(Box<IndirectCall>),
     /// `PCALL path(args)`.
     PCall(PCall),
     /// `MCALL name(args)` or `MCALL` alone (cancels the modal call).
-    MCall(MCall),
+    MCall(Box<MCall>),
     /// `RET` with optional arguments.
     Ret(Ret),
     /// `GOTO… target`.
-    Goto(Jump),
+    Goto(Box<Jump>),
     /// `IF cond GOTO… target` in one block.
-    IfGoto(IfGoto),
+    IfGoto(Box<IfGoto>),
     /// `IF cond` opening a structure.
     If(Condition),
     Else,
     EndIf,
     While(Condition),
     EndWhile,
-    For(For),
+    For(Box<For>),
     EndFor,
     Loop,
     EndLoop,
@@ -157,13 +157,13 @@ pub enum StatementKind {
     Repeat,
     Until(Condition),
     /// `REPEAT label [label] [P=n]`, `REPEATB label [P=n]`.
-    RepeatSection(RepeatSection),
+    RepeatSection(Box<RepeatSection>),
     /// `CASE expr OF c GOTOF l … DEFAULT GOTOF l`.
-    Case(Case),
+    Case(Box<Case>),
     /// `TRANS X10`, `ROT RPL=45`, `MIRROR X0`, … (`words` empty = reset).
     Frame(Frame),
     /// `ID=1 WHEN cond DO actions` and friends.
-    SyncAction(SyncAction),
+    SyncAction(Box<SyncAction>),
 }
 
 /// An address word.
@@ -173,7 +173,7 @@ pub struct Word {
     pub address: Name,
     pub address_span: Span,
     /// `M2=`, `X1=` (numeric) or `M[R1]=`, `AX[X1]=` (bracketed).
-    pub extension: Option<Extension>,
+    pub extension: Option<Box<Extension>>,
     pub value: WordValue,
 }
 
@@ -720,33 +720,31 @@ impl Serialize for Expr {
                 map.serialize_entry("kind", "var")?;
                 map.serialize_entry("var", var)?;
             }
-            ExprKind::Call {
-                name,
-                name_span,
-                args,
-            } => {
+            ExprKind::Call(call) => {
                 map.serialize_entry("kind", "call")?;
-                map.serialize_entry("name", name)?;
-                map.serialize_entry("name_span", name_span)?;
-                map.serialize_entry("args", args)?;
+                map.serialize_entry("name", &call.name)?;
+                map.serialize_entry("name_span", &call.name_span)?;
+                map.serialize_entry("args", &call.args)?;
             }
             ExprKind::Unary { op, operand } => {
                 map.serialize_entry("kind", "unary")?;
                 map.serialize_entry("op", op)?;
                 map.serialize_entry("operand", operand)?;
             }
-            ExprKind::Binary { op, lhs, rhs } => {
+            ExprKind::Binary(binary) => {
                 map.serialize_entry("kind", "binary")?;
-                map.serialize_entry("op", op)?;
-                map.serialize_entry("lhs", lhs)?;
-                map.serialize_entry("rhs", rhs)?;
+                map.serialize_entry("op", &binary.op)?;
+                map.serialize_entry("lhs", &binary.lhs)?;
+                map.serialize_entry("rhs", &binary.rhs)?;
             }
         }
         map.end()
     }
 }
 
-/// What an expression is.
+/// What an expression is. Variants hold at most 16 bytes (larger parts
+/// are boxed) so that an [`Expr`] is 32 bytes: expressions are moved around
+/// a lot while parsing.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
     /// Decimal, `'H…'` or `'B…'` constant.
@@ -755,29 +753,38 @@ pub enum ExprKind {
         integer: bool,
     },
     String {
-        value: CompactString,
+        value: Box<CompactString>,
     },
     Bool {
         value: bool,
     },
     Var {
-        var: VarRef,
+        var: Box<VarRef>,
     },
     /// `SIN(30)`, `AC(5)`, `CTRANS(X,10)`, `USERFUNC(…)`.
-    Call {
-        name: Name,
-        name_span: Span,
-        args: Vec<Option<Expr>>,
-    },
+    Call(Box<CallExpr>),
     Unary {
         op: UnaryOp,
         operand: Box<Expr>,
     },
-    Binary {
-        op: BinaryOp,
-        lhs: Box<Expr>,
-        rhs: Box<Expr>,
-    },
+    Binary(Box<BinaryExpr>),
+}
+
+/// A function call inside an expression.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CallExpr {
+    pub name: Name,
+    pub name_span: Span,
+    /// Omitted arguments are `None`.
+    pub args: Vec<Option<Expr>>,
+}
+
+/// A binary operation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BinaryExpr {
+    pub op: BinaryOp,
+    pub lhs: Expr,
+    pub rhs: Expr,
 }
 
 /// Unary operators.

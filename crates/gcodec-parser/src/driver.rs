@@ -12,7 +12,7 @@ use gcodec_source::{Diagnostic, SourceFile, Span, decode};
 use crate::ast::*;
 use crate::error::SyntaxError;
 use crate::grammar::{self, Ctx, Spanned};
-use crate::structure;
+use crate::{fast, structure};
 
 /// Deepest nesting of `(` and `[` accepted in one block. Deeper expressions
 /// are reported instead of parsed, which bounds the recursion of every stage.
@@ -51,8 +51,20 @@ pub fn parse(file: &SourceFile) -> Parse {
 
 /// Parses bytes under a file name.
 pub fn parse_bytes(name: &str, src: &[u8]) -> Parse {
+    parse_with(name, src, true)
+}
+
+/// Parses with the grammar only, never the fast path for constant-word
+/// blocks: the reference the fast path is tested against.
+#[doc(hidden)]
+pub fn parse_bytes_with_grammar_only(name: &str, src: &[u8]) -> Parse {
+    parse_with(name, src, false)
+}
+
+fn parse_with(name: &str, src: &[u8], fast_path: bool) -> Parse {
     let mut driver = Driver {
         src,
+        fast_path,
         program: Program {
             file: name.to_owned(),
             header: None,
@@ -94,6 +106,8 @@ struct Line {
 
 struct Driver<'s> {
     src: &'s [u8],
+    /// Off only in tests that compare the fast path with the grammar.
+    fast_path: bool,
     program: Program,
     diagnostics: Vec<Diagnostic>,
     tokens: Vec<Spanned>,
@@ -221,9 +235,11 @@ impl<'s> Driver<'s> {
             number: None,
             label: None,
             statements: Vec::new(),
-            comment: line.comment.map(|(s, e)| Comment {
-                span: Span::new(s, e, line.number, s - line.start + 1),
-                text: CompactString::from(decode(&self.src[s as usize + 1..e as usize])),
+            comment: line.comment.map(|(s, e)| {
+                Box::new(Comment {
+                    span: Span::new(s, e, line.number, s - line.start + 1),
+                    text: CompactString::from(decode(&self.src[s as usize + 1..e as usize])),
+                })
             }),
             depth: 0,
         };
@@ -260,6 +276,14 @@ impl<'s> Driver<'s> {
             );
             return block;
         }
+        if self.fast_path {
+            if let Some(body) = fast::constant_words(tokens, ctx) {
+                block.skip = body.skip.map(Box::new);
+                block.number = body.number;
+                block.statements = body.statements;
+                return block;
+            }
+        }
         let eoi = SimpleSpan::from(end as usize..end as usize);
         let (body, errors) = parser
             .parse(tokens.split_token_span(eoi))
@@ -269,10 +293,11 @@ impl<'s> Driver<'s> {
         let first = errors.iter().position(|e| e.custom.is_some()).unwrap_or(0);
         match (body, errors.into_iter().nth(first)) {
             (Some(body), None) => {
-                block.skip = body.skip;
+                block.skip = body.skip.map(Box::new);
                 block.number = body.number;
-                block.label = body.label;
+                block.label = body.label.map(Box::new);
                 block.statements = body.statements;
+                block.statements.shrink_to_fit();
                 self.check_statements(&mut block.statements);
             }
             (_, Some(error)) => self.diagnostics.push(syntax_diagnostic(error, ctx)),

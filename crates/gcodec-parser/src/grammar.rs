@@ -112,14 +112,20 @@ pub(crate) fn is_named_address(name: &str) -> bool {
     NAMES.iter().any(|n| n.eq_ignore_ascii_case(name))
 }
 
+/// The address name of an upper-case ASCII letter, without allocating.
+pub(crate) fn letter_name(letter: u8) -> CompactString {
+    CompactString::from(std::str::from_utf8(&[letter]).unwrap_or("?"))
+}
+
 pub(crate) fn number_value(text: &str) -> Option<f64> {
-    if let Some(pos) = text.to_ascii_uppercase().find("EX") {
-        let (m, e) = (&text[..pos], &text[pos + 2..]);
-        let m: f64 = m.parse().ok()?;
-        let e: i32 = e.parse().ok()?;
-        Some(m * 10f64.powi(e))
-    } else {
-        text.parse().ok()
+    // `1.5EX-3`: the exponent marker is `EX` in any case.
+    match text.bytes().position(|b| b == b'E' || b == b'e') {
+        Some(pos) => {
+            let mantissa: f64 = text[..pos].parse().ok()?;
+            let exponent: i32 = text.get(pos + 2..)?.parse().ok()?;
+            Some(mantissa * 10f64.powi(exponent))
+        }
+        None => text.parse().ok(),
     }
 }
 
@@ -189,24 +195,29 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
             let s: SimpleSpan = e.span();
             let bytes = g.bytes(s);
             let value = gcodec_source_decode(&bytes[1..bytes.len() - 1]);
-            mk(ExprKind::String { value }, s)
+            mk(
+                ExprKind::String {
+                    value: Box::new(value),
+                },
+                s,
+            )
         });
         let boolean = select! { T::True => true, T::False => false }
             .map_with(move |value, e| mk(ExprKind::Bool { value }, e.span()));
         let var = var_ref(g, expr.clone()).map(|var| Expr {
             span: var.span,
-            kind: ExprKind::Var { var },
+            kind: ExprKind::Var { var: Box::new(var) },
         });
         let call = select! { T::Ident => () }
             .map_with(|_, e| e.span())
             .then(args(expr.clone()))
             .map_with(move |(name_span, args), e| {
                 mk(
-                    ExprKind::Call {
+                    ExprKind::Call(Box::new(CallExpr {
                         name: g.name(name_span),
                         name_span: g.span(name_span),
                         args,
-                    },
+                    })),
                     e.span(),
                 )
             });
@@ -221,51 +232,74 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
         let atom =
             choice((number, radix, string, boolean, call, var, paren)).labelled("expression");
 
-        let bin = move |op: BinaryOp| {
-            move |l: Expr, _, r: Expr, e: &mut chumsky::input::MapExtra<'t, '_, In<'t>, Ex>| Expr {
+        // One operator parser per precedence level: after every operand the
+        // pratt loop tries each level once, so fewer levels means fewer
+        // failed attempts on the hot path.
+        let bin =
+            move |l: Expr,
+                  op: BinaryOp,
+                  r: Expr,
+                  e: &mut chumsky::input::MapExtra<'t, '_, In<'t>, Ex>| Expr {
                 span: g.span(e.span()),
-                kind: ExprKind::Binary {
-                    op,
-                    lhs: Box::new(l),
-                    rhs: Box::new(r),
-                },
-            }
-        };
-        let un = move |op: UnaryOp| {
-            move |_, r: Expr, e: &mut chumsky::input::MapExtra<'t, '_, In<'t>, Ex>| Expr {
-                span: g.span(e.span()),
-                kind: ExprKind::Unary {
-                    op,
-                    operand: Box::new(r),
-                },
-            }
-        };
+                kind: ExprKind::Binary(Box::new(BinaryExpr { op, lhs: l, rhs: r })),
+            };
+        let un =
+            move |op: UnaryOp, r: Expr, e: &mut chumsky::input::MapExtra<'t, '_, In<'t>, Ex>| {
+                Expr {
+                    span: g.span(e.span()),
+                    kind: ExprKind::Unary {
+                        op,
+                        operand: Box::new(r),
+                    },
+                }
+            };
         atom.pratt((
-            prefix(12, just(T::Minus), un(UnaryOp::Neg)),
-            prefix(12, just(T::Plus), un(UnaryOp::Plus)),
-            prefix(12, just(T::Not), un(UnaryOp::Not)),
-            prefix(12, just(T::BNot), un(UnaryOp::BNot)),
-            prefix(12, just(T::Concat), un(UnaryOp::ToString)),
-            infix(left(11), just(T::Star), bin(BinaryOp::Mul)),
-            infix(left(11), just(T::Slash), bin(BinaryOp::Div)),
-            infix(left(11), just(T::Div), bin(BinaryOp::IntDiv)),
-            infix(left(11), just(T::Mod), bin(BinaryOp::Mod)),
-            infix(left(10), just(T::Plus), bin(BinaryOp::Add)),
-            infix(left(10), just(T::Minus), bin(BinaryOp::Sub)),
-            infix(left(9), just(T::BAnd), bin(BinaryOp::BAnd)),
-            infix(left(8), just(T::BXor), bin(BinaryOp::BXor)),
-            infix(left(7), just(T::BOr), bin(BinaryOp::BOr)),
-            infix(left(6), just(T::And), bin(BinaryOp::And)),
-            infix(left(5), just(T::Xor), bin(BinaryOp::Xor)),
-            infix(left(4), just(T::Or), bin(BinaryOp::Or)),
-            infix(left(3), just(T::Concat), bin(BinaryOp::Concat)),
-            infix(left(2), just(T::EqEq), bin(BinaryOp::Eq)),
-            infix(left(2), just(T::Ne), bin(BinaryOp::Ne)),
-            infix(left(2), just(T::Lt), bin(BinaryOp::Lt)),
-            infix(left(2), just(T::Gt), bin(BinaryOp::Gt)),
-            infix(left(2), just(T::Le), bin(BinaryOp::Le)),
-            infix(left(2), just(T::Ge), bin(BinaryOp::Ge)),
-            infix(left(1), just(T::Colon), bin(BinaryOp::Chain)),
+            prefix(
+                12,
+                select! {
+                    T::Minus => UnaryOp::Neg,
+                    T::Plus => UnaryOp::Plus,
+                    T::Not => UnaryOp::Not,
+                    T::BNot => UnaryOp::BNot,
+                    T::Concat => UnaryOp::ToString,
+                },
+                un,
+            ),
+            infix(
+                left(11),
+                select! {
+                    T::Star => BinaryOp::Mul,
+                    T::Slash => BinaryOp::Div,
+                    T::Div => BinaryOp::IntDiv,
+                    T::Mod => BinaryOp::Mod,
+                },
+                bin,
+            ),
+            infix(
+                left(10),
+                select! { T::Plus => BinaryOp::Add, T::Minus => BinaryOp::Sub },
+                bin,
+            ),
+            infix(left(9), select! { T::BAnd => BinaryOp::BAnd }, bin),
+            infix(left(8), select! { T::BXor => BinaryOp::BXor }, bin),
+            infix(left(7), select! { T::BOr => BinaryOp::BOr }, bin),
+            infix(left(6), select! { T::And => BinaryOp::And }, bin),
+            infix(left(5), select! { T::Xor => BinaryOp::Xor }, bin),
+            infix(left(4), select! { T::Or => BinaryOp::Or }, bin),
+            infix(left(3), select! { T::Concat => BinaryOp::Concat }, bin),
+            infix(
+                left(2),
+                select! {
+                    T::EqEq => BinaryOp::Eq,
+                    T::Ne => BinaryOp::Ne,
+                    T::Lt => BinaryOp::Lt,
+                    T::Gt => BinaryOp::Gt,
+                    T::Le => BinaryOp::Le,
+                    T::Ge => BinaryOp::Ge,
+                },
+                bin,
+            ),
+            infix(left(1), select! { T::Colon => BinaryOp::Chain }, bin),
         ))
     })
 }
@@ -412,30 +446,33 @@ fn initializer<'t, 's: 't>(
 
 /// Wraps a word's `=` value, lifting a dimension modifier (`IC(5)`) out.
 fn assigned_value(expr: Expr) -> WordValue {
-    if let ExprKind::Call {
-        name,
-        name_span,
-        args,
-    } = &expr.kind
-    {
-        if let (Some(kind), [Some(_)]) = (DimensionKind::from_name(name), args.as_slice()) {
-            let name_span = *name_span;
-            let span = expr.span;
-            if let ExprKind::Call { mut args, .. } = expr.kind {
-                let inner = args.pop().flatten().expect("one argument");
-                return WordValue::Assigned {
-                    modifier: Some(DimensionModifier {
-                        span: name_span.cover(span),
-                        kind,
-                    }),
-                    expr: Box::new(inner),
-                };
+    let Expr { span, kind } = expr;
+    let kind = match kind {
+        ExprKind::Call(mut call) if call.args.len() == 1 => {
+            match (
+                DimensionKind::from_name(&call.name),
+                call.args.pop().flatten(),
+            ) {
+                (Some(kind), Some(inner)) => {
+                    return WordValue::Assigned {
+                        modifier: Some(DimensionModifier {
+                            span: call.name_span.cover(span),
+                            kind,
+                        }),
+                        expr: Box::new(inner),
+                    };
+                }
+                (_, inner) => {
+                    call.args.push(inner);
+                    ExprKind::Call(call)
+                }
             }
         }
-    }
+        kind => kind,
+    };
     WordValue::Assigned {
         modifier: None,
-        expr: Box::new(expr),
+        expr: Box::new(Expr { span, kind }),
     }
 }
 
@@ -497,8 +534,9 @@ fn letter_statement<'t, 's: 't>(
                 None => None,
             };
             let l = g.bytes(letter)[0].to_ascii_uppercase();
-            let addr = (l as char).to_string();
-            let address: CompactString = addr.as_str().into();
+            let letter_buf = [l];
+            let addr = std::str::from_utf8(&letter_buf).unwrap_or("?");
+            let address = CompactString::from(addr);
             let err = |s: SimpleSpan, msg: String, help: &'static str| {
                 Err(SyntaxError::custom(s, ERR_WORD, msg, Some(help)))
             };
@@ -641,7 +679,7 @@ fn letter_statement<'t, 's: 't>(
                     Word {
                         address,
                         address_span: a_span,
-                        extension: Some(Extension::Number { span: g.span(n), value: ext }),
+                        extension: Some(Box::new(Extension::Number { span: g.span(n), value: ext })),
                         value: assigned_value(value_expr(v)?),
                     }
                 }
@@ -660,7 +698,7 @@ fn letter_statement<'t, 's: 't>(
                     Word {
                         address,
                         address_span: a_span,
-                        extension: Some(Extension::Index { span: idx.span, index: Box::new(idx) }),
+                        extension: Some(Box::new(Extension::Index { span: idx.span, index: Box::new(idx) })),
                         value: assigned_value(value_expr(v)?),
                     }
                 }
@@ -949,12 +987,12 @@ fn proc_def<'t, 's: 't>(
         )
         .then(attributes(g, expr, false))
         .map(move |((name, params), attributes)| {
-            StatementKind::Proc(Proc {
+            StatementKind::Proc(Box::new(Proc {
                 name: g.name(name),
                 name_span: g.span(name),
                 params: params.unwrap_or_default(),
                 attributes,
-            })
+            }))
         })
 }
 
@@ -1129,7 +1167,7 @@ pub(crate) fn statements<'t, 's: 't>(
         .ignore_then(expr.clone())
         .then(jump(g, expr.clone()).or_not())
         .map(|(condition, jump)| match jump {
-            Some(jump) => StatementKind::IfGoto(IfGoto { condition, jump }),
+            Some(jump) => StatementKind::IfGoto(Box::new(IfGoto { condition, jump })),
             None => StatementKind::If(Condition { condition }),
         });
     let simple_kw = select! {
@@ -1153,18 +1191,18 @@ pub(crate) fn statements<'t, 's: 't>(
         .then(expr.clone())
         .then_ignore(just(T::To))
         .then(expr.clone())
-        .map(|((var, start), end)| StatementKind::For(For { var, start, end }));
+        .map(|((var, start), end)| StatementKind::For(Box::new(For { var, start, end })));
     let repeat_section = select! { T::Repeat => false, T::RepeatB => true }
         .then(section_target(g))
         .then(section_target(g).or_not())
         .then(passes_word(g, expr.clone()).or_not())
         .map(|(((single_block, start), end), passes)| {
-            StatementKind::RepeatSection(RepeatSection {
+            StatementKind::RepeatSection(Box::new(RepeatSection {
                 single_block,
                 start,
                 end,
                 passes: passes.map(Box::new),
-            })
+            }))
         });
     let repeat = just(T::Repeat).to(StatementKind::Repeat);
     let case_value = expr.clone();
@@ -1180,13 +1218,13 @@ pub(crate) fn statements<'t, 's: 't>(
         )
         .then(just(T::Default).ignore_then(jump(g, expr.clone())).or_not())
         .map(|((selector, arms), default)| {
-            StatementKind::Case(Case {
+            StatementKind::Case(Box::new(Case {
                 selector,
                 arms,
                 default,
-            })
+            }))
         });
-    let goto = jump(g, expr.clone()).map(StatementKind::Goto);
+    let goto = jump(g, expr.clone()).map(|j| StatementKind::Goto(Box::new(j)));
     let redef = just(T::Redef)
         .ignore_then(name_token())
         .then(attributes(g, expr.clone(), false))
@@ -1232,10 +1270,10 @@ pub(crate) fn statements<'t, 's: 't>(
                     Some("write e.g. `CALL \"PART1\"`"),
                 ))
             } else {
-                Ok(StatementKind::IndirectCall(IndirectCall {
+                Ok(StatementKind::IndirectCall(Box::new(IndirectCall {
                     program,
                     section,
-                }))
+                })))
             }
         });
     let pcall = just(T::PCall)
@@ -1255,7 +1293,7 @@ pub(crate) fn statements<'t, 's: 't>(
         });
     let mcall = just(T::MCall)
         .ignore_then(named_call(g, expr.clone()).or_not())
-        .map(|call| StatementKind::MCall(MCall { call }));
+        .map(|call| StatementKind::MCall(Box::new(MCall { call })));
 
     // Statements led by a name.
     let frame = select! { T::Ident => () }
@@ -1296,7 +1334,7 @@ pub(crate) fn statements<'t, 's: 't>(
         .then(initializer(g, expr.clone()))
         .try_map(move |(target, value), span| {
             named_address_word(g, &target, &value, span).map_or_else(
-                || Ok(StatementKind::Assign(Assign { target, value })),
+                || Ok(StatementKind::Assign(Box::new(Assign { target, value }))),
                 |w| w.map(StatementKind::Word),
             )
         });
@@ -1317,7 +1355,7 @@ pub(crate) fn statements<'t, 's: 't>(
     // emitted error makes the driver discard the block's statements.
     let letter = letter_statement(g, expr.clone()).map(|s| match s {
         LetterStatement::Word(w) => StatementKind::Word(w),
-        LetterStatement::Assign(a) => StatementKind::Assign(a),
+        LetterStatement::Assign(a) => StatementKind::Assign(Box::new(a)),
         LetterStatement::Call(c) => StatementKind::Call(c),
         LetterStatement::Invalid => StatementKind::Frame(Frame {
             op: FrameOp::Trans,
@@ -1354,14 +1392,15 @@ pub(crate) fn statements<'t, 's: 't>(
         .then_ignore(just(T::Do))
         .then(action.repeated().at_least(1).collect::<Vec<_>>())
         .map(|((id, trigger), actions)| {
-            StatementKind::SyncAction(SyncAction {
+            StatementKind::SyncAction(Box::new(SyncAction {
                 id,
                 trigger,
                 actions,
-            })
+            }))
         });
 
-    let statement = choice((
+    // Statements led by a keyword token; tried only when one is next.
+    let keyword_statement = choice((
         if_stmt,
         simple_kw,
         while_stmt,
@@ -1381,8 +1420,15 @@ pub(crate) fn statements<'t, 's: 't>(
         pcall,
         mcall,
         sync,
+    ));
+    let starts_with_keyword = any().filter(|t: &T| t.is_keyword()).rewind();
+    // Most statements are address words: try them first.
+    let statement = choice((
+        letter,
         frame,
-        choice((letter, assign_or_named, call)),
+        assign_or_named,
+        call,
+        starts_with_keyword.ignore_then(keyword_statement),
     ))
     .map_with(move |kind, e| st(kind, e.span()));
 
@@ -1460,7 +1506,7 @@ fn named_address_word(
     Some(Ok(Word {
         address: target.name.to_ascii_uppercase(),
         address_span,
-        extension,
+        extension: extension.map(Box::new),
         value: assigned_value(e.clone()),
     }))
 }

@@ -16,9 +16,13 @@
 pub mod ast;
 mod driver;
 mod error;
+mod fast;
 mod grammar;
 mod outline;
 mod structure;
 
-pub use driver::{MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, parse, parse_bytes};
+pub use driver::{
+    MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, parse, parse_bytes,
+    parse_bytes_with_grammar_only,
+};
 pub use outline::write_outline;

@@ -321,7 +321,7 @@ fn write_dims(dims: &[Expr], out: &mut impl Write) -> fmt::Result {
 
 fn write_word(w: &Word, out: &mut impl Write) -> fmt::Result {
     out.write_str(&w.address)?;
-    match &w.extension {
+    match w.extension.as_deref() {
         Some(Extension::Number { value, .. }) => write!(out, "{value}")?,
         Some(Extension::Index { index, .. }) => {
             out.write_char('[')?;
@@ -404,9 +404,9 @@ fn write_expr(e: &Expr, out: &mut impl Write) -> fmt::Result {
         ExprKind::String { value } => write!(out, "\"{value}\""),
         ExprKind::Bool { value } => out.write_str(if *value { "TRUE" } else { "FALSE" }),
         ExprKind::Var { var } => write_var(var, out),
-        ExprKind::Call { name, args, .. } => {
-            out.write_str(name)?;
-            write_args(args, out)
+        ExprKind::Call(call) => {
+            out.write_str(&call.name)?;
+            write_args(&call.args, out)
         }
         ExprKind::Unary { op, operand } => {
             out.write_char('(')?;
@@ -420,11 +420,11 @@ fn write_expr(e: &Expr, out: &mut impl Write) -> fmt::Result {
             write_expr(operand, out)?;
             out.write_char(')')
         }
-        ExprKind::Binary { op, lhs, rhs } => {
+        ExprKind::Binary(b) => {
             out.write_char('(')?;
-            write_expr(lhs, out)?;
-            write!(out, " {} ", binary_symbol(*op))?;
-            write_expr(rhs, out)?;
+            write_expr(&b.lhs, out)?;
+            write!(out, " {} ", binary_symbol(b.op))?;
+            write_expr(&b.rhs, out)?;
             out.write_char(')')
         }
     }
