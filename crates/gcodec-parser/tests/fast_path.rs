@@ -1,0 +1,102 @@
+//! The fast path for constant-word blocks must build exactly what the
+//! grammar builds.
+
+use std::path::{Path, PathBuf};
+
+use gcodec_parser::{parse_bytes, parse_bytes_with_grammar_only};
+use proptest::prelude::*;
+
+fn assert_same(name: &str, src: &[u8]) {
+    let fast = parse_bytes(name, src);
+    let grammar = parse_bytes_with_grammar_only(name, src);
+    assert_eq!(fast.program, grammar.program, "{name}");
+    assert_eq!(fast.diagnostics, grammar.diagnostics, "{name}");
+}
+
+fn files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            files(&path, out);
+        } else if path.extension().is_some_and(|e| {
+            ["mpf", "spf", "def"].contains(&e.to_string_lossy().to_ascii_lowercase().as_str())
+        }) {
+            out.push(path);
+        }
+    }
+}
+
+#[test]
+fn fixtures_and_corpus_parse_the_same_either_way() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut all = Vec::new();
+    files(&root.join("../../tests/fixtures"), &mut all);
+    files(&root.join("../../examples"), &mut all);
+    files(&root.join("../../../shared/corpus"), &mut all);
+    assert!(all.len() >= 40, "found only {} programs", all.len());
+    for path in all {
+        let bytes = std::fs::read(&path).expect("readable");
+        assert_same(&path.display().to_string(), &bytes);
+    }
+}
+
+#[test]
+fn edge_cases_parse_the_same_either_way() {
+    for src in [
+        "N10 G1 X-1.5 Y+2 Z.5 F200 ; c",
+        "/ N10 X1",
+        "/3 N10 X1",
+        "/12 X1",
+        "N10",
+        "N10=5",
+        "X1=5",
+        "X1 =5",
+        "M5[10]=3",
+        "M 5",
+        "X- 5",
+        "X -5",
+        "L12 P3",
+        "R1 X2",
+        "T\"10\"",
+        "T1\"10\"",
+        "X1(2)",
+        "x1.5ex-3 y2EX2",
+        "X99999999999999999999999",
+        "N99999999999999999999999 X1",
+        "G0X1Y2Z3",
+        "X1.5EX",
+    ] {
+        assert_same(src, src.as_bytes());
+    }
+}
+
+fn word() -> impl Strategy<Value = String> {
+    (
+        prop::sample::select(vec![
+            "G", "X", "y", "Z", "F", "M", "S", "N", "A", "R", "L", "T", "D",
+        ]),
+        prop::sample::select(vec!["", "-", "+", " ", " -"]),
+        prop::sample::select(vec!["1", "10", "-0", ".5", "5.", "1.5EX-3", "007", "1.2.3"]),
+        prop::sample::select(vec![" ", "", "  ", "=", "[1]", "(2)", "\"s\""]),
+    )
+        .prop_map(|(a, s, n, t)| format!("{a}{s}{n}{t}"))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+    #[test]
+    fn generated_word_lines_parse_the_same_either_way(
+        skip in prop::sample::select(vec!["", "/", "/2 ", "/ "]),
+        words in prop::collection::vec(word(), 0..8),
+        comment in prop::sample::select(vec!["", " ; move", ";x"]),
+    ) {
+        let line = format!("{skip}{}{comment}\n", words.concat());
+        let fast = parse_bytes("gen", line.as_bytes());
+        let grammar = parse_bytes_with_grammar_only("gen", line.as_bytes());
+        prop_assert_eq!(fast.program, grammar.program, "{:?}", line);
+        prop_assert_eq!(fast.diagnostics, grammar.diagnostics, "{:?}", line);
+    }
+}
