@@ -30,7 +30,7 @@ fn configure(
     group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
     len: usize,
 ) {
-    group.throughput(Throughput::Bytes(len as u64));
+    group.throughput(Throughput::BytesDecimal(len as u64));
     if len > 1_000_000 {
         // Whole seconds per iteration: one iteration per sample, ten samples.
         group.sampling_mode(SamplingMode::Flat);

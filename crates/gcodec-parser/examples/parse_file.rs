@@ -83,6 +83,14 @@ fn parse_file(path: &str) -> ExitCode {
     println!("tokens:       {tokens}");
     println!("blocks:       {}", parsed.program.blocks.len());
     println!("diagnostics:  {}", parsed.diagnostics.len());
+    let blocks = &parsed.program.blocks;
+    let statements: usize = blocks.iter().map(|b| b.statements.len()).sum();
+    let capacity: usize = blocks.iter().map(|b| b.statements.capacity()).sum();
+    println!(
+        "statements:   {statements} in Vecs with capacity for {capacity} ({:.1} MB of Statement slots; blocks Vec: {:.1} MB)",
+        (capacity * size_of::<Statement>()) as f64 / 1e6,
+        (blocks.capacity() * size_of::<Block>()) as f64 / 1e6
+    );
     println!("read:         {:.3} s", read.as_secs_f64());
     println!(
         "lex only:     {:.3} s ({:.1} MB/s)",
@@ -123,6 +131,25 @@ fn sizes() {
         Comment,
         BlockNumber,
         Name,
+        // StatementKind payloads: the largest sets the size of every statement.
+        Def,
+        Redef,
+        Define,
+        Proc,
+        Extern,
+        Call,
+        IndirectCall,
+        PCall,
+        MCall,
+        Ret,
+        Jump,
+        IfGoto,
+        Condition,
+        For,
+        RepeatSection,
+        Case,
+        Frame,
+        SyncAction,
         gcodec_source::Span,
         gcodec_source::Diagnostic,
     );

@@ -123,9 +123,9 @@ pub(crate) fn number_value(text: &str) -> Option<f64> {
         Some(pos) => {
             let mantissa: f64 = text[..pos].parse().ok()?;
             let exponent: i32 = text.get(pos + 2..)?.parse().ok()?;
-            Some(mantissa * 10f64.powi(exponent))
+            Some(mantissa * 10f64.powi(exponent)).filter(|v| v.is_finite())
         }
-        None => text.parse().ok(),
+        None => text.parse().ok().filter(|v: &f64| v.is_finite()),
     }
 }
 
@@ -152,21 +152,27 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
             span: g.span(s),
             kind,
         };
-        let number = select! { T::Number => () }.try_map(move |_, s: SimpleSpan| {
+        // An out-of-range number is diagnosed but parsing goes on, so the
+        // message names the number rather than the statement around it.
+        let number = select! { T::Number => () }.validate(move |_, e, emitter| {
+            let s: SimpleSpan = e.span();
             let text = g.text(s);
-            number_value(text)
-                .map(|value| {
-                    mk(
-                        ExprKind::Number {
-                            value,
-                            integer: text.bytes().all(|b| b.is_ascii_digit()),
-                        },
-                        s,
-                    )
-                })
-                .ok_or_else(|| {
-                    SyntaxError::custom(s, ERR_NUMBER, format!("invalid number `{text}`"), None)
-                })
+            let value = number_value(text).unwrap_or_else(|| {
+                emitter.emit(SyntaxError::custom(
+                    s,
+                    ERR_NUMBER,
+                    format!("number `{text}` is out of range"),
+                    Some("REAL values range over about ±1.8·10^308"),
+                ));
+                0.0
+            });
+            mk(
+                ExprKind::Number {
+                    value,
+                    integer: text.bytes().all(|b| b.is_ascii_digit()),
+                },
+                s,
+            )
         });
         let radix = select! { T::HexNumber => 16, T::BinNumber => 2 }.try_map(
             move |radix, s: SimpleSpan| {
@@ -653,7 +659,7 @@ fn letter_statement<'t, 's: 't>(
                 (_, Some(n), None, None) => {
                     let text = g.text(n);
                     let Some(mut v) = number_value(text) else {
-                        return err(n, format!("invalid number `{text}`"), "numbers are written like `10`, `-0.5`, `.5` or `1.5EX-3`");
+                        return err(n, format!("number `{text}` is out of range"), "REAL values range over about ±1.8·10^308");
                     };
                     let start = sign.map(|(_, s)| s).unwrap_or(n);
                     if sign.is_some_and(|(neg, _)| neg) {

@@ -144,6 +144,7 @@ fixtures! {
         error_misplaced_header => "errors/misplaced_header.mpf",
         error_nesting_65_parentheses => "errors/nesting_65_parentheses.mpf",
         error_several_errors => "errors/several_errors.mpf",
+        error_number_out_of_range => "errors/number_out_of_range.mpf",
     }
 }
 
