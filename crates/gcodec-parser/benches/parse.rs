@@ -1,4 +1,5 @@
-//! Throughput of the lexer and of lexing + parsing, in bytes per second.
+//! Throughput of the lexer and of lexing + parsing, reported in MB/s
+//! (`Throughput::BytesDecimal`: 10^6 bytes per second).
 //!
 //! `cargo bench -p gcodec-parser --bench parse`
 //!

@@ -54,7 +54,10 @@ pub(crate) fn constant_words(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBod
             i += 2;
         }
     }
-    let mut statements = Vec::with_capacity((tokens.len() - i) / 2);
+    // Every word starts with a letter: that is the exact statement count
+    // when the block qualifies.
+    let words = tokens[i..].iter().filter(|(k, _)| *k == T::Letter).count();
+    let mut statements = Vec::with_capacity(words);
     while i < tokens.len() {
         let (T::Letter, letter) = tokens[i] else {
             return None;

@@ -118,15 +118,20 @@ pub(crate) fn letter_name(letter: u8) -> CompactString {
 }
 
 pub(crate) fn number_value(text: &str) -> Option<f64> {
-    // `1.5EX-3`: the exponent marker is `EX` in any case.
-    match text.bytes().position(|b| b == b'E' || b == b'e') {
-        Some(pos) => {
-            let mantissa: f64 = text[..pos].parse().ok()?;
-            let exponent: i32 = text.get(pos + 2..)?.parse().ok()?;
-            Some(mantissa * 10f64.powi(exponent)).filter(|v| v.is_finite())
-        }
-        None => text.parse().ok().filter(|v: &f64| v.is_finite()),
+    // Whole numbers (`G1`, `F1600`, block numbers) are most common.
+    if text.len() <= 15 && text.bytes().all(|b| b.is_ascii_digit()) {
+        return text.parse::<u64>().ok().map(|v| v as f64);
     }
+    // `1.5EX-3`: the exponent marker is `EX` in any case. Rust's parser
+    // reads `1.5e-3`, which rounds correctly where `1.5 * 10^-3` would not.
+    let value: f64 = match text.bytes().position(|b| b == b'E' || b == b'e') {
+        Some(pos) => {
+            let exponent = text.get(pos + 2..)?;
+            format!("{}e{}", &text[..pos], exponent).parse().ok()?
+        }
+        None => text.parse().ok()?,
+    };
+    value.is_finite().then_some(value)
 }
 
 fn args<'t, 's: 't>(
@@ -1614,4 +1619,23 @@ pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody
             label,
             statements,
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::number_value;
+
+    #[test]
+    fn numbers_are_read_exactly() {
+        assert_eq!(number_value("1600"), Some(1600.0));
+        assert_eq!(number_value("5."), Some(5.0));
+        assert_eq!(number_value(".5"), Some(0.5));
+        assert_eq!(number_value("1.5EX-3"), Some(1.5e-3));
+        assert_eq!(number_value("0.01EX-11"), Some(1e-13));
+        assert_eq!(number_value("10ex5"), Some(1e6));
+        assert_eq!(number_value("1EX400"), None);
+        assert_eq!(number_value("0EX400"), Some(0.0));
+        assert_eq!(number_value("1EX"), None);
+        assert_eq!(number_value("99999999999999999999"), Some(1e20));
+    }
 }
