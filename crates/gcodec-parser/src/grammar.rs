@@ -817,11 +817,10 @@ fn jump<'t, 's: 't>(
         })
 }
 
-/// A data type: `INT`, `REAL`, `STRING[32]`, …
-fn type_spec<'t, 's: 't>(
+/// A type name (`INT`, `REAL`, `STRING`, …) and its span.
+fn type_name<'t, 's: 't>(
     g: Ctx<'s>,
-    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
-) -> impl Parser<'t, In<'t>, TypeSpec, Ex> + Clone + 't {
+) -> impl Parser<'t, In<'t>, (TypeKind, SimpleSpan), Ex> + Clone + 't {
     select! { T::Ident => () }
         .map_with(|_, e| e.span())
         .try_map(move |s, _| {
@@ -835,6 +834,14 @@ fn type_spec<'t, 's: 't>(
                     custom: None,
                 })
         })
+}
+
+/// A data type: `INT`, `REAL`, `STRING[32]`, …
+fn type_spec<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, TypeSpec, Ex> + Clone + 't {
+    type_name(g)
         .then(
             expr.delimited_by(just(T::LBracket), just(T::RBracket))
                 .or_not(),
@@ -1019,22 +1026,9 @@ fn extern_decl<'t, 's: 't>(
         .separated_by(just(T::Comma))
         .collect::<Vec<_>>()
         .delimited_by(just(T::LBracket), just(T::RBracket));
-    let type_name = select! { T::Ident => () }
-        .map_with(|_, e| e.span())
-        .try_map(move |s, _| {
-            TypeKind::from_name(g.text(s))
-                .map(|k| (k, s))
-                .ok_or(SyntaxError {
-                    span: s,
-                    found: Some(T::Ident),
-                    expected: 0,
-                    label: Some("data type"),
-                    custom: None,
-                })
-        });
     let param = just(T::Var)
         .or_not()
-        .then(type_name)
+        .then(type_name(g))
         .then(ext_dims.clone().or_not())
         .then(ext_dims.or_not())
         .try_map(move |(((by_ref, (kind, ts)), first), second), span| {
