@@ -713,8 +713,8 @@ fn letter_statement<'t, 's: 't>(
                         value: assigned_value(value_expr(v)?),
                     }
                 }
-                (_, Some(_), Some((_, bs)), _) => {
-                    return err(bs, format!("a numbered address `{addr}{}` takes no `[…]`", g.text(num.unwrap())), "use either the number (`M2=3`) or the index (`M[2]=3`)");
+                (_, Some(n), Some((_, bs)), _) => {
+                    return err(bs, format!("a numbered address `{addr}{}` takes no `[…]`", g.text(n)), "use either the number (`M2=3`) or the index (`M[2]=3`)");
                 }
                 (_, _, Some(_), None) => {
                     return err(span, format!("`{addr}[…]` needs `=` and a value"), "write e.g. `M[2]=3`");
@@ -1131,23 +1131,15 @@ fn named_call<'t, 's: 't>(
         })
 }
 
-/// `P3` / `P=3` after REPEAT.
+/// `P3` / `P=3` after REPEAT (`None` when the word was malformed and its
+/// error already emitted).
 fn passes_word<'t, 's: 't>(
     g: Ctx<'s>,
     expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
-) -> impl Parser<'t, In<'t>, Word, Ex> + Clone + 't {
+) -> impl Parser<'t, In<'t>, Option<Word>, Ex> + Clone + 't {
     letter_statement(g, expr).try_map(|s, span| match s {
-        LetterStatement::Word(w) if w.address == "P" && w.extension.is_none() => Ok(w),
-        LetterStatement::Invalid => Ok(Word {
-            address: "P".into(),
-            address_span: Span::default(),
-            extension: None,
-            value: WordValue::Constant(NumberLit {
-                span: Span::default(),
-                value: 0.0,
-                integer: true,
-            }),
-        }),
+        LetterStatement::Word(w) if w.address == "P" && w.extension.is_none() => Ok(Some(w)),
+        LetterStatement::Invalid => Ok(None),
         _ => Err(SyntaxError::custom(
             span,
             ERR_WORD,
@@ -1206,7 +1198,7 @@ pub(crate) fn statements<'t, 's: 't>(
                 single_block,
                 start,
                 end,
-                passes: passes.map(Box::new),
+                passes: passes.flatten().map(Box::new),
             }))
         });
     let repeat = just(T::Repeat).to(StatementKind::Repeat);
@@ -1356,21 +1348,22 @@ pub(crate) fn statements<'t, 's: 't>(
                 passes: None,
             })
         });
-    // A malformed word yields an empty frame statement as placeholder; the
-    // emitted error makes the driver discard the block's statements.
+    // A malformed word yields no statement: its error was emitted, and the
+    // driver reports the block.
     let letter = letter_statement(g, expr.clone()).map(|s| match s {
-        LetterStatement::Word(w) => StatementKind::Word(w),
-        LetterStatement::Assign(a) => StatementKind::Assign(Box::new(a)),
-        LetterStatement::Call(c) => StatementKind::Call(c),
-        LetterStatement::Invalid => StatementKind::Frame(Frame {
-            op: FrameOp::Trans,
-            words: Vec::new(),
-        }),
+        LetterStatement::Word(w) => Some(StatementKind::Word(w)),
+        LetterStatement::Assign(a) => Some(StatementKind::Assign(Box::new(a))),
+        LetterStatement::Call(c) => Some(StatementKind::Call(c)),
+        LetterStatement::Invalid => None,
     });
 
     // Synchronous actions: `[ID=n] [WHEN cond] DO actions`.
-    let action = choice((letter.clone(), assign_or_named.clone(), call.clone()))
-        .map_with(move |kind, e| st(kind, e.span()));
+    let action = choice((
+        letter.clone(),
+        assign_or_named.clone().map(Some),
+        call.clone().map(Some),
+    ))
+    .map_with(move |kind, e| kind.map(|kind| st(kind, e.span())));
     let sync_id = select! { T::Id => false, T::Ids => true }
         .then_ignore(just(T::Eq))
         .then(expr.clone())
@@ -1400,7 +1393,7 @@ pub(crate) fn statements<'t, 's: 't>(
             StatementKind::SyncAction(Box::new(SyncAction {
                 id,
                 trigger,
-                actions,
+                actions: actions.into_iter().flatten().collect(),
             }))
         });
 
@@ -1430,14 +1423,17 @@ pub(crate) fn statements<'t, 's: 't>(
     // Most statements are address words: try them first.
     let statement = choice((
         letter,
-        frame,
-        assign_or_named,
-        call,
-        starts_with_keyword.ignore_then(keyword_statement),
+        frame.map(Some),
+        assign_or_named.map(Some),
+        call.map(Some),
+        starts_with_keyword.ignore_then(keyword_statement).map(Some),
     ))
-    .map_with(move |kind, e| st(kind, e.span()));
+    .map_with(move |kind, e| kind.map(|kind| st(kind, e.span())));
 
-    statement.repeated().collect::<Vec<_>>()
+    statement
+        .repeated()
+        .collect::<Vec<_>>()
+        .map(|statements| statements.into_iter().flatten().collect())
 }
 
 /// `CR=5`, `SPOS=90`, `AX[X1]=10` inside frame statements.

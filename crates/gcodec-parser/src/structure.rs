@@ -92,8 +92,9 @@ pub(crate) fn pair(program: &mut Program, diagnostics: &mut Vec<Diagnostic>) {
                     for inner in stack.drain(pos + 1..).rev() {
                         diagnostics.push(unclosed(&inner, st.span, "before this"));
                     }
-                    let open = stack.pop().expect("matched position");
-                    structures[open.index].close = Some(bi as u32);
+                    if let Some(open) = stack.pop() {
+                        structures[open.index].close = Some(bi as u32);
+                    }
                     depth = depth.min(stack.len());
                 }
                 None => diagnostics.push(
