@@ -61,27 +61,69 @@ pub fn parse_bytes_with_grammar_only(name: &str, src: &[u8]) -> Parse {
     parse_with(name, src, false)
 }
 
+/// Files at least this large are parsed on several threads, one segment of
+/// whole lines each (no token crosses a line end).
+const PARALLEL_MIN_BYTES: usize = 4 << 20;
+
+/// Parses in exactly `threads` segments whatever the file size: the
+/// reference for tests that the split does not change the result.
+#[doc(hidden)]
+pub fn parse_bytes_in_segments(name: &str, src: &[u8], threads: usize) -> Parse {
+    parse_segments(name, src, true, split(src, threads.max(1)))
+}
+
 fn parse_with(name: &str, src: &[u8], fast_path: bool) -> Parse {
-    let mut driver = Driver {
-        src,
-        fast_path,
-        program: Program {
-            file: name.to_owned(),
-            header: None,
-            path: None,
-            blocks: Vec::with_capacity(src.len() / 32 + 1),
-            structures: Vec::new(),
-        },
-        diagnostics: Vec::new(),
-        tokens: Vec::with_capacity(1024),
-        lines: Vec::with_capacity(CHUNK_LINES),
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(8));
+    let threads = if src.len() < PARALLEL_MIN_BYTES {
+        1
+    } else {
+        threads
     };
-    driver.run();
-    let Driver {
-        mut program,
-        mut diagnostics,
-        ..
-    } = driver;
+    parse_segments(name, src, fast_path, split(src, threads))
+}
+
+fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment>) -> Parse {
+    let mut parts: Vec<Driver<'_>> = if segments.len() == 1 {
+        vec![run_segment(src, segments[0], fast_path)]
+    } else {
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = segments
+                .iter()
+                .map(|&segment| scope.spawn(move || run_segment(src, segment, fast_path)))
+                .collect();
+            handles
+                .into_iter()
+                .zip(&segments)
+                // Parsing does not panic; should a thread die anyway, its
+                // segment is parsed again here rather than lost.
+                .map(|(h, &segment)| {
+                    h.join()
+                        .unwrap_or_else(|_| run_segment(src, segment, fast_path))
+                })
+                .collect()
+        })
+    };
+    // The first segment's blocks grow to hold the rest: reallocating a large
+    // buffer moves pages rather than copying, so the merge costs no second
+    // copy of the tree.
+    let total = parts.iter().map(|p| p.program.blocks.len()).sum::<usize>();
+    let mut blocks = std::mem::take(&mut parts[0].program.blocks);
+    blocks.reserve_exact(total - blocks.len());
+    let mut program = Program {
+        file: name.to_owned(),
+        header: None,
+        path: None,
+        blocks,
+        structures: Vec::new(),
+    };
+    let mut diagnostics = Vec::new();
+    for part in &mut parts {
+        program.header = program.header.take().or(part.program.header.take());
+        program.path = program.path.take().or(part.program.path.take());
+        program.blocks.append(&mut part.program.blocks);
+        diagnostics.append(&mut part.diagnostics);
+    }
+    drop(parts);
     structure::pair(&mut program, &mut diagnostics);
     // Lexical errors are found while reading and syntax errors per chunk:
     // report everything in source order.
@@ -90,6 +132,71 @@ fn parse_with(name: &str, src: &[u8], fast_path: bool) -> Parse {
         program,
         diagnostics,
     }
+}
+
+/// A byte range of whole lines and the number of its first line.
+#[derive(Clone, Copy)]
+struct Segment {
+    start: usize,
+    end: usize,
+    first_line: u32,
+}
+
+/// Cuts `src` into `threads` segments of whole lines (fewer where lines
+/// are long).
+fn split(src: &[u8], threads: usize) -> Vec<Segment> {
+    let whole = vec![Segment {
+        start: 0,
+        end: src.len(),
+        first_line: 1,
+    }];
+    if threads < 2 {
+        return whole;
+    }
+    let mut segments = Vec::with_capacity(threads);
+    let (mut start, mut first_line) = (0usize, 1u32);
+    for i in 1..=threads {
+        let end = if i == threads {
+            src.len()
+        } else {
+            let target = (src.len() * i / threads).max(start);
+            match src[target..].iter().position(|&b| b == b'\n') {
+                Some(p) => target + p + 1,
+                None => src.len(),
+            }
+        };
+        if end > start {
+            segments.push(Segment {
+                start,
+                end,
+                first_line,
+            });
+            let lines = src[start..end].iter().filter(|&&b| b == b'\n').count();
+            first_line = first_line.saturating_add(lines as u32);
+            start = end;
+        }
+    }
+    if segments.is_empty() { whole } else { segments }
+}
+
+fn run_segment(src: &[u8], segment: Segment, fast_path: bool) -> Driver<'_> {
+    let mut driver = Driver {
+        src,
+        fast_path,
+        first_segment: segment.start == 0,
+        program: Program {
+            file: String::new(),
+            header: None,
+            path: None,
+            blocks: Vec::with_capacity((segment.end - segment.start) / 32 + 1),
+            structures: Vec::new(),
+        },
+        diagnostics: Vec::new(),
+        tokens: Vec::with_capacity(1024),
+        lines: Vec::with_capacity(CHUNK_LINES),
+    };
+    driver.run(segment);
+    driver
 }
 
 /// One line waiting for the grammar.
@@ -108,6 +215,8 @@ struct Driver<'s> {
     src: &'s [u8],
     /// Off only in tests that compare the fast path with the grammar.
     fast_path: bool,
+    /// Only the segment at the start of the file may hold the header.
+    first_segment: bool,
     program: Program,
     diagnostics: Vec<Diagnostic>,
     tokens: Vec<Spanned>,
@@ -115,18 +224,21 @@ struct Driver<'s> {
 }
 
 impl<'s> Driver<'s> {
-    fn run(&mut self) {
+    fn run(&mut self, segment: Segment) {
         let src = self.src;
+        let base = segment.start as u32;
         let mut line = Line {
             tokens: 0..0,
-            number: 1,
-            start: 0,
-            end: 0,
+            number: segment.first_line,
+            start: base,
+            end: base,
             comment: None,
             header: None,
             broken: false,
         };
-        for tok in Lexer::new(src) {
+        for mut tok in Lexer::new(&src[segment.start..segment.end]) {
+            tok.start += base;
+            tok.end += base;
             match tok.kind {
                 TokenKind::Whitespace => {}
                 TokenKind::Comment => {
@@ -183,7 +295,7 @@ impl<'s> Driver<'s> {
             }
         }
         // The last line has no line end.
-        line.end = src.len() as u32;
+        line.end = segment.end as u32;
         line.tokens.end = self.tokens.len();
         if line.start < line.end {
             self.lines.push(line);
@@ -314,7 +426,7 @@ impl<'s> Driver<'s> {
             .blocks
             .iter()
             .all(|b| b.statements.is_empty() && b.label.is_none() && b.number.is_none());
-        if self.program.header.is_some() || !before_any_block {
+        if !self.first_segment || self.program.header.is_some() || !before_any_block {
             self.diagnostics.push(
                 Diagnostic::error(
                     "gcodec::parse::misplaced_header",

@@ -23,6 +23,6 @@ mod structure;
 
 pub use driver::{
     MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, parse, parse_bytes,
-    parse_bytes_with_grammar_only,
+    parse_bytes_in_segments, parse_bytes_with_grammar_only,
 };
 pub use outline::write_outline;
