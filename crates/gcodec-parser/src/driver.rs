@@ -188,7 +188,15 @@ fn run_segment(src: &[u8], segment: Segment, fast_path: bool) -> Driver<'_> {
             file: String::new(),
             header: None,
             path: None,
-            blocks: Vec::with_capacity((segment.end - segment.start) / 32 + 1),
+            // One block per line: count them rather than guess, so the
+            // vector never doubles past its need.
+            blocks: Vec::with_capacity(
+                src[segment.start..segment.end]
+                    .iter()
+                    .filter(|&&b| b == b'\n')
+                    .count()
+                    + 1,
+            ),
             structures: Vec::new(),
         },
         diagnostics: Vec::new(),
