@@ -890,44 +890,45 @@ fn name_token<'t>() -> impl Parser<'t, In<'t>, SimpleSpan, Ex> + Clone + 't {
     ident.or(letter)
 }
 
-/// Attributes such as `NCK`, `SYNR`, `LLI 0`, `DISPLOF`.
+/// Which names an attribute list accepts.
+#[derive(Clone, Copy)]
+enum AttributeNames {
+    /// `PROC … SAVE DISPLOF`, `REDEF name …`: any name.
+    Any,
+    /// Before the type in `DEF`: any name that is not a type.
+    BeforeType,
+    /// After the type in `DEF` (`PHU 1 LLI 0 ULI 10 APWP 3`): only known
+    /// attributes, since the variable name follows.
+    AfterType,
+}
+
+impl AttributeNames {
+    fn accepts(self, name: &str) -> bool {
+        const AFTER_TYPE: &[&str] = &[
+            "PHU", "LLI", "ULI", "APR", "APW", "APRP", "APWP", "APRB", "APWB", "APX", "SYNR",
+            "SYNW", "SYNRW", "INIPO", "INIRE", "INICF", "PRLOC", "DCM", "DCI", "DCU",
+        ];
+        match self {
+            AttributeNames::Any => true,
+            AttributeNames::BeforeType => TypeKind::from_name(name).is_none(),
+            AttributeNames::AfterType => AFTER_TYPE.iter().any(|k| k.eq_ignore_ascii_case(name)),
+        }
+    }
+}
+
+/// Attributes such as `NCK`, `SYNR`, `LLI 0`, `DISPLOF`, each with the
+/// number that follows it, if any.
 fn attributes<'t, 's: 't>(
     g: Ctx<'s>,
     expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
-    stop_at_types: bool,
+    names: AttributeNames,
 ) -> impl Parser<'t, In<'t>, Vec<Attribute>, Ex> + Clone + 't {
     let value = select! { T::Number => (), T::Minus => (), T::HexNumber => () }
         .rewind()
         .ignore_then(expr);
     select! { T::Ident => () }
         .map_with(|_, e| e.span())
-        .filter(move |s: &SimpleSpan| !(stop_at_types && TypeKind::from_name(g.text(*s)).is_some()))
-        .then(value.or_not())
-        .map_with(move |(name, value), e| Attribute {
-            span: g.span(e.span()),
-            name: g.name(name),
-            value,
-        })
-        .repeated()
-        .collect()
-}
-
-/// Attributes written after the type (`PHU 1 LLI 0 ULI 10 APWP 3`): only
-/// known attribute names, since the variable name follows.
-fn type_attributes<'t, 's: 't>(
-    g: Ctx<'s>,
-    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
-) -> impl Parser<'t, In<'t>, Vec<Attribute>, Ex> + Clone + 't {
-    const KNOWN: &[&str] = &[
-        "PHU", "LLI", "ULI", "APR", "APW", "APRP", "APWP", "APRB", "APWB", "APX", "SYNR", "SYNW",
-        "SYNRW", "INIPO", "INIRE", "INICF", "PRLOC", "DCM", "DCI", "DCU",
-    ];
-    let value = select! { T::Number => (), T::Minus => (), T::HexNumber => () }
-        .rewind()
-        .ignore_then(expr);
-    select! { T::Ident => () }
-        .map_with(|_, e| e.span())
-        .filter(move |s: &SimpleSpan| KNOWN.iter().any(|k| k.eq_ignore_ascii_case(g.text(*s))))
+        .filter(move |s: &SimpleSpan| names.accepts(g.text(*s)))
         .then(value.or_not())
         .map_with(move |(name, value), e| Attribute {
             span: g.span(e.span()),
@@ -962,9 +963,9 @@ fn def<'t, 's: 't>(
             init,
         });
     just(T::Def)
-        .ignore_then(attributes(g, expr.clone(), true))
+        .ignore_then(attributes(g, expr.clone(), AttributeNames::BeforeType))
         .then(type_spec(g, expr.clone()))
-        .then(type_attributes(g, expr))
+        .then(attributes(g, expr, AttributeNames::AfterType))
         .then(var.separated_by(just(T::Comma)).at_least(1).collect())
         .map(|(((mut attributes, ty), after), vars)| {
             attributes.extend(after);
@@ -1003,7 +1004,7 @@ fn proc_def<'t, 's: 't>(
                 .delimited_by(just(T::LParen), just(T::RParen))
                 .or_not(),
         )
-        .then(attributes(g, expr, false))
+        .then(attributes(g, expr, AttributeNames::Any))
         .map(move |((name, params), attributes)| {
             StatementKind::Proc(Box::new(Proc {
                 name: g.name(name),
@@ -1224,7 +1225,7 @@ pub(crate) fn statements<'t, 's: 't>(
     let goto = jump(g, expr.clone()).map(|j| StatementKind::Goto(Box::new(j)));
     let redef = just(T::Redef)
         .ignore_then(name_token())
-        .then(attributes(g, expr.clone(), false))
+        .then(attributes(g, expr.clone(), AttributeNames::Any))
         .map(move |(name, attributes)| {
             StatementKind::Redef(Redef {
                 name: g.name(name),

@@ -5,43 +5,12 @@
 //! is absent the tests print a notice and pass, so the README's test command
 //! works in any clone.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::Path;
 
 use gcodec_parser::parse;
 use gcodec_source::{RenderOptions, SourceFile, render_diagnostics};
-
-fn corpus_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("GCODEC_CORPUS_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus"));
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "notice: corpus not found at {}; corpus tests skipped",
-            dir.display()
-        );
-        None
-    }
-}
-
-fn programs(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let path = entry.path();
-        if path.is_dir() {
-            programs(&path, out);
-        } else if path
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| ["mpf", "spf", "def"].contains(&e.to_ascii_lowercase().as_str()))
-        {
-            out.push(path);
-        }
-    }
-}
 
 /// The conformance list annotates deliberate syntax errors; it is checked
 /// line by line in `syntax_check.rs` instead.
@@ -52,10 +21,10 @@ fn is_syntax_check(path: &Path) -> bool {
 
 #[test]
 fn every_corpus_program_parses_without_errors() {
-    let Some(dir) = corpus_dir() else { return };
-    let mut files = Vec::new();
-    programs(&dir, &mut files);
-    files.sort();
+    let Some(dir) = common::corpus_dir() else {
+        return;
+    };
+    let files = common::programs(&dir);
     assert!(
         files.len() >= 50,
         "expected the whole corpus, found {} files",

@@ -1,25 +1,9 @@
 //! Large files are parsed in segments of whole lines on several threads;
 //! the split must not change the tree or the diagnostics.
 
-use std::path::{Path, PathBuf};
+mod common;
 
 use gcodec_parser::parse_bytes_in_segments;
-
-fn files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let path = entry.path();
-        if path.is_dir() {
-            files(&path, out);
-        } else if path.extension().is_some_and(|e| {
-            ["mpf", "spf", "def"].contains(&e.to_string_lossy().to_ascii_lowercase().as_str())
-        }) {
-            out.push(path);
-        }
-    }
-}
 
 fn assert_split_invariant(name: &str, src: &[u8]) {
     let whole = parse_bytes_in_segments(name, src, 1);
@@ -35,10 +19,7 @@ fn assert_split_invariant(name: &str, src: &[u8]) {
 
 #[test]
 fn fixtures_and_corpus_parse_the_same_in_segments() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut all = Vec::new();
-    files(&root.join("../../tests/fixtures"), &mut all);
-    files(&root.join("../../../shared/corpus"), &mut all);
+    let all = common::all_programs();
     assert!(all.len() >= 30, "found only {} programs", all.len());
     for path in all {
         let bytes = std::fs::read(&path).expect("readable");

@@ -1,24 +1,15 @@
 //! `SYNTAX_CHECK.SPF` from deathaxe/sublime-s840d annotates each line with
 //! the control's verdict. Each annotated line is parsed on its own.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::PathBuf;
 
 use gcodec_parser::parse_bytes;
 
 fn syntax_check_file() -> Option<PathBuf> {
-    let dir = std::env::var_os("GCODEC_CORPUS_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus"));
-    let path = dir.join("real/deathaxe+sublime-s840d/examples/SYNTAX_CHECK.SPF");
-    if path.is_file() {
-        Some(path)
-    } else {
-        eprintln!(
-            "notice: {} not found; syntax-check test skipped",
-            path.display()
-        );
-        None
-    }
+    let path = common::corpus_dir()?.join("real/deathaxe+sublime-s840d/examples/SYNTAX_CHECK.SPF");
+    path.is_file().then_some(path)
 }
 
 /// Verdicts the parser owns. Machine-dependent ones (`invalid S-No`,

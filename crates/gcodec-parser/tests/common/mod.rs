@@ -1,0 +1,60 @@
+//! Helpers shared by the integration tests: where the programs are.
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+/// The shared corpus beside the checkout (`../shared/corpus`) or
+/// `GCODEC_CORPUS_DIR`; `None`, with a notice, where it is absent.
+pub fn corpus_dir() -> Option<PathBuf> {
+    let dir = std::env::var_os("GCODEC_CORPUS_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| repo().join("../shared/corpus"));
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        eprintln!(
+            "notice: corpus not found at {}; corpus checks skipped",
+            dir.display()
+        );
+        None
+    }
+}
+
+/// The repository root.
+pub fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Every `.mpf`, `.spf` and `.def` file below `dir`, sorted.
+pub fn programs(dir: &Path) -> Vec<PathBuf> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path.extension().is_some_and(|e| {
+                ["mpf", "spf", "def"].contains(&e.to_string_lossy().to_ascii_lowercase().as_str())
+            }) {
+                out.push(path);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(dir, &mut out);
+    out.sort();
+    out
+}
+
+/// Our fixtures and examples, plus the corpus where it is present.
+pub fn all_programs() -> Vec<PathBuf> {
+    let mut all = programs(&repo().join("tests/fixtures"));
+    all.extend(programs(&repo().join("examples")));
+    if let Some(corpus) = corpus_dir() {
+        all.extend(programs(&corpus));
+    }
+    all
+}
