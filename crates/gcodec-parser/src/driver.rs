@@ -401,6 +401,7 @@ impl<'s> Driver<'s> {
                 block.skip = body.skip.map(Box::new);
                 block.number = body.number;
                 block.statements = body.statements;
+                self.check_statements(&mut block.statements);
                 return block;
             }
         }

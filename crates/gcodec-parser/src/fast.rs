@@ -1,5 +1,6 @@
-//! A fast path for the commonest block: DIN words with constant values
-//! (`N10 G1 Y2 F200 ; cut`).
+//! A fast path for the commonest blocks: DIN words with constant values
+//! (`N10 G1 Y2 F200 ; cut`), named addresses with a constant
+//! (`CR=-20.5`), and structure keywords standing alone (`ENDIF`).
 //!
 //! Most blocks of real programs are motion blocks of this shape, and running
 //! the full chumsky grammar on them costs several times more than reading
@@ -13,7 +14,7 @@ use chumsky::span::SimpleSpan;
 use gcodec_lexer::TokenKind as T;
 
 use crate::ast::*;
-use crate::grammar::{BlockBody, Ctx, Spanned, letter_name, number_value};
+use crate::grammar::{BlockBody, Ctx, Spanned, is_named_address, letter_name, number_value};
 
 /// Parses `tokens` if the block is skip mark, block number and constant
 /// words only.
@@ -54,11 +55,54 @@ pub(crate) fn constant_words(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBod
             i += 2;
         }
     }
-    // Every word starts with a letter: that is the exact statement count
-    // when the block qualifies.
-    let words = tokens[i..].iter().filter(|(k, _)| *k == T::Letter).count();
+    // A structure keyword standing alone (`ENDIF`, `ELSE`, `LOOP`, …).
+    if let [(kind, span)] = &tokens[i..] {
+        let kind = match kind {
+            T::Else => StatementKind::Else,
+            T::EndIf => StatementKind::EndIf,
+            T::EndWhile => StatementKind::EndWhile,
+            T::EndFor => StatementKind::EndFor,
+            T::Loop => StatementKind::Loop,
+            T::EndLoop => StatementKind::EndLoop,
+            T::Repeat => StatementKind::Repeat,
+            T::EndProc => StatementKind::EndProc,
+            _ => return constant_words_from(tokens, i, g, skip, number),
+        };
+        return Some(BlockBody {
+            skip,
+            number,
+            label: None,
+            statements: vec![Statement {
+                span: g.span(*span),
+                kind,
+            }],
+        });
+    }
+    constant_words_from(tokens, i, g, skip, number)
+}
+
+/// The words from token `i` on.
+fn constant_words_from(
+    tokens: &[Spanned],
+    mut i: usize,
+    g: &Ctx<'_>,
+    skip: Option<SkipLevel>,
+    number: Option<BlockNumber>,
+) -> Option<BlockBody> {
+    // Every word starts with a letter or a name: that is the exact
+    // statement count when the block qualifies.
+    let words = tokens[i..]
+        .iter()
+        .filter(|(k, _)| matches!(k, T::Letter | T::Ident))
+        .count();
     let mut statements = Vec::with_capacity(words);
     while i < tokens.len() {
+        if tokens[i].0 == T::Ident {
+            let (statement, next) = named_constant(tokens, i, g)?;
+            statements.push(statement);
+            i = next;
+            continue;
+        }
         let (T::Letter, letter) = tokens[i] else {
             return None;
         };
@@ -116,4 +160,65 @@ pub(crate) fn constant_words(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBod
         label: None,
         statements,
     })
+}
+
+/// `CR=-20.5`: a multi-letter address with a signed constant, built as the
+/// grammar builds it (a number, or a unary sign over a number). Returns the
+/// statement and the index of the next token.
+fn named_constant(tokens: &[Spanned], i: usize, g: &Ctx<'_>) -> Option<(Statement, usize)> {
+    let (T::Ident, name) = tokens[i] else {
+        return None;
+    };
+    let text = g.text(name);
+    if !is_named_address(text) || !matches!(tokens.get(i + 1), Some((T::Eq, _))) {
+        return None;
+    }
+    let mut j = i + 2;
+    let sign = match tokens.get(j) {
+        Some(&(T::Minus, s)) => Some((UnaryOp::Neg, s)),
+        Some(&(T::Plus, s)) => Some((UnaryOp::Plus, s)),
+        _ => None,
+    };
+    if sign.is_some() {
+        j += 1;
+    }
+    let &(T::Number, n) = tokens.get(j)? else {
+        return None;
+    };
+    j += 1;
+    // Anything but the start of the next word could continue the value.
+    if !matches!(tokens.get(j), None | Some((T::Letter | T::Ident, _))) {
+        return None;
+    }
+    let digits = g.text(n);
+    let number = Expr {
+        span: g.span(n),
+        kind: ExprKind::Number {
+            value: number_value(digits)?,
+            integer: digits.bytes().all(|b| b.is_ascii_digit()),
+        },
+    };
+    let expr = match sign {
+        None => number,
+        Some((op, s)) => Expr {
+            span: g.span(SimpleSpan::from(s.start..n.end)),
+            kind: ExprKind::Unary {
+                op,
+                operand: Box::new(number),
+            },
+        },
+    };
+    let statement = Statement {
+        span: g.span(SimpleSpan::from(name.start..n.end)),
+        kind: StatementKind::Word(Word {
+            address: text.to_ascii_uppercase().into(),
+            address_span: g.span(name),
+            extension: None,
+            value: WordValue::Assigned {
+                modifier: None,
+                expr: Box::new(expr),
+            },
+        }),
+    };
+    Some((statement, j))
 }

@@ -48,12 +48,49 @@ fn edge_cases_parse_the_same_either_way() {
         "N99999999999999999999999 X1",
         "G0X1Y2Z3",
         "X1.5EX",
+        "G2 X1 CR=-20.5",
+        "CR=5",
+        "CR=+5 X1",
+        "CR=5+1",
+        "CR=5X1",
+        "CR=1EX999",
+        "cr=5 spos=90 M3",
+        "ELX=3",
+        "CR=(5)",
+        "CR=R1",
+        "CR=-5 ; c",
+        "ENDIF",
+        "N10 ENDIF ; end",
+        "/ ELSE",
+        "REPEAT",
+        "REPEAT LBL",
+        "ELSE X1",
+        "LOOP",
+        "ENDPROC",
     ] {
         assert_same(src, src.as_bytes());
     }
 }
 
 fn word() -> impl Strategy<Value = String> {
+    prop_oneof![
+        4 => letter_word(),
+        1 => named_word(),
+    ]
+}
+
+fn named_word() -> impl Strategy<Value = String> {
+    (
+        prop::sample::select(vec!["CR", "cr", "TURN", "ELX", "AR"]),
+        prop::sample::select(vec!["=", " = ", "="]),
+        prop::sample::select(vec!["", "-", "+"]),
+        prop::sample::select(vec!["5", "-20.5", ".5", "1EX999", "R1"]),
+        prop::sample::select(vec![" ", "", "+1", "*2 "]),
+    )
+        .prop_map(|(a, e, s, n, t)| format!("{a}{e}{s}{n}{t}"))
+}
+
+fn letter_word() -> impl Strategy<Value = String> {
     (
         prop::sample::select(vec![
             "G", "X", "y", "Z", "F", "M", "S", "N", "A", "R", "L", "T", "D",
@@ -71,9 +108,14 @@ proptest! {
     fn generated_word_lines_parse_the_same_either_way(
         skip in prop::sample::select(vec!["", "/", "/2 ", "/ "]),
         words in prop::collection::vec(word(), 0..8),
+        keyword in prop::sample::select(vec!["", "ENDIF", "ELSE ", "LOOP", "N5 ENDWHILE"]),
         comment in prop::sample::select(vec!["", " ; move", ";x"]),
     ) {
-        let line = format!("{skip}{}{comment}\n", words.concat());
+        let line = if keyword.is_empty() {
+            format!("{skip}{}{comment}\n", words.concat())
+        } else {
+            format!("{skip}{keyword}{comment}\n")
+        };
         let fast = parse_bytes("gen", line.as_bytes());
         let grammar = parse_bytes_with_grammar_only("gen", line.as_bytes());
         prop_assert_eq!(fast.program, grammar.program, "{:?}", line);
