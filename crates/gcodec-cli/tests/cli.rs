@@ -34,6 +34,14 @@ where
         .expect("gcodec runs")
 }
 
+/// `gcodec parse --format json FILES...`.
+fn parse_json(files: &[&PathBuf]) -> Output {
+    let mut args: Vec<&std::ffi::OsStr> =
+        vec!["parse".as_ref(), "--format".as_ref(), "json".as_ref()];
+    args.extend(files.iter().map(|f| f.as_os_str()));
+    gcodec(args)
+}
+
 fn stdout(out: &Output) -> String {
     String::from_utf8(out.stdout.clone()).expect("stdout is UTF-8")
 }
@@ -94,12 +102,7 @@ fn clean_file_text_outline_exits_0() {
 #[test]
 fn clean_file_json_has_blocks_with_spans() {
     let path = fixture("words_and_addresses.mpf");
-    let out = gcodec([
-        "parse".as_ref(),
-        "--format".as_ref(),
-        "json".as_ref(),
-        path.as_os_str(),
-    ]);
+    let out = parse_json(&[&path]);
     assert_eq!(code(&out), EXIT_CLEAN, "stderr:\n{}", stderr(&out));
     assert_eq!(stderr(&out), "");
     let program = json(&out);
@@ -163,12 +166,7 @@ fn bad_file_exits_1_with_rendered_diagnostic() {
 #[test]
 fn bad_file_json_still_prints_the_program() {
     let path = fixture("errors/several_errors.mpf");
-    let out = gcodec([
-        "parse".as_ref(),
-        "--format".as_ref(),
-        "json".as_ref(),
-        path.as_os_str(),
-    ]);
+    let out = parse_json(&[&path]);
     assert_eq!(code(&out), EXIT_DIAGNOSTICS, "stderr:\n{}", stderr(&out));
     assert_no_panic(&out);
     let err = stderr(&out);
@@ -261,13 +259,7 @@ fn missing_arguments_are_a_usage_error() {
 fn several_files_json_is_an_array() {
     let a = fixture("frames.mpf");
     let b = fixture("procs_and_calls.spf");
-    let out = gcodec([
-        "parse".as_ref(),
-        "--format".as_ref(),
-        "json".as_ref(),
-        a.as_os_str(),
-        b.as_os_str(),
-    ]);
+    let out = parse_json(&[&a, &b]);
     assert_eq!(code(&out), EXIT_CLEAN, "stderr:\n{}", stderr(&out));
     let programs = json(&out);
     let programs = programs.as_array().expect("several files give an array");
@@ -303,12 +295,7 @@ fn several_files_text_outlines_each_and_worst_exit_wins() {
 #[test]
 fn latin1_file_is_read_and_decoded() {
     let path = fixture("messages.mpf");
-    let out = gcodec([
-        "parse".as_ref(),
-        "--format".as_ref(),
-        "json".as_ref(),
-        path.as_os_str(),
-    ]);
+    let out = parse_json(&[&path]);
     assert_eq!(code(&out), EXIT_CLEAN, "stderr:\n{}", stderr(&out));
     let program = json(&out);
     let comments: Vec<&str> = program["blocks"]

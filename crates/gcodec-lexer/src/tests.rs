@@ -117,3 +117,13 @@ fn tokens_cover_the_input_exactly() {
     assert_eq!(pos as usize, src.len());
     assert_eq!(toks.iter().filter(|t| t.kind == Error).count(), 2);
 }
+
+#[test]
+fn all_lists_every_kind_in_order() {
+    for (i, kind) in TokenKind::ALL.iter().enumerate() {
+        assert_eq!(*kind as usize, i, "{kind:?}");
+    }
+    assert_eq!(TokenKind::ALL.last(), Some(&Error));
+    // The parser keeps expected-token sets in a u128.
+    assert!(TokenKind::ALL.len() <= 128);
+}

@@ -262,23 +262,11 @@ impl DimensionKind {
     /// The modifier named `name` (case-insensitive).
     pub fn from_name(name: &str) -> Option<Self> {
         use DimensionKind::*;
-        Some(match name.to_ascii_uppercase().as_str() {
-            "AC" => Ac,
-            "IC" => Ic,
-            "DC" => Dc,
-            "ACP" => Acp,
-            "ACN" => Acn,
-            "CAC" => Cac,
-            "CIC" => Cic,
-            "CDC" => Cdc,
-            "CACP" => Cacp,
-            "CACN" => Cacn,
-            "DAC" => Dac,
-            "DIC" => Dic,
-            "RAC" => Rac,
-            "RIC" => Ric,
-            _ => return None,
-        })
+        [
+            Ac, Ic, Dc, Acp, Acn, Cac, Cic, Cdc, Cacp, Cacn, Dac, Dic, Rac, Ric,
+        ]
+        .into_iter()
+        .find(|k| k.keyword().eq_ignore_ascii_case(name))
     }
 }
 
@@ -372,17 +360,18 @@ pub enum TypeKind {
 }
 
 impl TypeKind {
-    /// The type named `name`, without a string length.
+    /// The type named `name` (case-insensitive), without a string length.
     pub fn from_name(name: &str) -> Option<Self> {
-        Some(match name.to_ascii_uppercase().as_str() {
-            "INT" => TypeKind::Int,
-            "REAL" => TypeKind::Real,
-            "BOOL" => TypeKind::Bool,
-            "CHAR" => TypeKind::Char,
-            "STRING" => TypeKind::String { length: None },
-            "AXIS" => TypeKind::Axis,
-            "FRAME" => TypeKind::Frame,
-            _ => return None,
+        const NAMES: [&str; 7] = ["INT", "REAL", "BOOL", "CHAR", "STRING", "AXIS", "FRAME"];
+        let index = NAMES.iter().position(|n| n.eq_ignore_ascii_case(name))?;
+        Some(match index {
+            0 => TypeKind::Int,
+            1 => TypeKind::Real,
+            2 => TypeKind::Bool,
+            3 => TypeKind::Char,
+            4 => TypeKind::String { length: None },
+            5 => TypeKind::Axis,
+            _ => TypeKind::Frame,
         })
     }
 }
@@ -610,23 +599,42 @@ pub enum FrameOp {
 }
 
 impl FrameOp {
+    const ALL: [FrameOp; 11] = [
+        FrameOp::Trans,
+        FrameOp::Atrans,
+        FrameOp::Rot,
+        FrameOp::Arot,
+        FrameOp::Rots,
+        FrameOp::Arots,
+        FrameOp::Crots,
+        FrameOp::Scale,
+        FrameOp::Ascale,
+        FrameOp::Mirror,
+        FrameOp::Amirror,
+    ];
+
+    /// The instruction as the control spells it.
+    pub const fn keyword(self) -> &'static str {
+        match self {
+            FrameOp::Trans => "TRANS",
+            FrameOp::Atrans => "ATRANS",
+            FrameOp::Rot => "ROT",
+            FrameOp::Arot => "AROT",
+            FrameOp::Rots => "ROTS",
+            FrameOp::Arots => "AROTS",
+            FrameOp::Crots => "CROTS",
+            FrameOp::Scale => "SCALE",
+            FrameOp::Ascale => "ASCALE",
+            FrameOp::Mirror => "MIRROR",
+            FrameOp::Amirror => "AMIRROR",
+        }
+    }
+
     /// The frame instruction named `name` (case-insensitive).
     pub fn from_name(name: &str) -> Option<Self> {
-        use FrameOp::*;
-        Some(match name.to_ascii_uppercase().as_str() {
-            "TRANS" => Trans,
-            "ATRANS" => Atrans,
-            "ROT" => Rot,
-            "AROT" => Arot,
-            "ROTS" => Rots,
-            "AROTS" => Arots,
-            "CROTS" => Crots,
-            "SCALE" => Scale,
-            "ASCALE" => Ascale,
-            "MIRROR" => Mirror,
-            "AMIRROR" => Amirror,
-            _ => return None,
-        })
+        Self::ALL
+            .into_iter()
+            .find(|op| op.keyword().eq_ignore_ascii_case(name))
     }
 }
 

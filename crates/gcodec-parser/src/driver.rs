@@ -73,11 +73,11 @@ pub fn parse_bytes_in_segments(name: &str, src: &[u8], threads: usize) -> Parse 
 }
 
 fn parse_with(name: &str, src: &[u8], fast_path: bool) -> Parse {
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(8));
+    // Asking for the core count reads cgroup limits: only large files ask.
     let threads = if src.len() < PARALLEL_MIN_BYTES {
         1
     } else {
-        threads
+        std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
     };
     parse_segments(name, src, fast_path, split(src, threads))
 }

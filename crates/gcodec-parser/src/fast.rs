@@ -14,7 +14,9 @@ use chumsky::span::SimpleSpan;
 use gcodec_lexer::TokenKind as T;
 
 use crate::ast::*;
-use crate::grammar::{BlockBody, Ctx, Spanned, is_named_address, letter_name, number_value};
+use crate::grammar::{
+    BlockBody, Ctx, Spanned, is_named_address, letter_name, number_value, structure_keyword,
+};
 
 /// Parses `tokens` if the block is skip mark, block number and constant
 /// words only.
@@ -57,16 +59,11 @@ pub(crate) fn constant_words(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBod
     }
     // A structure keyword standing alone (`ENDIF`, `ELSE`, `LOOP`, …).
     if let [(kind, span)] = &tokens[i..] {
-        let kind = match kind {
-            T::Else => StatementKind::Else,
-            T::EndIf => StatementKind::EndIf,
-            T::EndWhile => StatementKind::EndWhile,
-            T::EndFor => StatementKind::EndFor,
-            T::Loop => StatementKind::Loop,
-            T::EndLoop => StatementKind::EndLoop,
-            T::Repeat => StatementKind::Repeat,
-            T::EndProc => StatementKind::EndProc,
-            _ => return constant_words_from(tokens, i, g, skip, number),
+        // Alone on its block, `REPEAT` opens a REPEAT … UNTIL structure.
+        let alone =
+            structure_keyword(*kind).or((*kind == T::Repeat).then_some(StatementKind::Repeat));
+        let Some(kind) = alone else {
+            return constant_words_from(tokens, i, g, skip, number);
         };
         return Some(BlockBody {
             skip,

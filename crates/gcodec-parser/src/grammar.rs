@@ -112,6 +112,21 @@ pub(crate) fn is_named_address(name: &str) -> bool {
     NAMES.iter().any(|n| n.eq_ignore_ascii_case(name))
 }
 
+/// Keywords that are a whole statement by themselves. `REPEAT` is not
+/// among them: it may be followed by the labels of a section.
+pub(crate) fn structure_keyword(t: T) -> Option<StatementKind> {
+    Some(match t {
+        T::Else => StatementKind::Else,
+        T::EndIf => StatementKind::EndIf,
+        T::EndWhile => StatementKind::EndWhile,
+        T::EndFor => StatementKind::EndFor,
+        T::Loop => StatementKind::Loop,
+        T::EndLoop => StatementKind::EndLoop,
+        T::EndProc => StatementKind::EndProc,
+        _ => return None,
+    })
+}
+
 /// The address name of an upper-case ASCII letter, without allocating.
 pub(crate) fn letter_name(letter: u8) -> CompactString {
     CompactString::from(std::str::from_utf8(&[letter]).unwrap_or("?"))
@@ -1168,15 +1183,15 @@ pub(crate) fn statements<'t, 's: 't>(
             Some(jump) => StatementKind::IfGoto(Box::new(IfGoto { condition, jump })),
             None => StatementKind::If(Condition { condition }),
         });
-    let simple_kw = select! {
-        T::Else => StatementKind::Else,
-        T::EndIf => StatementKind::EndIf,
-        T::EndWhile => StatementKind::EndWhile,
-        T::EndFor => StatementKind::EndFor,
-        T::Loop => StatementKind::Loop,
-        T::EndLoop => StatementKind::EndLoop,
-        T::EndProc => StatementKind::EndProc,
-    };
+    let simple_kw = any().try_map(|t: T, span| {
+        structure_keyword(t).ok_or(SyntaxError {
+            span,
+            found: Some(t),
+            expected: 0,
+            label: None,
+            custom: None,
+        })
+    });
     let while_stmt = just(T::While)
         .ignore_then(cond.clone())
         .map(StatementKind::While);

@@ -204,7 +204,7 @@ fn write_statement(st: &Statement, out: &mut impl Write) -> fmt::Result {
             Ok(())
         }
         S::Frame(f) => {
-            write!(out, "{}", frame_name(f.op))?;
+            out.write_str(f.op.keyword())?;
             for w in &f.words {
                 out.write_char(' ')?;
                 write_word(w, out)?;
@@ -229,22 +229,6 @@ fn write_statement(st: &Statement, out: &mut impl Write) -> fmt::Result {
             }
             Ok(())
         }
-    }
-}
-
-fn frame_name(op: FrameOp) -> &'static str {
-    match op {
-        FrameOp::Trans => "TRANS",
-        FrameOp::Atrans => "ATRANS",
-        FrameOp::Rot => "ROT",
-        FrameOp::Arot => "AROT",
-        FrameOp::Rots => "ROTS",
-        FrameOp::Arots => "AROTS",
-        FrameOp::Crots => "CROTS",
-        FrameOp::Scale => "SCALE",
-        FrameOp::Ascale => "ASCALE",
-        FrameOp::Mirror => "MIRROR",
-        FrameOp::Amirror => "AMIRROR",
     }
 }
 

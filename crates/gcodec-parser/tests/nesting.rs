@@ -9,10 +9,13 @@
 //! small stack too: a syntax tree whose destructor recurses per level would
 //! overflow there.
 
+mod common;
+
 use std::sync::mpsc;
 use std::thread;
 use std::time::{Duration, Instant};
 
+use common::invariants::line_count;
 use gcodec_parser::ast::{StatementKind, StructureKind};
 use gcodec_parser::{MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, parse_bytes};
 use gcodec_source::{Diagnostic, Severity, Span};
@@ -54,12 +57,6 @@ fn on_small_stack<T: Send + 'static>(what: &str, f: impl FnOnce() -> T + Send + 
             Ok(_) => unreachable!("the thread sends before it returns"),
         },
     }
-}
-
-/// Lines of a source, counting a last line without a line end.
-fn line_count(src: &[u8]) -> usize {
-    src.iter().filter(|&&b| b == b'\n').count()
-        + usize::from(src.last().is_some_and(|&b| b != b'\n'))
 }
 
 fn check_span(src: &[u8], span: Span, what: &str) {

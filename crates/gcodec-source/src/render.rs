@@ -4,7 +4,7 @@ use std::fmt;
 
 use miette::{GraphicalReportHandler, GraphicalTheme, LabeledSpan, NamedSource, SourceSpan};
 
-use crate::source::decode;
+use crate::source::cp1252;
 use crate::{Diagnostic, Severity, SourceFile};
 
 /// How to render diagnostics.
@@ -61,7 +61,7 @@ impl DisplaySource {
                 let mut offsets = Vec::with_capacity(bytes.len() + 1);
                 for &b in bytes {
                     offsets.push(text.len() as u32);
-                    text.push_str(&decode(&[b]));
+                    text.push(cp1252(b));
                 }
                 offsets.push(text.len() as u32);
                 (text, Some(offsets))

@@ -21,8 +21,7 @@ impl SourceFile {
     /// Never for files up to [`MAX_SOURCE_LEN`] bytes; callers reading from
     /// disk use [`SourceFile::read`], which reports larger files as an error.
     pub fn new(name: impl Into<String>, bytes: impl Into<Vec<u8>>) -> Self {
-        let bytes = bytes.into();
-        let mut bytes = bytes;
+        let mut bytes = bytes.into();
         if bytes.len() > MAX_SOURCE_LEN {
             // Spans are u32: keep the addressable prefix rather than wrap.
             bytes.truncate(MAX_SOURCE_LEN);
@@ -110,7 +109,8 @@ pub fn decode(bytes: &[u8]) -> String {
     }
 }
 
-fn cp1252(b: u8) -> char {
+/// The Windows-1252 character of one byte.
+pub(crate) fn cp1252(b: u8) -> char {
     const HIGH: [char; 32] = [
         '€', '\u{81}', '‚', 'ƒ', '„', '…', '†', '‡', 'ˆ', '‰', 'Š', '‹', 'Œ', '\u{8d}', 'Ž',
         '\u{8f}', '\u{90}', '‘', '’', '“', '”', '•', '–', '—', '˜', '™', 'š', '›', 'œ', '\u{9d}',

@@ -2,6 +2,8 @@
 
 #![allow(dead_code)]
 
+pub mod invariants;
+
 use std::path::{Path, PathBuf};
 
 /// The shared corpus beside the checkout (`../shared/corpus`) or
