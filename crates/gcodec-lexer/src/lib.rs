@@ -74,9 +74,9 @@ pub fn lex(src: &[u8]) -> Vec<Token> {
     Lexer::new(src).collect()
 }
 
-/// A span with line and column for a token, given the start of its line.
-pub fn token_span(token: &Token, line: u32, line_start: u32) -> Span {
-    Span::new(token.start, token.end, line, token.start - line_start + 1)
+/// The span of a token.
+pub fn token_span(token: &Token) -> Span {
+    Span::new(token.start, token.end)
 }
 
 #[cfg(test)]

@@ -14,13 +14,54 @@
 //! deterministic program of BLOCKS lines to FILE; `--sizes` prints the size
 //! of the main AST types.
 
+use std::alloc::{GlobalAlloc, Layout, System};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::time::Instant;
 
 use gcodec_parser::ast::*;
 
 #[path = "../benches/program/mod.rs"]
 mod program;
+
+/// The system allocator, counting the bytes requested: live heap, its peak
+/// and the number of allocations (allocator overhead is not included).
+struct Counting;
+
+static LIVE: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+static CALLS: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: every call is forwarded to `System` unchanged; the counters are
+// only statistics.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let live = LIVE.fetch_add(layout.size(), Relaxed) + layout.size();
+        PEAK.fetch_max(live, Relaxed);
+        CALLS.fetch_add(1, Relaxed);
+        // SAFETY: forwarded with the caller's layout.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        LIVE.fetch_sub(layout.size(), Relaxed);
+        // SAFETY: forwarded with the caller's pointer and layout.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if new_size >= layout.size() {
+            let live = LIVE.fetch_add(new_size - layout.size(), Relaxed) + new_size - layout.size();
+            PEAK.fetch_max(live, Relaxed);
+        } else {
+            LIVE.fetch_sub(layout.size() - new_size, Relaxed);
+        }
+        CALLS.fetch_add(1, Relaxed);
+        // SAFETY: forwarded with the caller's pointer, layout and size.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -75,9 +116,15 @@ fn parse_file(path: &str) -> ExitCode {
     let tokens = gcodec_lexer::Lexer::new(&bytes).count();
     let lex = t.elapsed();
 
+    let before = LIVE.load(Relaxed);
+    PEAK.store(before, Relaxed);
+    let calls = CALLS.load(Relaxed);
     let t = Instant::now();
     let parsed = gcodec_parser::parse_bytes(path, &bytes);
     let parse = t.elapsed();
+    let retained = LIVE.load(Relaxed) - before;
+    let peak = PEAK.load(Relaxed) - before;
+    let calls = CALLS.load(Relaxed) - calls;
 
     println!("input:        {} bytes ({mb:.2} MB)", bytes.len());
     println!("tokens:       {tokens}");
@@ -90,6 +137,13 @@ fn parse_file(path: &str) -> ExitCode {
         "statements:   {statements} in Vecs with capacity for {capacity} ({:.1} MB of Statement slots; blocks Vec: {:.1} MB)",
         (capacity * size_of::<Statement>()) as f64 / 1e6,
         (blocks.capacity() * size_of::<Block>()) as f64 / 1e6
+    );
+    println!(
+        "heap:         {:.1} MB kept by the AST ({:.1} bytes/block, {:.1}x input), {:.1} MB peak while parsing, {calls} allocations",
+        retained as f64 / 1e6,
+        retained as f64 / blocks.len().max(1) as f64,
+        retained as f64 / bytes.len().max(1) as f64,
+        peak as f64 / 1e6,
     );
     println!("read:         {:.3} s", read.as_secs_f64());
     println!(

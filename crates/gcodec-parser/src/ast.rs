@@ -19,7 +19,10 @@ use serde::Serialize;
 pub type Name = CompactString;
 
 /// One parsed file.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+///
+/// Serialised, every span in the tree carries `line` and `col` besides its
+/// byte offsets (see [`gcodec_source::with_line_starts`]).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Program {
     /// The file name as given to the parser.
     pub file: String,
@@ -31,6 +34,42 @@ pub struct Program {
     pub blocks: Vec<Block>,
     /// Control structures, each with the blocks that open, split and close it.
     pub structures: Vec<ControlStructure>,
+}
+
+impl Program {
+    /// The byte offset at which each line starts: every line is a block.
+    pub fn line_starts(&self) -> Vec<u32> {
+        self.blocks.iter().map(|b| b.span.start).collect()
+    }
+
+    /// 1-based line and byte column of a byte offset in this program.
+    pub fn line_col(&self, offset: u32) -> (u32, u32) {
+        let line = self.blocks.partition_point(|b| b.span.start <= offset);
+        let line_start = line.checked_sub(1).map_or(0, |i| self.blocks[i].span.start);
+        (line.max(1) as u32, offset - line_start.min(offset) + 1)
+    }
+}
+
+impl Serialize for Program {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        #[derive(Serialize)]
+        #[serde(rename = "Program")]
+        struct Fields<'a> {
+            file: &'a str,
+            header: &'a Option<Header>,
+            path: &'a Option<PathDirective>,
+            blocks: &'a [Block],
+            structures: &'a [ControlStructure],
+        }
+        let fields = Fields {
+            file: &self.file,
+            header: &self.header,
+            path: &self.path,
+            blocks: &self.blocks,
+            structures: &self.structures,
+        };
+        gcodec_source::with_line_starts(self.line_starts(), || fields.serialize(serializer))
+    }
 }
 
 /// An archive header line (`%_N_SHAFT_MPF`, `%MPF123`).

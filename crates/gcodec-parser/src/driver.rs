@@ -1,8 +1,6 @@
 //! Splits the token stream into blocks (lines) and runs the block grammar on
 //! each, so that one malformed block never hides the rest of the program.
 
-use std::cell::Cell;
-
 use chumsky::input::Input as _;
 use chumsky::span::SimpleSpan;
 use compact_str::CompactString;
@@ -134,12 +132,11 @@ fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment
     }
 }
 
-/// A byte range of whole lines and the number of its first line.
+/// A byte range of whole lines.
 #[derive(Clone, Copy)]
 struct Segment {
     start: usize,
     end: usize,
-    first_line: u32,
 }
 
 /// Cuts `src` into `threads` segments of whole lines (fewer where lines
@@ -148,13 +145,12 @@ fn split(src: &[u8], threads: usize) -> Vec<Segment> {
     let whole = vec![Segment {
         start: 0,
         end: src.len(),
-        first_line: 1,
     }];
     if threads < 2 {
         return whole;
     }
     let mut segments = Vec::with_capacity(threads);
-    let (mut start, mut first_line) = (0usize, 1u32);
+    let mut start = 0usize;
     for i in 1..=threads {
         let end = if i == threads {
             src.len()
@@ -166,13 +162,7 @@ fn split(src: &[u8], threads: usize) -> Vec<Segment> {
             }
         };
         if end > start {
-            segments.push(Segment {
-                start,
-                end,
-                first_line,
-            });
-            let lines = src[start..end].iter().filter(|&&b| b == b'\n').count();
-            first_line = first_line.saturating_add(lines as u32);
+            segments.push(Segment { start, end });
             start = end;
         }
     }
@@ -210,7 +200,6 @@ fn run_segment(src: &[u8], segment: Segment, fast_path: bool) -> Driver<'_> {
 /// One line waiting for the grammar.
 struct Line {
     tokens: std::ops::Range<usize>,
-    number: u32,
     start: u32,
     end: u32,
     comment: Option<(u32, u32)>,
@@ -237,7 +226,6 @@ impl<'s> Driver<'s> {
         let base = segment.start as u32;
         let mut line = Line {
             tokens: 0..0,
-            number: segment.first_line,
             start: base,
             end: base,
             comment: None,
@@ -257,7 +245,6 @@ impl<'s> Driver<'s> {
                     line.tokens.end = self.tokens.len();
                     let next = Line {
                         tokens: self.tokens.len()..self.tokens.len(),
-                        number: line.number + 1,
                         start: tok.end,
                         end: tok.end,
                         comment: None,
@@ -279,14 +266,14 @@ impl<'s> Driver<'s> {
                 | TokenKind::BadQuoted
                 | TokenKind::UnclosedString => {
                     if !line.broken {
-                        let span = self.span_in(&line, tok.start, tok.end);
+                        let span = Span::new(tok.start, tok.end);
                         self.diagnostics.push(lexical_error(tok.kind, span, src));
                         line.broken = true;
                     }
                 }
                 kind => {
                     if line.header.is_some() && !line.broken {
-                        let span = self.span_in(&line, tok.start, tok.end);
+                        let span = Span::new(tok.start, tok.end);
                         self.diagnostics.push(
                             Diagnostic::error(
                                 "gcodec::parse::header_not_alone",
@@ -311,23 +298,14 @@ impl<'s> Driver<'s> {
         self.flush();
     }
 
-    fn span_in(&self, line: &Line, start: u32, end: u32) -> Span {
-        Span::new(start, end, line.number, start - line.start + 1)
-    }
-
     /// Parses the buffered lines and empties the buffers.
     fn flush(&mut self) {
         let mut lines = std::mem::take(&mut self.lines);
         let mut tokens = std::mem::take(&mut self.tokens);
         {
-            let cell = Cell::new((1u32, 0u32));
-            let ctx = Ctx {
-                src: self.src,
-                line: &cell,
-            };
+            let ctx = Ctx { src: self.src };
             let parser = grammar::block(ctx);
             for line in &lines {
-                cell.set((line.number, line.start));
                 let block = self.parse_line(line, &tokens[line.tokens.clone()], &ctx, &parser);
                 self.program.blocks.push(block);
             }
@@ -350,14 +328,14 @@ impl<'s> Driver<'s> {
             end -= 1;
         }
         let mut block = Block {
-            span: Span::new(line.start, end, line.number, 1),
+            span: Span::new(line.start, end),
             skip: None,
             number: None,
             label: None,
             statements: Vec::new(),
             comment: line.comment.map(|(s, e)| {
                 Box::new(Comment {
-                    span: Span::new(s, e, line.number, s - line.start + 1),
+                    span: Span::new(s, e),
                     text: CompactString::from(decode(&self.src[s as usize + 1..e as usize])),
                 })
             }),
@@ -367,7 +345,7 @@ impl<'s> Driver<'s> {
             self.note_path_directive(c);
         }
         if let Some((s, e)) = line.header {
-            self.note_header(Span::new(s, e, line.number, s - line.start + 1));
+            self.note_header(Span::new(s, e));
         }
         if line.broken || tokens.is_empty() {
             return block;

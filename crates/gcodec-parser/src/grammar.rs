@@ -4,8 +4,6 @@
 //! comment removed); adjacency, which matters in SINUMERIK (`X1=` versus
 //! `X1 A=`, `M5` versus `M 5`), is read from the byte spans.
 
-use std::cell::Cell;
-
 use chumsky::input::MappedInput;
 use chumsky::pratt::{infix, left, prefix};
 use chumsky::prelude::*;
@@ -34,19 +32,11 @@ pub(crate) struct BlockBody {
 #[derive(Clone, Copy)]
 pub(crate) struct Ctx<'s> {
     pub src: &'s [u8],
-    /// (line, byte offset of the line start) of the block being parsed.
-    pub line: &'s Cell<(u32, u32)>,
 }
 
 impl<'s> Ctx<'s> {
     pub fn span(&self, s: SimpleSpan) -> Span {
-        let (line, line_start) = self.line.get();
-        Span::new(
-            s.start as u32,
-            s.end as u32,
-            line,
-            (s.start as u32).saturating_sub(line_start) + 1,
-        )
+        Span::new(s.start as u32, s.end as u32)
     }
 
     pub fn bytes(&self, s: SimpleSpan) -> &'s [u8] {

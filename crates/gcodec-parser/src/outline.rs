@@ -14,11 +14,11 @@ pub fn write_outline(program: &Program, out: &mut impl Write) -> fmt::Result {
     if let Some(p) = &program.path {
         writeln!(out, "  path {}", p.path)?;
     }
-    for block in &program.blocks {
+    for (index, block) in program.blocks.iter().enumerate() {
         if block.statements.is_empty() && block.label.is_none() && block.number.is_none() {
             continue;
         }
-        write!(out, "{:>5} ", block.span.line)?;
+        write!(out, "{:>5} ", index + 1)?;
         for _ in 0..block.depth.min(64) {
             out.write_str("  ")?;
         }

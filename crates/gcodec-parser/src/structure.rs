@@ -119,14 +119,7 @@ pub(crate) fn pair(program: &mut Program, diagnostics: &mut Vec<Diagnostic>) {
         .rev()
         .find(|b| !b.span.is_empty())
         .or(program.blocks.last())
-        .map(|b| {
-            Span::new(
-                b.span.end,
-                b.span.end,
-                b.span.line,
-                b.span.end - b.span.start + 1,
-            )
-        })
+        .map(|b| Span::new(b.span.end, b.span.end))
         .unwrap_or_default();
     for open in stack.iter().rev() {
         diagnostics.push(unclosed(open, eof, "by the end of the program"));

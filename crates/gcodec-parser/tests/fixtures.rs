@@ -179,7 +179,7 @@ fn several_errors_are_all_reported_and_parsing_resumes() {
         .diagnostics
         .iter()
         .filter(|d| d.is_error())
-        .filter_map(|d| d.span().map(|s| s.line))
+        .filter_map(|d| d.span().map(|s| file.line_col(s.start).0))
         .collect();
     error_lines.sort_unstable();
     assert_eq!(error_lines, [3, 5, 6, 7, 8, 9]);

@@ -2,9 +2,9 @@
 //!
 //! Part programs are bytes, not text: SINUMERIK archives carry comments in
 //! Latin-1, CP1252 or CP1251. Every span in gcodec is therefore a byte range
-//! into the file as stored, together with the 1-based line and byte column of
-//! its start, so that a consumer of a JSON dump never has to re-read the file
-//! to point at a construct.
+//! into the file as stored; its 1-based line and byte column come from the
+//! file's line table, and JSON dumps write them next to the offsets so that
+//! a consumer never has to re-read the file to point at a construct.
 
 mod diagnostic;
 mod render;
@@ -14,4 +14,4 @@ mod span;
 pub use diagnostic::{Diagnostic, Label, Severity};
 pub use render::{RenderOptions, render_diagnostics};
 pub use source::{SourceFile, decode};
-pub use span::Span;
+pub use span::{Span, line_col, with_line_starts};

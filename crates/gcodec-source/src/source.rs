@@ -79,15 +79,7 @@ impl SourceFile {
 
     /// 1-based line and byte column of a byte offset.
     pub fn line_col(&self, offset: u32) -> (u32, u32) {
-        let line = self.line_starts.partition_point(|&s| s <= offset);
-        let line_start = self.line_starts[line.saturating_sub(1)];
-        (line as u32, offset - line_start + 1)
-    }
-
-    /// A span for a byte range, with its line and column filled in.
-    pub fn span(&self, start: u32, end: u32) -> Span {
-        let (line, col) = self.line_col(start);
-        Span::new(start, end, line, col)
+        crate::span::line_col(&self.line_starts, offset)
     }
 
     /// The text of a span, decoded for display (see [`decode`]).

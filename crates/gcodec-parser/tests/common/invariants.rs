@@ -19,51 +19,66 @@ pub fn line_count(src: &[u8]) -> usize {
         + usize::from(src.last().is_some_and(|&b| b != b'\n'))
 }
 
-/// A span is in bounds and its line and column are those of its start.
+/// A span is in bounds.
 pub fn check_span(file: &SourceFile, span: Span, what: &str) -> Result<(), String> {
     let len = file.bytes().len() as u32;
     if span.start > span.end || span.end > len {
         return Err(format!("{what}: span {span:?} out of bounds (len {len})"));
     }
-    if span.line == 0 || span.col == 0 {
-        return Err(format!("{what}: span {span:?} has a zero line or column"));
-    }
-    let (line, col) = file.line_col(span.start);
-    if (span.line, span.col) != (line, col) {
+    Ok(())
+}
+
+/// A span as serialised: byte range, line and column.
+#[derive(Clone, Copy, Debug)]
+pub struct Located {
+    pub span: Span,
+    pub line: u32,
+    pub col: u32,
+}
+
+/// A serialised span is in bounds and its line and column are those of its
+/// start.
+pub fn check_located(file: &SourceFile, at: Located, what: &str) -> Result<(), String> {
+    check_span(file, at.span, what)?;
+    let (line, col) = file.line_col(at.span.start);
+    if (at.line, at.col) != (line, col) {
         return Err(format!(
-            "{what}: span {span:?} says line {}:{}, its start is at {line}:{col}",
-            span.line, span.col
+            "{what}: span {:?} says line {}:{}, its start is at {line}:{col}",
+            at.span, at.line, at.col
         ));
     }
     Ok(())
 }
 
-/// Every `{start, end, line, col}` object in a serialised tree. Iterative,
-/// so deep trees cannot overflow the walk itself.
-pub fn spans_in(value: &Value) -> Vec<Span> {
+/// Every span object (`{start, end, line, col}`) in a serialised tree; a
+/// span serialised without its line and column is an error. Iterative, so
+/// deep trees cannot overflow the walk itself.
+pub fn spans_in(value: &Value) -> Result<Vec<Located>, String> {
     let mut out = Vec::new();
     let mut stack = vec![value];
     while let Some(v) = stack.pop() {
         match v {
             Value::Object(map) => {
                 let field = |k: &str| map.get(k).and_then(Value::as_u64).map(|n| n as u32);
-                if let (4, Some(start), Some(end), Some(line), Some(col)) = (
-                    map.len(),
-                    field("start"),
-                    field("end"),
-                    field("line"),
-                    field("col"),
-                ) {
-                    out.push(Span::new(start, end, line, col));
-                } else {
-                    stack.extend(map.values());
+                match (field("start"), field("end"), field("line"), field("col")) {
+                    (Some(start), Some(end), Some(line), Some(col)) if map.len() == 4 => {
+                        out.push(Located {
+                            span: Span::new(start, end),
+                            line,
+                            col,
+                        });
+                    }
+                    (Some(_), Some(_), _, _) if map.len() <= 4 => {
+                        return Err(format!("span without line and column: {v}"));
+                    }
+                    _ => stack.extend(map.values()),
                 }
             }
             Value::Array(items) => stack.extend(items),
             _ => {}
         }
     }
-    out
+    Ok(out)
 }
 
 /// Everything a parse must satisfy, for any input.
@@ -78,10 +93,12 @@ pub fn check_parse_of(src: &[u8], parse: &Parse) -> Result<(), String> {
         ));
     }
     let starts = file.line_starts();
+    let json = serde_json::to_value(program).map_err(|e| format!("program: {e}"))?;
+    let blocks = json["blocks"].as_array().ok_or("no blocks in the JSON")?;
     for (i, block) in program.blocks.iter().enumerate() {
         let what = || format!("block {i} ({})", show(&src[block.span.range()]));
         check_span(&file, block.span, &what())?;
-        if block.span.start != starts[i] || block.span.line as usize != i + 1 {
+        if block.span.start != starts[i] {
             return Err(format!(
                 "{}: span {:?} is not line {}",
                 what(),
@@ -89,15 +106,15 @@ pub fn check_parse_of(src: &[u8], parse: &Parse) -> Result<(), String> {
                 i + 1
             ));
         }
-        // Every span inside the block is in bounds, names its true line and
-        // column, and lies on the block's line.
-        let value = serde_json::to_value(block).map_err(|e| format!("{}: {e}", what()))?;
-        for span in spans_in(&value) {
-            check_span(&file, span, &what())?;
-            if span.start < block.span.start || span.end > block.span.end {
+        // Every span inside the block is in bounds, is serialised with its
+        // true line and column, and lies on the block's line.
+        for at in spans_in(&blocks[i]).map_err(|e| format!("{}: {e}", what()))? {
+            check_located(&file, at, &what())?;
+            if at.line as usize != i + 1 || at.span.end > block.span.end {
                 return Err(format!(
-                    "{}: span {span:?} outside its block {:?}",
+                    "{}: span {:?} outside its block {:?}",
                     what(),
+                    at.span,
                     block.span
                 ));
             }
