@@ -11,6 +11,8 @@
 //! Every node carries a [`Span`]; names keep the spelling of the source, and
 //! lookups are case-insensitive in later stages.
 
+use std::borrow::Cow;
+
 use compact_str::CompactString;
 use gcodec_source::Span;
 use serde::Serialize;
@@ -141,52 +143,82 @@ pub struct Comment {
 }
 
 /// One statement of a block.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+///
+/// Serialised as one object: `span`, `kind` and the kind's fields.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Statement {
     pub span: Span,
-    #[serde(flatten)]
     pub kind: StatementKind,
 }
 
-/// What a statement is.
+impl Serialize for Statement {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        if let StatementKind::Word(word) = &self.kind {
+            // A word's inner spans are derived from the statement's.
+            let mut map = serializer.serialize_map(None)?;
+            map.serialize_entry("span", &self.span)?;
+            map.serialize_entry("kind", "word")?;
+            word.serialize_fields(self.span, &mut map)?;
+            return map.end();
+        }
+        #[derive(Serialize)]
+        struct Fields<'a> {
+            span: Span,
+            #[serde(flatten)]
+            kind: &'a StatementKind,
+        }
+        Fields {
+            span: self.span,
+            kind: &self.kind,
+        }
+        .serialize(serializer)
+    }
+}
+
+/// What a statement is. Payloads larger than the commonest one, a
+/// [`Word`], are boxed: a statement is 32 bytes, and a large program has
+/// millions of them.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum StatementKind {
     /// An address word: `G1`, `X-10`, `X=R1+5`, `M2=3`, `G[8]=2`, `CR=5`.
+    /// (Serialised by [`Statement`], which holds the word's span.)
+    #[serde(skip)]
     Word(Word),
     /// `R1=5`, `A[2,3]=7`, `$P_UIFR[1,X,TR]=10`, `NAME=…`.
     Assign(Box<Assign>),
     /// `DEF …`.
-    Def(Def),
+    Def(Box<Def>),
     /// `REDEF name attributes`: kept for later stages.
-    Redef(Redef),
+    Redef(Box<Redef>),
     /// `DEFINE NAME AS …`.
-    Define(Define),
+    Define(Box<Define>),
     /// `PROC name(params) attributes`.
     Proc(Box<Proc>),
     /// `ENDPROC`.
     EndProc,
     /// `EXTERN name(types)`.
-    Extern(Extern),
+    Extern(Box<Extern>),
     /// A subprogram or procedure call by name or `L` number.
-    Call(Call),
+    Call(Box<Call>),
     /// `CALL <expr>` and `CALL … BLOCK … TO …`.
     IndirectCall(Box<IndirectCall>),
     /// `PCALL path(args)`.
-    PCall(PCall),
+    PCall(Box<PCall>),
     /// `MCALL name(args)` or `MCALL` alone (cancels the modal call).
     MCall(Box<MCall>),
     /// `RET` with optional arguments.
-    Ret(Ret),
+    Ret(Box<Ret>),
     /// `GOTO… target`.
     Goto(Box<Jump>),
     /// `IF cond GOTO… target` in one block.
     IfGoto(Box<IfGoto>),
     /// `IF cond` opening a structure.
-    If(Condition),
+    If(Box<Condition>),
     Else,
     EndIf,
-    While(Condition),
+    While(Box<Condition>),
     EndWhile,
     For(Box<For>),
     EndFor,
@@ -194,26 +226,147 @@ pub enum StatementKind {
     EndLoop,
     /// `REPEAT` alone opening a REPEAT … UNTIL structure.
     Repeat,
-    Until(Condition),
+    Until(Box<Condition>),
     /// `REPEAT label [label] [P=n]`, `REPEATB label [P=n]`.
     RepeatSection(Box<RepeatSection>),
     /// `CASE expr OF c GOTOF l … DEFAULT GOTOF l`.
     Case(Box<Case>),
     /// `TRANS X10`, `ROT RPL=45`, `MIRROR X0`, … (`words` empty = reset).
-    Frame(Frame),
+    Frame(Box<Frame>),
     /// `ID=1 WHEN cond DO actions` and friends.
     SyncAction(Box<SyncAction>),
 }
 
-/// An address word.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Word {
+/// An address word: `G1`, `X-10`, `X=R1+5`, `M2=3`, `G[8]=2`, `CR=5`.
+///
+/// A word does not store its own span: it is always held with one (by its
+/// [`Statement`] or as a [`SpannedWord`]), and the spans of its parts are
+/// derived from it where they can be. That keeps the commonest word, a
+/// single letter with a constant touching it (`X10`, `G1`, `F200`), at 16
+/// bytes; every other word keeps its parts, spans included, in one box.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Word(WordRepr);
+
+#[derive(Clone, Debug, PartialEq)]
+enum WordRepr {
+    /// An upper-case letter at the start of the word and a constant from
+    /// the next byte to the end of the word.
+    Letter { letter: u8, integer: bool, value: f64 },
+    Parts(Box<WordParts>),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+struct WordParts {
+    address: Name,
+    address_span: Span,
+    extension: Option<Extension>,
+    value: WordValue,
+}
+
+impl Word {
+    /// The word written at `span`: its address in upper case, where the
+    /// address is written, its extension and its value.
+    pub fn new(
+        span: Span,
+        address: Name,
+        address_span: Span,
+        extension: Option<Extension>,
+        value: WordValue,
+    ) -> Self {
+        if let (Some(&letter), None, WordValue::Constant(n)) =
+            (address.as_bytes().first(), &extension, &value)
+        {
+            let compact = address.len() == 1
+                && letter.is_ascii_uppercase()
+                && address_span == Span::new(span.start, span.start + 1)
+                && n.span == Span::new(span.start + 1, span.end);
+            if compact {
+                return Word(WordRepr::Letter {
+                    letter,
+                    integer: n.integer,
+                    value: n.value,
+                });
+            }
+        }
+        Word(WordRepr::Parts(Box::new(WordParts {
+            address,
+            address_span,
+            extension,
+            value,
+        })))
+    }
+
     /// The address in upper case: `X`, `G`, `CR`, `SPOS`, `AX`.
-    pub address: Name,
-    pub address_span: Span,
+    pub fn address(&self) -> &str {
+        const LETTERS: &str = "ABCDEFGHIJKLMNOPQRSTUVWXYZ";
+        match &self.0 {
+            WordRepr::Letter { letter, .. } => {
+                let i = usize::from(letter - b'A');
+                &LETTERS[i..i + 1]
+            }
+            WordRepr::Parts(parts) => &parts.address,
+        }
+    }
+
+    /// Where the address is written, given the span of the word.
+    pub fn address_span(&self, span: Span) -> Span {
+        match &self.0 {
+            WordRepr::Letter { .. } => Span::new(span.start, span.start + 1),
+            WordRepr::Parts(parts) => parts.address_span,
+        }
+    }
+
     /// `M2=`, `X1=` (numeric) or `M[R1]=`, `AX[X1]=` (bracketed).
-    pub extension: Option<Box<Extension>>,
-    pub value: WordValue,
+    pub fn extension(&self) -> Option<&Extension> {
+        match &self.0 {
+            WordRepr::Letter { .. } => None,
+            WordRepr::Parts(parts) => parts.extension.as_ref(),
+        }
+    }
+
+    /// The value, given the span of the word.
+    pub fn value(&self, span: Span) -> Cow<'_, WordValue> {
+        match &self.0 {
+            &WordRepr::Letter { integer, value, .. } => {
+                Cow::Owned(WordValue::Constant(NumberLit {
+                    span: Span::new(span.start + 1, span.end),
+                    value,
+                    integer,
+                }))
+            }
+            WordRepr::Parts(parts) => Cow::Borrowed(&parts.value),
+        }
+    }
+
+    /// Writes `address`, `address_span`, `extension` and `value`.
+    fn serialize_fields<M: serde::ser::SerializeMap>(
+        &self,
+        span: Span,
+        map: &mut M,
+    ) -> Result<(), M::Error> {
+        map.serialize_entry("address", self.address())?;
+        map.serialize_entry("address_span", &self.address_span(span))?;
+        map.serialize_entry("extension", &self.extension())?;
+        map.serialize_entry("value", &self.value(span))
+    }
+}
+
+/// A word that is part of another statement (`TRANS X10`, the `P3` of a
+/// call), with the span it is written at.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpannedWord {
+    pub span: Span,
+    pub word: Word,
+}
+
+impl Serialize for SpannedWord {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(None)?;
+        map.serialize_entry("span", &self.span)?;
+        self.word.serialize_fields(self.span, &mut map)?;
+        map.end()
+    }
 }
 
 /// The extension of an extended address.
@@ -486,7 +639,7 @@ pub struct Call {
     /// `None` when written without parentheses. Omitted arguments are `null`.
     pub args: Option<Vec<Option<Expr>>>,
     /// `P3` / `P=3` in the same block: number of passes.
-    pub passes: Option<Box<Word>>,
+    pub passes: Option<Box<SpannedWord>>,
 }
 
 /// What a call names.
@@ -602,7 +755,7 @@ pub struct RepeatSection {
     pub single_block: bool,
     pub start: JumpTarget,
     pub end: Option<JumpTarget>,
-    pub passes: Option<Box<Word>>,
+    pub passes: Option<Box<SpannedWord>>,
 }
 
 /// `CASE expr OF …`.
@@ -681,7 +834,7 @@ impl FrameOp {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Frame {
     pub op: FrameOp,
-    pub words: Vec<Word>,
+    pub words: Vec<SpannedWord>,
 }
 
 /// A synchronous action.

@@ -450,14 +450,13 @@ impl<'s> Driver<'s> {
     fn check_statements(&mut self, statements: &mut Vec<Statement>) {
         // A value after `=` ends at a blank: `R3=200G0` is not two statements.
         for pair in statements.windows(2) {
-            let ends_in_value = matches!(
-                &pair[0].kind,
-                StatementKind::Assign(_)
-                    | StatementKind::Word(Word {
-                        value: WordValue::Assigned { .. },
-                        ..
-                    })
-            );
+            let ends_in_value = match &pair[0].kind {
+                StatementKind::Assign(_) => true,
+                StatementKind::Word(w) => {
+                    matches!(*w.value(pair[0].span), WordValue::Assigned { .. })
+                }
+                _ => false,
+            };
             if ends_in_value && pair[1].span.start == pair[0].span.end {
                 self.diagnostics.push(
                     Diagnostic::error(
@@ -476,7 +475,7 @@ impl<'s> Driver<'s> {
             .count();
         if calls == 1 {
             let p = statements.iter().position(|s| {
-                matches!(&s.kind, StatementKind::Word(w) if w.address == "P" && w.extension.is_none())
+                matches!(&s.kind, StatementKind::Word(w) if w.address() == "P" && w.extension().is_none())
             });
             if let Some(p) = p {
                 let word = statements.remove(p);
@@ -489,7 +488,10 @@ impl<'s> Driver<'s> {
                 ) {
                     call.span = call.span.cover(word_span);
                     if let StatementKind::Call(c) = &mut call.kind {
-                        c.passes = Some(Box::new(w));
+                        c.passes = Some(Box::new(SpannedWord {
+                            span: word_span,
+                            word: w,
+                        }));
                     }
                 }
             }

@@ -137,18 +137,20 @@ fn constant_words_from(
             value = -value;
         }
         let value_start = sign.map_or(n.start, |(_, s)| s.start);
+        let span = g.span(SimpleSpan::from(letter.start..n.end));
         statements.push(Statement {
-            span: g.span(SimpleSpan::from(letter.start..n.end)),
-            kind: StatementKind::Word(Word {
-                address: letter_name(address),
-                address_span: g.span(letter),
-                extension: None,
-                value: WordValue::Constant(NumberLit {
+            span,
+            kind: StatementKind::Word(Word::new(
+                span,
+                letter_name(address),
+                g.span(letter),
+                None,
+                WordValue::Constant(NumberLit {
                     span: g.span(SimpleSpan::from(value_start..n.end)),
                     value,
                     integer: text.bytes().all(|b| b.is_ascii_digit()),
                 }),
-            }),
+            )),
         });
     }
     Some(BlockBody {
@@ -205,17 +207,19 @@ fn named_constant(tokens: &[Spanned], i: usize, g: &Ctx<'_>) -> Option<(Statemen
             },
         },
     };
+    let span = g.span(SimpleSpan::from(name.start..n.end));
     let statement = Statement {
-        span: g.span(SimpleSpan::from(name.start..n.end)),
-        kind: StatementKind::Word(Word {
-            address: text.to_ascii_uppercase().into(),
-            address_span: g.span(name),
-            extension: None,
-            value: WordValue::Assigned {
+        span,
+        kind: StatementKind::Word(Word::new(
+            span,
+            text.to_ascii_uppercase().into(),
+            g.span(name),
+            None,
+            WordValue::Assigned {
                 modifier: None,
                 expr: Box::new(expr),
             },
-        }),
+        )),
     };
     Some((statement, j))
 }

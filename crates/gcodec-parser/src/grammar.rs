@@ -675,16 +675,17 @@ fn letter_statement<'t, 's: 't>(
                     if sign.is_some_and(|(neg, _)| neg) {
                         v = -v;
                     }
-                    Word {
+                    Word::new(
+                        g.span(span),
                         address,
-                        address_span: a_span,
-                        extension: None,
-                        value: WordValue::Constant(NumberLit {
+                        a_span,
+                        None,
+                        WordValue::Constant(NumberLit {
                             span: g.span(SimpleSpan::from(start.start..n.end)),
                             value: v,
                             integer: text.bytes().all(|b| b.is_ascii_digit()),
                         }),
-                    }
+                    )
                 }
                 // X1=10, M2=3
                 (None, Some(n), None, Some(v)) => {
@@ -692,31 +693,30 @@ fn letter_statement<'t, 's: 't>(
                         return err(span, format!("address `{addr}` takes no numeric extension"), "only axes, I/J/K, M, H, S and T take an extension such as `M2=3`");
                     }
                     let ext = int_digits(n)?;
-                    Word {
+                    Word::new(
+                        g.span(span),
                         address,
-                        address_span: a_span,
-                        extension: Some(Box::new(Extension::Number { span: g.span(n), value: ext })),
-                        value: assigned_value(value_expr(v)?),
-                    }
+                        a_span,
+                        Some(Extension::Number { span: g.span(n), value: ext }),
+                        assigned_value(value_expr(v)?),
+                    )
                 }
                 // X=…
-                (None, None, None, Some(v)) => Word {
-                    address,
-                    address_span: a_span,
-                    extension: None,
-                    value: assigned_value(value_expr(v)?),
-                },
+                (None, None, None, Some(v)) => {
+                    Word::new(g.span(span), address, a_span, None, assigned_value(value_expr(v)?))
+                }
                 // G[8]=2, M[R1]=3
                 (None, None, Some((idx, bs)), Some(v)) => {
                     if !letter_takes_index(l) {
                         return err(bs, format!("address `{addr}` takes no `[…]` extension"), "write the plain form, e.g. `T=10` or `F=1000`");
                     }
-                    Word {
+                    Word::new(
+                        g.span(span),
                         address,
-                        address_span: a_span,
-                        extension: Some(Box::new(Extension::Index { span: idx.span, index: Box::new(idx) })),
-                        value: assigned_value(value_expr(v)?),
-                    }
+                        a_span,
+                        Some(Extension::Index { span: idx.span, index: Box::new(idx) }),
+                        assigned_value(value_expr(v)?),
+                    )
                 }
                 (_, Some(n), Some((_, bs)), _) => {
                     return err(bs, format!("a numbered address `{addr}{}` takes no `[…]`", g.text(n)), "use either the number (`M2=3`) or the index (`M[2]=3`)");
@@ -974,11 +974,11 @@ fn def<'t, 's: 't>(
         .then(var.separated_by(just(T::Comma)).at_least(1).collect())
         .map(|(((mut attributes, ty), after), vars)| {
             attributes.extend(after);
-            StatementKind::Def(Def {
+            StatementKind::Def(Box::new(Def {
                 attributes,
                 ty,
                 vars,
-            })
+            }))
         })
 }
 
@@ -1089,10 +1089,10 @@ fn extern_decl<'t, 's: 't>(
                 .or_not(),
         )
         .map(move |(name, params)| {
-            StatementKind::Extern(Extern {
+            StatementKind::Extern(Box::new(Extern {
                 name: g.name(name),
                 params: params.unwrap_or_default(),
-            })
+            }))
         })
 }
 
@@ -1142,9 +1142,14 @@ fn named_call<'t, 's: 't>(
 fn passes_word<'t, 's: 't>(
     g: Ctx<'s>,
     expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
-) -> impl Parser<'t, In<'t>, Option<Word>, Ex> + Clone + 't {
-    letter_statement(g, expr).try_map(|s, span| match s {
-        LetterStatement::Word(w) if w.address == "P" && w.extension.is_none() => Ok(Some(w)),
+) -> impl Parser<'t, In<'t>, Option<SpannedWord>, Ex> + Clone + 't {
+    letter_statement(g, expr).try_map(move |s, span| match s {
+        LetterStatement::Word(w) if w.address() == "P" && w.extension().is_none() => {
+            Ok(Some(SpannedWord {
+                span: g.span(span),
+                word: w,
+            }))
+        }
         LetterStatement::Invalid => Ok(None),
         _ => Err(SyntaxError::custom(
             span,
@@ -1171,7 +1176,7 @@ pub(crate) fn statements<'t, 's: 't>(
         .then(jump(g, expr.clone()).or_not())
         .map(|(condition, jump)| match jump {
             Some(jump) => StatementKind::IfGoto(Box::new(IfGoto { condition, jump })),
-            None => StatementKind::If(Condition { condition }),
+            None => StatementKind::If(Box::new(Condition { condition })),
         });
     let simple_kw = any().try_map(|t: T, span| {
         structure_keyword(t).ok_or(SyntaxError {
@@ -1184,10 +1189,10 @@ pub(crate) fn statements<'t, 's: 't>(
     });
     let while_stmt = just(T::While)
         .ignore_then(cond.clone())
-        .map(StatementKind::While);
+        .map(|c| StatementKind::While(Box::new(c)));
     let until = just(T::Until)
         .ignore_then(cond.clone())
-        .map(StatementKind::Until);
+        .map(|c| StatementKind::Until(Box::new(c)));
     let for_stmt = just(T::For)
         .ignore_then(var_ref(g, expr.clone()))
         .then_ignore(just(T::Eq))
@@ -1232,25 +1237,25 @@ pub(crate) fn statements<'t, 's: 't>(
         .ignore_then(name_token())
         .then(attributes(g, expr.clone(), AttributeNames::Any))
         .map(move |(name, attributes)| {
-            StatementKind::Redef(Redef {
+            StatementKind::Redef(Box::new(Redef {
                 name: g.name(name),
                 attributes,
-            })
+            }))
         });
     let define = just(T::Define)
         .ignore_then(name_token())
         .then_ignore(just(T::As))
         .then(any().repeated().at_least(1).to_span())
         .map(move |(name, body): (SimpleSpan, SimpleSpan)| {
-            StatementKind::Define(Define {
+            StatementKind::Define(Box::new(Define {
                 name: g.name(name),
                 body: gcodec_source_decode(g.bytes(body)),
                 body_span: g.span(body),
-            })
+            }))
         });
     let ret = just(T::Ret)
         .ignore_then(args(expr.clone()).or_not())
-        .map(|args| StatementKind::Ret(Ret { args }));
+        .map(|args| StatementKind::Ret(Box::new(Ret { args })));
     let call_section = just(T::Block)
         .ignore_then(jump_target(g, expr.clone()))
         .then_ignore(just(T::To))
@@ -1288,11 +1293,11 @@ pub(crate) fn statements<'t, 's: 't>(
         )
         .then(args(expr.clone()).or_not())
         .map(move |(path, args): (SimpleSpan, _)| {
-            StatementKind::PCall(PCall {
+            StatementKind::PCall(Box::new(PCall {
                 path: g.name(path),
                 path_span: g.span(path),
                 args,
-            })
+            }))
         });
     let mcall = just(T::MCall)
         .ignore_then(named_call(g, expr.clone()).or_not())
@@ -1312,8 +1317,11 @@ pub(crate) fn statements<'t, 's: 't>(
         })
         .then(
             letter_statement(g, expr.clone())
-                .try_map(|s, span| match s {
-                    LetterStatement::Word(w) => Ok(Some(w)),
+                .try_map(move |s, span| match s {
+                    LetterStatement::Word(w) => Ok(Some(SpannedWord {
+                        span: g.span(span),
+                        word: w,
+                    })),
                     LetterStatement::Invalid => Ok(None),
                     _ => Err(SyntaxError::custom(
                         span,
@@ -1322,15 +1330,16 @@ pub(crate) fn statements<'t, 's: 't>(
                         Some("write e.g. `TRANS X10 Y5` in a block of its own"),
                     )),
                 })
-                .or(named_word(g, expr.clone()).map(Some))
+                .or(named_word(g, expr.clone())
+                    .map_with(move |word, e| Some(SpannedWord { span: g.span(e.span()), word })))
                 .repeated()
                 .collect::<Vec<_>>(),
         )
         .map(|(op, words)| {
-            StatementKind::Frame(Frame {
+            StatementKind::Frame(Box::new(Frame {
                 op,
                 words: words.into_iter().flatten().collect(),
-            })
+            }))
         });
     let assign_or_named = var_ref(g, expr.clone())
         .then_ignore(just(T::Eq))
@@ -1345,21 +1354,21 @@ pub(crate) fn statements<'t, 's: 't>(
         .map_with(|_, e| e.span())
         .then(args(expr.clone()).or_not())
         .map(move |(s, args)| {
-            StatementKind::Call(Call {
+            StatementKind::Call(Box::new(Call {
                 target: CallTarget::Name {
                     span: g.span(s),
                     name: g.name(s),
                 },
                 args,
                 passes: None,
-            })
+            }))
         });
     // A malformed word yields no statement: its error was emitted, and the
     // driver reports the block.
     let letter = letter_statement(g, expr.clone()).map(|s| match s {
         LetterStatement::Word(w) => Some(StatementKind::Word(w)),
         LetterStatement::Assign(a) => Some(StatementKind::Assign(Box::new(a))),
-        LetterStatement::Call(c) => Some(StatementKind::Call(c)),
+        LetterStatement::Call(c) => Some(StatementKind::Call(Box::new(c))),
         LetterStatement::Invalid => None,
     });
 
@@ -1452,22 +1461,24 @@ fn named_word<'t, 's: 't>(
         .then(initializer(g, expr))
         .try_map(move |(target, value), span| {
             named_address_word(g, &target, &value, span).unwrap_or_else(|| {
-                Ok(Word {
-                    address: target.name.to_ascii_uppercase(),
-                    address_span: target.span,
-                    extension: None,
-                    value: match value {
-                        Initializer::Expr(e) => assigned_value(e),
-                        _ => {
-                            return Err(SyntaxError::custom(
-                                span,
-                                ERR_VALUE,
-                                "a word takes one value, not a list",
-                                None,
-                            ));
-                        }
-                    },
-                })
+                let value = match value {
+                    Initializer::Expr(e) => assigned_value(e),
+                    _ => {
+                        return Err(SyntaxError::custom(
+                            span,
+                            ERR_VALUE,
+                            "a word takes one value, not a list",
+                            None,
+                        ));
+                    }
+                };
+                Ok(Word::new(
+                    g.span(span),
+                    target.name.to_ascii_uppercase(),
+                    target.span,
+                    None,
+                    value,
+                ))
             })
         })
 }
@@ -1483,7 +1494,6 @@ fn named_address_word(
     if target.kind != VarKind::Name || !is_named_address(&target.name) {
         return None;
     }
-    let _ = g;
     let Initializer::Expr(e) = value else {
         return Some(Err(SyntaxError::custom(
             span,
@@ -1510,12 +1520,13 @@ fn named_address_word(
     let name_len = target.name.len() as u32;
     let mut address_span = target.span;
     address_span.end = address_span.start + name_len;
-    Some(Ok(Word {
-        address: target.name.to_ascii_uppercase(),
+    Some(Ok(Word::new(
+        g.span(span),
+        target.name.to_ascii_uppercase(),
         address_span,
-        extension: extension.map(Box::new),
-        value: assigned_value(e.clone()),
-    }))
+        extension,
+        assigned_value(e.clone()),
+    )))
 }
 
 /// The block prefix: skip mark, block number, label.

@@ -3,6 +3,7 @@
 use std::fmt::{self, Write};
 
 use crate::ast::*;
+use gcodec_source::Span;
 
 /// Writes one line per non-empty block: line number, block number and
 /// label, then the statements, indented by control-structure depth.
@@ -47,7 +48,7 @@ pub fn write_outline(program: &Program, out: &mut impl Write) -> fmt::Result {
 fn write_statement(st: &Statement, out: &mut impl Write) -> fmt::Result {
     use StatementKind as S;
     match &st.kind {
-        S::Word(w) => write_word(w, out),
+        S::Word(w) => write_word(w, st.span, out),
         S::Assign(a) => {
             write_var(&a.target, out)?;
             out.write_str(" = ")?;
@@ -183,7 +184,7 @@ fn write_statement(st: &Statement, out: &mut impl Write) -> fmt::Result {
             }
             if let Some(p) = &r.passes {
                 out.write_char(' ')?;
-                write_word(p, out)?;
+                write_word(&p.word, p.span, out)?;
             }
             Ok(())
         }
@@ -207,7 +208,7 @@ fn write_statement(st: &Statement, out: &mut impl Write) -> fmt::Result {
             out.write_str(f.op.keyword())?;
             for w in &f.words {
                 out.write_char(' ')?;
-                write_word(w, out)?;
+                write_word(&w.word, w.span, out)?;
             }
             Ok(())
         }
@@ -247,7 +248,7 @@ fn write_call(c: &Call, out: &mut impl Write) -> fmt::Result {
     }
     if let Some(p) = &c.passes {
         out.write_char(' ')?;
-        write_word(p, out)?;
+        write_word(&p.word, p.span, out)?;
     }
     Ok(())
 }
@@ -303,9 +304,9 @@ fn write_dims(dims: &[Expr], out: &mut impl Write) -> fmt::Result {
     out.write_char(']')
 }
 
-fn write_word(w: &Word, out: &mut impl Write) -> fmt::Result {
-    out.write_str(&w.address)?;
-    match w.extension.as_deref() {
+fn write_word(w: &Word, span: Span, out: &mut impl Write) -> fmt::Result {
+    out.write_str(w.address())?;
+    match w.extension() {
         Some(Extension::Number { value, .. }) => write!(out, "{value}")?,
         Some(Extension::Index { index, .. }) => {
             out.write_char('[')?;
@@ -314,7 +315,7 @@ fn write_word(w: &Word, out: &mut impl Write) -> fmt::Result {
         }
         None => {}
     }
-    match &w.value {
+    match &*w.value(span) {
         WordValue::Constant(n) => write!(out, "{}", n.value),
         WordValue::Assigned { modifier, expr } => {
             out.write_char('=')?;
