@@ -132,10 +132,9 @@ fn parse_file(path: &str) -> ExitCode {
     println!("diagnostics:  {}", parsed.diagnostics.len());
     let blocks = &parsed.program.blocks;
     let statements: usize = blocks.iter().map(|b| b.statements.len()).sum();
-    let capacity: usize = blocks.iter().map(|b| b.statements.capacity()).sum();
     println!(
-        "statements:   {statements} in Vecs with capacity for {capacity} ({:.1} MB of Statement slots; blocks Vec: {:.1} MB)",
-        (capacity * size_of::<Statement>()) as f64 / 1e6,
+        "statements:   {statements} ({:.1} MB of statements; blocks: {:.1} MB)",
+        (statements * size_of::<Statement>()) as f64 / 1e6,
         (blocks.capacity() * size_of::<Block>()) as f64 / 1e6
     );
     println!(

@@ -95,7 +95,7 @@ pub struct PathDirective {
 }
 
 /// One NC block: one line of the file.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Block {
     /// The line without its line end.
     pub span: Span,
@@ -106,7 +106,7 @@ pub struct Block {
     /// `NAME:` jump label.
     pub label: Option<Box<LabelDef>>,
     /// The statements in source order.
-    pub statements: Vec<Statement>,
+    pub statements: Box<[Statement]>,
     /// `; …` to the end of the line.
     pub comment: Option<Box<Comment>>,
     /// How many control structures enclose this block.

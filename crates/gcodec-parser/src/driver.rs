@@ -81,32 +81,42 @@ fn parse_with(name: &str, src: &[u8], fast_path: bool) -> Parse {
 }
 
 fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment>) -> Parse {
-    let mut parts: Vec<Driver<'_>> = if segments.len() == 1 {
-        vec![run_segment(src, segments[0], fast_path)]
+    // One block per line: the program's blocks are allocated once, and each
+    // segment fills its own run of them, so no second copy of the tree is
+    // ever alive (a merge would hold both at once).
+    let lines: Vec<usize> = segments
+        .iter()
+        .map(|s| line_count(&src[s.start..s.end]))
+        .collect();
+    let mut blocks = Vec::new();
+    blocks.resize_with(lines.iter().sum(), Block::default);
+    let mut slots = Vec::with_capacity(segments.len());
+    let mut rest = blocks.as_mut_slice();
+    for &n in &lines {
+        let (slot, tail) = std::mem::take(&mut rest).split_at_mut(n);
+        slots.push(slot);
+        rest = tail;
+    }
+    let parts: Vec<Segmented> = if segments.len() == 1 {
+        let slot = slots.pop().unwrap_or_default();
+        vec![run_segment(src, segments[0], slot, fast_path)]
     } else {
         std::thread::scope(|scope| {
             let handles: Vec<_> = segments
                 .iter()
-                .map(|&segment| scope.spawn(move || run_segment(src, segment, fast_path)))
+                .zip(slots)
+                .map(|(&segment, slot)| {
+                    scope.spawn(move || run_segment(src, segment, slot, fast_path))
+                })
                 .collect();
             handles
                 .into_iter()
-                .zip(&segments)
-                // Parsing does not panic; should a thread die anyway, its
-                // segment is parsed again here rather than lost.
-                .map(|(h, &segment)| {
-                    h.join()
-                        .unwrap_or_else(|_| run_segment(src, segment, fast_path))
-                })
+                // Parsing does not panic; if it ever did, the panic is the
+                // caller's, as in the single-threaded case.
+                .map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
                 .collect()
         })
     };
-    // The first segment's blocks grow to hold the rest: reallocating a large
-    // buffer moves pages rather than copying, so the merge costs no second
-    // copy of the tree.
-    let total = parts.iter().map(|p| p.program.blocks.len()).sum::<usize>();
-    let mut blocks = std::mem::take(&mut parts[0].program.blocks);
-    blocks.reserve_exact(total - blocks.len());
     let mut program = Program {
         file: name.to_owned(),
         header: None,
@@ -115,13 +125,11 @@ fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment
         structures: Vec::new(),
     };
     let mut diagnostics = Vec::new();
-    for part in &mut parts {
-        program.header = program.header.take().or(part.program.header.take());
-        program.path = program.path.take().or(part.program.path.take());
-        program.blocks.append(&mut part.program.blocks);
-        diagnostics.append(&mut part.diagnostics);
+    for part in parts {
+        program.header = program.header.take().or(part.header);
+        program.path = program.path.take().or(part.path);
+        diagnostics.extend(part.diagnostics);
     }
-    drop(parts);
     structure::pair(&mut program, &mut diagnostics);
     // Lexical errors are found while reading and syntax errors per chunk:
     // report everything in source order.
@@ -130,6 +138,12 @@ fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment
         program,
         diagnostics,
     }
+}
+
+/// Lines of `src`, counting a last line without a line end.
+fn line_count(src: &[u8]) -> usize {
+    src.iter().filter(|&&b| b == b'\n').count()
+        + usize::from(src.last().is_some_and(|&b| b != b'\n'))
 }
 
 /// A byte range of whole lines.
@@ -169,32 +183,35 @@ fn split(src: &[u8], threads: usize) -> Vec<Segment> {
     if segments.is_empty() { whole } else { segments }
 }
 
-fn run_segment(src: &[u8], segment: Segment, fast_path: bool) -> Driver<'_> {
+/// What a segment found besides its blocks.
+struct Segmented {
+    header: Option<Header>,
+    path: Option<PathDirective>,
+    diagnostics: Vec<Diagnostic>,
+}
+
+/// Parses one segment into `blocks`, one per line.
+fn run_segment(src: &[u8], segment: Segment, blocks: &mut [Block], fast_path: bool) -> Segmented {
     let mut driver = Driver {
         src,
         fast_path,
         first_segment: segment.start == 0,
-        program: Program {
-            file: String::new(),
-            header: None,
-            path: None,
-            // One block per line: count them rather than guess, so the
-            // vector never doubles past its need.
-            blocks: Vec::with_capacity(
-                src[segment.start..segment.end]
-                    .iter()
-                    .filter(|&&b| b == b'\n')
-                    .count()
-                    + 1,
-            ),
-            structures: Vec::new(),
-        },
+        blocks,
+        filled: 0,
+        content_seen: false,
+        header: None,
+        path: None,
         diagnostics: Vec::new(),
         tokens: Vec::with_capacity(1024),
         lines: Vec::with_capacity(CHUNK_LINES),
     };
     driver.run(segment);
-    driver
+    debug_assert_eq!(driver.filled, driver.blocks.len(), "one block per line");
+    Segmented {
+        header: driver.header,
+        path: driver.path,
+        diagnostics: driver.diagnostics,
+    }
 }
 
 /// One line waiting for the grammar.
@@ -208,19 +225,25 @@ struct Line {
     broken: bool,
 }
 
-struct Driver<'s> {
+struct Driver<'s, 'b> {
     src: &'s [u8],
     /// Off only in tests that compare the fast path with the grammar.
     fast_path: bool,
     /// Only the segment at the start of the file may hold the header.
     first_segment: bool,
-    program: Program,
+    /// This segment's blocks, one per line, filled in order.
+    blocks: &'b mut [Block],
+    filled: usize,
+    /// A block with statements, a label or a number has been seen.
+    content_seen: bool,
+    header: Option<Header>,
+    path: Option<PathDirective>,
     diagnostics: Vec<Diagnostic>,
     tokens: Vec<Spanned>,
     lines: Vec<Line>,
 }
 
-impl<'s> Driver<'s> {
+impl<'s> Driver<'s, '_> {
     fn run(&mut self, segment: Segment) {
         let src = self.src;
         let base = segment.start as u32;
@@ -307,7 +330,13 @@ impl<'s> Driver<'s> {
             let parser = grammar::block(ctx);
             for line in &lines {
                 let block = self.parse_line(line, &tokens[line.tokens.clone()], &ctx, &parser);
-                self.program.blocks.push(block);
+                self.content_seen |= !block.statements.is_empty()
+                    || block.label.is_some()
+                    || block.number.is_some();
+                if let Some(slot) = self.blocks.get_mut(self.filled) {
+                    *slot = block;
+                    self.filled += 1;
+                }
             }
         }
         lines.clear();
@@ -332,7 +361,7 @@ impl<'s> Driver<'s> {
             skip: None,
             number: None,
             label: None,
-            statements: Vec::new(),
+            statements: Box::default(),
             comment: line.comment.map(|(s, e)| {
                 Box::new(Comment {
                     span: Span::new(s, e),
@@ -378,8 +407,7 @@ impl<'s> Driver<'s> {
             if let Some(body) = fast::constant_words(tokens, ctx) {
                 block.skip = body.skip.map(Box::new);
                 block.number = body.number;
-                block.statements = body.statements;
-                self.check_statements(&mut block.statements);
+                block.statements = self.checked(body.statements);
                 return block;
             }
         }
@@ -395,9 +423,7 @@ impl<'s> Driver<'s> {
                 block.skip = body.skip.map(Box::new);
                 block.number = body.number;
                 block.label = body.label.map(Box::new);
-                block.statements = body.statements;
-                block.statements.shrink_to_fit();
-                self.check_statements(&mut block.statements);
+                block.statements = self.checked(body.statements);
             }
             (_, Some(error)) => self.diagnostics.push(syntax_diagnostic(error, ctx)),
             (None, None) => {}
@@ -408,12 +434,7 @@ impl<'s> Driver<'s> {
     fn note_header(&mut self, span: Span) {
         let text = decode(&self.src[span.start as usize + 1..span.end as usize]);
         let text = text.trim_end();
-        let before_any_block = self
-            .program
-            .blocks
-            .iter()
-            .all(|b| b.statements.is_empty() && b.label.is_none() && b.number.is_none());
-        if !self.first_segment || self.program.header.is_some() || !before_any_block {
+        if !self.first_segment || self.header.is_some() || self.content_seen {
             self.diagnostics.push(
                 Diagnostic::error(
                     "gcodec::parse::misplaced_header",
@@ -425,7 +446,7 @@ impl<'s> Driver<'s> {
             return;
         }
         let (program, file_type) = split_internal_name(text);
-        self.program.header = Some(Header {
+        self.header = Some(Header {
             span,
             text: text.into(),
             program,
@@ -438,8 +459,8 @@ impl<'s> Driver<'s> {
         let is_path = text
             .get(..6)
             .is_some_and(|p| p.eq_ignore_ascii_case("$PATH="));
-        if self.program.path.is_none() && is_path {
-            self.program.path = Some(PathDirective {
+        if self.path.is_none() && is_path {
+            self.path = Some(PathDirective {
                 span: comment.span,
                 path: text[6..].into(),
             });
@@ -447,6 +468,12 @@ impl<'s> Driver<'s> {
     }
 
     /// Checks that need a block's whole statement list.
+    /// Checks a block's statements and stores them at their exact size.
+    fn checked(&mut self, mut statements: Vec<Statement>) -> Box<[Statement]> {
+        self.check_statements(&mut statements);
+        statements.into_boxed_slice()
+    }
+
     fn check_statements(&mut self, statements: &mut Vec<Statement>) {
         // A value after `=` ends at a blank: `R3=200G0` is not two statements.
         for pair in statements.windows(2) {
