@@ -2,7 +2,7 @@
 //! `docs/performance.md`.
 //!
 //! ```text
-//! cargo run --release -p gcodec-parser --example parse_file -- FILE
+//! cargo run --release -p gcodec-parser --example parse_file -- [--heap] FILE
 //! cargo run --release -p gcodec-parser --example parse_file -- --generate BLOCKS FILE
 //! cargo run --release -p gcodec-parser --example parse_file -- --sizes
 //! ```
@@ -10,13 +10,14 @@
 //! The first form reads FILE, lexes it once on its own (for the lexer's
 //! throughput), then parses it and prints the block count, the diagnostics
 //! count and the elapsed times. Run it under `/usr/bin/time -v` for the whole
-//! process's wall time and peak RSS. `--generate` writes the benchmark's
+//! process's wall time and peak RSS. `--heap` also counts the bytes the
+//! parser allocates (slower: use it for memory, not for time). `--generate` writes the benchmark's
 //! deterministic program of BLOCKS lines to FILE; `--sizes` prints the size
 //! of the main AST types.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering::Relaxed};
 use std::time::Instant;
 
 use gcodec_parser::ast::*;
@@ -24,9 +25,13 @@ use gcodec_parser::ast::*;
 #[path = "../benches/program/mod.rs"]
 mod program;
 
-/// The system allocator, counting the bytes requested: live heap, its peak
-/// and the number of allocations (allocator overhead is not included).
+/// The system allocator, counting the bytes requested when `--heap` is
+/// given: live heap, its peak and the number of allocations (allocator
+/// overhead is not included). Counting costs time (two cores update the
+/// same counters), so timings are taken without it.
 struct Counting;
+
+static COUNTING: AtomicBool = AtomicBool::new(false);
 
 static LIVE: AtomicUsize = AtomicUsize::new(0);
 static PEAK: AtomicUsize = AtomicUsize::new(0);
@@ -36,6 +41,10 @@ static CALLS: AtomicUsize = AtomicUsize::new(0);
 // only statistics.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if !COUNTING.load(Relaxed) {
+            // SAFETY: forwarded with the caller's layout.
+            return unsafe { System.alloc(layout) };
+        }
         let live = LIVE.fetch_add(layout.size(), Relaxed) + layout.size();
         PEAK.fetch_max(live, Relaxed);
         CALLS.fetch_add(1, Relaxed);
@@ -43,11 +52,19 @@ unsafe impl GlobalAlloc for Counting {
         unsafe { System.alloc(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        if !COUNTING.load(Relaxed) {
+            // SAFETY: forwarded with the caller's pointer and layout.
+            return unsafe { System.dealloc(ptr, layout) };
+        }
         LIVE.fetch_sub(layout.size(), Relaxed);
         // SAFETY: forwarded with the caller's pointer and layout.
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if !COUNTING.load(Relaxed) {
+            // SAFETY: forwarded with the caller's pointer, layout and size.
+            return unsafe { System.realloc(ptr, layout, new_size) };
+        }
         if new_size >= layout.size() {
             let live = LIVE.fetch_add(new_size - layout.size(), Relaxed) + new_size - layout.size();
             PEAK.fetch_max(live, Relaxed);
@@ -93,8 +110,12 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         [path] if !path.starts_with("--") => parse_file(path),
+        ["--heap", path] => {
+            COUNTING.store(true, Relaxed);
+            parse_file(path)
+        }
         _ => {
-            eprintln!("usage: parse_file FILE | --generate BLOCKS FILE | --sizes");
+            eprintln!("usage: parse_file [--heap] FILE | --generate BLOCKS FILE | --sizes");
             ExitCode::FAILURE
         }
     }
@@ -137,13 +158,15 @@ fn parse_file(path: &str) -> ExitCode {
         (statements * size_of::<Statement>()) as f64 / 1e6,
         (blocks.capacity() * size_of::<Block>()) as f64 / 1e6
     );
-    println!(
-        "heap:         {:.1} MB kept by the AST ({:.1} bytes/block, {:.1}x input), {:.1} MB peak while parsing, {calls} allocations",
-        retained as f64 / 1e6,
-        retained as f64 / blocks.len().max(1) as f64,
-        retained as f64 / bytes.len().max(1) as f64,
-        peak as f64 / 1e6,
-    );
+    if COUNTING.load(Relaxed) {
+        println!(
+            "heap:         {:.1} MB kept by the AST ({:.1} bytes/block, {:.1}x input), {:.1} MB peak while parsing, {calls} allocations",
+            retained as f64 / 1e6,
+            retained as f64 / blocks.len().max(1) as f64,
+            retained as f64 / bytes.len().max(1) as f64,
+            peak as f64 / 1e6,
+        );
+    }
     println!("read:         {:.3} s", read.as_secs_f64());
     println!(
         "lex only:     {:.3} s ({:.1} MB/s)",

@@ -251,7 +251,11 @@ pub struct Word(WordRepr);
 enum WordRepr {
     /// An upper-case letter at the start of the word and a constant from
     /// the next byte to the end of the word.
-    Letter { letter: u8, integer: bool, value: f64 },
+    Letter {
+        letter: u8,
+        integer: bool,
+        value: f64,
+    },
     Parts(Box<WordParts>),
 }
 

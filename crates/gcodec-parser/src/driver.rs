@@ -330,9 +330,8 @@ impl<'s> Driver<'s, '_> {
             let parser = grammar::block(ctx);
             for line in &lines {
                 let block = self.parse_line(line, &tokens[line.tokens.clone()], &ctx, &parser);
-                self.content_seen |= !block.statements.is_empty()
-                    || block.label.is_some()
-                    || block.number.is_some();
+                self.content_seen |=
+                    !block.statements.is_empty() || block.label.is_some() || block.number.is_some();
                 if let Some(slot) = self.blocks.get_mut(self.filled) {
                     *slot = block;
                     self.filled += 1;
@@ -404,7 +403,7 @@ impl<'s> Driver<'s, '_> {
             return block;
         }
         if self.fast_path {
-            if let Some(body) = fast::constant_words(tokens, ctx) {
+            if let Some(body) = fast::block(tokens, ctx) {
                 block.skip = body.skip.map(Box::new);
                 block.number = body.number;
                 block.statements = self.checked(body.statements);

@@ -1,16 +1,23 @@
 //! A fast path for the commonest blocks: DIN words with constant values
-//! (`N10 G1 Y2 F200 ; cut`), named addresses with a constant
-//! (`CR=-20.5`), and structure keywords standing alone (`ENDIF`).
+//! (`N10 G1 Y2 F200 ; cut`), R-parameter assignments
+//! (`R1=R1+0.5`), words with a value after `=` (`X=R1*2`, `CR=-20.5`),
+//! `IF`/`WHILE`/`UNTIL` conditions, and structure keywords standing alone
+//! (`ENDIF`).
 //!
-//! Most blocks of real programs are motion blocks of this shape, and running
-//! the full chumsky grammar on them costs several times more than reading
-//! them directly. This module recognises exactly that shape and builds the
-//! same nodes the grammar would; anything else — `=`, brackets, names,
-//! R parameters, `L` calls, any doubt — returns `None` and the grammar
-//! parses the block. Its output is checked against the grammar's by the
-//! tests below and by the property tests.
+//! Most blocks of real programs have one of these shapes, and running the
+//! full chumsky grammar on them costs several times more than reading them
+//! directly. This module recognises exactly these shapes and builds the same
+//! nodes the grammar would: expressions by precedence climbing over the
+//! grammar's own operator table ([`infix`] mirrors the pratt parser in
+//! `grammar::expr`), with numbers, R parameters, numbered axis names and
+//! parentheses as operands. Anything else — names, calls, strings, brackets,
+//! lists, `L` calls, labels, any value the grammar would diagnose — returns
+//! `None` and the grammar parses the block. Its output is checked against
+//! the grammar's by `tests/fast_path.rs`, on the corpus, the fixtures and
+//! generated blocks.
 
 use chumsky::span::SimpleSpan;
+use compact_str::CompactString;
 use gcodec_lexer::TokenKind as T;
 
 use crate::ast::*;
@@ -18,9 +25,9 @@ use crate::grammar::{
     BlockBody, Ctx, Spanned, is_named_address, letter_name, number_value, structure_keyword,
 };
 
-/// Parses `tokens` if the block is skip mark, block number and constant
-/// words only.
-pub(crate) fn constant_words(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBody> {
+/// Parses `tokens` if every statement of the block has one of the shapes
+/// above.
+pub(crate) fn block(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBody> {
     let mut i = 0;
     let mut skip = None;
     if let Some((T::Slash, slash)) = tokens.first() {
@@ -63,7 +70,7 @@ pub(crate) fn constant_words(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBod
         let alone =
             structure_keyword(*kind).or((*kind == T::Repeat).then_some(StatementKind::Repeat));
         let Some(kind) = alone else {
-            return constant_words_from(tokens, i, g, skip, number);
+            return statements_from(tokens, i, g, skip, number);
         };
         return Some(BlockBody {
             skip,
@@ -75,83 +82,27 @@ pub(crate) fn constant_words(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBod
             }],
         });
     }
-    constant_words_from(tokens, i, g, skip, number)
+    statements_from(tokens, i, g, skip, number)
 }
 
-/// The words from token `i` on.
-fn constant_words_from(
+/// The statements from token `i` on.
+fn statements_from(
     tokens: &[Spanned],
-    mut i: usize,
+    i: usize,
     g: &Ctx<'_>,
     skip: Option<SkipLevel>,
     number: Option<BlockNumber>,
 ) -> Option<BlockBody> {
-    // Every word starts with a letter or a name: that is the exact
-    // statement count when the block qualifies.
-    let words = tokens[i..]
+    // Every statement starts with one of these; in blocks of constant
+    // words, the count is exact.
+    let starts = tokens[i..]
         .iter()
-        .filter(|(k, _)| matches!(k, T::Letter | T::Ident))
+        .filter(|(k, _)| matches!(k, T::Letter | T::Ident | T::If | T::While | T::Until))
         .count();
-    let mut statements = Vec::with_capacity(words);
-    while i < tokens.len() {
-        if tokens[i].0 == T::Ident {
-            let (statement, next) = named_constant(tokens, i, g)?;
-            statements.push(statement);
-            i = next;
-            continue;
-        }
-        let (T::Letter, letter) = tokens[i] else {
-            return None;
-        };
-        let address = g.bytes(letter)[0].to_ascii_uppercase();
-        if matches!(address, b'R' | b'L') {
-            return None;
-        }
-        i += 1;
-        let mut sign = None;
-        if let Some(&(kind @ (T::Plus | T::Minus), s)) = tokens.get(i) {
-            if s.start != letter.end {
-                return None;
-            }
-            sign = Some((kind == T::Minus, s));
-            i += 1;
-        }
-        let &(T::Number, n) = tokens.get(i)? else {
-            return None;
-        };
-        let expected_start = sign.map_or(letter.end, |(_, s)| s.end);
-        if n.start != expected_start {
-            return None;
-        }
-        i += 1;
-        // `X1=`, `M5[`, `X1(`, `T1"…"` mean something else.
-        if matches!(
-            tokens.get(i),
-            Some((T::Eq | T::LBracket | T::LParen | T::String, _))
-        ) {
-            return None;
-        }
-        let text = g.text(n);
-        let mut value = number_value(text)?;
-        if sign.is_some_and(|(negative, _)| negative) {
-            value = -value;
-        }
-        let value_start = sign.map_or(n.start, |(_, s)| s.start);
-        let span = g.span(SimpleSpan::from(letter.start..n.end));
-        statements.push(Statement {
-            span,
-            kind: StatementKind::Word(Word::new(
-                span,
-                letter_name(address),
-                g.span(letter),
-                None,
-                WordValue::Constant(NumberLit {
-                    span: g.span(SimpleSpan::from(value_start..n.end)),
-                    value,
-                    integer: text.bytes().all(|b| b.is_ascii_digit()),
-                }),
-            )),
-        });
+    let mut statements = Vec::with_capacity(starts);
+    let mut c = Cursor { tokens, i, g };
+    while c.i < tokens.len() {
+        statements.push(statement(&mut c)?);
     }
     Some(BlockBody {
         skip,
@@ -161,54 +112,208 @@ fn constant_words_from(
     })
 }
 
-/// `CR=-20.5`: a multi-letter address with a signed constant, built as the
-/// grammar builds it (a number, or a unary sign over a number). Returns the
-/// statement and the index of the next token.
-fn named_constant(tokens: &[Spanned], i: usize, g: &Ctx<'_>) -> Option<(Statement, usize)> {
-    let (T::Ident, name) = tokens[i] else {
-        return None;
+/// A position in a block's tokens.
+struct Cursor<'a, 's> {
+    tokens: &'a [Spanned],
+    i: usize,
+    g: &'a Ctx<'s>,
+}
+
+impl Cursor<'_, '_> {
+    fn kind(&self) -> Option<T> {
+        self.tokens.get(self.i).map(|t| t.0)
+    }
+
+    fn kind_at(&self, ahead: usize) -> Option<T> {
+        self.tokens.get(self.i + ahead).map(|t| t.0)
+    }
+
+    /// The span of the token `ahead` of the cursor.
+    fn span_at(&self, ahead: usize) -> Option<SimpleSpan> {
+        self.tokens.get(self.i + ahead).map(|t| t.1)
+    }
+
+    /// The end of the last token taken.
+    fn end(&self) -> usize {
+        self.tokens[self.i - 1].1.end
+    }
+
+    fn span_from(&self, start: usize) -> gcodec_source::Span {
+        self.g.span(SimpleSpan::from(start..self.end()))
+    }
+}
+
+fn statement(c: &mut Cursor<'_, '_>) -> Option<Statement> {
+    let start = c.span_at(0)?;
+    let kind = match c.kind()? {
+        T::Letter => return letter_statement(c),
+        T::Ident => return named_word(c),
+        T::If => {
+            c.i += 1;
+            let condition = expr(c, 0)?;
+            // `IF cond GOTOF label` is a jump, for the grammar.
+            if matches!(
+                c.kind(),
+                Some(T::Goto | T::GotoF | T::GotoB | T::GotoC | T::GotoS)
+            ) {
+                return None;
+            }
+            StatementKind::If(Box::new(Condition { condition }))
+        }
+        T::While => {
+            c.i += 1;
+            StatementKind::While(Box::new(Condition {
+                condition: expr(c, 0)?,
+            }))
+        }
+        T::Until => {
+            c.i += 1;
+            StatementKind::Until(Box::new(Condition {
+                condition: expr(c, 0)?,
+            }))
+        }
+        _ => return None,
     };
-    let text = g.text(name);
-    if !is_named_address(text) || !matches!(tokens.get(i + 1), Some((T::Eq, _))) {
+    Some(Statement {
+        span: c.span_from(start.start),
+        kind,
+    })
+}
+
+/// `X10`, `X-1.5`, `X=R1*2`, `R1=R2+1`.
+fn letter_statement(c: &mut Cursor<'_, '_>) -> Option<Statement> {
+    let g = c.g;
+    let letter = c.span_at(0)?;
+    let address = g.bytes(letter)[0].to_ascii_uppercase();
+    if matches!(address, b'L' | b'N') {
         return None;
     }
-    let mut j = i + 2;
-    let sign = match tokens.get(j) {
-        Some(&(T::Minus, s)) => Some((UnaryOp::Neg, s)),
-        Some(&(T::Plus, s)) => Some((UnaryOp::Plus, s)),
+    match (c.kind_at(1), c.span_at(1)) {
+        // `R1=…`
+        (Some(T::Number), Some(n)) if address == b'R' => {
+            if n.start != letter.end || c.kind_at(2) != Some(T::Eq) {
+                return None;
+            }
+            let index = g.text(n).parse::<u32>().ok()?;
+            c.i += 3;
+            let value = expr(c, 0)?;
+            // `R1=(1, 2)` is a list, for the grammar.
+            if c.kind() == Some(T::Comma) {
+                return None;
+            }
+            let target = VarRef {
+                span: g.span(SimpleSpan::from(letter.start..n.end)),
+                kind: VarKind::RParameter,
+                name: letter_name(b'R'),
+                indices: vec![Expr {
+                    span: g.span(n),
+                    kind: ExprKind::Number {
+                        value: f64::from(index),
+                        integer: true,
+                    },
+                }],
+            };
+            Some(Statement {
+                span: c.span_from(letter.start),
+                kind: StatementKind::Assign(Box::new(Assign {
+                    target,
+                    value: Initializer::Expr(value),
+                })),
+            })
+        }
+        (Some(T::Eq), _) if address != b'R' => {
+            c.i += 2;
+            let value = expr(c, 0)?;
+            if c.kind() == Some(T::Comma) {
+                return None;
+            }
+            let span = c.span_from(letter.start);
+            Some(Statement {
+                span,
+                kind: StatementKind::Word(Word::new(
+                    span,
+                    letter_name(address),
+                    g.span(letter),
+                    None,
+                    WordValue::Assigned {
+                        modifier: None,
+                        expr: Box::new(value),
+                    },
+                )),
+            })
+        }
+        _ if address != b'R' => constant_word(c, letter, address),
         _ => None,
-    };
-    if sign.is_some() {
+    }
+}
+
+/// `X10`, `X-1.5`: a letter with a constant touching it.
+fn constant_word(c: &mut Cursor<'_, '_>, letter: SimpleSpan, address: u8) -> Option<Statement> {
+    let g = c.g;
+    let mut j = c.i + 1;
+    let mut sign = None;
+    if let Some(&(kind @ (T::Plus | T::Minus), s)) = c.tokens.get(j) {
+        if s.start != letter.end {
+            return None;
+        }
+        sign = Some((kind == T::Minus, s));
         j += 1;
     }
-    let &(T::Number, n) = tokens.get(j)? else {
+    let &(T::Number, n) = c.tokens.get(j)? else {
         return None;
     };
-    j += 1;
-    // Anything but the start of the next word could continue the value.
-    if !matches!(tokens.get(j), None | Some((T::Letter | T::Ident, _))) {
+    let expected_start = sign.map_or(letter.end, |(_, s)| s.end);
+    if n.start != expected_start {
         return None;
     }
-    let digits = g.text(n);
-    let number = Expr {
-        span: g.span(n),
-        kind: ExprKind::Number {
-            value: number_value(digits)?,
-            integer: digits.bytes().all(|b| b.is_ascii_digit()),
-        },
-    };
-    let expr = match sign {
-        None => number,
-        Some((op, s)) => Expr {
-            span: g.span(SimpleSpan::from(s.start..n.end)),
-            kind: ExprKind::Unary {
-                op,
-                operand: Box::new(number),
-            },
-        },
-    };
-    let span = g.span(SimpleSpan::from(name.start..n.end));
-    let statement = Statement {
+    j += 1;
+    // `X1=`, `M5[`, `X1(`, `T1"…"` mean something else.
+    if matches!(
+        c.tokens.get(j),
+        Some((T::Eq | T::LBracket | T::LParen | T::String, _))
+    ) {
+        return None;
+    }
+    c.i = j;
+    let text = g.text(n);
+    let mut value = number_value(text)?;
+    if sign.is_some_and(|(negative, _)| negative) {
+        value = -value;
+    }
+    let value_start = sign.map_or(n.start, |(_, s)| s.start);
+    let span = g.span(SimpleSpan::from(letter.start..n.end));
+    Some(Statement {
+        span,
+        kind: StatementKind::Word(Word::new(
+            span,
+            letter_name(address),
+            g.span(letter),
+            None,
+            WordValue::Constant(NumberLit {
+                span: g.span(SimpleSpan::from(value_start..n.end)),
+                value,
+                integer: text.bytes().all(|b| b.is_ascii_digit()),
+            }),
+        )),
+    })
+}
+
+/// `CR=-20.5`, `TURN=R2`: a multi-letter address with a value after `=`.
+fn named_word(c: &mut Cursor<'_, '_>) -> Option<Statement> {
+    let g = c.g;
+    let name = c.span_at(0)?;
+    let text = g.text(name);
+    if c.kind_at(1) != Some(T::Eq) || !is_named_address(text) || FrameOp::from_name(text).is_some()
+    {
+        return None;
+    }
+    c.i += 2;
+    let value = expr(c, 0)?;
+    if c.kind() == Some(T::Comma) {
+        return None;
+    }
+    let span = c.span_from(name.start);
+    Some(Statement {
         span,
         kind: StatementKind::Word(Word::new(
             span,
@@ -217,9 +322,149 @@ fn named_constant(tokens: &[Spanned], i: usize, g: &Ctx<'_>) -> Option<(Statemen
             None,
             WordValue::Assigned {
                 modifier: None,
-                expr: Box::new(expr),
+                expr: Box::new(value),
             },
         )),
+    })
+}
+
+/// Binding power and operator of an infix token: the grammar's pratt
+/// table (`grammar::expr`), all levels left-associative.
+fn infix(kind: T) -> Option<(u8, BinaryOp)> {
+    Some(match kind {
+        T::Star => (11, BinaryOp::Mul),
+        T::Slash => (11, BinaryOp::Div),
+        T::Div => (11, BinaryOp::IntDiv),
+        T::Mod => (11, BinaryOp::Mod),
+        T::Plus => (10, BinaryOp::Add),
+        T::Minus => (10, BinaryOp::Sub),
+        T::BAnd => (9, BinaryOp::BAnd),
+        T::BXor => (8, BinaryOp::BXor),
+        T::BOr => (7, BinaryOp::BOr),
+        T::And => (6, BinaryOp::And),
+        T::Xor => (5, BinaryOp::Xor),
+        T::Or => (4, BinaryOp::Or),
+        T::Concat => (3, BinaryOp::Concat),
+        T::EqEq => (2, BinaryOp::Eq),
+        T::Ne => (2, BinaryOp::Ne),
+        T::Lt => (2, BinaryOp::Lt),
+        T::Gt => (2, BinaryOp::Gt),
+        T::Le => (2, BinaryOp::Le),
+        T::Ge => (2, BinaryOp::Ge),
+        T::Colon => (1, BinaryOp::Chain),
+        _ => return None,
+    })
+}
+
+/// Binding power of the prefix operators, above every infix one.
+const PREFIX_POWER: u8 = 12;
+
+/// An expression whose operators all bind tighter than `min`. Recursion is
+/// bounded: the driver rejects blocks with more than
+/// [`crate::MAX_OPERATORS_PER_BLOCK`] operators or brackets nested deeper
+/// than [`crate::MAX_EXPRESSION_DEPTH`] before any parser runs.
+fn expr(c: &mut Cursor<'_, '_>, min: u8) -> Option<Expr> {
+    let start = c.span_at(0)?.start;
+    let prefix = match c.kind()? {
+        T::Minus => Some(UnaryOp::Neg),
+        T::Plus => Some(UnaryOp::Plus),
+        T::Not => Some(UnaryOp::Not),
+        T::BNot => Some(UnaryOp::BNot),
+        T::Concat => Some(UnaryOp::ToString),
+        _ => None,
     };
-    Some((statement, j))
+    let mut lhs = match prefix {
+        Some(op) => {
+            c.i += 1;
+            let operand = expr(c, PREFIX_POWER)?;
+            Expr {
+                span: c.span_from(start),
+                kind: ExprKind::Unary {
+                    op,
+                    operand: Box::new(operand),
+                },
+            }
+        }
+        None => operand(c)?,
+    };
+    while let Some((power, op)) = c.kind().and_then(infix) {
+        if power <= min {
+            break;
+        }
+        c.i += 1;
+        let rhs = expr(c, power)?;
+        lhs = Expr {
+            span: c.span_from(start),
+            kind: ExprKind::Binary(Box::new(BinaryExpr { op, lhs, rhs })),
+        };
+    }
+    Some(lhs)
+}
+
+/// A number, `R1`, `X1` or a parenthesised expression.
+fn operand(c: &mut Cursor<'_, '_>) -> Option<Expr> {
+    let g = c.g;
+    let (kind, s) = *c.tokens.get(c.i)?;
+    match kind {
+        T::Number => {
+            let text = g.text(s);
+            let value = number_value(text)?;
+            c.i += 1;
+            Some(Expr {
+                span: g.span(s),
+                kind: ExprKind::Number {
+                    value,
+                    integer: text.bytes().all(|b| b.is_ascii_digit()),
+                },
+            })
+        }
+        T::LParen => {
+            c.i += 1;
+            let mut inner = expr(c, 0)?;
+            if c.kind()? != T::RParen {
+                return None;
+            }
+            c.i += 1;
+            // The span of a parenthesised expression includes the parentheses.
+            inner.span = c.span_from(s.start);
+            Some(inner)
+        }
+        T::Letter => {
+            let digits = c.span_at(1).filter(|d| d.start == s.end)?;
+            if c.kind_at(1) != Some(T::Number)
+                || c.kind_at(2) == Some(T::LBracket)
+                || !g.bytes(digits).iter().all(u8::is_ascii_digit)
+            {
+                return None;
+            }
+            let text = g.text(digits);
+            let var = if g.bytes(s)[0].eq_ignore_ascii_case(&b'R') {
+                VarRef {
+                    span: g.span(SimpleSpan::from(s.start..digits.end)),
+                    kind: VarKind::RParameter,
+                    name: letter_name(b'R'),
+                    indices: vec![Expr {
+                        span: g.span(digits),
+                        kind: ExprKind::Number {
+                            value: number_value(text)?,
+                            integer: true,
+                        },
+                    }],
+                }
+            } else {
+                VarRef {
+                    span: g.span(SimpleSpan::from(s.start..digits.end)),
+                    kind: VarKind::Name,
+                    name: CompactString::from(g.text(SimpleSpan::from(s.start..digits.end))),
+                    indices: Vec::new(),
+                }
+            };
+            c.i += 2;
+            Some(Expr {
+                span: var.span,
+                kind: ExprKind::Var { var: Box::new(var) },
+            })
+        }
+        _ => None,
+    }
 }

@@ -1330,8 +1330,12 @@ pub(crate) fn statements<'t, 's: 't>(
                         Some("write e.g. `TRANS X10 Y5` in a block of its own"),
                     )),
                 })
-                .or(named_word(g, expr.clone())
-                    .map_with(move |word, e| Some(SpannedWord { span: g.span(e.span()), word })))
+                .or(named_word(g, expr.clone()).map_with(move |word, e| {
+                    Some(SpannedWord {
+                        span: g.span(e.span()),
+                        word,
+                    })
+                }))
                 .repeated()
                 .collect::<Vec<_>>(),
         )

@@ -314,7 +314,10 @@ fn line_summary(parse: &Parse, block: usize) -> String {
     let mut codes: Vec<&str> = parse
         .diagnostics
         .iter()
-        .filter(|d| d.span().is_some_and(|s| line.start <= s.start && s.start <= line.end))
+        .filter(|d| {
+            d.span()
+                .is_some_and(|s| line.start <= s.start && s.start <= line.end)
+        })
         .filter(|d| {
             // Pairing and header placement depend on the other lines.
             ![

@@ -69,7 +69,11 @@ fn each_annotated_line_gets_its_verdict() {
             Verdict::Error
         };
         if let Some(d) = errors.first() {
-            assert!(d.span().is_some_and(|s| s.end as usize <= line.len()), "line {}", i + 1);
+            assert!(
+                d.span().is_some_and(|s| s.end as usize <= line.len()),
+                "line {}",
+                i + 1
+            );
         }
         if got != expected {
             wrong.push(format!(
