@@ -468,3 +468,69 @@ fn operand(c: &mut Cursor<'_, '_>) -> Option<Expr> {
         _ => None,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use chumsky::span::SimpleSpan;
+    use gcodec_lexer::{Lexer, TokenKind};
+
+    use super::block;
+    use crate::grammar::Ctx;
+
+    /// Whether the fast path takes the one-line block `src`.
+    fn taken(src: &str) -> bool {
+        let tokens: Vec<_> = Lexer::new(src.as_bytes())
+            .filter(|t| !matches!(t.kind, TokenKind::Whitespace | TokenKind::Comment))
+            .map(|t| (t.kind, SimpleSpan::from(t.start as usize..t.end as usize)))
+            .collect();
+        block(
+            &tokens,
+            &Ctx {
+                src: src.as_bytes(),
+            },
+        )
+        .is_some()
+    }
+
+    /// The shapes the fast path exists for must not fall through to the
+    /// grammar (the comparison tests would still pass, only slower).
+    #[test]
+    fn common_blocks_take_the_fast_path() {
+        for src in [
+            "N10 G1 X-1.5 Y2 Z.5 F200",
+            "/2 N20 G0 X0 Y0",
+            "G2 X10 Y5 CR=-20.5",
+            "R1=R1+0.5",
+            "N30 R4=(R5+R6)/2",
+            "R2=R3*2-1.25 G1 X=R2",
+            "IF (R13<=R14) AND (R15<>0)",
+            "WHILE R1<5",
+            "UNTIL R1>=10",
+            "TURN=2*R1",
+            "ENDIF",
+            "N40 ELSE",
+        ] {
+            assert!(taken(src), "`{src}` should take the fast path");
+        }
+    }
+
+    #[test]
+    fn other_blocks_are_left_to_the_grammar() {
+        for src in [
+            "LBL: G1 X1",
+            "L10 P3",
+            "R1=SIN(30)",
+            "R[1]=5",
+            "X=IC(5)",
+            "M2=3",
+            "IF R1==1 GOTOF LBL",
+            "R1=(1,2)",
+            "T=\"DRILL\"",
+            "COUNTER=5",
+            "TRANS X10",
+            "R1=1EX999",
+        ] {
+            assert!(!taken(src), "`{src}` should be left to the grammar");
+        }
+    }
+}
