@@ -272,7 +272,7 @@ impl Word {
     /// address is written, its extension and its value.
     pub fn new(
         span: Span,
-        address: Name,
+        address: &str,
         address_span: Span,
         extension: Option<Extension>,
         value: WordValue,
@@ -293,7 +293,7 @@ impl Word {
             }
         }
         Word(WordRepr::Parts(Box::new(WordParts {
-            address,
+            address: Name::from(address),
             address_span,
             extension,
             value,
@@ -302,12 +302,8 @@ impl Word {
 
     /// The address in upper case: `X`, `G`, `CR`, `SPOS`, `AX`.
     pub fn address(&self) -> &str {
-        const LETTERS: &str = "ABCDEFGHIJKLMNOPQRSTUVWXYZ";
         match &self.0 {
-            WordRepr::Letter { letter, .. } => {
-                let i = usize::from(letter - b'A');
-                &LETTERS[i..i + 1]
-            }
+            WordRepr::Letter { letter, .. } => letter_str(*letter),
             WordRepr::Parts(parts) => &parts.address,
         }
     }
@@ -352,6 +348,18 @@ impl Word {
         map.serialize_entry("address_span", &self.address_span(span))?;
         map.serialize_entry("extension", &self.extension())?;
         map.serialize_entry("value", &self.value(span))
+    }
+}
+
+/// An upper-case ASCII letter as a string (`?` for any other byte).
+pub(crate) fn letter_str(letter: u8) -> &'static str {
+    const LETTERS: &str = "ABCDEFGHIJKLMNOPQRSTUVWXYZ";
+    match letter {
+        b'A'..=b'Z' => {
+            let i = usize::from(letter - b'A');
+            &LETTERS[i..i + 1]
+        }
+        _ => "?",
     }
 }
 

@@ -9,7 +9,7 @@ use gcodec_source::{Diagnostic, SourceFile, Span, decode};
 
 use crate::ast::*;
 use crate::error::SyntaxError;
-use crate::grammar::{self, Ctx, Spanned};
+use crate::grammar::{self, Ctx, Spanned, decode_text};
 use crate::{fast, structure};
 
 /// Deepest nesting of `(` and `[` accepted in one block. Deeper expressions
@@ -364,7 +364,7 @@ impl<'s> Driver<'s, '_> {
             comment: line.comment.map(|(s, e)| {
                 Box::new(Comment {
                     span: Span::new(s, e),
-                    text: CompactString::from(decode(&self.src[s as usize + 1..e as usize])),
+                    text: decode_text(&self.src[s as usize + 1..e as usize]),
                 })
             }),
             depth: 0,

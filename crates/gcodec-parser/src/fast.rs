@@ -20,9 +20,9 @@ use chumsky::span::SimpleSpan;
 use compact_str::CompactString;
 use gcodec_lexer::TokenKind as T;
 
-use crate::ast::*;
+use crate::ast::{letter_str, *};
 use crate::grammar::{
-    BlockBody, Ctx, Spanned, is_named_address, letter_name, number_value, structure_keyword,
+    BlockBody, Ctx, Spanned, is_named_address, number_bytes_value, structure_keyword,
 };
 
 /// Parses `tokens` if every statement of the block has one of the shapes
@@ -55,7 +55,7 @@ pub(crate) fn block(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBody> {
             if matches!(tokens.get(i + 2), Some((T::Eq, _))) {
                 return None;
             }
-            let value = g.text(*n).parse::<u64>().ok()?;
+            let value = whole_number(g.bytes(*n))?;
             number = Some(BlockNumber {
                 span: g.span(SimpleSpan::from(l.start..n.end)),
                 main: false,
@@ -194,7 +194,7 @@ fn letter_statement(c: &mut Cursor<'_, '_>) -> Option<Statement> {
             if n.start != letter.end || c.kind_at(2) != Some(T::Eq) {
                 return None;
             }
-            let index = g.text(n).parse::<u32>().ok()?;
+            let index = u32::try_from(whole_number(g.bytes(n))?).ok()?;
             c.i += 3;
             let value = expr(c, 0)?;
             // `R1=(1, 2)` is a list, for the grammar.
@@ -204,7 +204,7 @@ fn letter_statement(c: &mut Cursor<'_, '_>) -> Option<Statement> {
             let target = VarRef {
                 span: g.span(SimpleSpan::from(letter.start..n.end)),
                 kind: VarKind::RParameter,
-                name: letter_name(b'R'),
+                name: CompactString::const_new("R"),
                 indices: vec![Expr {
                     span: g.span(n),
                     kind: ExprKind::Number {
@@ -232,7 +232,7 @@ fn letter_statement(c: &mut Cursor<'_, '_>) -> Option<Statement> {
                 span,
                 kind: StatementKind::Word(Word::new(
                     span,
-                    letter_name(address),
+                    letter_str(address),
                     g.span(letter),
                     None,
                     WordValue::Assigned {
@@ -275,8 +275,8 @@ fn constant_word(c: &mut Cursor<'_, '_>, letter: SimpleSpan, address: u8) -> Opt
         return None;
     }
     c.i = j;
-    let text = g.text(n);
-    let mut value = number_value(text)?;
+    let text = g.bytes(n);
+    let mut value = number_bytes_value(text)?;
     if sign.is_some_and(|(negative, _)| negative) {
         value = -value;
     }
@@ -286,13 +286,13 @@ fn constant_word(c: &mut Cursor<'_, '_>, letter: SimpleSpan, address: u8) -> Opt
         span,
         kind: StatementKind::Word(Word::new(
             span,
-            letter_name(address),
+            letter_str(address),
             g.span(letter),
             None,
             WordValue::Constant(NumberLit {
                 span: g.span(SimpleSpan::from(value_start..n.end)),
                 value,
-                integer: text.bytes().all(|b| b.is_ascii_digit()),
+                integer: text.iter().all(u8::is_ascii_digit),
             }),
         )),
     })
@@ -317,7 +317,7 @@ fn named_word(c: &mut Cursor<'_, '_>) -> Option<Statement> {
         span,
         kind: StatementKind::Word(Word::new(
             span,
-            text.to_ascii_uppercase().into(),
+            &text.to_ascii_uppercase(),
             g.span(name),
             None,
             WordValue::Assigned {
@@ -325,6 +325,18 @@ fn named_word(c: &mut Cursor<'_, '_>) -> Option<Statement> {
                 expr: Box::new(value),
             },
         )),
+    })
+}
+
+/// The value of a block number or R-parameter number: digits only, as
+/// `str::parse::<u64>` reads them, `None` if it does not fit.
+fn whole_number(digits: &[u8]) -> Option<u64> {
+    if digits.is_empty() {
+        return None;
+    }
+    digits.iter().try_fold(0u64, |n, &b| {
+        let digit = char::from(b).to_digit(10)?;
+        n.checked_mul(10)?.checked_add(u64::from(digit))
     })
 }
 
@@ -407,14 +419,14 @@ fn operand(c: &mut Cursor<'_, '_>) -> Option<Expr> {
     let (kind, s) = *c.tokens.get(c.i)?;
     match kind {
         T::Number => {
-            let text = g.text(s);
-            let value = number_value(text)?;
+            let text = g.bytes(s);
+            let value = number_bytes_value(text)?;
             c.i += 1;
             Some(Expr {
                 span: g.span(s),
                 kind: ExprKind::Number {
                     value,
-                    integer: text.bytes().all(|b| b.is_ascii_digit()),
+                    integer: text.iter().all(u8::is_ascii_digit),
                 },
             })
         }
@@ -437,16 +449,15 @@ fn operand(c: &mut Cursor<'_, '_>) -> Option<Expr> {
             {
                 return None;
             }
-            let text = g.text(digits);
             let var = if g.bytes(s)[0].eq_ignore_ascii_case(&b'R') {
                 VarRef {
                     span: g.span(SimpleSpan::from(s.start..digits.end)),
                     kind: VarKind::RParameter,
-                    name: letter_name(b'R'),
+                    name: CompactString::const_new("R"),
                     indices: vec![Expr {
                         span: g.span(digits),
                         kind: ExprKind::Number {
-                            value: number_value(text)?,
+                            value: number_bytes_value(g.bytes(digits))?,
                             integer: true,
                         },
                     }],

@@ -117,16 +117,18 @@ pub(crate) fn structure_keyword(t: T) -> Option<StatementKind> {
     })
 }
 
-/// The address name of an upper-case ASCII letter, without allocating.
-pub(crate) fn letter_name(letter: u8) -> CompactString {
-    CompactString::from(std::str::from_utf8(&[letter]).unwrap_or("?"))
+/// The value of a number token, `None` if it is out of range.
+pub(crate) fn number_value(text: &str) -> Option<f64> {
+    number_bytes_value(text.as_bytes())
 }
 
-pub(crate) fn number_value(text: &str) -> Option<f64> {
-    // Whole numbers (`G1`, `F1600`, block numbers) are most common.
-    if text.len() <= 15 && text.bytes().all(|b| b.is_ascii_digit()) {
-        return text.parse::<u64>().ok().map(|v| v as f64);
+/// [`number_value`] of a token's bytes, for callers that have not made a
+/// `str` of them.
+pub(crate) fn number_bytes_value(bytes: &[u8]) -> Option<f64> {
+    if let Some(value) = short_decimal(bytes) {
+        return value;
     }
+    let text = std::str::from_utf8(bytes).ok()?;
     // `1.5EX-3`: the exponent marker is `EX` in any case. Rust's parser
     // reads `1.5e-3`, which rounds correctly where `1.5 * 10^-3` would not.
     let value: f64 = match text.bytes().position(|b| b == b'E' || b == b'e') {
@@ -137,6 +139,43 @@ pub(crate) fn number_value(text: &str) -> Option<f64> {
         None => text.parse().ok()?,
     };
     value.is_finite().then_some(value)
+}
+
+/// Powers of ten that are exact in an `f64`.
+const EXACT_POWERS_OF_TEN: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// `Some(value)` for the commonest numbers, `1600`, `12.345`,
+/// `.5`, `5.`: at most 15 digits, at most 22 after the point, no exponent.
+/// Such a number is an integer below 2^53 divided by an exact power of
+/// ten, and IEEE division rounds correctly, so the result is the correctly
+/// rounded value that `str::parse` gives (Clinger's fast path).
+/// `None` when the text has another form.
+fn short_decimal(text: &[u8]) -> Option<Option<f64>> {
+    let mut mantissa: u64 = 0;
+    let mut digits = 0;
+    let mut point = None;
+    for (i, &b) in text.iter().enumerate() {
+        match b {
+            b'0'..=b'9' => {
+                mantissa = mantissa * 10 + u64::from(b - b'0');
+                digits += 1;
+                if digits > 15 {
+                    return None;
+                }
+            }
+            b'.' if point.is_none() => point = Some(i),
+            _ => return None,
+        }
+    }
+    if digits == 0 {
+        return Some(None);
+    }
+    let fraction = point.map_or(0, |p| text.len() - p - 1);
+    let power = EXACT_POWERS_OF_TEN.get(fraction)?;
+    Some(Some(mantissa as f64 / power))
 }
 
 fn args<'t, 's: 't>(
@@ -210,7 +249,7 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
         let string = select! { T::String => () }.map_with(move |_, e| {
             let s: SimpleSpan = e.span();
             let bytes = g.bytes(s);
-            let value = gcodec_source_decode(&bytes[1..bytes.len() - 1]);
+            let value = decode_text(&bytes[1..bytes.len() - 1]);
             mk(
                 ExprKind::String {
                     value: Box::new(value),
@@ -320,8 +359,13 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
     })
 }
 
-fn gcodec_source_decode(bytes: &[u8]) -> CompactString {
-    CompactString::from(gcodec_source::decode(bytes))
+/// Program text decoded for display (see [`gcodec_source::decode`]); short
+/// UTF-8 text is stored inline, without a temporary `String`.
+pub(crate) fn decode_text(bytes: &[u8]) -> CompactString {
+    match std::str::from_utf8(bytes) {
+        Ok(text) => CompactString::from(text),
+        Err(_) => CompactString::from(gcodec_source::decode(bytes)),
+    }
 }
 
 /// `[a, b, c]` index list.
@@ -550,9 +594,7 @@ fn letter_statement<'t, 's: 't>(
                 None => None,
             };
             let l = g.bytes(letter)[0].to_ascii_uppercase();
-            let letter_buf = [l];
-            let addr = std::str::from_utf8(&letter_buf).unwrap_or("?");
-            let address = CompactString::from(addr);
+            let addr = letter_str(l);
             let err = |s: SimpleSpan, msg: String, help: &'static str| {
                 Err(SyntaxError::custom(s, ERR_WORD, msg, Some(help)))
             };
@@ -677,7 +719,7 @@ fn letter_statement<'t, 's: 't>(
                     }
                     Word::new(
                         g.span(span),
-                        address,
+                        addr,
                         a_span,
                         None,
                         WordValue::Constant(NumberLit {
@@ -695,7 +737,7 @@ fn letter_statement<'t, 's: 't>(
                     let ext = int_digits(n)?;
                     Word::new(
                         g.span(span),
-                        address,
+                        addr,
                         a_span,
                         Some(Extension::Number { span: g.span(n), value: ext }),
                         assigned_value(value_expr(v)?),
@@ -703,7 +745,7 @@ fn letter_statement<'t, 's: 't>(
                 }
                 // X=…
                 (None, None, None, Some(v)) => {
-                    Word::new(g.span(span), address, a_span, None, assigned_value(value_expr(v)?))
+                    Word::new(g.span(span), addr, a_span, None, assigned_value(value_expr(v)?))
                 }
                 // G[8]=2, M[R1]=3
                 (None, None, Some((idx, bs)), Some(v)) => {
@@ -712,7 +754,7 @@ fn letter_statement<'t, 's: 't>(
                     }
                     Word::new(
                         g.span(span),
-                        address,
+                        addr,
                         a_span,
                         Some(Extension::Index { span: idx.span, index: Box::new(idx) }),
                         assigned_value(value_expr(v)?),
@@ -1249,7 +1291,7 @@ pub(crate) fn statements<'t, 's: 't>(
         .map(move |(name, body): (SimpleSpan, SimpleSpan)| {
             StatementKind::Define(Box::new(Define {
                 name: g.name(name),
-                body: gcodec_source_decode(g.bytes(body)),
+                body: decode_text(g.bytes(body)),
                 body_span: g.span(body),
             }))
         });
@@ -1478,7 +1520,7 @@ fn named_word<'t, 's: 't>(
                 };
                 Ok(Word::new(
                     g.span(span),
-                    target.name.to_ascii_uppercase(),
+                    &target.name.to_ascii_uppercase(),
                     target.span,
                     None,
                     value,
@@ -1526,7 +1568,7 @@ fn named_address_word(
     address_span.end = address_span.start + name_len;
     Some(Ok(Word::new(
         g.span(span),
-        target.name.to_ascii_uppercase(),
+        &target.name.to_ascii_uppercase(),
         address_span,
         extension,
         assigned_value(e.clone()),
@@ -1648,5 +1690,29 @@ mod tests {
         assert_eq!(number_value("0EX400"), Some(0.0));
         assert_eq!(number_value("1EX"), None);
         assert_eq!(number_value("99999999999999999999"), Some(1e20));
+        assert_eq!(number_value("."), None);
+        assert_eq!(number_value("1.2.3"), None);
+        assert_eq!(number_value("0.1"), Some(0.1));
+        assert_eq!(number_value("123456789012345"), Some(123456789012345.0));
+        assert_eq!(number_value("0.0000000000000000000001"), Some(1e-22));
+    }
+
+    /// The short-decimal path agrees with the standard library's correctly
+    /// rounded parser on every form it takes.
+    #[test]
+    fn short_decimals_round_as_the_standard_parser() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..200_000 {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            let digits = (seed >> 60) as usize + 1;
+            let mantissa = (seed >> 8) % 10u64.pow(digits.min(15) as u32);
+            let text = format!("{mantissa:0digits$}");
+            let point = (seed >> 4) as usize % (text.len() + 1);
+            let text = format!("{}.{}", &text[..point], &text[point..]);
+            let expected = text.parse::<f64>().ok();
+            assert_eq!(number_value(&text), expected, "{text}");
+        }
     }
 }
