@@ -108,7 +108,7 @@ pub struct Block {
     /// The statements in source order.
     pub statements: Box<[Statement]>,
     /// `; …` to the end of the line.
-    pub comment: Option<Box<Comment>>,
+    pub comment: Option<Comment>,
     /// How many control structures enclose this block.
     pub depth: u32,
 }

@@ -361,11 +361,9 @@ impl<'s> Driver<'s, '_> {
             number: None,
             label: None,
             statements: Box::default(),
-            comment: line.comment.map(|(s, e)| {
-                Box::new(Comment {
-                    span: Span::new(s, e),
-                    text: decode_text(&self.src[s as usize + 1..e as usize]),
-                })
+            comment: line.comment.map(|(s, e)| Comment {
+                span: Span::new(s, e),
+                text: decode_text(&self.src[s as usize + 1..e as usize]),
             }),
             depth: 0,
         };
