@@ -125,12 +125,16 @@ fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment
         structures: Vec::new(),
     };
     let mut diagnostics = Vec::new();
-    for part in parts {
+    let mut structure_blocks = Vec::new();
+    let mut first_block = 0u32;
+    for (part, lines) in parts.into_iter().zip(&lines) {
         program.header = program.header.take().or(part.header);
         program.path = program.path.take().or(part.path);
         diagnostics.extend(part.diagnostics);
+        structure_blocks.extend(part.structure_blocks.iter().map(|b| first_block + b));
+        first_block += *lines as u32;
     }
-    structure::pair(&mut program, &mut diagnostics);
+    structure::pair(&mut program, &structure_blocks, &mut diagnostics);
     // Lexical errors are found while reading and syntax errors per chunk:
     // report everything in source order.
     diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
@@ -188,6 +192,8 @@ struct Segmented {
     header: Option<Header>,
     path: Option<PathDirective>,
     diagnostics: Vec<Diagnostic>,
+    /// Blocks holding a structure statement, by index in the segment.
+    structure_blocks: Vec<u32>,
 }
 
 /// Parses one segment into `blocks`, one per line.
@@ -202,6 +208,7 @@ fn run_segment(src: &[u8], segment: Segment, blocks: &mut [Block], fast_path: bo
         header: None,
         path: None,
         diagnostics: Vec::new(),
+        structure_blocks: Vec::new(),
         tokens: Vec::with_capacity(1024),
         lines: Vec::with_capacity(CHUNK_LINES),
     };
@@ -211,6 +218,7 @@ fn run_segment(src: &[u8], segment: Segment, blocks: &mut [Block], fast_path: bo
         header: driver.header,
         path: driver.path,
         diagnostics: driver.diagnostics,
+        structure_blocks: driver.structure_blocks,
     }
 }
 
@@ -239,6 +247,7 @@ struct Driver<'s, 'b> {
     header: Option<Header>,
     path: Option<PathDirective>,
     diagnostics: Vec<Diagnostic>,
+    structure_blocks: Vec<u32>,
     tokens: Vec<Spanned>,
     lines: Vec<Line>,
 }
@@ -332,6 +341,13 @@ impl<'s> Driver<'s, '_> {
                 let block = self.parse_line(line, &tokens[line.tokens.clone()], &ctx, &parser);
                 self.content_seen |=
                     !block.statements.is_empty() || block.label.is_some() || block.number.is_some();
+                if block
+                    .statements
+                    .iter()
+                    .any(|s| structure::is_structure_statement(&s.kind))
+                {
+                    self.structure_blocks.push(self.filled as u32);
+                }
                 if let Some(slot) = self.blocks.get_mut(self.filled) {
                     *slot = block;
                     self.filled += 1;

@@ -17,10 +17,47 @@ struct Open {
     span: Span,
 }
 
-pub(crate) fn pair(program: &mut Program, diagnostics: &mut Vec<Diagnostic>) {
+/// True for the statements that open, split or close a control structure.
+pub(crate) fn is_structure_statement(kind: &StatementKind) -> bool {
+    matches!(
+        kind,
+        StatementKind::If(_)
+            | StatementKind::While(_)
+            | StatementKind::For(_)
+            | StatementKind::Loop
+            | StatementKind::Repeat
+            | StatementKind::Else
+            | StatementKind::EndIf
+            | StatementKind::EndWhile
+            | StatementKind::EndFor
+            | StatementKind::EndLoop
+            | StatementKind::Until(_)
+    )
+}
+
+/// Pairs the structures of `program` and sets every block's depth.
+/// `structure_blocks` lists, in order, the indices of the blocks holding a
+/// structure statement (see [`is_structure_statement`]); the parser
+/// collects them while parsing, in parallel, so this serial pass visits
+/// only those blocks' statements.
+pub(crate) fn pair(
+    program: &mut Program,
+    structure_blocks: &[u32],
+    diagnostics: &mut Vec<Diagnostic>,
+) {
     let mut stack: Vec<Open> = Vec::new();
     let mut structures: Vec<ControlStructure> = Vec::new();
-    for (bi, block) in program.blocks.iter_mut().enumerate() {
+    let mut unvisited = 0;
+    for &index in structure_blocks {
+        let bi = index as usize;
+        let Some(before) = program.blocks.get_mut(unvisited..bi) else {
+            continue;
+        };
+        for block in before {
+            block.depth = stack.len() as u32;
+        }
+        unvisited = bi + 1;
+        let block = &mut program.blocks[bi];
         let mut depth = stack.len();
         for st in &block.statements {
             let opens = match &st.kind {
@@ -111,6 +148,9 @@ pub(crate) fn pair(program: &mut Program, diagnostics: &mut Vec<Diagnostic>) {
             }
         }
         block.depth = depth as u32;
+    }
+    for block in program.blocks.get_mut(unvisited..).unwrap_or_default() {
+        block.depth = stack.len() as u32;
     }
     // The end is expected at the end of the last block that has content.
     let eof = program
