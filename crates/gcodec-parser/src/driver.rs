@@ -1,6 +1,8 @@
 //! Splits the token stream into blocks (lines) and runs the block grammar on
 //! each, so that one malformed block never hides the rest of the program.
 
+use std::mem::MaybeUninit;
+
 use chumsky::input::Input as _;
 use chumsky::span::SimpleSpan;
 use compact_str::CompactString;
@@ -88,15 +90,12 @@ fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment
         .iter()
         .map(|s| line_count(&src[s.start..s.end]))
         .collect();
-    let mut blocks = Vec::new();
-    blocks.resize_with(lines.iter().sum(), Block::default);
-    let mut slots = Vec::with_capacity(segments.len());
-    let mut rest = blocks.as_mut_slice();
-    for &n in &lines {
-        let (slot, tail) = std::mem::take(&mut rest).split_at_mut(n);
-        slots.push(slot);
-        rest = tail;
-    }
+    let total: usize = lines.iter().sum();
+    let mut blocks: Vec<Block> = Vec::with_capacity(total);
+    // Each segment writes its blocks straight into its run of the vector's
+    // spare capacity, so the first touch of those pages happens on the
+    // segment's own thread rather than in a serial fill beforehand.
+    let mut slots = runs(&mut blocks.spare_capacity_mut()[..total], &lines);
     let parts: Vec<Segmented> = if segments.len() == 1 {
         let slot = slots.pop().unwrap_or_default();
         vec![run_segment(src, segments[0], slot, fast_path)]
@@ -117,6 +116,23 @@ fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment
                 .collect()
         })
     };
+    // A segment that wrote fewer blocks than it has lines (never expected)
+    // gets empty blocks for the rest, so every slot is written.
+    for (slot, part) in runs(&mut blocks.spare_capacity_mut()[..total], &lines)
+        .into_iter()
+        .zip(&parts)
+    {
+        for block in &mut slot[part.filled..] {
+            block.write(Block::default());
+        }
+    }
+    // SAFETY: `blocks` has capacity for `total`, and each of the first
+    // `total` slots was written: by its segment up to `part.filled` (a
+    // segment writes its slots in order and reports how many), and by the
+    // loop above from there to the end of its run. Had a segment thread
+    // panicked, `resume_unwind` above would have left before this point and
+    // the written blocks would only leak.
+    unsafe { blocks.set_len(total) };
     let mut program = Program {
         file: name.to_owned(),
         header: None,
@@ -142,6 +158,18 @@ fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment
         program,
         diagnostics,
     }
+}
+
+/// `slots` cut into consecutive runs of the given lengths.
+fn runs<'a, T>(mut slots: &'a mut [T], lengths: &[usize]) -> Vec<&'a mut [T]> {
+    lengths
+        .iter()
+        .map(|&n| {
+            let (run, rest) = std::mem::take(&mut slots).split_at_mut(n);
+            slots = rest;
+            run
+        })
+        .collect()
 }
 
 /// Lines of `src`, counting a last line without a line end.
@@ -194,10 +222,17 @@ struct Segmented {
     diagnostics: Vec<Diagnostic>,
     /// Blocks holding a structure statement, by index in the segment.
     structure_blocks: Vec<u32>,
+    /// How many of its slots the segment wrote, from the first.
+    filled: usize,
 }
 
 /// Parses one segment into `blocks`, one per line.
-fn run_segment(src: &[u8], segment: Segment, blocks: &mut [Block], fast_path: bool) -> Segmented {
+fn run_segment(
+    src: &[u8],
+    segment: Segment,
+    blocks: &mut [MaybeUninit<Block>],
+    fast_path: bool,
+) -> Segmented {
     let mut driver = Driver {
         src,
         fast_path,
@@ -219,6 +254,7 @@ fn run_segment(src: &[u8], segment: Segment, blocks: &mut [Block], fast_path: bo
         path: driver.path,
         diagnostics: driver.diagnostics,
         structure_blocks: driver.structure_blocks,
+        filled: driver.filled,
     }
 }
 
@@ -239,8 +275,9 @@ struct Driver<'s, 'b> {
     fast_path: bool,
     /// Only the segment at the start of the file may hold the header.
     first_segment: bool,
-    /// This segment's blocks, one per line, filled in order.
-    blocks: &'b mut [Block],
+    /// Slots for this segment's blocks, one per line, written in order:
+    /// the first `filled` are initialised.
+    blocks: &'b mut [MaybeUninit<Block>],
     filled: usize,
     /// A block with statements, a label or a number has been seen.
     content_seen: bool,
@@ -349,7 +386,7 @@ impl<'s> Driver<'s, '_> {
                     self.structure_blocks.push(self.filled as u32);
                 }
                 if let Some(slot) = self.blocks.get_mut(self.filled) {
-                    *slot = block;
+                    slot.write(block);
                     self.filled += 1;
                 }
             }
