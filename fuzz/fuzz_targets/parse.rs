@@ -2,8 +2,9 @@
 //! satisfy (the invariants the property tests check too: no panic, one
 //! block per line, every span in bounds with `start <= end` and the true
 //! 1-based line and column of its start, every diagnostic labelled in
-//! bounds); then renders the diagnostics, which exercises the miette path
-//! (byte-offset mapping for non-UTF-8 sources).
+//! bounds); that the fast path builds exactly what the grammar builds; then
+//! renders the diagnostics, which exercises the miette path (byte-offset
+//! mapping for non-UTF-8 sources).
 
 #![no_main]
 
@@ -18,6 +19,9 @@ fuzz_target!(|data: &[u8]| {
     if let Err(problem) = invariants::check_parse_of(data, &parse) {
         panic!("{problem}");
     }
+    let grammar = gcodec_parser::parse_bytes_with_grammar_only("fuzz.mpf", data);
+    assert_eq!(parse.program, grammar.program, "fast path and grammar differ");
+    assert_eq!(parse.diagnostics, grammar.diagnostics, "fast path and grammar differ");
     let file = SourceFile::new("fuzz.mpf", data);
     let rendered = render_diagnostics(&parse.diagnostics, Some(&file), RenderOptions::default());
     assert_eq!(rendered.is_empty(), parse.diagnostics.is_empty());

@@ -196,11 +196,7 @@ fn letter_statement(c: &mut Cursor<'_, '_>) -> Option<Statement> {
             }
             let index = u32::try_from(whole_number(g.bytes(n))?).ok()?;
             c.i += 3;
-            let value = expr(c, 0)?;
-            // `R1=(1, 2)` is a list, for the grammar.
-            if c.kind() == Some(T::Comma) {
-                return None;
-            }
+            let value = value(c)?;
             let target = VarRef {
                 span: g.span(SimpleSpan::from(letter.start..n.end)),
                 kind: VarKind::RParameter,
@@ -221,27 +217,7 @@ fn letter_statement(c: &mut Cursor<'_, '_>) -> Option<Statement> {
                 })),
             })
         }
-        (Some(T::Eq), _) if address != b'R' => {
-            c.i += 2;
-            let value = expr(c, 0)?;
-            if c.kind() == Some(T::Comma) {
-                return None;
-            }
-            let span = c.span_from(letter.start);
-            Some(Statement {
-                span,
-                kind: StatementKind::Word(Word::new(
-                    span,
-                    letter_str(address),
-                    g.span(letter),
-                    None,
-                    WordValue::Assigned {
-                        modifier: None,
-                        expr: Box::new(value),
-                    },
-                )),
-            })
-        }
+        (Some(T::Eq), _) if address != b'R' => assigned_word(c, letter_str(address), letter),
         _ if address != b'R' => constant_word(c, letter, address),
         _ => None,
     }
@@ -300,25 +276,27 @@ fn constant_word(c: &mut Cursor<'_, '_>, letter: SimpleSpan, address: u8) -> Opt
 
 /// `CR=-20.5`, `TURN=R2`: a multi-letter address with a value after `=`.
 fn named_word(c: &mut Cursor<'_, '_>) -> Option<Statement> {
-    let g = c.g;
     let name = c.span_at(0)?;
-    let text = g.text(name);
+    let text = c.g.text(name);
     if c.kind_at(1) != Some(T::Eq) || !is_named_address(text) || FrameOp::from_name(text).is_some()
     {
         return None;
     }
+    assigned_word(c, &text.to_ascii_uppercase(), name)
+}
+
+/// The word whose address (`address`, written at `written`) is under the
+/// cursor, followed by `=` and a value.
+fn assigned_word(c: &mut Cursor<'_, '_>, address: &str, written: SimpleSpan) -> Option<Statement> {
     c.i += 2;
-    let value = expr(c, 0)?;
-    if c.kind() == Some(T::Comma) {
-        return None;
-    }
-    let span = c.span_from(name.start);
+    let value = value(c)?;
+    let span = c.span_from(written.start);
     Some(Statement {
         span,
         kind: StatementKind::Word(Word::new(
             span,
-            &text.to_ascii_uppercase(),
-            g.span(name),
+            address,
+            c.g.span(written),
             None,
             WordValue::Assigned {
                 modifier: None,
@@ -326,6 +304,13 @@ fn named_word(c: &mut Cursor<'_, '_>) -> Option<Statement> {
             },
         )),
     })
+}
+
+/// The value after `=`: one expression (a `,` after it makes a list, which
+/// the grammar reads).
+fn value(c: &mut Cursor<'_, '_>) -> Option<Expr> {
+    let value = expr(c, 0)?;
+    (c.kind() != Some(T::Comma)).then_some(value)
 }
 
 /// The value of a block number or R-parameter number: digits only, as
