@@ -29,7 +29,27 @@ enum Command {
         /// Output: an indented outline, or the syntax tree as JSON.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
+        #[command(flatten)]
+        diagnostics: DiagnosticOptions,
     },
+}
+
+/// How diagnostics are shown.
+#[derive(Clone, Copy, Debug, clap::Args)]
+struct DiagnosticOptions {
+    /// Show at most N diagnostics per file, then count the rest (0: all).
+    /// The exit code counts them all.
+    #[arg(long, value_name = "N", default_value_t = 100)]
+    max_diagnostics: usize,
+}
+
+impl DiagnosticOptions {
+    fn render_options(self) -> RenderOptions {
+        RenderOptions {
+            color: std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
+            limit: (self.max_diagnostics > 0).then_some(self.max_diagnostics),
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -40,21 +60,19 @@ enum Format {
 
 pub fn run(cli: Cli) -> u8 {
     match cli.command {
-        Command::Parse { files, format } => parse(&files, format),
+        Command::Parse {
+            files,
+            format,
+            diagnostics,
+        } => parse(&files, format, diagnostics),
     }
 }
 
-fn render_options() -> RenderOptions {
-    RenderOptions {
-        color: std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
-    }
-}
-
-fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>) {
+fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: DiagnosticOptions) {
     if diagnostics.is_empty() {
         return;
     }
-    let text = render_diagnostics(diagnostics, file, render_options());
+    let text = render_diagnostics(diagnostics, file, options.render_options());
     let _ = std::io::stderr().write_all(text.as_bytes());
 }
 
@@ -68,7 +86,7 @@ fn read(path: &Path) -> Result<SourceFile, Diagnostic> {
     })
 }
 
-fn parse(files: &[PathBuf], format: Format) -> u8 {
+fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
     let mut exit = EXIT_CLEAN;
     let mut json = Vec::new();
     let stdout = std::io::stdout();
@@ -77,13 +95,13 @@ fn parse(files: &[PathBuf], format: Format) -> u8 {
         let file = match read(path) {
             Ok(f) => f,
             Err(d) => {
-                report(&[d], None);
+                report(&[d], None, options);
                 exit = EXIT_USAGE;
                 continue;
             }
         };
         let parsed = gcodec_parser::parse(&file);
-        report(&parsed.diagnostics, Some(&file));
+        report(&parsed.diagnostics, Some(&file), options);
         if parsed.has_errors() && exit == EXIT_CLEAN {
             exit = EXIT_DIAGNOSTICS;
         }

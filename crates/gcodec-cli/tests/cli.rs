@@ -191,6 +191,40 @@ fn unclosed_structure_exits_1() {
     assert!(stderr(&out).contains("gcodec::parse::unclosed_structure"));
 }
 
+/// 150 unclosed `IF`s and one warning for nesting past 16: the first 100
+/// diagnostics are rendered, the other 51 counted; `--max-diagnostics 0`
+/// renders all. The exit code counts them all.
+#[test]
+fn diagnostics_beyond_the_limit_are_counted_not_rendered() {
+    let dir = std::env::temp_dir().join(format!("gcodec-cli-limit-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("unclosed.mpf");
+    std::fs::write(&path, "IF R1==1\n".repeat(150) + "M30\n").expect("write");
+    let rendered = |out: &Output| stderr(out).matches("is never closed").count();
+
+    let out = gcodec(["parse".as_ref(), path.as_os_str()]);
+    assert_no_panic(&out);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    assert_eq!(rendered(&out), 99);
+    assert!(stderr(&out).contains("gcodec::parse::deep_nesting"));
+    assert!(
+        stderr(&out).contains("… and 51 more diagnostics not shown (51 errors, 0 others)"),
+        "{}",
+        stderr(&out)
+    );
+
+    let out = gcodec([
+        "parse".as_ref(),
+        "--max-diagnostics".as_ref(),
+        "0".as_ref(),
+        path.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    assert_eq!(rendered(&out), 150);
+    assert!(!stderr(&out).contains("not shown"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn missing_file_exits_2_with_a_message() {
     let path = fixture("frames.mpf").with_file_name("does_not_exist.mpf");

@@ -53,7 +53,10 @@ fn check_good(snapshot: &str, relative: &str) {
         render_diagnostics(
             &parsed.diagnostics,
             Some(&file),
-            RenderOptions { color: false }
+            RenderOptions {
+                color: false,
+                limit: None,
+            }
         )
     );
     assert_eq!(
@@ -79,7 +82,10 @@ fn check_error(snapshot: &str, relative: &str) {
     let rendered = render_diagnostics(
         &parsed.diagnostics,
         Some(&file),
-        RenderOptions { color: false },
+        RenderOptions {
+            color: false,
+            limit: None,
+        },
     );
     settings(&file).bind(|| insta::assert_snapshot!(snapshot, rendered));
 }

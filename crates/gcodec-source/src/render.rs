@@ -12,6 +12,10 @@ use crate::{Diagnostic, Severity, SourceFile};
 pub struct RenderOptions {
     /// ANSI colours and Unicode box drawing (for a terminal).
     pub color: bool,
+    /// Render at most this many reports, then one line counting the rest
+    /// (`None`: all). A file with ten thousand unclosed `IF`s would
+    /// otherwise print millions of lines.
+    pub limit: Option<usize>,
 }
 
 /// Renders diagnostics about one file as miette reports, one after another.
@@ -28,7 +32,11 @@ pub fn render_diagnostics(
     let handler = GraphicalReportHandler::new_themed(theme).with_width(100);
     let display = file.map(DisplaySource::new);
     let mut out = String::new();
-    for diagnostic in diagnostics {
+    let shown = options
+        .limit
+        .map_or(diagnostics.len(), |limit| limit.min(diagnostics.len()));
+    let (shown, hidden) = diagnostics.split_at(shown);
+    for diagnostic in shown {
         let report = Report {
             diagnostic,
             source: display.as_ref(),
@@ -39,6 +47,14 @@ pub fn render_diagnostics(
         if handler.render_report(&mut out, &report).is_err() {
             out.push_str(&format!("{}: {}\n", diagnostic.code, diagnostic.message));
         }
+    }
+    if !hidden.is_empty() {
+        let errors = hidden.iter().filter(|d| d.is_error()).count();
+        out.push_str(&format!(
+            "\n… and {} more diagnostics not shown ({errors} errors, {} others)\n",
+            hidden.len(),
+            hidden.len() - errors
+        ));
     }
     out
 }
