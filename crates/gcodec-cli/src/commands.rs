@@ -32,6 +32,38 @@ enum Command {
         #[command(flatten)]
         diagnostics: DiagnosticOptions,
     },
+    /// Check or show machine profiles.
+    #[command(subcommand)]
+    Profile(ProfileCommand),
+}
+
+#[derive(Debug, Subcommand)]
+enum ProfileCommand {
+    /// Check a profile: every problem is reported; exit 0 if it is valid,
+    /// 2 if not.
+    Check {
+        /// The profile (TOML).
+        file: PathBuf,
+        #[command(flatten)]
+        diagnostics: DiagnosticOptions,
+    },
+    /// Print the effective profile, defaults filled in (the built-in
+    /// profile when no file is given).
+    Show {
+        /// The profile (TOML); the built-in one if omitted.
+        file: Option<PathBuf>,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = ProfileFormat::Toml)]
+        format: ProfileFormat,
+        #[command(flatten)]
+        diagnostics: DiagnosticOptions,
+    },
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum ProfileFormat {
+    Toml,
+    Json,
 }
 
 /// How diagnostics are shown.
@@ -65,6 +97,67 @@ pub fn run(cli: Cli) -> u8 {
             format,
             diagnostics,
         } => parse(&files, format, diagnostics),
+        Command::Profile(ProfileCommand::Check { file, diagnostics }) => {
+            match load_profile(Some(&file), diagnostics) {
+                Ok(_) => EXIT_CLEAN,
+                Err(code) => code,
+            }
+        }
+        Command::Profile(ProfileCommand::Show {
+            file,
+            format,
+            diagnostics,
+        }) => match load_profile(file.as_deref(), diagnostics) {
+            Ok(profile) => show_profile(&profile, format),
+            Err(code) => code,
+        },
+    }
+}
+
+/// Reads and checks a profile (the built-in one for `None`), reporting
+/// its diagnostics; a bad or unreadable profile is exit code 2.
+fn load_profile(
+    path: Option<&Path>,
+    options: DiagnosticOptions,
+) -> Result<gcodec_profile::Profile, u8> {
+    let file = match path {
+        Some(path) => read(path).map_err(|d| {
+            report(&[d], None, options);
+            EXIT_USAGE
+        })?,
+        None => SourceFile::new(gcodec_profile::BUILTIN_NAME, gcodec_profile::BUILTIN_TOML),
+    };
+    let Ok(text) = std::str::from_utf8(file.bytes()) else {
+        let d = Diagnostic::error(
+            "gcodec::profile::syntax",
+            format!("`{}` is not UTF-8 text", file.name()),
+        )
+        .with_help("TOML files are UTF-8");
+        report(&[d], None, options);
+        return Err(EXIT_USAGE);
+    };
+    gcodec_profile::load(text).map_err(|diagnostics| {
+        report(&diagnostics, Some(&file), options);
+        EXIT_USAGE
+    })
+}
+
+fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 {
+    let text = match format {
+        ProfileFormat::Toml => toml::to_string_pretty(profile).map_err(|e| e.to_string()),
+        ProfileFormat::Json => serde_json::to_string_pretty(profile)
+            .map(|s| s + "\n")
+            .map_err(|e| e.to_string()),
+    };
+    match text {
+        Ok(text) => {
+            let _ = std::io::stdout().write_all(text.as_bytes());
+            EXIT_CLEAN
+        }
+        Err(e) => {
+            eprintln!("gcodec: cannot write the profile: {e}");
+            EXIT_USAGE
+        }
     }
 }
 

@@ -355,3 +355,89 @@ fn version_and_help_exit_0() {
         );
     }
 }
+
+fn profile(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../profiles")
+        .join(name)
+}
+
+#[test]
+fn profile_check_accepts_every_shipped_profile() {
+    for name in [
+        "default.toml",
+        "lathe_828d.toml",
+        "mill_g505_g599.toml",
+        "mill_tool_management.toml",
+    ] {
+        let out = gcodec([
+            "profile".as_ref(),
+            "check".as_ref(),
+            profile(name).as_os_str(),
+        ]);
+        assert_no_panic(&out);
+        assert_eq!(code(&out), EXIT_CLEAN, "{name}: {}", stderr(&out));
+        assert!(stderr(&out).is_empty(), "{}", stderr(&out));
+    }
+}
+
+#[test]
+fn profile_check_reports_a_bad_profile_with_exit_2() {
+    let dir = std::env::temp_dir().join(format!("gcodec-cli-profile-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("bad.toml");
+    std::fs::write(
+        &path,
+        "[machine]\nname = \"m\"\ncontrol = \"840d_sl\"\n[work_offsets]\ndefault_group8_offset = \"G599\"\n",
+    )
+    .expect("write");
+    let out = gcodec(["profile".as_ref(), "check".as_ref(), path.as_os_str()]);
+    assert_no_panic(&out);
+    assert_eq!(code(&out), EXIT_USAGE);
+    assert!(
+        stderr(&out).contains("gcodec::profile::unknown_reference"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(stderr(&out).contains("bad.toml:5:25"), "{}", stderr(&out));
+    let out = gcodec([
+        "profile".as_ref(),
+        "check".as_ref(),
+        dir.join("missing.toml").as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_USAGE);
+    assert!(
+        stderr(&out).contains("gcodec::io::read"),
+        "{}",
+        stderr(&out)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `profile show` prints the effective built-in profile; its TOML loads
+/// again, and its JSON names the control.
+#[test]
+fn profile_show_prints_the_effective_profile() {
+    let out = gcodec(["profile", "show"]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let shown = stdout(&out);
+    let again = gcodec_profile::load(&shown).unwrap_or_else(|d| panic!("{d:#?}\n{shown}"));
+    assert_eq!(
+        again.machine.control,
+        gcodec_profile::Control::Sinumerik840dSl
+    );
+    // Defaults the file leaves out are shown filled in.
+    assert!(shown.contains("unresolved"), "{shown}");
+
+    let out = gcodec([
+        "profile".as_ref(),
+        "show".as_ref(),
+        profile("lathe_828d.toml").as_os_str(),
+        "--format".as_ref(),
+        "json".as_ref(),
+    ]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let json = json(&out);
+    assert_eq!(json["machine"]["control"], "828d");
+    assert_eq!(json["tool_change"]["tool_change_mode"], "direct");
+}

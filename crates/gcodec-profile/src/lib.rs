@@ -1,18 +1,66 @@
-//! Machine profiles — **not built yet** (the lowering issue fills this
-//! crate). Nothing here has behaviour; this page is the documented outline.
+//! Machine profiles: what a machine has and how its control is configured
+//! (axes, tool change, tool table, M-function and work-offset policies,
+//! skip levels, limits, subprogram search paths), read from TOML.
 //!
-//! # Planned API
+//! [`load`] parses and checks a profile; every problem is a
+//! [`Diagnostic`] pointing into the TOML, and all of them are reported in
+//! one pass. [`builtin`] is `profiles/default.toml`, compiled in so that
+//! gcodec works with no profile given.
 //!
-//! - `Profile::from_toml(source) -> Result<Profile, Vec<Diagnostic>>`: a
-//!   typed TOML schema (unknown keys rejected) for the control (`840d_sl`,
-//!   `828d`), channel axes, G-group reset defaults (MD20150), the tool-change
-//!   model (`tool_change_mode = "direct" | "deferred_m6"`,
-//!   `tool_management_enabled`, `on_unresolved_tool`, `allow_substitution`,
-//!   `m6_without_pending_policy`, tool table), the M-function model
-//!   (`max_m_per_block`, `unknown_mcode_policy`, `enable_extended_m_address`,
-//!   `mcode_class_overrides`), work offsets (`default_group8_offset`,
-//!   `supported_group8_offsets`, `legacy_aliases`,
-//!   `duplicate_suppression_policy`, offset values), rapid and feed limits,
-//!   skip levels, block-length limit and subprogram search paths.
-//! - `Profile::builtin()`: the default 840D sl milling profile compiled into
-//!   the binary, so `gcodec run file.mpf` works with no flags.
+//! Not built yet (the lowering issue continues here): checking
+//! `modal_defaults` against the G-group registry (the semantic stage owns
+//! the registry), and the profile's use by lowering and the executor.
+
+mod group8;
+mod schema;
+mod validate;
+
+pub use group8::{group8_code, group8_index, group8_range};
+pub use schema::*;
+
+use gcodec_source::{Diagnostic, Span};
+
+/// The text of the built-in profile.
+pub const BUILTIN_TOML: &str = include_str!("../../../profiles/default.toml");
+
+/// The name the built-in profile has in diagnostics and dumps.
+pub const BUILTIN_NAME: &str = "<built-in profiles/default.toml>";
+
+/// Parses and checks a profile. On error, every diagnostic found, with
+/// spans into `text`.
+pub fn load(text: &str) -> Result<Profile, Vec<Diagnostic>> {
+    // Syntax first: a TOML syntax error makes schema errors meaningless.
+    if let Err(e) = text.parse::<toml::Table>() {
+        return Err(vec![toml_diagnostic("gcodec::profile::syntax", &e)]);
+    }
+    let profile: Profile =
+        toml::from_str(text).map_err(|e| vec![toml_diagnostic("gcodec::profile::schema", &e)])?;
+    let mut problems = validate::check(&profile);
+    problems.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    if problems.iter().any(Diagnostic::is_error) {
+        Err(problems)
+    } else {
+        Ok(profile)
+    }
+}
+
+/// The built-in profile (`profiles/default.toml`).
+pub fn builtin() -> Result<Profile, Vec<Diagnostic>> {
+    load(BUILTIN_TOML)
+}
+
+fn toml_diagnostic(code: &'static str, error: &toml::de::Error) -> Diagnostic {
+    let message = error.message().trim().to_owned();
+    let diagnostic = Diagnostic::error(code, format!("invalid profile: {message}"));
+    match error.span() {
+        Some(range) => diagnostic
+            .with_label(span(range), "here")
+            .with_help("see profiles/README.md for the profile schema"),
+        None => diagnostic.with_help("see profiles/README.md for the profile schema"),
+    }
+}
+
+/// A byte range of the TOML as a span.
+pub(crate) fn span(range: std::ops::Range<usize>) -> Span {
+    Span::new(range.start as u32, range.end as u32)
+}

@@ -1,0 +1,372 @@
+//! The TOML schema of a machine profile. Field and policy names follow the
+//! design seeds (000 tool change, 001 M functions, 003 work offsets).
+//! Unknown keys are rejected everywhere; every section has defaults, so a
+//! profile states only what differs from a plain 840D sl milling machine.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+use toml::Spanned;
+
+/// A machine profile as written, after defaults.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Profile {
+    pub machine: Machine,
+    /// The channel axes in channel order.
+    #[serde(default = "default_axes")]
+    pub axes: Vec<Axis>,
+    /// G-group reset defaults (as machine data MD20150 sets them): group
+    /// number (1…64) → G code. Groups not named keep the control's default.
+    #[serde(default)]
+    pub modal_defaults: BTreeMap<Spanned<String>, Spanned<String>>,
+    #[serde(default)]
+    pub tool_change: ToolChange,
+    /// The tool table.
+    #[serde(default)]
+    pub tools: Vec<Tool>,
+    #[serde(default)]
+    pub m_functions: MFunctions,
+    #[serde(default)]
+    pub work_offsets: WorkOffsets,
+    #[serde(default)]
+    pub program: ProgramSettings,
+}
+
+/// Which control and which machine.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Machine {
+    /// A name for people.
+    pub name: String,
+    pub control: Control,
+}
+
+/// The control family.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+pub enum Control {
+    #[serde(rename = "840d_sl")]
+    Sinumerik840dSl,
+    #[serde(rename = "828d")]
+    Sinumerik828d,
+}
+
+/// One channel axis.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Axis {
+    /// The channel axis name (`X`, `Y`, `Z`, `A`, `C`, `X1`).
+    pub name: Spanned<String>,
+    pub kind: AxisKind,
+    /// One of the (at most three) geometry axes.
+    #[serde(default)]
+    pub geometry: bool,
+    /// The lathe's transverse axis, programmed in diameter under `DIAMON`.
+    #[serde(default)]
+    pub diameter: bool,
+    /// Rapid traverse rate, mm/min (degrees/min for rotary axes).
+    #[serde(default = "default_rapid")]
+    pub rapid: Spanned<f64>,
+}
+
+/// Linear or rotary.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AxisKind {
+    Linear,
+    Rotary,
+}
+
+/// Tool change per seed 000.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ToolChange {
+    /// `direct`: `T` changes the tool; `deferred_m6`: `T` preselects and
+    /// the change M code changes.
+    #[serde(default = "default_tool_change_mode")]
+    pub tool_change_mode: ToolChangeMode,
+    /// The M function that changes the tool in `deferred_m6` mode.
+    #[serde(default = "default_change_m_code")]
+    pub change_m_code: Spanned<u32>,
+    /// Tools are selected by name or location (`T="DRILL"`), not number.
+    #[serde(default)]
+    pub tool_management_enabled: bool,
+    #[serde(default = "default_on_unresolved_tool")]
+    pub on_unresolved_tool: UnresolvedToolPolicy,
+    #[serde(default)]
+    pub allow_substitution: bool,
+    #[serde(default = "default_m6_without_pending_policy")]
+    pub m6_without_pending_policy: Policy,
+}
+
+impl Default for ToolChange {
+    fn default() -> Self {
+        Self {
+            tool_change_mode: default_tool_change_mode(),
+            change_m_code: default_change_m_code(),
+            tool_management_enabled: false,
+            on_unresolved_tool: default_on_unresolved_tool(),
+            allow_substitution: false,
+            m6_without_pending_policy: default_m6_without_pending_policy(),
+        }
+    }
+}
+
+/// `direct` or `deferred_m6`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ToolChangeMode {
+    Direct,
+    DeferredM6,
+}
+
+/// What a tool selection that names no tool in the table does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum UnresolvedToolPolicy {
+    Error,
+    Warning,
+    Fallback,
+}
+
+/// `error`, `warning` or `ignore`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Policy {
+    Error,
+    Warning,
+    Ignore,
+}
+
+/// One tool of the tool table.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Tool {
+    /// The T number (without tool management) or internal number.
+    pub number: Spanned<u32>,
+    /// The tool's name (needed with tool management).
+    #[serde(default)]
+    pub name: Option<Spanned<String>>,
+    /// Duplo number: sister tools share a name.
+    #[serde(default = "default_duplo")]
+    pub duplo: u32,
+    /// Magazine location.
+    #[serde(default)]
+    pub location: Option<u32>,
+    #[serde(default = "default_tool_state")]
+    pub state: ToolState,
+    /// Cutting edges `D1`, `D2`, …
+    #[serde(default)]
+    pub edges: Vec<Edge>,
+}
+
+/// Whether a tool may be used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ToolState {
+    Enabled,
+    Disabled,
+    Locked,
+}
+
+/// One cutting edge.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Edge {
+    /// The `D` number.
+    pub d: Spanned<u32>,
+    /// Length compensation, mm.
+    #[serde(default)]
+    pub length: f64,
+    /// Radius, mm.
+    #[serde(default)]
+    pub radius: f64,
+}
+
+/// M functions per seed 001.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MFunctions {
+    #[serde(default = "default_max_m_per_block")]
+    pub max_m_per_block: Spanned<u32>,
+    #[serde(default = "default_unknown_mcode_policy")]
+    pub unknown_mcode_policy: Policy,
+    /// `M<n>=<value>` addresses a spindle.
+    #[serde(default = "yes")]
+    pub enable_extended_m_address: bool,
+    /// M value → class, overriding the built-in classification.
+    #[serde(default)]
+    pub mcode_class_overrides: BTreeMap<Spanned<String>, MClass>,
+}
+
+impl Default for MFunctions {
+    fn default() -> Self {
+        Self {
+            max_m_per_block: default_max_m_per_block(),
+            unknown_mcode_policy: default_unknown_mcode_policy(),
+            enable_extended_m_address: true,
+            mcode_class_overrides: BTreeMap::new(),
+        }
+    }
+}
+
+/// The classes of seed 001.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MClass {
+    ProgramFlow,
+    Spindle,
+    Tool,
+    Gearbox,
+    Custom,
+}
+
+/// Work offsets per seed 003.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct WorkOffsets {
+    /// The Group 8 selection after reset (`G500`, `G54`, …).
+    #[serde(default = "default_group8_offset")]
+    pub default_group8_offset: Spanned<String>,
+    /// Codes and ranges of codes the machine has: `"G54"`, `"G505-G599"`.
+    #[serde(default = "default_supported_group8_offsets")]
+    pub supported_group8_offsets: Vec<Spanned<String>>,
+    /// Codes that older programs use for a Group 8 offset
+    /// (`G58 = "G505"`); without an alias `G58`/`G59` are the axial
+    /// programmable offsets of group 3.
+    #[serde(default)]
+    pub legacy_aliases: BTreeMap<Spanned<String>, Spanned<String>>,
+    /// Several of `G53`, `G153`, `SUPA` in one block.
+    #[serde(default = "default_duplicate_suppression_policy")]
+    pub duplicate_suppression_policy: DuplicateSuppressionPolicy,
+    /// The translation of each settable offset, per axis: `[work_offsets.values.G54]`.
+    #[serde(default)]
+    pub values: BTreeMap<Spanned<String>, BTreeMap<Spanned<String>, f64>>,
+}
+
+impl Default for WorkOffsets {
+    fn default() -> Self {
+        Self {
+            default_group8_offset: default_group8_offset(),
+            supported_group8_offsets: default_supported_group8_offsets(),
+            legacy_aliases: BTreeMap::new(),
+            duplicate_suppression_policy: default_duplicate_suppression_policy(),
+            values: BTreeMap::new(),
+        }
+    }
+}
+
+/// `warn`, `error` or `first_wins`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DuplicateSuppressionPolicy {
+    Warn,
+    Error,
+    FirstWins,
+}
+
+/// How programs are read and run.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProgramSettings {
+    /// Skip levels switched on: blocks marked `/n` are skipped.
+    #[serde(default)]
+    pub skip_levels: Vec<Spanned<u8>>,
+    /// Longest block the control accepts, in characters.
+    #[serde(default = "default_max_block_length")]
+    pub max_block_length: Spanned<u32>,
+    /// Highest programmable feed, mm/min.
+    #[serde(default = "default_max_feed")]
+    pub max_feed: Spanned<f64>,
+    /// Folders searched for subprograms, relative to the profile's folder.
+    #[serde(default)]
+    pub subprogram_paths: Vec<String>,
+}
+
+impl Default for ProgramSettings {
+    fn default() -> Self {
+        Self {
+            skip_levels: Vec::new(),
+            max_block_length: default_max_block_length(),
+            max_feed: default_max_feed(),
+            subprogram_paths: Vec::new(),
+        }
+    }
+}
+
+fn spanned<T>(value: T) -> Spanned<T> {
+    Spanned::new(0..0, value)
+}
+
+fn yes() -> bool {
+    true
+}
+
+fn default_axes() -> Vec<Axis> {
+    ["X", "Y", "Z"]
+        .into_iter()
+        .map(|name| Axis {
+            name: spanned(name.to_owned()),
+            kind: AxisKind::Linear,
+            geometry: true,
+            diameter: false,
+            rapid: default_rapid(),
+        })
+        .collect()
+}
+
+fn default_rapid() -> Spanned<f64> {
+    spanned(10_000.0)
+}
+
+fn default_tool_change_mode() -> ToolChangeMode {
+    ToolChangeMode::DeferredM6
+}
+
+fn default_change_m_code() -> Spanned<u32> {
+    spanned(6)
+}
+
+fn default_on_unresolved_tool() -> UnresolvedToolPolicy {
+    UnresolvedToolPolicy::Error
+}
+
+fn default_m6_without_pending_policy() -> Policy {
+    Policy::Warning
+}
+
+fn default_duplo() -> u32 {
+    1
+}
+
+fn default_tool_state() -> ToolState {
+    ToolState::Enabled
+}
+
+fn default_max_m_per_block() -> Spanned<u32> {
+    spanned(5)
+}
+
+fn default_unknown_mcode_policy() -> Policy {
+    Policy::Warning
+}
+
+fn default_group8_offset() -> Spanned<String> {
+    spanned("G500".to_owned())
+}
+
+fn default_supported_group8_offsets() -> Vec<Spanned<String>> {
+    vec![spanned("G500".to_owned()), spanned("G54-G57".to_owned())]
+}
+
+fn default_duplicate_suppression_policy() -> DuplicateSuppressionPolicy {
+    DuplicateSuppressionPolicy::Warn
+}
+
+fn default_max_block_length() -> Spanned<u32> {
+    spanned(512)
+}
+
+fn default_max_feed() -> Spanned<f64> {
+    spanned(10_000.0)
+}

@@ -1,0 +1,343 @@
+//! Checks a profile beyond its types: ranges, references between sections,
+//! duplicates, overlaps. Every problem found is reported.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use gcodec_source::Diagnostic;
+use toml::Spanned;
+
+use crate::group8::{group8_index, group8_range};
+use crate::schema::*;
+use crate::span;
+
+const OUT_OF_RANGE: &str = "gcodec::profile::out_of_range";
+const DUPLICATE: &str = "gcodec::profile::duplicate";
+const UNKNOWN_REFERENCE: &str = "gcodec::profile::unknown_reference";
+const OVERLAPPING_RANGES: &str = "gcodec::profile::overlapping_ranges";
+
+/// Largest M value and T number (`0…2147483647`, seed 001).
+const MAX_ADDRESS_VALUE: u32 = i32::MAX as u32;
+
+pub(crate) fn check(profile: &Profile) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    check_axes(&profile.axes, &mut out);
+    check_modal_defaults(profile, &mut out);
+    check_tools(profile, &mut out);
+    check_m_functions(&profile.m_functions, &mut out);
+    check_work_offsets(profile, &mut out);
+    check_program(&profile.program, &mut out);
+    out
+}
+
+fn error<T>(
+    code: &'static str,
+    at: &Spanned<T>,
+    message: String,
+    label: &'static str,
+) -> Diagnostic {
+    Diagnostic::error(code, message).with_label(span(at.span()), label)
+}
+
+fn check_axes(axes: &[Axis], out: &mut Vec<Diagnostic>) {
+    let mut seen: BTreeMap<String, &Spanned<String>> = BTreeMap::new();
+    for axis in axes {
+        let name = axis.name.get_ref();
+        let valid = name.len() <= 8
+            && name.bytes().next().is_some_and(|b| b.is_ascii_alphabetic())
+            && name.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_');
+        if !valid {
+            out.push(
+                error(OUT_OF_RANGE, &axis.name, format!("`{name}` is not an axis name"), "here")
+                    .with_help("an axis name is a letter followed by up to 7 letters, digits or `_`, e.g. `X`, `C1`"),
+            );
+        }
+        if let Some(first) = seen.insert(name.to_ascii_uppercase(), &axis.name) {
+            out.push(
+                error(
+                    DUPLICATE,
+                    &axis.name,
+                    format!("axis `{name}` is listed twice"),
+                    "again here",
+                )
+                .with_label(span(first.span()), "first here"),
+            );
+        }
+        if axis.diameter && axis.kind != AxisKind::Linear {
+            out.push(error(
+                OUT_OF_RANGE,
+                &axis.name,
+                format!("the diameter axis `{name}` must be linear"),
+                "rotary",
+            ));
+        }
+        if !(axis.rapid.get_ref().is_finite() && *axis.rapid.get_ref() > 0.0) {
+            out.push(error(
+                OUT_OF_RANGE,
+                &axis.rapid,
+                "a rapid rate must be above 0".into(),
+                "here",
+            ));
+        }
+    }
+    let geometry = axes.iter().filter(|a| a.geometry).count();
+    if geometry > 3 {
+        if let Some(fourth) = axes.iter().filter(|a| a.geometry).nth(3) {
+            out.push(error(
+                OUT_OF_RANGE,
+                &fourth.name,
+                "a channel has at most three geometry axes".into(),
+                "the fourth",
+            ));
+        }
+    }
+    if let Some(second) = axes.iter().filter(|a| a.diameter).nth(1) {
+        out.push(error(
+            OUT_OF_RANGE,
+            &second.name,
+            "a channel has one diameter axis".into(),
+            "a second one",
+        ));
+    }
+}
+
+fn check_modal_defaults(profile: &Profile, out: &mut Vec<Diagnostic>) {
+    for (group, code) in &profile.modal_defaults {
+        if !group
+            .get_ref()
+            .parse::<u8>()
+            .is_ok_and(|g| (1..=64).contains(&g))
+        {
+            out.push(
+                error(
+                    OUT_OF_RANGE,
+                    group,
+                    format!("`{}` is not a G group", group.get_ref()),
+                    "here",
+                )
+                .with_help("G groups are numbered 1 to 64, e.g. `8 = \"G54\"`"),
+            );
+        }
+        if code.get_ref().trim().is_empty() {
+            out.push(error(OUT_OF_RANGE, code, "empty G code".into(), "here"));
+        }
+    }
+}
+
+fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
+    let change = &profile.tool_change;
+    if *change.change_m_code.get_ref() > MAX_ADDRESS_VALUE {
+        out.push(error(
+            OUT_OF_RANGE,
+            &change.change_m_code,
+            format!("M values range over 0…{MAX_ADDRESS_VALUE}"),
+            "here",
+        ));
+    }
+    let mut numbers: BTreeMap<(u32, u32), &Spanned<u32>> = BTreeMap::new();
+    let mut names: BTreeMap<(String, u32), &Spanned<String>> = BTreeMap::new();
+    for tool in &profile.tools {
+        let number = *tool.number.get_ref();
+        if number == 0 || number > MAX_ADDRESS_VALUE {
+            out.push(error(
+                OUT_OF_RANGE,
+                &tool.number,
+                format!("tool numbers range over 1…{MAX_ADDRESS_VALUE} (T0 deselects)"),
+                "here",
+            ));
+        }
+        if let Some(first) = numbers.insert((number, tool.duplo), &tool.number) {
+            out.push(
+                error(
+                    DUPLICATE,
+                    &tool.number,
+                    format!("tool {number} (duplo {}) is listed twice", tool.duplo),
+                    "again here",
+                )
+                .with_label(span(first.span()), "first here"),
+            );
+        }
+        match &tool.name {
+            Some(name) => {
+                if let Some(first) = names.insert((name.get_ref().to_ascii_uppercase(), tool.duplo), name) {
+                    out.push(
+                        error(DUPLICATE, name, format!("tool `{}` (duplo {}) is listed twice", name.get_ref(), tool.duplo), "again here")
+                            .with_label(span(first.span()), "first here")
+                            .with_help("sister tools share a name and differ in `duplo`"),
+                    );
+                }
+            }
+            None if change.tool_management_enabled => out.push(
+                error(OUT_OF_RANGE, &tool.number, format!("tool {number} has no name"), "this tool")
+                    .with_help("with `tool_management_enabled`, tools are selected by name: add `name = \"…\"`"),
+            ),
+            None => {}
+        }
+        let mut edges = BTreeSet::new();
+        for edge in &tool.edges {
+            let d = *edge.d.get_ref();
+            if !(1..=32_000).contains(&d) {
+                out.push(error(
+                    OUT_OF_RANGE,
+                    &edge.d,
+                    "cutting edges are D1…D32000 (D0 deselects)".into(),
+                    "here",
+                ));
+            }
+            if !edges.insert(d) {
+                out.push(error(
+                    DUPLICATE,
+                    &edge.d,
+                    format!("tool {number} has D{d} twice"),
+                    "again here",
+                ));
+            }
+        }
+    }
+}
+
+fn check_m_functions(m: &MFunctions, out: &mut Vec<Diagnostic>) {
+    if !(1..=16).contains(m.max_m_per_block.get_ref()) {
+        out.push(error(
+            OUT_OF_RANGE,
+            &m.max_m_per_block,
+            "`max_m_per_block` ranges over 1…16".into(),
+            "here",
+        ));
+    }
+    for value in m.mcode_class_overrides.keys() {
+        if !value
+            .get_ref()
+            .parse::<u32>()
+            .is_ok_and(|v| v <= MAX_ADDRESS_VALUE)
+        {
+            out.push(
+                error(
+                    OUT_OF_RANGE,
+                    value,
+                    format!("`{}` is not an M value", value.get_ref()),
+                    "here",
+                )
+                .with_help("keys are M values, e.g. `100 = \"custom\"`"),
+            );
+        }
+    }
+}
+
+fn check_work_offsets(profile: &Profile, out: &mut Vec<Diagnostic>) {
+    let w = &profile.work_offsets;
+    let mut supported: Vec<(u8, u8, &Spanned<String>)> = Vec::new();
+    for entry in &w.supported_group8_offsets {
+        match group8_range(entry.get_ref()) {
+            Ok((lo, hi)) => {
+                if let Some((_, _, other)) = supported.iter().find(|(a, b, _)| lo <= *b && *a <= hi)
+                {
+                    out.push(
+                        error(
+                            OVERLAPPING_RANGES,
+                            entry,
+                            format!("`{}` overlaps `{}`", entry.get_ref(), other.get_ref()),
+                            "this range",
+                        )
+                        .with_label(span(other.span()), "overlaps this one"),
+                    );
+                }
+                supported.push((lo, hi, entry));
+            }
+            Err(message) => out.push(error(OUT_OF_RANGE, entry, message, "here").with_help(
+                "write codes or ranges such as `\"G500\"`, `\"G54-G57\"`, `\"G505-G599\"`",
+            )),
+        }
+    }
+    let is_supported = |code: &str| {
+        group8_index(code)
+            .is_some_and(|i| supported.iter().any(|(lo, hi, _)| (*lo..=*hi).contains(&i)))
+    };
+    let unsupported = |at: &Spanned<String>, what: &str| {
+        error(
+            UNKNOWN_REFERENCE,
+            at,
+            format!(
+                "{what} `{}` is not among `supported_group8_offsets`",
+                at.get_ref()
+            ),
+            "here",
+        )
+    };
+    if !is_supported(w.default_group8_offset.get_ref()) {
+        out.push(unsupported(&w.default_group8_offset, "the default offset"));
+    }
+    for (alias, target) in &w.legacy_aliases {
+        let name = alias.get_ref();
+        let is_g_code = name
+            .strip_prefix(['G', 'g'])
+            .is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()));
+        if !is_g_code {
+            out.push(error(
+                OUT_OF_RANGE,
+                alias,
+                format!("`{name}` is not a G code"),
+                "here",
+            ));
+        }
+        if group8_index(name).is_some() {
+            out.push(error(
+                OUT_OF_RANGE,
+                alias,
+                format!("`{name}` is a Group 8 code itself"),
+                "here",
+            ));
+        }
+        if !is_supported(target.get_ref()) {
+            out.push(unsupported(target, "the alias target"));
+        }
+    }
+    let axes: BTreeSet<String> = profile
+        .axes
+        .iter()
+        .map(|a| a.name.get_ref().to_ascii_uppercase())
+        .collect();
+    for (offset, values) in &w.values {
+        if !is_supported(offset.get_ref()) {
+            out.push(unsupported(offset, "the offset"));
+        }
+        for axis in values.keys() {
+            if !axes.contains(&axis.get_ref().to_ascii_uppercase()) {
+                out.push(error(
+                    UNKNOWN_REFERENCE,
+                    axis,
+                    format!("`{}` is not an axis of this profile", axis.get_ref()),
+                    "here",
+                ));
+            }
+        }
+    }
+}
+
+fn check_program(p: &ProgramSettings, out: &mut Vec<Diagnostic>) {
+    for level in &p.skip_levels {
+        if *level.get_ref() > 9 {
+            out.push(error(
+                OUT_OF_RANGE,
+                level,
+                "skip levels are 0…9".into(),
+                "here",
+            ));
+        }
+    }
+    if *p.max_block_length.get_ref() == 0 {
+        out.push(error(
+            OUT_OF_RANGE,
+            &p.max_block_length,
+            "a block length must be above 0".into(),
+            "here",
+        ));
+    }
+    if !(p.max_feed.get_ref().is_finite() && *p.max_feed.get_ref() > 0.0) {
+        out.push(error(
+            OUT_OF_RANGE,
+            &p.max_feed,
+            "a feed limit must be above 0".into(),
+            "here",
+        ));
+    }
+}
