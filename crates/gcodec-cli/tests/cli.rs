@@ -11,6 +11,16 @@ const EXIT_CLEAN: i32 = 0;
 const EXIT_DIAGNOSTICS: i32 = 1;
 const EXIT_USAGE: i32 = 2;
 
+/// Writes `contents` to `name` in a temporary folder of this test run
+/// (one per `test`, so tests running in parallel do not meet).
+fn temp_file(test: &str, name: &str, contents: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("gcodec-cli-{test}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join(name);
+    std::fs::write(&path, contents).expect("write");
+    path
+}
+
 fn fixture(relative: &str) -> PathBuf {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../tests/fixtures/parse")
@@ -196,10 +206,11 @@ fn unclosed_structure_exits_1() {
 /// renders all. The exit code counts them all.
 #[test]
 fn diagnostics_beyond_the_limit_are_counted_not_rendered() {
-    let dir = std::env::temp_dir().join(format!("gcodec-cli-limit-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let path = dir.join("unclosed.mpf");
-    std::fs::write(&path, "IF R1==1\n".repeat(150) + "M30\n").expect("write");
+    let path = temp_file(
+        "limit",
+        "unclosed.mpf",
+        &("IF R1==1\n".repeat(150) + "M30\n"),
+    );
     let rendered = |out: &Output| stderr(out).matches("is never closed").count();
 
     let out = gcodec(["parse".as_ref(), path.as_os_str()]);
@@ -222,7 +233,6 @@ fn diagnostics_beyond_the_limit_are_counted_not_rendered() {
     assert_eq!(code(&out), EXIT_DIAGNOSTICS);
     assert_eq!(rendered(&out), 150);
     assert!(!stderr(&out).contains("not shown"));
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -383,14 +393,11 @@ fn profile_check_accepts_every_shipped_profile() {
 
 #[test]
 fn profile_check_reports_a_bad_profile_with_exit_2() {
-    let dir = std::env::temp_dir().join(format!("gcodec-cli-profile-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let path = dir.join("bad.toml");
-    std::fs::write(
-        &path,
+    let path = temp_file(
+        "profile",
+        "bad.toml",
         "[machine]\nname = \"m\"\ncontrol = \"840d_sl\"\n[work_offsets]\ndefault_group8_offset = \"G599\"\n",
-    )
-    .expect("write");
+    );
     let out = gcodec(["profile".as_ref(), "check".as_ref(), path.as_os_str()]);
     assert_no_panic(&out);
     assert_eq!(code(&out), EXIT_USAGE);
@@ -403,7 +410,7 @@ fn profile_check_reports_a_bad_profile_with_exit_2() {
     let out = gcodec([
         "profile".as_ref(),
         "check".as_ref(),
-        dir.join("missing.toml").as_os_str(),
+        path.with_file_name("missing.toml").as_os_str(),
     ]);
     assert_eq!(code(&out), EXIT_USAGE);
     assert!(
@@ -411,7 +418,6 @@ fn profile_check_reports_a_bad_profile_with_exit_2() {
         "{}",
         stderr(&out)
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// `profile show` prints the effective built-in profile; its TOML loads
