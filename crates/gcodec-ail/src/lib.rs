@@ -1,17 +1,296 @@
-//! AIL, the executable instruction list — **not built yet** (the lowering
-//! issue fills this crate). Nothing here has behaviour; this page is the
-//! documented outline.
+//! AIL, the executable instruction list: what lowering produces from a
+//! checked program and what the executor runs.
 //!
-//! # Planned schema
+//! A document is `{"ail_version": 1, "instructions": [...]}`. Every
+//! instruction is one JSON object with `"kind"`, the kind's fields and
+//! `"source": {"file", "line", "col", "span"}`. The kinds of the design
+//! seeds keep their field names exactly: `tool_select` and `tool_change`
+//! (seed 000), `m_function` (seed 001), `work_offset` (seed 003).
 //!
-//! A versioned document `{"ail_version": 1, "instructions": [...]}`. Every
-//! instruction has `"kind"` and `"source": {"file", "line", "col", "span"}`.
-//! Kinds include those of the seed designs exactly — `tool_select`
-//! (`selector_kind`, `selector_value`, `timing`, spindle extension),
-//! `tool_change` (`trigger`), `m_function` (`m_value`, `address_extension`,
-//! `class`, `timing`, `raw`), `work_offset` (`group8_selected`,
-//! `suppression`, `suppression_scope`) — plus motion, modal changes, feed,
-//! spindle, dwell, frames, variable declarations and assignments, control
-//! flow lowered to labels and conditional jumps, calls and returns,
-//! messages, and stop/end. A JSON Schema generated from the types (schemars)
-//! will be checked in under `docs/schema/` with a staleness test.
+//! The types are the schema: `docs/schema/ail.schema.json` is generated
+//! from them ([`json_schema`]) and a test fails when the checked-in file is
+//! stale. Any change to the JSON shape that is not additive raises
+//! [`AIL_VERSION`].
+//!
+//! Not built yet (the lowering issue continues here): lowering itself
+//! (`gcodec-sema`) and `gcodec lower`.
+
+mod expr;
+
+use std::sync::Arc;
+
+pub use expr::{BinaryOp, Expr, UnaryOp, Value, VarKind};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// The version of the instruction schema written into every document.
+pub const AIL_VERSION: u32 = 1;
+
+/// An AIL document: the instructions of one program, in order.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Document {
+    /// Always [`AIL_VERSION`] for documents this crate writes.
+    pub ail_version: u32,
+    pub instructions: Vec<Instruction>,
+}
+
+impl Document {
+    /// An empty document of the current version.
+    pub fn new() -> Self {
+        Self {
+            ail_version: AIL_VERSION,
+            instructions: Vec::new(),
+        }
+    }
+}
+
+impl Default for Document {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// One instruction: what it does and where it comes from.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct Instruction {
+    #[serde(flatten)]
+    pub op: Op,
+    pub source: Source,
+}
+
+/// Where an instruction comes from.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Source {
+    /// The file as given to gcodec.
+    pub file: Arc<str>,
+    /// 1-based line.
+    pub line: u32,
+    /// 1-based byte column.
+    pub col: u32,
+    pub span: ByteRange,
+}
+
+/// A byte range in the source file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ByteRange {
+    pub start: u32,
+    pub end: u32,
+}
+
+/// What an instruction does.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Op {
+    /// `T5`, `T=5`, `T1=5`, `T="DRILL_10"` (seed 000).
+    ToolSelect {
+        selector_kind: SelectorKind,
+        /// The tool number or location as digits, or the tool name.
+        selector_value: String,
+        /// `T1=…`: the spindle the selection is for.
+        spindle_extension: Option<u32>,
+        timing: ToolTiming,
+        /// The word as written.
+        raw: String,
+    },
+    /// The change itself: by the change M function (deferred mode) or by
+    /// the `T` word (direct mode) (seed 000).
+    ToolChange { trigger: ToolChangeTrigger },
+    /// `D1`: the cutting edge; `D0` deselects the tool offset.
+    CuttingEdge { edge: u32 },
+    /// `M3`, `M2=5` (seed 001).
+    MFunction {
+        m_value: u32,
+        address_extension: Option<u32>,
+        class: MClass,
+        timing: MTiming,
+        raw: String,
+    },
+    /// The Group 8 selection and the block's suppression (seed 003).
+    WorkOffset {
+        /// The modal Group 8 code after this block, lower case (`g54`).
+        group8_selected: String,
+        /// The strongest of `G53`, `G153`, `SUPA` in the block.
+        suppression: Option<Suppression>,
+        /// `block` when there is a suppression.
+        suppression_scope: Option<SuppressionScope>,
+    },
+    /// A modal G command of any group but 8.
+    ModalChange {
+        group: u8,
+        /// The command in upper case (`G17`, `DIAMON`).
+        code: String,
+    },
+    /// A traversing block.
+    Motion {
+        motion: MotionKind,
+        /// The programmed axes, in the order written.
+        targets: Vec<AxisValue>,
+        /// The circle data of arcs.
+        circle: Option<Box<Circle>>,
+    },
+    /// `F`.
+    Feed { value: Value },
+    /// `S`, `S2=…`.
+    SpindleSpeed { spindle: Option<u32>, speed: Value },
+    /// `G4 F…` (seconds) or `G4 S…` (spindle revolutions).
+    Dwell {
+        seconds: Option<Value>,
+        revolutions: Option<Value>,
+    },
+    /// `TRANS`, `AROT`, …; no values resets the frame.
+    Frame {
+        /// The instruction in upper case.
+        op: String,
+        values: Vec<AxisValue>,
+    },
+    /// `DEF`.
+    Declare {
+        name: String,
+        data_type: String,
+        dims: Vec<Value>,
+        init: Vec<Option<Value>>,
+    },
+    /// `R1=…`, `NAME=…`, `$…=…`.
+    Assign { target: Expr, value: Value },
+    /// A jump target: a label, a block number, or a structure boundary.
+    Label { name: String },
+    /// Continue at `target`, if `condition` holds (always when absent).
+    Jump {
+        target: String,
+        condition: Option<Expr>,
+    },
+    /// A call of a subprogram or cycle.
+    Call {
+        target: String,
+        args: Vec<Option<Value>>,
+        passes: Option<Value>,
+        /// `MCALL`: called after every traversing block until cancelled.
+        modal: bool,
+    },
+    /// `RET`, `M17` at the end of a subprogram.
+    Return { values: Vec<Value> },
+    /// `MSG("…")`.
+    Message { text: Value },
+    /// `STOPRE` and the like: a stop of the block preparation.
+    Stop { reason: String },
+    /// The end of the program text.
+    End,
+}
+
+/// How a tool is named (seed 000).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SelectorKind {
+    Number,
+    Name,
+    Location,
+}
+
+/// When a selection takes effect (seed 000).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ToolTiming {
+    Immediate,
+    DeferredUntilM6,
+}
+
+/// What changes the tool (seed 000).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ToolChangeTrigger {
+    /// The profile's change M function (M6 by default).
+    M6,
+    /// The `T` word itself, in direct mode.
+    TWord,
+}
+
+/// M-function classes (seed 001).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum MClass {
+    ProgramFlow,
+    Spindle,
+    Tool,
+    Gearbox,
+    Custom,
+}
+
+/// When an M function acts (seed 001): `M0 M1 M2 M17 M30` in a block with
+/// motion act after it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum MTiming {
+    InBlock,
+    PostMotion,
+}
+
+/// Block-scope suppression of offsets (seed 003), weakest first.
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum Suppression {
+    G53,
+    G153,
+    Supa,
+}
+
+/// The scope of a suppression: always the block (seed 003).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SuppressionScope {
+    Block,
+}
+
+/// How a block traverses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum MotionKind {
+    Rapid,
+    Linear,
+    ArcCw,
+    ArcCcw,
+    /// `CIP`: a circle through an intermediate point.
+    ArcThroughPoint,
+    /// `CT`: a circle tangential to the previous path.
+    ArcTangential,
+}
+
+/// A value for one axis (or circle parameter), with its dimension mode.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AxisValue {
+    /// The axis or address in upper case (`X`, `C1`, `I`).
+    pub axis: String,
+    pub value: Value,
+    /// `AC(…)`, `IC(…)`, … when written; otherwise the modal G90/G91 holds.
+    pub mode: Option<String>,
+}
+
+/// The data of an arc, in the form it was programmed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Circle {
+    /// `I J K` (incremental from the start unless `=AC(…)`).
+    pub centre: Vec<AxisValue>,
+    /// `CR=`: negative for more than 180°.
+    pub radius: Option<Value>,
+    /// `AR=`: the opening angle in degrees.
+    pub opening_angle: Option<Value>,
+    /// `CIP I1= J1= K1=`.
+    pub intermediate: Vec<AxisValue>,
+    /// `TURN=`: extra full turns of a helix.
+    pub turns: Option<Value>,
+}
+
+/// The JSON Schema of an AIL document, as checked in under
+/// `docs/schema/ail.schema.json`.
+pub fn json_schema() -> String {
+    let schema = schemars::schema_for!(Document);
+    let mut text = serde_json::to_string_pretty(&schema).unwrap_or_default();
+    text.push('\n');
+    text
+}

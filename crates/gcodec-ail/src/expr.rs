@@ -1,0 +1,100 @@
+//! Values and expressions in AIL: a constant where lowering could fold one,
+//! otherwise an expression tree the executor evaluates.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// A number known when lowering, or an expression evaluated at run time.
+/// In JSON a constant is a plain number.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum Value {
+    Const(f64),
+    Expr(Box<Expr>),
+}
+
+/// An expression evaluated at run time.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "op", rename_all = "snake_case")]
+pub enum Expr {
+    Number {
+        value: f64,
+    },
+    String {
+        value: String,
+    },
+    Bool {
+        value: bool,
+    },
+    /// A variable, with its indices (`R1` is `R` with index 1).
+    Var {
+        var_kind: VarKind,
+        /// The name in upper case (`R`, `COUNTER`, `$P_UIFR`).
+        name: String,
+        indices: Vec<Expr>,
+    },
+    /// A built-in or user function.
+    Call {
+        name: String,
+        args: Vec<Option<Expr>>,
+    },
+    Unary {
+        operator: UnaryOp,
+        operand: Box<Expr>,
+    },
+    Binary {
+        operator: BinaryOp,
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+    },
+}
+
+/// What a variable is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum VarKind {
+    RParameter,
+    /// A `DEF` variable or parameter.
+    User,
+    /// A `$` system variable.
+    System,
+    /// An axis name used as a value (`AX[X]`, frame functions).
+    Axis,
+}
+
+/// Unary operators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum UnaryOp {
+    Neg,
+    Plus,
+    Not,
+    BNot,
+    ToString,
+}
+
+/// Binary operators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum BinaryOp {
+    Mul,
+    Div,
+    IntDiv,
+    Mod,
+    Add,
+    Sub,
+    BAnd,
+    BXor,
+    BOr,
+    And,
+    Xor,
+    Or,
+    Concat,
+    Eq,
+    Ne,
+    Lt,
+    Gt,
+    Le,
+    Ge,
+    Chain,
+}
