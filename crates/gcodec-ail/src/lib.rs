@@ -271,7 +271,7 @@ pub struct AxisValue {
 }
 
 /// The data of an arc, in the form it was programmed.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Circle {
     /// `I J K` (incremental from the start unless `=AC(…)`).
@@ -293,4 +293,32 @@ pub fn json_schema() -> String {
     let mut text = serde_json::to_string_pretty(&schema).unwrap_or_default();
     text.push('\n');
     text
+}
+
+/// Writes the readable listing of `gcodec lower --format text`: one
+/// instruction a line, `line:col kind fields…`, the fields as compact JSON.
+pub fn write_listing(document: &Document, out: &mut impl std::fmt::Write) -> std::fmt::Result {
+    for instruction in &document.instructions {
+        let source = &instruction.source;
+        let mut fields = serde_json::to_value(&instruction.op).unwrap_or_default();
+        let kind = fields
+            .get("kind")
+            .and_then(|k| k.as_str())
+            .unwrap_or("?")
+            .to_owned();
+        if let Some(map) = fields.as_object_mut() {
+            map.remove("kind");
+        }
+        write!(out, "{:>6}:{:<4} {kind}", source.line, source.col)?;
+        match fields.as_object() {
+            Some(map) if !map.is_empty() => {
+                for (key, value) in map {
+                    write!(out, " {key}={value}")?;
+                }
+                writeln!(out)?;
+            }
+            _ => writeln!(out)?,
+        }
+    }
+    Ok(())
 }

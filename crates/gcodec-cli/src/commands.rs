@@ -32,6 +32,21 @@ enum Command {
         #[command(flatten)]
         diagnostics: DiagnosticOptions,
     },
+    /// Lower programs to AIL, the executable instruction list, checked
+    /// against a machine profile.
+    Lower {
+        /// `.mpf` / `.spf` file to lower.
+        file: PathBuf,
+        /// The machine profile (TOML); the built-in one if omitted.
+        #[arg(long)]
+        profile: Option<PathBuf>,
+        /// Output: a listing, one instruction a line, or the AIL document
+        /// as JSON.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        #[command(flatten)]
+        diagnostics: DiagnosticOptions,
+    },
     /// Check or show machine profiles.
     #[command(subcommand)]
     Profile(ProfileCommand),
@@ -97,6 +112,12 @@ pub fn run(cli: Cli) -> u8 {
             format,
             diagnostics,
         } => parse(&files, format, diagnostics),
+        Command::Lower {
+            file,
+            profile,
+            format,
+            diagnostics,
+        } => lower(&file, profile.as_deref(), format, diagnostics),
         Command::Profile(ProfileCommand::Check { file, diagnostics }) => {
             match load_profile(Some(&file), diagnostics) {
                 Ok(_) => EXIT_CLEAN,
@@ -218,6 +239,47 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
         }
     }
     if out.flush().is_err() && exit == EXIT_CLEAN {
+        exit = EXIT_USAGE;
+    }
+    exit
+}
+
+fn lower(path: &Path, profile: Option<&Path>, format: Format, options: DiagnosticOptions) -> u8 {
+    let profile = match load_profile(profile, options) {
+        Ok(p) => p,
+        Err(code) => return code,
+    };
+    let file = match read(path) {
+        Ok(f) => f,
+        Err(d) => {
+            report(&[d], None, options);
+            return EXIT_USAGE;
+        }
+    };
+    let parsed = gcodec_parser::parse(&file);
+    let lowered = gcodec_sema::lower(&parsed.program, &profile);
+    let mut diagnostics = parsed.diagnostics;
+    diagnostics.extend(lowered.diagnostics.iter().cloned());
+    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    report(&diagnostics, Some(&file), options);
+    let mut exit = if diagnostics.iter().any(Diagnostic::is_error) {
+        EXIT_DIAGNOSTICS
+    } else {
+        EXIT_CLEAN
+    };
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::new(stdout.lock());
+    let written = match format {
+        Format::Text => {
+            let mut text = String::new();
+            let _ = gcodec_ail::write_listing(&lowered.document, &mut text);
+            out.write_all(text.as_bytes())
+        }
+        Format::Json => serde_json::to_writer_pretty(&mut out, &lowered.document)
+            .map_err(std::io::Error::from)
+            .and_then(|()| writeln!(out)),
+    };
+    if (written.is_err() || out.flush().is_err()) && exit == EXIT_CLEAN {
         exit = EXIT_USAGE;
     }
     exit

@@ -40,6 +40,9 @@ pub struct Machine {
     /// A name for people.
     pub name: String,
     pub control: Control,
+    /// The spindle numbers (`S2=…`, `M2=3`, `T2=…` address spindle 2).
+    #[serde(default = "default_spindles")]
+    pub spindles: Vec<Spanned<u32>>,
 }
 
 /// The control family.
@@ -313,6 +316,10 @@ fn default_axes() -> Vec<Axis> {
             rapid: default_rapid(),
         })
         .collect()
+}
+
+fn default_spindles() -> Vec<Spanned<u32>> {
+    vec![spanned(1)]
 }
 
 fn default_rapid() -> Spanned<f64> {

@@ -20,6 +20,7 @@ const MAX_ADDRESS_VALUE: u32 = i32::MAX as u32;
 
 pub(crate) fn check(profile: &Profile) -> Vec<Diagnostic> {
     let mut out = Vec::new();
+    check_spindles(&profile.machine.spindles, &mut out);
     check_axes(&profile.axes, &mut out);
     check_modal_defaults(profile, &mut out);
     check_tools(profile, &mut out);
@@ -36,6 +37,28 @@ fn error<T>(
     label: &'static str,
 ) -> Diagnostic {
     Diagnostic::error(code, message).with_label(span(at.span()), label)
+}
+
+fn check_spindles(spindles: &[Spanned<u32>], out: &mut Vec<Diagnostic>) {
+    let mut seen = BTreeSet::new();
+    for spindle in spindles {
+        if !(1..=99).contains(spindle.get_ref()) {
+            out.push(error(
+                OUT_OF_RANGE,
+                spindle,
+                "spindle numbers range over 1…99".into(),
+                "here",
+            ));
+        }
+        if !seen.insert(*spindle.get_ref()) {
+            out.push(error(
+                DUPLICATE,
+                spindle,
+                format!("spindle {} is listed twice", spindle.get_ref()),
+                "again here",
+            ));
+        }
+    }
 }
 
 fn check_axes(axes: &[Axis], out: &mut Vec<Diagnostic>) {

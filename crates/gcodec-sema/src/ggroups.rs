@@ -1,0 +1,1531 @@
+//! The G-group registry: all 64 groups of the language reference §3.2 with
+//! their members in index order, their effect and their 840D reset default.
+//!
+//! The index of a member is the number the control itself uses: MD20150
+//! `$MC_GCODE_RESET_VALUES[group-1]` stores it and `$P_GG[group]` returns it,
+//! so programs compare against it (`IF $P_GG[8]==3 …`). That is why member
+//! positions must never shift, not even where the manual skips a number.
+//!
+//! The defaults here are Siemens' standard MD20150 values for the 840D.
+//! Machine builders change them (lathes often start in `G18`, `G95`,
+//! `DIAMON`) and 828D defaults come from the machine's own MD20150, so the
+//! modal engine should take its reset state from the machine profile and
+//! treat [`default_member`] as the fallback.
+
+/// Whether a group's command stays in force after its block (the "W"
+/// column of the manual's tables: `m` or `s`).
+///
+/// Group 3 is non-modal although its *effects* persist: `TRANS`, `G25` or
+/// `G110` write frame, working-area or pole data that outlives the block,
+/// but the command itself is not a state that later blocks are "in".
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Effect {
+    /// Stays active until another member of the same group replaces it.
+    ///
+    /// The unassigned groups 5 and 63 are recorded as modal too: the
+    /// reference names groups 2, 3, 9, 11 and 62 as the non-modal ones and
+    /// calls all others modal, and MD20150 keeps an (inactive) slot for them
+    /// like for any modal group.
+    Modal,
+    /// Acts only in the block where it is written (block scope).
+    NonModal,
+}
+
+/// One G group of the language reference §3.2.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GGroup {
+    /// Group number, 1…64, as used by MD20150 and `$P_GG`.
+    pub number: u8,
+    /// The group's title from the reference, for messages.
+    pub title: &'static str,
+    /// Modal or block scope.
+    pub effect: Effect,
+    /// Upper-case command names in index order: `members[0]` is index 1.
+    ///
+    /// An empty string stands for an index the control does not assign, so
+    /// that the indices after it stay right: group 3 has no index 9 and
+    /// `G25` is index 10. Unassigned groups (5 and 63) have no members.
+    pub members: &'static [&'static str],
+    /// 1-based index of the reset default (Siemens standard MD20150 for the
+    /// 840D); `None` for non-modal and unassigned groups, which have none.
+    pub default_index: Option<u8>,
+}
+
+/// All G groups; group `n` is at position `n - 1`.
+///
+/// Transcribed from the reference's §3.2 table, with its ranges written
+/// out. Use the table here rather than CEAD's `ggroups.json`, which swaps
+/// groups 53 and 56 and numbers the groups from 59 on one off.
+pub static G_GROUPS: [GGroup; 64] = [
+    GGroup {
+        number: 1,
+        title: "Modally valid motion commands",
+        effect: Effect::Modal,
+        members: &[
+            "G0", "G1", "G2", "G3", "CIP", "ASPLINE", "BSPLINE", "CSPLINE", "POLY", "G33", "G331",
+            "G332", "OEMIPO1", "OEMIPO2", "CT", "G34", "G35", "INVCW", "INVCCW", "G335", "G336",
+        ],
+        default_index: Some(2),
+    },
+    GGroup {
+        number: 2,
+        title: "Non-modal motions, dwell time",
+        effect: Effect::NonModal,
+        members: &[
+            "G4", "G63", "G74", "G75", "REPOSL", "REPOSQ", "REPOSH", "REPOSA", "REPOSQA",
+            "REPOSHA", "G147", "G247", "G347", "G148", "G248", "G348", "G5", "G7",
+        ],
+        default_index: None,
+    },
+    // Index 9 is not assigned (ONE p.1249): the "" keeps G25 at 10.
+    GGroup {
+        number: 3,
+        title: "Programmable frame, working-area limitation, pole",
+        effect: Effect::NonModal,
+        members: &[
+            "TRANS", "ROT", "SCALE", "MIRROR", "ATRANS", "AROT", "ASCALE", "AMIRROR", "", "G25",
+            "G26", "G110", "G111", "G112", "G58", "G59", "ROTS", "AROTS",
+        ],
+        default_index: None,
+    },
+    GGroup {
+        number: 4,
+        title: "FIFO",
+        effect: Effect::Modal,
+        members: &["STARTFIFO", "STOPFIFO", "FIFOCTRL"],
+        default_index: Some(1),
+    },
+    // Groups 5 and 63 are not assigned; MD20150 marks them inactive.
+    GGroup {
+        number: 5,
+        title: "not assigned",
+        effect: Effect::Modal,
+        members: &[],
+        default_index: None,
+    },
+    GGroup {
+        number: 6,
+        title: "Plane selection",
+        effect: Effect::Modal,
+        members: &["G17", "G18", "G19"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 7,
+        title: "Tool radius compensation",
+        effect: Effect::Modal,
+        members: &["G40", "G41", "G42"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 8,
+        title: "Settable work offset",
+        effect: Effect::Modal,
+        members: &[
+            "G500", "G54", "G55", "G56", "G57", "G505", "G506", "G507", "G508", "G509", "G510",
+            "G511", "G512", "G513", "G514", "G515", "G516", "G517", "G518", "G519", "G520", "G521",
+            "G522", "G523", "G524", "G525", "G526", "G527", "G528", "G529", "G530", "G531", "G532",
+            "G533", "G534", "G535", "G536", "G537", "G538", "G539", "G540", "G541", "G542", "G543",
+            "G544", "G545", "G546", "G547", "G548", "G549", "G550", "G551", "G552", "G553", "G554",
+            "G555", "G556", "G557", "G558", "G559", "G560", "G561", "G562", "G563", "G564", "G565",
+            "G566", "G567", "G568", "G569", "G570", "G571", "G572", "G573", "G574", "G575", "G576",
+            "G577", "G578", "G579", "G580", "G581", "G582", "G583", "G584", "G585", "G586", "G587",
+            "G588", "G589", "G590", "G591", "G592", "G593", "G594", "G595", "G596", "G597", "G598",
+            "G599",
+        ],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 9,
+        title: "Frame and tool-offset suppression",
+        effect: Effect::NonModal,
+        members: &["G53", "SUPA", "G153", "SUPD"],
+        default_index: None,
+    },
+    GGroup {
+        number: 10,
+        title: "Exact stop / continuous-path",
+        effect: Effect::Modal,
+        members: &["G60", "G64", "G641", "G642", "G643", "G644", "G645"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 11,
+        title: "Exact stop, non-modal",
+        effect: Effect::NonModal,
+        members: &["G9"],
+        default_index: None,
+    },
+    GGroup {
+        number: 12,
+        title: "Block-change criterion at exact stop",
+        effect: Effect::Modal,
+        members: &["G601", "G602", "G603"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 13,
+        title: "Workpiece dimensioning inch/metric",
+        effect: Effect::Modal,
+        members: &["G70", "G71", "G700", "G710"],
+        default_index: Some(2),
+    },
+    GGroup {
+        number: 14,
+        title: "Absolute/incremental",
+        effect: Effect::Modal,
+        members: &["G90", "G91"],
+        default_index: Some(1),
+    },
+    // The reference's default cell reads "`G94` (1)", which contradicts its
+    // own member list (index 1 is G93, inverse-time feed). The name is taken
+    // as the intended value, since feed per minute (G94) is the familiar
+    // 840D power-on state, so the index here is 2.
+    GGroup {
+        number: 15,
+        title: "Feed type",
+        effect: Effect::Modal,
+        members: &[
+            "G93", "G94", "G95", "G96", "G97", "G931", "G961", "G971", "G942", "G952", "G962",
+            "G972", "G973",
+        ],
+        default_index: Some(2),
+    },
+    GGroup {
+        number: 16,
+        title: "Feed override at inside/outside curvature",
+        effect: Effect::Modal,
+        members: &["CFC", "CFTCP", "CFIN"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 17,
+        title: "Approach/retract behaviour, tool offset",
+        effect: Effect::Modal,
+        members: &["NORM", "KONT", "KONTT", "KONTC"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 18,
+        title: "Corner behaviour, tool offset",
+        effect: Effect::Modal,
+        members: &["G450", "G451"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 19,
+        title: "Spline start transition",
+        effect: Effect::Modal,
+        members: &["BNAT", "BTAN", "BAUTO"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 20,
+        title: "Spline end transition",
+        effect: Effect::Modal,
+        members: &["ENAT", "ETAN", "EAUTO"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 21,
+        title: "Acceleration profile",
+        effect: Effect::Modal,
+        members: &["BRISK", "SOFT", "DRIVE"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 22,
+        title: "Tool offset type",
+        effect: Effect::Modal,
+        members: &[
+            "CUT2D", "CUT2DF", "CUT3DC", "CUT3DF", "CUT3DFS", "CUT3DFF", "CUT3DCC", "CUT3DCCD",
+            "CUT2DD", "CUT2DFD", "CUT3DCD", "CUT3DFD",
+        ],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 23,
+        title: "Collision monitoring at inside contours",
+        effect: Effect::Modal,
+        members: &["CDOF", "CDON", "CDOF2"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 24,
+        title: "Feedforward control",
+        effect: Effect::Modal,
+        members: &["FFWOF", "FFWON"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 25,
+        title: "Tool orientation reference",
+        effect: Effect::Modal,
+        members: &["ORIWKS", "ORIMKS"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 26,
+        title: "REPOS mode (modal)",
+        effect: Effect::Modal,
+        members: &["RMB", "RMI", "RME", "RMN"],
+        default_index: Some(2),
+    },
+    GGroup {
+        number: 27,
+        title: "Orientation change at outside corners",
+        effect: Effect::Modal,
+        members: &["ORIC", "ORID"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 28,
+        title: "Working-area limitation",
+        effect: Effect::Modal,
+        members: &["WALIMON", "WALIMOF"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 29,
+        title: "Radius/diameter programming",
+        effect: Effect::Modal,
+        members: &["DIAMOF", "DIAMON", "DIAM90", "DIAMCYCOF"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 30,
+        title: "NC block compression",
+        effect: Effect::Modal,
+        members: &["COMPOF", "COMPON", "COMPCURV", "COMPCAD", "COMPSURF"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 31,
+        title: "OEM G commands",
+        effect: Effect::Modal,
+        members: &[
+            "G810", "G811", "G812", "G813", "G814", "G815", "G816", "G817", "G818", "G819",
+        ],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 32,
+        title: "OEM G commands",
+        effect: Effect::Modal,
+        members: &[
+            "G820", "G821", "G822", "G823", "G824", "G825", "G826", "G827", "G828", "G829",
+        ],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 33,
+        title: "Settable fine tool offset",
+        effect: Effect::Modal,
+        members: &["FTOCOF", "FTOCON"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 34,
+        title: "Tool orientation smoothing",
+        effect: Effect::Modal,
+        members: &["OSOF", "OSC", "OSS", "OSSE", "OSD", "OST"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 35,
+        title: "Punching and nibbling",
+        effect: Effect::Modal,
+        members: &["SPOF", "SON", "PON", "SONS", "PONS"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 36,
+        title: "Punching with delay",
+        effect: Effect::Modal,
+        members: &["PDELAYON", "PDELAYOF"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 37,
+        title: "Feedrate profile",
+        effect: Effect::Modal,
+        members: &["FNORM", "FLIN", "FCUB"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 38,
+        title: "Fast I/O assignment for punching/nibbling",
+        effect: Effect::Modal,
+        members: &["SPIF1", "SPIF2"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 39,
+        title: "Programmable contour accuracy",
+        effect: Effect::Modal,
+        members: &["CPRECOF", "CPRECON"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 40,
+        title: "Tool radius compensation constant",
+        effect: Effect::Modal,
+        members: &["CUTCONOF", "CUTCONON"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 41,
+        title: "Interruptible thread cutting",
+        effect: Effect::Modal,
+        members: &["LFOF", "LFON"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 42,
+        title: "Tool carrier",
+        effect: Effect::Modal,
+        members: &["TCOABS", "TCOFR", "TCOFRZ", "TCOFRY", "TCOFRX"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 43,
+        title: "SAR approach direction",
+        effect: Effect::Modal,
+        members: &["G140", "G141", "G142", "G143"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 44,
+        title: "SAR path segmentation",
+        effect: Effect::Modal,
+        members: &["G340", "G341"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 45,
+        title: "Path reference for FGROUP axes",
+        effect: Effect::Modal,
+        members: &["SPATH", "UPATH"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 46,
+        title: "Plane for fast retraction",
+        effect: Effect::Modal,
+        members: &["LFTXT", "LFWP", "LFPOS"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 47,
+        title: "Mode switch for external NC code",
+        effect: Effect::Modal,
+        members: &["G290", "G291"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 48,
+        title: "Approach/retract with TRC",
+        effect: Effect::Modal,
+        members: &["G460", "G461", "G462"],
+        default_index: Some(3),
+    },
+    GGroup {
+        number: 49,
+        title: "Point-to-point motion",
+        effect: Effect::Modal,
+        members: &["CP", "PTP", "PTPG0", "PTPWOC"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 50,
+        title: "Orientation programming",
+        effect: Effect::Modal,
+        members: &[
+            "ORIEULER", "ORIRPY", "ORIVIRT1", "ORIVIRT2", "ORIAXPOS", "ORIRPY2",
+        ],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 51,
+        title: "Orientation interpolation type",
+        effect: Effect::Modal,
+        members: &[
+            "ORIVECT",
+            "ORIAXES",
+            "ORIPATH",
+            "ORIPLANE",
+            "ORICONCW",
+            "ORICONCCW",
+            "ORICONIO",
+            "ORICONTO",
+            "ORICURVE",
+            "ORIPATHS",
+        ],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 52,
+        title: "Frame rotation relative to workpiece",
+        effect: Effect::Modal,
+        members: &["PAROTOF", "PAROT"],
+        default_index: Some(1),
+    },
+    // Groups 53 (TOROT…) and 56 (TOW…) as in ONE p.1263, FU04 p.449,
+    // FU06 p.493 and MD20150; CEAD's ggroups.json has them swapped.
+    GGroup {
+        number: 53,
+        title: "Frame rotation relative to tool",
+        effect: Effect::Modal,
+        members: &[
+            "TOROTOF", "TOROT", "TOROTZ", "TOROTY", "TOROTX", "TOFRAME", "TOFRAMEZ", "TOFRAMEY",
+            "TOFRAMEX",
+        ],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 54,
+        title: "Vector rotation for polynomial programming",
+        effect: Effect::Modal,
+        members: &["ORIROTA", "ORIROTR", "ORIROTT", "ORIROTC"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 55,
+        title: "Rapid traverse with/without linear interpolation",
+        effect: Effect::Modal,
+        members: &["RTLION", "RTLIOF"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 56,
+        title: "Inclusion of tool wear",
+        effect: Effect::Modal,
+        members: &["TOWSTD", "TOWMCS", "TOWWCS", "TOWBCS", "TOWTCS", "TOWKCS"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 57,
+        title: "Corner deceleration",
+        effect: Effect::Modal,
+        members: &["FENDNORM", "G62", "G621"],
+        default_index: Some(1),
+    },
+    // Default uncertain (reference §3.2 group 58, open point 15): the
+    // MD20150 text gives RELIEVEON (1), the older FU04/FU06 G tables mark
+    // RELIEVEOF "Def.". RELIEVEON is kept because every default in this
+    // table is an MD20150 standard value and that text is the newer
+    // source. The title marks the group as reserved, so the choice should
+    // rarely matter, and a machine profile's MD20150 overrides it anyway.
+    GGroup {
+        number: 58,
+        title: "Retract from software limit (reserved)",
+        effect: Effect::Modal,
+        members: &["RELIEVEON", "RELIEVEOF"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 59,
+        title: "Dynamic response mode for path interpolation",
+        effect: Effect::Modal,
+        members: &[
+            "DYNNORM",
+            "DYNPOS",
+            "DYNROUGH",
+            "DYNSEMIFIN",
+            "DYNFINISH",
+            "DYNPREC",
+        ],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 60,
+        title: "WCS working-area limitation",
+        effect: Effect::Modal,
+        members: &[
+            "WALCS0", "WALCS1", "WALCS2", "WALCS3", "WALCS4", "WALCS5", "WALCS6", "WALCS7",
+            "WALCS8", "WALCS9", "WALCS10",
+        ],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 61,
+        title: "Tool orientation smoothing",
+        effect: Effect::Modal,
+        members: &["ORISOF", "ORISON"],
+        default_index: Some(1),
+    },
+    GGroup {
+        number: 62,
+        title: "REPOS mode (non-modal)",
+        effect: Effect::NonModal,
+        members: &["RMBBL", "RMIBL", "RMEBL", "RMNBL"],
+        default_index: None,
+    },
+    GGroup {
+        number: 63,
+        title: "not assigned",
+        effect: Effect::Modal,
+        members: &[],
+        default_index: None,
+    },
+    // Default index 1 = GFRAME0; the MD20150 text calls it "GS0" [?].
+    GGroup {
+        number: 64,
+        title: "Grinding frames",
+        effect: Effect::Modal,
+        members: &[
+            "GFRAME0",
+            "GFRAME1",
+            "GFRAME2",
+            "GFRAME3",
+            "GFRAME4",
+            "GFRAME5",
+            "GFRAME6",
+            "GFRAME7",
+            "GFRAME8",
+            "GFRAME9",
+            "GFRAME10",
+            "GFRAME11",
+            "GFRAME12",
+            "GFRAME13",
+            "GFRAME14",
+            "GFRAME15",
+            "GFRAME16",
+            "GFRAME17",
+            "GFRAME18",
+            "GFRAME19",
+            "GFRAME20",
+            "GFRAME21",
+            "GFRAME22",
+            "GFRAME23",
+            "GFRAME24",
+            "GFRAME25",
+            "GFRAME26",
+            "GFRAME27",
+            "GFRAME28",
+            "GFRAME29",
+            "GFRAME30",
+            "GFRAME31",
+            "GFRAME32",
+            "GFRAME33",
+            "GFRAME34",
+            "GFRAME35",
+            "GFRAME36",
+            "GFRAME37",
+            "GFRAME38",
+            "GFRAME39",
+            "GFRAME40",
+            "GFRAME41",
+            "GFRAME42",
+            "GFRAME43",
+            "GFRAME44",
+            "GFRAME45",
+            "GFRAME46",
+            "GFRAME47",
+            "GFRAME48",
+            "GFRAME49",
+            "GFRAME50",
+            "GFRAME51",
+            "GFRAME52",
+            "GFRAME53",
+            "GFRAME54",
+            "GFRAME55",
+            "GFRAME56",
+            "GFRAME57",
+            "GFRAME58",
+            "GFRAME59",
+            "GFRAME60",
+            "GFRAME61",
+            "GFRAME62",
+            "GFRAME63",
+            "GFRAME64",
+            "GFRAME65",
+            "GFRAME66",
+            "GFRAME67",
+            "GFRAME68",
+            "GFRAME69",
+            "GFRAME70",
+            "GFRAME71",
+            "GFRAME72",
+            "GFRAME73",
+            "GFRAME74",
+            "GFRAME75",
+            "GFRAME76",
+            "GFRAME77",
+            "GFRAME78",
+            "GFRAME79",
+            "GFRAME80",
+            "GFRAME81",
+            "GFRAME82",
+            "GFRAME83",
+            "GFRAME84",
+            "GFRAME85",
+            "GFRAME86",
+            "GFRAME87",
+            "GFRAME88",
+            "GFRAME89",
+            "GFRAME90",
+            "GFRAME91",
+            "GFRAME92",
+            "GFRAME93",
+            "GFRAME94",
+            "GFRAME95",
+            "GFRAME96",
+            "GFRAME97",
+            "GFRAME98",
+            "GFRAME99",
+            "GFRAME100",
+        ],
+        default_index: Some(1),
+    },
+];
+
+/// The group with this number (1…64).
+pub fn group(number: u8) -> Option<&'static GGroup> {
+    G_GROUPS.get(usize::from(number).checked_sub(1)?)
+}
+
+/// The command a group is reset to, per the Siemens 840D standard MD20150
+/// values; `None` for non-modal and unassigned groups and for numbers
+/// outside 1…64.
+pub fn default_member(number: u8) -> Option<&'static str> {
+    let group = group(number)?;
+    let index = usize::from(group.default_index?);
+    let name = *group.members.get(index.checked_sub(1)?)?;
+    (!name.is_empty()).then_some(name)
+}
+
+/// The (group number, 1-based index) of a G command, or `None` if `code` is
+/// not a member of any group.
+///
+/// Case-insensitive, as keywords are on the control. A `G` followed only by
+/// digits is taken by its value, so `G01` is `G1` and `G00` is `G0`: the
+/// control reads the value of a DIN word, whose leading zeros are optional
+/// (reference §1.3, "Word value"). Names that merely end in digits are not
+/// rewritten (`WALCS01` is not `WALCS1`), since those are identifiers, not
+/// address + value.
+///
+/// Runs for every G word of every block, so it normalises into a stack
+/// buffer and binary-searches a sorted table instead of scanning the groups.
+pub fn lookup(code: &str) -> Option<(u8, u8)> {
+    let mut buf = [0u8; MAX_NAME_LEN];
+    let key = normalise(code.as_bytes(), &mut buf)?;
+    let at = LOOKUP
+        .binary_search_by(|(name, _, _)| name.as_bytes().cmp(key))
+        .ok()?;
+    let (_, group, index) = LOOKUP[at];
+    Some((group, index))
+}
+
+/// Length of the longest member name (`DYNSEMIFIN`); anything longer
+/// cannot match, which bounds the normalisation buffer.
+const MAX_NAME_LEN: usize = 10;
+
+/// Upper-cases `code` into `buf` and strips leading zeros from the value of
+/// a `G<digits>` word (keeping one digit, so `G00` → `G0`). `None` when the
+/// result would be longer than any member.
+fn normalise<'a>(code: &[u8], buf: &'a mut [u8; MAX_NAME_LEN]) -> Option<&'a [u8]> {
+    let (prefix, rest): (&[u8], &[u8]) = match code {
+        [b'G' | b'g', digits @ ..]
+            if !digits.is_empty() && digits.iter().all(u8::is_ascii_digit) =>
+        {
+            let first = digits
+                .iter()
+                .position(|&d| d != b'0')
+                .unwrap_or(digits.len() - 1);
+            (b"G", &digits[first..])
+        }
+        _ => (b"", code),
+    };
+    let len = prefix.len() + rest.len();
+    if len > MAX_NAME_LEN {
+        return None;
+    }
+    buf[..prefix.len()].copy_from_slice(prefix);
+    for (to, from) in buf[prefix.len()..len].iter_mut().zip(rest) {
+        *to = from.to_ascii_uppercase();
+    }
+    Some(&buf[..len])
+}
+
+/// Every member of [`G_GROUPS`] as (name, group, index), sorted by the
+/// bytes of the name for [`lookup`]. Written out rather than built at run
+/// time so the hot path has no initialisation; the tests check it against
+/// [`G_GROUPS`] so the two cannot drift apart.
+static LOOKUP: [(&str, u8, u8); 492] = [
+    ("AMIRROR", 3, 8),
+    ("AROT", 3, 6),
+    ("AROTS", 3, 18),
+    ("ASCALE", 3, 7),
+    ("ASPLINE", 1, 6),
+    ("ATRANS", 3, 5),
+    ("BAUTO", 19, 3),
+    ("BNAT", 19, 1),
+    ("BRISK", 21, 1),
+    ("BSPLINE", 1, 7),
+    ("BTAN", 19, 2),
+    ("CDOF", 23, 1),
+    ("CDOF2", 23, 3),
+    ("CDON", 23, 2),
+    ("CFC", 16, 1),
+    ("CFIN", 16, 3),
+    ("CFTCP", 16, 2),
+    ("CIP", 1, 5),
+    ("COMPCAD", 30, 4),
+    ("COMPCURV", 30, 3),
+    ("COMPOF", 30, 1),
+    ("COMPON", 30, 2),
+    ("COMPSURF", 30, 5),
+    ("CP", 49, 1),
+    ("CPRECOF", 39, 1),
+    ("CPRECON", 39, 2),
+    ("CSPLINE", 1, 8),
+    ("CT", 1, 15),
+    ("CUT2D", 22, 1),
+    ("CUT2DD", 22, 9),
+    ("CUT2DF", 22, 2),
+    ("CUT2DFD", 22, 10),
+    ("CUT3DC", 22, 3),
+    ("CUT3DCC", 22, 7),
+    ("CUT3DCCD", 22, 8),
+    ("CUT3DCD", 22, 11),
+    ("CUT3DF", 22, 4),
+    ("CUT3DFD", 22, 12),
+    ("CUT3DFF", 22, 6),
+    ("CUT3DFS", 22, 5),
+    ("CUTCONOF", 40, 1),
+    ("CUTCONON", 40, 2),
+    ("DIAM90", 29, 3),
+    ("DIAMCYCOF", 29, 4),
+    ("DIAMOF", 29, 1),
+    ("DIAMON", 29, 2),
+    ("DRIVE", 21, 3),
+    ("DYNFINISH", 59, 5),
+    ("DYNNORM", 59, 1),
+    ("DYNPOS", 59, 2),
+    ("DYNPREC", 59, 6),
+    ("DYNROUGH", 59, 3),
+    ("DYNSEMIFIN", 59, 4),
+    ("EAUTO", 20, 3),
+    ("ENAT", 20, 1),
+    ("ETAN", 20, 2),
+    ("FCUB", 37, 3),
+    ("FENDNORM", 57, 1),
+    ("FFWOF", 24, 1),
+    ("FFWON", 24, 2),
+    ("FIFOCTRL", 4, 3),
+    ("FLIN", 37, 2),
+    ("FNORM", 37, 1),
+    ("FTOCOF", 33, 1),
+    ("FTOCON", 33, 2),
+    ("G0", 1, 1),
+    ("G1", 1, 2),
+    ("G110", 3, 12),
+    ("G111", 3, 13),
+    ("G112", 3, 14),
+    ("G140", 43, 1),
+    ("G141", 43, 2),
+    ("G142", 43, 3),
+    ("G143", 43, 4),
+    ("G147", 2, 11),
+    ("G148", 2, 14),
+    ("G153", 9, 3),
+    ("G17", 6, 1),
+    ("G18", 6, 2),
+    ("G19", 6, 3),
+    ("G2", 1, 3),
+    ("G247", 2, 12),
+    ("G248", 2, 15),
+    ("G25", 3, 10),
+    ("G26", 3, 11),
+    ("G290", 47, 1),
+    ("G291", 47, 2),
+    ("G3", 1, 4),
+    ("G33", 1, 10),
+    ("G331", 1, 11),
+    ("G332", 1, 12),
+    ("G335", 1, 20),
+    ("G336", 1, 21),
+    ("G34", 1, 16),
+    ("G340", 44, 1),
+    ("G341", 44, 2),
+    ("G347", 2, 13),
+    ("G348", 2, 16),
+    ("G35", 1, 17),
+    ("G4", 2, 1),
+    ("G40", 7, 1),
+    ("G41", 7, 2),
+    ("G42", 7, 3),
+    ("G450", 18, 1),
+    ("G451", 18, 2),
+    ("G460", 48, 1),
+    ("G461", 48, 2),
+    ("G462", 48, 3),
+    ("G5", 2, 17),
+    ("G500", 8, 1),
+    ("G505", 8, 6),
+    ("G506", 8, 7),
+    ("G507", 8, 8),
+    ("G508", 8, 9),
+    ("G509", 8, 10),
+    ("G510", 8, 11),
+    ("G511", 8, 12),
+    ("G512", 8, 13),
+    ("G513", 8, 14),
+    ("G514", 8, 15),
+    ("G515", 8, 16),
+    ("G516", 8, 17),
+    ("G517", 8, 18),
+    ("G518", 8, 19),
+    ("G519", 8, 20),
+    ("G520", 8, 21),
+    ("G521", 8, 22),
+    ("G522", 8, 23),
+    ("G523", 8, 24),
+    ("G524", 8, 25),
+    ("G525", 8, 26),
+    ("G526", 8, 27),
+    ("G527", 8, 28),
+    ("G528", 8, 29),
+    ("G529", 8, 30),
+    ("G53", 9, 1),
+    ("G530", 8, 31),
+    ("G531", 8, 32),
+    ("G532", 8, 33),
+    ("G533", 8, 34),
+    ("G534", 8, 35),
+    ("G535", 8, 36),
+    ("G536", 8, 37),
+    ("G537", 8, 38),
+    ("G538", 8, 39),
+    ("G539", 8, 40),
+    ("G54", 8, 2),
+    ("G540", 8, 41),
+    ("G541", 8, 42),
+    ("G542", 8, 43),
+    ("G543", 8, 44),
+    ("G544", 8, 45),
+    ("G545", 8, 46),
+    ("G546", 8, 47),
+    ("G547", 8, 48),
+    ("G548", 8, 49),
+    ("G549", 8, 50),
+    ("G55", 8, 3),
+    ("G550", 8, 51),
+    ("G551", 8, 52),
+    ("G552", 8, 53),
+    ("G553", 8, 54),
+    ("G554", 8, 55),
+    ("G555", 8, 56),
+    ("G556", 8, 57),
+    ("G557", 8, 58),
+    ("G558", 8, 59),
+    ("G559", 8, 60),
+    ("G56", 8, 4),
+    ("G560", 8, 61),
+    ("G561", 8, 62),
+    ("G562", 8, 63),
+    ("G563", 8, 64),
+    ("G564", 8, 65),
+    ("G565", 8, 66),
+    ("G566", 8, 67),
+    ("G567", 8, 68),
+    ("G568", 8, 69),
+    ("G569", 8, 70),
+    ("G57", 8, 5),
+    ("G570", 8, 71),
+    ("G571", 8, 72),
+    ("G572", 8, 73),
+    ("G573", 8, 74),
+    ("G574", 8, 75),
+    ("G575", 8, 76),
+    ("G576", 8, 77),
+    ("G577", 8, 78),
+    ("G578", 8, 79),
+    ("G579", 8, 80),
+    ("G58", 3, 15),
+    ("G580", 8, 81),
+    ("G581", 8, 82),
+    ("G582", 8, 83),
+    ("G583", 8, 84),
+    ("G584", 8, 85),
+    ("G585", 8, 86),
+    ("G586", 8, 87),
+    ("G587", 8, 88),
+    ("G588", 8, 89),
+    ("G589", 8, 90),
+    ("G59", 3, 16),
+    ("G590", 8, 91),
+    ("G591", 8, 92),
+    ("G592", 8, 93),
+    ("G593", 8, 94),
+    ("G594", 8, 95),
+    ("G595", 8, 96),
+    ("G596", 8, 97),
+    ("G597", 8, 98),
+    ("G598", 8, 99),
+    ("G599", 8, 100),
+    ("G60", 10, 1),
+    ("G601", 12, 1),
+    ("G602", 12, 2),
+    ("G603", 12, 3),
+    ("G62", 57, 2),
+    ("G621", 57, 3),
+    ("G63", 2, 2),
+    ("G64", 10, 2),
+    ("G641", 10, 3),
+    ("G642", 10, 4),
+    ("G643", 10, 5),
+    ("G644", 10, 6),
+    ("G645", 10, 7),
+    ("G7", 2, 18),
+    ("G70", 13, 1),
+    ("G700", 13, 3),
+    ("G71", 13, 2),
+    ("G710", 13, 4),
+    ("G74", 2, 3),
+    ("G75", 2, 4),
+    ("G810", 31, 1),
+    ("G811", 31, 2),
+    ("G812", 31, 3),
+    ("G813", 31, 4),
+    ("G814", 31, 5),
+    ("G815", 31, 6),
+    ("G816", 31, 7),
+    ("G817", 31, 8),
+    ("G818", 31, 9),
+    ("G819", 31, 10),
+    ("G820", 32, 1),
+    ("G821", 32, 2),
+    ("G822", 32, 3),
+    ("G823", 32, 4),
+    ("G824", 32, 5),
+    ("G825", 32, 6),
+    ("G826", 32, 7),
+    ("G827", 32, 8),
+    ("G828", 32, 9),
+    ("G829", 32, 10),
+    ("G9", 11, 1),
+    ("G90", 14, 1),
+    ("G91", 14, 2),
+    ("G93", 15, 1),
+    ("G931", 15, 6),
+    ("G94", 15, 2),
+    ("G942", 15, 9),
+    ("G95", 15, 3),
+    ("G952", 15, 10),
+    ("G96", 15, 4),
+    ("G961", 15, 7),
+    ("G962", 15, 11),
+    ("G97", 15, 5),
+    ("G971", 15, 8),
+    ("G972", 15, 12),
+    ("G973", 15, 13),
+    ("GFRAME0", 64, 1),
+    ("GFRAME1", 64, 2),
+    ("GFRAME10", 64, 11),
+    ("GFRAME100", 64, 101),
+    ("GFRAME11", 64, 12),
+    ("GFRAME12", 64, 13),
+    ("GFRAME13", 64, 14),
+    ("GFRAME14", 64, 15),
+    ("GFRAME15", 64, 16),
+    ("GFRAME16", 64, 17),
+    ("GFRAME17", 64, 18),
+    ("GFRAME18", 64, 19),
+    ("GFRAME19", 64, 20),
+    ("GFRAME2", 64, 3),
+    ("GFRAME20", 64, 21),
+    ("GFRAME21", 64, 22),
+    ("GFRAME22", 64, 23),
+    ("GFRAME23", 64, 24),
+    ("GFRAME24", 64, 25),
+    ("GFRAME25", 64, 26),
+    ("GFRAME26", 64, 27),
+    ("GFRAME27", 64, 28),
+    ("GFRAME28", 64, 29),
+    ("GFRAME29", 64, 30),
+    ("GFRAME3", 64, 4),
+    ("GFRAME30", 64, 31),
+    ("GFRAME31", 64, 32),
+    ("GFRAME32", 64, 33),
+    ("GFRAME33", 64, 34),
+    ("GFRAME34", 64, 35),
+    ("GFRAME35", 64, 36),
+    ("GFRAME36", 64, 37),
+    ("GFRAME37", 64, 38),
+    ("GFRAME38", 64, 39),
+    ("GFRAME39", 64, 40),
+    ("GFRAME4", 64, 5),
+    ("GFRAME40", 64, 41),
+    ("GFRAME41", 64, 42),
+    ("GFRAME42", 64, 43),
+    ("GFRAME43", 64, 44),
+    ("GFRAME44", 64, 45),
+    ("GFRAME45", 64, 46),
+    ("GFRAME46", 64, 47),
+    ("GFRAME47", 64, 48),
+    ("GFRAME48", 64, 49),
+    ("GFRAME49", 64, 50),
+    ("GFRAME5", 64, 6),
+    ("GFRAME50", 64, 51),
+    ("GFRAME51", 64, 52),
+    ("GFRAME52", 64, 53),
+    ("GFRAME53", 64, 54),
+    ("GFRAME54", 64, 55),
+    ("GFRAME55", 64, 56),
+    ("GFRAME56", 64, 57),
+    ("GFRAME57", 64, 58),
+    ("GFRAME58", 64, 59),
+    ("GFRAME59", 64, 60),
+    ("GFRAME6", 64, 7),
+    ("GFRAME60", 64, 61),
+    ("GFRAME61", 64, 62),
+    ("GFRAME62", 64, 63),
+    ("GFRAME63", 64, 64),
+    ("GFRAME64", 64, 65),
+    ("GFRAME65", 64, 66),
+    ("GFRAME66", 64, 67),
+    ("GFRAME67", 64, 68),
+    ("GFRAME68", 64, 69),
+    ("GFRAME69", 64, 70),
+    ("GFRAME7", 64, 8),
+    ("GFRAME70", 64, 71),
+    ("GFRAME71", 64, 72),
+    ("GFRAME72", 64, 73),
+    ("GFRAME73", 64, 74),
+    ("GFRAME74", 64, 75),
+    ("GFRAME75", 64, 76),
+    ("GFRAME76", 64, 77),
+    ("GFRAME77", 64, 78),
+    ("GFRAME78", 64, 79),
+    ("GFRAME79", 64, 80),
+    ("GFRAME8", 64, 9),
+    ("GFRAME80", 64, 81),
+    ("GFRAME81", 64, 82),
+    ("GFRAME82", 64, 83),
+    ("GFRAME83", 64, 84),
+    ("GFRAME84", 64, 85),
+    ("GFRAME85", 64, 86),
+    ("GFRAME86", 64, 87),
+    ("GFRAME87", 64, 88),
+    ("GFRAME88", 64, 89),
+    ("GFRAME89", 64, 90),
+    ("GFRAME9", 64, 10),
+    ("GFRAME90", 64, 91),
+    ("GFRAME91", 64, 92),
+    ("GFRAME92", 64, 93),
+    ("GFRAME93", 64, 94),
+    ("GFRAME94", 64, 95),
+    ("GFRAME95", 64, 96),
+    ("GFRAME96", 64, 97),
+    ("GFRAME97", 64, 98),
+    ("GFRAME98", 64, 99),
+    ("GFRAME99", 64, 100),
+    ("INVCCW", 1, 19),
+    ("INVCW", 1, 18),
+    ("KONT", 17, 2),
+    ("KONTC", 17, 4),
+    ("KONTT", 17, 3),
+    ("LFOF", 41, 1),
+    ("LFON", 41, 2),
+    ("LFPOS", 46, 3),
+    ("LFTXT", 46, 1),
+    ("LFWP", 46, 2),
+    ("MIRROR", 3, 4),
+    ("NORM", 17, 1),
+    ("OEMIPO1", 1, 13),
+    ("OEMIPO2", 1, 14),
+    ("ORIAXES", 51, 2),
+    ("ORIAXPOS", 50, 5),
+    ("ORIC", 27, 1),
+    ("ORICONCCW", 51, 6),
+    ("ORICONCW", 51, 5),
+    ("ORICONIO", 51, 7),
+    ("ORICONTO", 51, 8),
+    ("ORICURVE", 51, 9),
+    ("ORID", 27, 2),
+    ("ORIEULER", 50, 1),
+    ("ORIMKS", 25, 2),
+    ("ORIPATH", 51, 3),
+    ("ORIPATHS", 51, 10),
+    ("ORIPLANE", 51, 4),
+    ("ORIROTA", 54, 1),
+    ("ORIROTC", 54, 4),
+    ("ORIROTR", 54, 2),
+    ("ORIROTT", 54, 3),
+    ("ORIRPY", 50, 2),
+    ("ORIRPY2", 50, 6),
+    ("ORISOF", 61, 1),
+    ("ORISON", 61, 2),
+    ("ORIVECT", 51, 1),
+    ("ORIVIRT1", 50, 3),
+    ("ORIVIRT2", 50, 4),
+    ("ORIWKS", 25, 1),
+    ("OSC", 34, 2),
+    ("OSD", 34, 5),
+    ("OSOF", 34, 1),
+    ("OSS", 34, 3),
+    ("OSSE", 34, 4),
+    ("OST", 34, 6),
+    ("PAROT", 52, 2),
+    ("PAROTOF", 52, 1),
+    ("PDELAYOF", 36, 2),
+    ("PDELAYON", 36, 1),
+    ("POLY", 1, 9),
+    ("PON", 35, 3),
+    ("PONS", 35, 5),
+    ("PTP", 49, 2),
+    ("PTPG0", 49, 3),
+    ("PTPWOC", 49, 4),
+    ("RELIEVEOF", 58, 2),
+    ("RELIEVEON", 58, 1),
+    ("REPOSA", 2, 8),
+    ("REPOSH", 2, 7),
+    ("REPOSHA", 2, 10),
+    ("REPOSL", 2, 5),
+    ("REPOSQ", 2, 6),
+    ("REPOSQA", 2, 9),
+    ("RMB", 26, 1),
+    ("RMBBL", 62, 1),
+    ("RME", 26, 3),
+    ("RMEBL", 62, 3),
+    ("RMI", 26, 2),
+    ("RMIBL", 62, 2),
+    ("RMN", 26, 4),
+    ("RMNBL", 62, 4),
+    ("ROT", 3, 2),
+    ("ROTS", 3, 17),
+    ("RTLIOF", 55, 2),
+    ("RTLION", 55, 1),
+    ("SCALE", 3, 3),
+    ("SOFT", 21, 2),
+    ("SON", 35, 2),
+    ("SONS", 35, 4),
+    ("SPATH", 45, 1),
+    ("SPIF1", 38, 1),
+    ("SPIF2", 38, 2),
+    ("SPOF", 35, 1),
+    ("STARTFIFO", 4, 1),
+    ("STOPFIFO", 4, 2),
+    ("SUPA", 9, 2),
+    ("SUPD", 9, 4),
+    ("TCOABS", 42, 1),
+    ("TCOFR", 42, 2),
+    ("TCOFRX", 42, 5),
+    ("TCOFRY", 42, 4),
+    ("TCOFRZ", 42, 3),
+    ("TOFRAME", 53, 6),
+    ("TOFRAMEX", 53, 9),
+    ("TOFRAMEY", 53, 8),
+    ("TOFRAMEZ", 53, 7),
+    ("TOROT", 53, 2),
+    ("TOROTOF", 53, 1),
+    ("TOROTX", 53, 5),
+    ("TOROTY", 53, 4),
+    ("TOROTZ", 53, 3),
+    ("TOWBCS", 56, 4),
+    ("TOWKCS", 56, 6),
+    ("TOWMCS", 56, 2),
+    ("TOWSTD", 56, 1),
+    ("TOWTCS", 56, 5),
+    ("TOWWCS", 56, 3),
+    ("TRANS", 3, 1),
+    ("UPATH", 45, 2),
+    ("WALCS0", 60, 1),
+    ("WALCS1", 60, 2),
+    ("WALCS10", 60, 11),
+    ("WALCS2", 60, 3),
+    ("WALCS3", 60, 4),
+    ("WALCS4", 60, 5),
+    ("WALCS5", 60, 6),
+    ("WALCS6", 60, 7),
+    ("WALCS7", 60, 8),
+    ("WALCS8", 60, 9),
+    ("WALCS9", 60, 10),
+    ("WALIMOF", 28, 2),
+    ("WALIMON", 28, 1),
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashMap;
+
+    /// What `lookup` must agree with: the obvious scan over every member.
+    fn scan(name: &str) -> Option<(u8, u8)> {
+        G_GROUPS.iter().find_map(|g| {
+            let at = g.members.iter().position(|m| !m.is_empty() && *m == name)?;
+            Some((g.number, u8::try_from(at + 1).unwrap()))
+        })
+    }
+
+    fn index_of(group_number: u8, name: &str) -> usize {
+        let members = group(group_number).unwrap().members;
+        members.iter().position(|m| *m == name).unwrap() + 1
+    }
+
+    #[test]
+    fn groups_are_numbered_1_to_64_in_order() {
+        assert_eq!(G_GROUPS.len(), 64);
+        for (i, g) in G_GROUPS.iter().enumerate() {
+            assert_eq!(usize::from(g.number), i + 1);
+            assert!(!g.title.is_empty());
+            assert_eq!(group(g.number), Some(g));
+        }
+        assert_eq!(group(0), None);
+        assert_eq!(group(65), None);
+    }
+
+    #[test]
+    fn member_counts_follow_the_table() {
+        let count = |n| group(n).unwrap().members.len();
+        assert_eq!(count(1), 21);
+        assert_eq!(count(2), 18);
+        assert_eq!(count(3), 18);
+        assert_eq!(count(8), 100);
+        assert_eq!(count(15), 13);
+        assert_eq!(count(31), 10);
+        assert_eq!(count(32), 10);
+        assert_eq!(count(60), 11);
+        assert_eq!(count(64), 101);
+    }
+
+    #[test]
+    fn group_8_indices() {
+        assert_eq!(index_of(8, "G500"), 1);
+        assert_eq!(index_of(8, "G54"), 2);
+        assert_eq!(index_of(8, "G57"), 5);
+        assert_eq!(index_of(8, "G505"), 6);
+        assert_eq!(index_of(8, "G599"), 100);
+    }
+
+    #[test]
+    fn group_3_keeps_the_gap_at_index_9() {
+        assert_eq!(group(3).unwrap().members[8], "");
+        assert_eq!(index_of(3, "AMIRROR"), 8);
+        assert_eq!(index_of(3, "G25"), 10);
+        assert_eq!(index_of(3, "G58"), 15);
+        assert_eq!(index_of(3, "ROTS"), 17);
+        assert_eq!(index_of(3, "AROTS"), 18);
+    }
+
+    #[test]
+    fn gaps_only_in_group_3() {
+        for g in &G_GROUPS {
+            let gaps = g.members.iter().filter(|m| m.is_empty()).count();
+            assert_eq!(gaps, usize::from(g.number == 3), "group {}", g.number);
+        }
+    }
+
+    #[test]
+    fn range_groups_are_expanded() {
+        assert_eq!(group(31).unwrap().members.first(), Some(&"G810"));
+        assert_eq!(group(31).unwrap().members.last(), Some(&"G819"));
+        assert_eq!(group(32).unwrap().members.first(), Some(&"G820"));
+        assert_eq!(group(32).unwrap().members.last(), Some(&"G829"));
+        assert_eq!(index_of(60, "WALCS0"), 1);
+        assert_eq!(index_of(60, "WALCS10"), 11);
+        assert_eq!(index_of(64, "GFRAME0"), 1);
+        assert_eq!(index_of(64, "GFRAME100"), 101);
+    }
+
+    #[test]
+    fn defaults_follow_the_table() {
+        for (n, name) in [
+            (1, "G1"),
+            (4, "STARTFIFO"),
+            (6, "G17"),
+            (7, "G40"),
+            (8, "G500"),
+            (10, "G60"),
+            (13, "G71"),
+            (14, "G90"),
+            (15, "G94"),
+            (26, "RMI"),
+            (29, "DIAMOF"),
+            (31, "G810"),
+            (32, "G820"),
+            (48, "G462"),
+            (53, "TOROTOF"),
+            (56, "TOWSTD"),
+            (58, "RELIEVEON"),
+            (60, "WALCS0"),
+            (64, "GFRAME0"),
+        ] {
+            assert_eq!(default_member(n), Some(name), "group {n}");
+        }
+        assert_eq!(group(1).unwrap().default_index, Some(2));
+        assert_eq!(group(15).unwrap().default_index, Some(2));
+        assert_eq!(group(48).unwrap().default_index, Some(3));
+    }
+
+    #[test]
+    fn every_modal_assigned_group_has_a_default() {
+        for g in &G_GROUPS {
+            let expected = g.effect == Effect::Modal && !g.members.is_empty();
+            assert_eq!(
+                default_member(g.number).is_some(),
+                expected,
+                "group {}",
+                g.number
+            );
+            assert_eq!(g.default_index.is_some(), expected, "group {}", g.number);
+        }
+        assert_eq!(default_member(0), None);
+        assert_eq!(default_member(65), None);
+    }
+
+    #[test]
+    fn non_modal_groups_are_2_3_9_11_62() {
+        let non_modal: Vec<u8> = G_GROUPS
+            .iter()
+            .filter(|g| g.effect == Effect::NonModal)
+            .map(|g| g.number)
+            .collect();
+        assert_eq!(non_modal, [2, 3, 9, 11, 62]);
+    }
+
+    #[test]
+    fn unassigned_groups_are_empty() {
+        for n in [5, 63] {
+            let g = group(n).unwrap();
+            assert!(g.members.is_empty());
+            assert_eq!(g.default_index, None);
+            assert_eq!(g.effect, Effect::Modal);
+        }
+        let empty: Vec<u8> = G_GROUPS
+            .iter()
+            .filter(|g| g.members.is_empty())
+            .map(|g| g.number)
+            .collect();
+        assert_eq!(empty, [5, 63]);
+    }
+
+    #[test]
+    fn lookup_examples() {
+        assert_eq!(lookup("G1"), Some((1, 2)));
+        assert_eq!(lookup("g1"), Some((1, 2)));
+        assert_eq!(lookup("G01"), Some((1, 2)));
+        assert_eq!(lookup("G0"), Some((1, 1)));
+        assert_eq!(lookup("G00"), Some((1, 1)));
+        assert_eq!(lookup("g000"), Some((1, 1)));
+        assert_eq!(lookup("G0599"), Some((8, 100)));
+        assert_eq!(lookup("DIAMON"), Some((29, 2)));
+        assert_eq!(lookup("diamon"), Some((29, 2)));
+        assert_eq!(lookup("DiamOn"), Some((29, 2)));
+        assert_eq!(lookup("G599"), Some((8, 100)));
+        assert_eq!(lookup("G58"), Some((3, 15)));
+        assert_eq!(lookup("G25"), Some((3, 10)));
+        assert_eq!(lookup("G94"), Some((15, 2)));
+        assert_eq!(lookup("gframe100"), Some((64, 101)));
+        assert_eq!(lookup("DYNSEMIFIN"), Some((59, 4)));
+    }
+
+    #[test]
+    fn lookup_rejects_non_members() {
+        for code in [
+            "",
+            "G",
+            "g",
+            "G5000",
+            "G6",
+            "G504",
+            "G600",
+            "G646",
+            "G-1",
+            "G1.0",
+            "G 1",
+            " G1",
+            "G1 ",
+            "X1",
+            "WALCS01",
+            "GFRAME101",
+            "GFRAME1000",
+            "DYNSEMIFINX",
+            "GÖ",
+            "É",
+        ] {
+            assert_eq!(lookup(code), None, "{code:?}");
+        }
+    }
+
+    #[test]
+    fn long_runs_of_leading_zeros_still_normalise() {
+        assert_eq!(lookup("G0000000000000000001"), Some((1, 2)));
+        assert_eq!(lookup("G00000000000000000000"), Some((1, 1)));
+    }
+
+    #[test]
+    fn lookup_agrees_with_a_linear_scan() {
+        let mut checked = 0;
+        for g in &G_GROUPS {
+            for (i, name) in g.members.iter().enumerate() {
+                if name.is_empty() {
+                    continue;
+                }
+                let expected = Some((g.number, u8::try_from(i + 1).unwrap()));
+                assert_eq!(scan(name), expected, "{name}");
+                assert_eq!(lookup(name), expected, "{name}");
+                assert_eq!(lookup(&name.to_ascii_lowercase()), expected, "{name}");
+                if let Some(value) = name.strip_prefix('G').filter(|v| v.parse::<u16>().is_ok()) {
+                    assert_eq!(lookup(&format!("g0{value}")), expected, "{name}");
+                }
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, LOOKUP.len());
+    }
+
+    #[test]
+    fn lookup_table_is_sorted_and_matches_the_groups() {
+        assert!(
+            LOOKUP
+                .windows(2)
+                .all(|w| w[0].0.as_bytes() < w[1].0.as_bytes())
+        );
+        for &(name, group_number, index) in &LOOKUP {
+            let g = group(group_number).unwrap();
+            assert_eq!(g.members[usize::from(index) - 1], name);
+        }
+    }
+
+    #[test]
+    fn every_member_is_in_exactly_one_group() {
+        let mut seen: HashMap<&str, u8> = HashMap::new();
+        for g in &G_GROUPS {
+            for &name in g.members.iter().filter(|m| !m.is_empty()) {
+                if let Some(other) = seen.insert(name, g.number) {
+                    panic!("{name} is in groups {other} and {}", g.number);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn members_are_upper_case_and_fit_the_buffer() {
+        for g in &G_GROUPS {
+            for name in g.members.iter().filter(|m| !m.is_empty()) {
+                assert!(name.len() <= MAX_NAME_LEN, "{name}");
+                assert!(
+                    name.bytes()
+                        .all(|b| b.is_ascii_uppercase() || b.is_ascii_digit()),
+                    "{name}"
+                );
+                // Stored G codes are already in normal form, or lookup could not find them.
+                if let Some(value) = name
+                    .strip_prefix('G')
+                    .filter(|v| v.bytes().all(|b| b.is_ascii_digit()))
+                {
+                    assert!(value == "0" || !value.starts_with('0'), "{name}");
+                }
+            }
+        }
+        let longest = G_GROUPS
+            .iter()
+            .flat_map(|g| g.members)
+            .map(|m| m.len())
+            .max();
+        assert_eq!(longest, Some(MAX_NAME_LEN));
+    }
+}

@@ -1,0 +1,640 @@
+//! Lowers a parsed program block by block into AIL, checking each word
+//! against the machine profile and tracking the modal state of
+//! straight-line code.
+//!
+//! Within a block, instructions come in the order the control acts on
+//! them: work offset and other modal G commands, feed, spindle speed, tool
+//! selection and cutting edge, M functions acting before the motion, the
+//! motion, then `M0 M1 M2 M17 M30` after it (seed 001).
+
+use std::sync::Arc;
+
+use gcodec_ail::{
+    AxisValue, ByteRange, Circle, Document, Instruction, MTiming, MotionKind, Op, Source,
+    Suppression, SuppressionScope, ToolChangeTrigger, Value,
+};
+use gcodec_parser::ast::{self, Block, CallTarget, Extension, Program, StatementKind, Word};
+use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
+use gcodec_source::{Diagnostic, Span};
+
+use crate::{ggroups, mfunc, sysvars, tools, values};
+
+/// The result of lowering: always a document, plus what was wrong.
+#[derive(Clone, Debug)]
+pub struct Lowered {
+    pub document: Document,
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Lowered {
+    /// True if any diagnostic is an error.
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(Diagnostic::is_error)
+    }
+}
+
+/// Lowers `program` for the machine `profile` describes.
+pub fn lower(program: &Program, profile: &Profile) -> Lowered {
+    let mut lowering = Lowering::new(program, profile);
+    for (index, block) in program.blocks.iter().enumerate() {
+        lowering.block(index, block);
+    }
+    let end = program.blocks.last().map_or(0, |b| b.span.end);
+    let source = lowering.source_at(program.blocks.len().max(1) - 1, Span::new(end, end));
+    lowering.document.instructions.push(Instruction {
+        op: Op::End,
+        source,
+    });
+    Lowered {
+        document: lowering.document,
+        diagnostics: lowering.diagnostics,
+    }
+}
+
+pub(crate) const NOT_LOWERED: &str = "gcodec::lower::not_lowered";
+const UNKNOWN_G: &str = "gcodec::lower::unknown_g";
+const G_GROUP_CONFLICT: &str = "gcodec::lower::g_group_conflict";
+const UNSUPPORTED_OFFSET: &str = "gcodec::lower::unsupported_offset";
+const DUPLICATE_SUPPRESSION: &str = "gcodec::lower::duplicate_suppression";
+const UNKNOWN_ADDRESS: &str = "gcodec::lower::unknown_address";
+pub(crate) const UNKNOWN_SPINDLE: &str = "gcodec::lower::unknown_spindle";
+const BLOCK_TOO_LONG: &str = "gcodec::lower::block_too_long";
+pub(crate) const INVALID_VALUE: &str = "gcodec::lower::invalid_value";
+const UNKNOWN_SYSTEM_VARIABLE: &str = "gcodec::lower::unknown_system_variable";
+
+/// The state carried from block to block.
+struct Lowering<'a> {
+    program: &'a Program,
+    profile: &'a Profile,
+    file: Arc<str>,
+    document: Document,
+    diagnostics: Vec<Diagnostic>,
+    /// Modal code of each G group (index = group − 1).
+    modal: [Option<&'static str>; 64],
+    /// The Group 8 selection (index per `$P_UIFR`).
+    group8: u8,
+}
+
+/// What one block says, collected before instructions are emitted.
+#[derive(Default)]
+struct BlockPlan {
+    g_codes: Vec<(u8, &'static str, Span)>,
+    suppressions: Vec<(Suppression, Span)>,
+    feed: Option<(Value, Span)>,
+    spindle: Vec<(Option<u32>, Value, Span)>,
+    tools: Vec<(Op, Span)>,
+    edge: Option<(u32, Span)>,
+    m_functions: Vec<mfunc::MWord>,
+    targets: Vec<(AxisValue, Span)>,
+    circle: Circle,
+    circle_span: Option<Span>,
+    other: Vec<(Op, Span)>,
+}
+
+impl<'a> Lowering<'a> {
+    fn new(program: &'a Program, profile: &'a Profile) -> Self {
+        let mut modal = [None; 64];
+        for (i, slot) in modal.iter_mut().enumerate() {
+            *slot = ggroups::default_member(i as u8 + 1);
+        }
+        for (group, code) in &profile.modal_defaults {
+            let lookup = ggroups::lookup(code.get_ref());
+            if let (Ok(g), Some((found, index))) = (group.get_ref().parse::<u8>(), lookup) {
+                if g == found {
+                    modal[usize::from(g) - 1] = ggroups::group(g)
+                        .and_then(|grp| grp.members.get(usize::from(index) - 1).copied());
+                }
+            }
+        }
+        let group8 =
+            gcodec_profile::group8_index(profile.work_offsets.default_group8_offset.get_ref())
+                .unwrap_or(0);
+        Self {
+            program,
+            profile,
+            file: Arc::from(program.file.as_str()),
+            document: Document::new(),
+            diagnostics: Vec::new(),
+            modal,
+            group8,
+        }
+    }
+
+    fn source_at(&self, block: usize, span: Span) -> Source {
+        let start = self.program.blocks.get(block).map_or(0, |b| b.span.start);
+        Source {
+            file: self.file.clone(),
+            line: block as u32 + 1,
+            col: span.start.saturating_sub(start) + 1,
+            span: ByteRange {
+                start: span.start,
+                end: span.end,
+            },
+        }
+    }
+
+    fn emit(&mut self, block: usize, span: Span, op: Op) {
+        let source = self.source_at(block, span);
+        self.document.instructions.push(Instruction { op, source });
+    }
+
+    fn block(&mut self, index: usize, block: &Block) {
+        let max = *self.profile.program.max_block_length.get_ref();
+        if block.span.len() > max {
+            self.diagnostics.push(
+                Diagnostic::error(
+                    BLOCK_TOO_LONG,
+                    format!(
+                        "the block is {} characters long; the control accepts {max}",
+                        block.span.len()
+                    ),
+                )
+                .with_label(block.span, "this block")
+                .with_help("split the block; the limit is `max_block_length` in the profile"),
+            );
+        }
+        let mut plan = BlockPlan::default();
+        for statement in &block.statements {
+            self.statement(statement, &mut plan);
+        }
+        self.emit_block(index, block, plan);
+    }
+
+    fn statement(&mut self, statement: &ast::Statement, plan: &mut BlockPlan) {
+        let span = statement.span;
+        match &statement.kind {
+            StatementKind::Word(word) => self.word(word, span, plan),
+            StatementKind::Assign(assign) => match &assign.value {
+                ast::Initializer::Expr(e) => {
+                    self.check_variable(&assign.target);
+                    self.check_variables(e);
+                    plan.other.push((
+                        Op::Assign {
+                            target: values::variable(&assign.target),
+                            value: values::value(e),
+                        },
+                        span,
+                    ));
+                }
+                _ => self.not_lowered(span, "an assignment of a list of values"),
+            },
+            StatementKind::Call(call) => self.call(call, span, plan),
+            kind => self.not_lowered(span, statement_name(kind)),
+        }
+    }
+
+    fn call(&mut self, call: &ast::Call, span: Span, plan: &mut BlockPlan) {
+        let CallTarget::Name { name, .. } = &call.target else {
+            return self.not_lowered(span, "a subprogram call by number");
+        };
+        let upper = name.to_ascii_uppercase();
+        let upper = upper.as_str();
+        if call.args.is_none() {
+            // `DIAMON`, `SUPA`, `CFC`: G commands written as names.
+            if let Some((group, _)) = ggroups::lookup(upper) {
+                return self.g_code(upper, group, span, plan);
+            }
+            if upper == "STOPRE" {
+                return plan.other.push((
+                    Op::Stop {
+                        reason: upper.to_string(),
+                    },
+                    span,
+                ));
+            }
+        }
+        if upper == "MSG" {
+            if let Some(args) = &call.args {
+                let text = match args.as_slice() {
+                    [] => Some(Value::Expr(Box::new(gcodec_ail::Expr::String {
+                        value: String::new(),
+                    }))),
+                    [Some(text)] | [Some(text), _] => {
+                        self.check_variables(text);
+                        Some(Value::Expr(Box::new(values::tree(text))))
+                    }
+                    _ => None,
+                };
+                if let Some(text) = text {
+                    return plan.other.push((Op::Message { text }, span));
+                }
+            }
+        }
+        self.not_lowered(span, "a call")
+    }
+
+    /// Reports the unknown system variables of an expression. Recursion
+    /// follows the parser's bounded expression depth.
+    fn check_variables(&mut self, expr: &ast::Expr) {
+        match &expr.kind {
+            ast::ExprKind::Var { var } => self.check_variable(var),
+            ast::ExprKind::Call(call) => {
+                for arg in call.args.iter().flatten() {
+                    self.check_variables(arg);
+                }
+            }
+            ast::ExprKind::Unary { operand, .. } => self.check_variables(operand),
+            ast::ExprKind::Binary(b) => {
+                self.check_variables(&b.lhs);
+                self.check_variables(&b.rhs);
+            }
+            _ => {}
+        }
+    }
+
+    fn check_variable(&mut self, var: &ast::VarRef) {
+        if var.kind == ast::VarKind::System && sysvars::lookup(&var.name).is_none() {
+            self.diagnostics.push(
+                Diagnostic::error(
+                    UNKNOWN_SYSTEM_VARIABLE,
+                    format!("`{}` is not a system variable of the control", var.name),
+                )
+                .with_label(var.span, "unknown")
+                .with_help("check the spelling against the SINUMERIK lists of system variables and machine data"),
+            );
+        }
+        for index in &var.indices {
+            self.check_variables(index);
+        }
+    }
+
+    fn word(&mut self, word: &Word, span: Span, plan: &mut BlockPlan) {
+        let address = word.address();
+        let value = word.value(span);
+        if let ast::WordValue::Assigned { expr, .. } = &*value {
+            self.check_variables(expr);
+        }
+        match address {
+            "G" => match (word.extension(), values::whole_number(&value)) {
+                (None, Some(n)) if n >= 0.0 => {
+                    let code = format!("G{n}");
+                    match ggroups::lookup(&code) {
+                        Some((group, _)) => self.g_code(&code, group, span, plan),
+                        None => self.diagnostics.push(
+                            Diagnostic::error(
+                                UNKNOWN_G,
+                                format!("`{code}` is not a G command of the control"),
+                            )
+                            .with_label(span, "unknown G command"),
+                        ),
+                    }
+                }
+                _ => self.not_lowered(span, "a G command with an extension or a computed value"),
+            },
+            "M" => {
+                if let Some(m) =
+                    mfunc::check(word, &value, span, self.profile, &mut self.diagnostics)
+                {
+                    plan.m_functions.push(m);
+                }
+            }
+            "T" => {
+                if let Some(op) =
+                    tools::select(word, &value, span, self.profile, &mut self.diagnostics)
+                {
+                    plan.tools.push((op, span));
+                }
+            }
+            "D" => match (word.extension(), values::whole_number(&value)) {
+                (None, Some(d)) if (0.0..=32_000.0).contains(&d) => {
+                    plan.edge = Some((d as u32, span))
+                }
+                (None, Some(_)) => self.diagnostics.push(
+                    Diagnostic::error(INVALID_VALUE, "cutting edges are D0…D32000")
+                        .with_label(span, "out of range"),
+                ),
+                _ => self.not_lowered(span, "a computed or extended D number"),
+            },
+            "F" if word.extension().is_none() => {
+                plan.feed = Some((values::word_value(&value).0, span));
+            }
+            "S" => {
+                let spindle = match word.extension() {
+                    None => None,
+                    Some(Extension::Number { value, span }) => {
+                        if !tools::spindle_exists(self.profile, *value) {
+                            self.diagnostics.push(tools::unknown_spindle(*value, *span));
+                            return;
+                        }
+                        Some(*value)
+                    }
+                    Some(Extension::Index { .. }) => {
+                        return self
+                            .not_lowered(span, "a spindle speed with a computed spindle number");
+                    }
+                };
+                plan.spindle
+                    .push((spindle, values::word_value(&value).0, span));
+            }
+            "I" | "J" | "K" => {
+                let (v, mode) = values::word_value(&value);
+                let target = AxisValue {
+                    axis: address.to_owned(),
+                    value: v,
+                    mode,
+                };
+                match word.extension() {
+                    None => plan.circle.centre.push(target),
+                    Some(Extension::Number { value: 1, .. }) => {
+                        plan.circle.intermediate.push(target)
+                    }
+                    Some(_) => return self.not_lowered(span, "this circle parameter"),
+                }
+                plan.circle_span.get_or_insert(span);
+            }
+            "CR" | "AR" | "TURN" => {
+                let v = values::word_value(&value).0;
+                match address {
+                    "CR" => plan.circle.radius = Some(v),
+                    "AR" => plan.circle.opening_angle = Some(v),
+                    _ => plan.circle.turns = Some(v),
+                }
+                plan.circle_span.get_or_insert(span);
+            }
+            _ if self.is_axis(address) && word.extension().is_none() => {
+                let (v, mode) = values::word_value(&value);
+                plan.targets.push((
+                    AxisValue {
+                        axis: address.to_owned(),
+                        value: v,
+                        mode,
+                    },
+                    span,
+                ));
+            }
+            // An axis letter the machine does not have: the control
+            // rejects the block.
+            "A" | "B" | "C" | "U" | "V" | "W" | "X" | "Y" | "Z" => self.diagnostics.push(
+                Diagnostic::error(
+                    UNKNOWN_ADDRESS,
+                    format!("`{address}` is not an axis or address of this machine"),
+                )
+                .with_label(word.address_span(span), "unknown here")
+                .with_help("the profile's `[[axes]]` lists the machine's axes"),
+            ),
+            _ => self.not_lowered(span, "this address"),
+        }
+    }
+
+    fn is_axis(&self, name: &str) -> bool {
+        self.profile
+            .axes
+            .iter()
+            .any(|a| a.name.get_ref().eq_ignore_ascii_case(name))
+    }
+
+    fn g_code(&mut self, code: &str, group: u8, span: Span, plan: &mut BlockPlan) {
+        let Some((_, index)) = ggroups::lookup(code) else {
+            return;
+        };
+        let member = ggroups::group(group)
+            .and_then(|g| g.members.get(usize::from(index) - 1).copied())
+            .unwrap_or("");
+        if group == 9 {
+            let suppression = match member {
+                "G53" => Suppression::G53,
+                "G153" => Suppression::G153,
+                "SUPA" => Suppression::Supa,
+                _ => return self.not_lowered(span, "`SUPD`"),
+            };
+            return plan.suppressions.push((suppression, span));
+        }
+        if group == 8 {
+            let supported = self
+                .profile
+                .work_offsets
+                .supported_group8_offsets
+                .iter()
+                .filter_map(|r| gcodec_profile::group8_range(r.get_ref()).ok())
+                .any(|(lo, hi)| (lo..=hi).contains(&(index - 1)));
+            if !supported {
+                return self.diagnostics.push(
+                    Diagnostic::error(
+                        UNSUPPORTED_OFFSET,
+                        format!("`{member}` is not a settable offset of this machine"),
+                    )
+                    .with_label(span, "not among `supported_group8_offsets`")
+                    .with_help("the Group 8 selection stays as it was; the profile lists the offsets the machine has"),
+                );
+            }
+        }
+        if let Some((_, first, first_span)) = plan.g_codes.iter().find(|(g, _, _)| *g == group) {
+            return self.diagnostics.push(
+                Diagnostic::error(
+                    G_GROUP_CONFLICT,
+                    format!("`{member}` and `{first}` are both in G group {group}; a block holds one command of a group"),
+                )
+                .with_label(span, "second command of the group")
+                .with_label(*first_span, "first"),
+            );
+        }
+        plan.g_codes.push((group, member, span));
+    }
+
+    fn not_lowered(&mut self, span: Span, what: &str) {
+        self.diagnostics.push(
+            Diagnostic::warning(NOT_LOWERED, format!("{what} is not lowered yet"))
+                .with_label(span, "left out of the instruction list")
+                .with_help("gcodec does not translate this construct yet; the program cannot be run as written"),
+        );
+    }
+
+    fn emit_block(&mut self, index: usize, block: &Block, plan: BlockPlan) {
+        // Work offset: the Group 8 selection and the block's suppression.
+        let group8 = plan.g_codes.iter().find(|(g, _, _)| *g == 8);
+        let suppression = self.suppression(&plan.suppressions);
+        if let Some((_, code, _)) = group8 {
+            self.group8 = gcodec_profile::group8_index(code).unwrap_or(self.group8);
+        }
+        if group8.is_some() || suppression.is_some() {
+            let span = group8
+                .map(|(_, _, s)| *s)
+                .or(plan.suppressions.first().map(|(_, s)| *s))
+                .unwrap_or(block.span);
+            let selected = gcodec_profile::group8_code(self.group8)
+                .unwrap_or_default()
+                .to_ascii_lowercase();
+            self.emit(
+                index,
+                span,
+                Op::WorkOffset {
+                    group8_selected: selected,
+                    suppression,
+                    suppression_scope: suppression.map(|_| SuppressionScope::Block),
+                },
+            );
+        }
+        for &(group, code, span) in &plan.g_codes {
+            if group == 8 {
+                continue;
+            }
+            let modal = ggroups::group(group).is_some_and(|g| g.effect == ggroups::Effect::Modal);
+            if modal {
+                self.modal[usize::from(group) - 1] = Some(code);
+            }
+            self.emit(
+                index,
+                span,
+                Op::ModalChange {
+                    group,
+                    code: code.to_owned(),
+                },
+            );
+        }
+        if let Some((value, span)) = plan.feed {
+            self.emit(index, span, Op::Feed { value });
+        }
+        for (spindle, speed, span) in plan.spindle {
+            self.emit(index, span, Op::SpindleSpeed { spindle, speed });
+        }
+        for (op, span) in plan.tools {
+            let direct = matches!(
+                op,
+                Op::ToolSelect {
+                    timing: gcodec_ail::ToolTiming::Immediate,
+                    ..
+                }
+            );
+            self.emit(index, span, op);
+            if direct {
+                self.emit(
+                    index,
+                    span,
+                    Op::ToolChange {
+                        trigger: ToolChangeTrigger::TWord,
+                    },
+                );
+            }
+        }
+        if let Some((edge, span)) = plan.edge {
+            self.emit(index, span, Op::CuttingEdge { edge });
+        }
+        let has_motion = !plan.targets.is_empty();
+        mfunc::check_count(&plan.m_functions, self.profile, &mut self.diagnostics);
+        let deferred =
+            self.profile.tool_change.tool_change_mode == gcodec_profile::ToolChangeMode::DeferredM6;
+        let (after, before): (Vec<_>, Vec<_>) = plan
+            .m_functions
+            .into_iter()
+            .partition(|m| has_motion && mfunc::acts_after_motion(m.value));
+        for m in before {
+            self.emit_m(index, m, MTiming::InBlock, deferred);
+        }
+        for (op, span) in plan.other {
+            self.emit(index, span, op);
+        }
+        if has_motion || plan.circle_span.is_some() {
+            let first = plan
+                .targets
+                .first()
+                .map(|(_, s)| *s)
+                .or(plan.circle_span)
+                .unwrap_or(block.span);
+            let motion = match self.modal[0] {
+                Some("G0") => MotionKind::Rapid,
+                Some("G2") => MotionKind::ArcCw,
+                Some("G3") => MotionKind::ArcCcw,
+                Some("CIP") => MotionKind::ArcThroughPoint,
+                Some("CT") => MotionKind::ArcTangential,
+                Some("G1") => MotionKind::Linear,
+                other => {
+                    self.not_lowered(first, &format!("motion under `{}`", other.unwrap_or("?")));
+                    MotionKind::Linear
+                }
+            };
+            let arc = matches!(
+                motion,
+                MotionKind::ArcCw
+                    | MotionKind::ArcCcw
+                    | MotionKind::ArcThroughPoint
+                    | MotionKind::ArcTangential
+            );
+            let circle = arc.then(|| Box::new(plan.circle));
+            self.emit(
+                index,
+                first,
+                Op::Motion {
+                    motion,
+                    targets: plan.targets.into_iter().map(|(t, _)| t).collect(),
+                    circle,
+                },
+            );
+        }
+        for m in after {
+            self.emit_m(index, m, MTiming::PostMotion, deferred);
+        }
+    }
+
+    /// An M function, and the tool change when it is the change M code in
+    /// `deferred_m6` mode.
+    fn emit_m(&mut self, index: usize, m: mfunc::MWord, timing: MTiming, deferred: bool) {
+        let is_change = deferred
+            && m.value == *self.profile.tool_change.change_m_code.get_ref()
+            && m.extension.is_none();
+        let span = m.span;
+        self.emit(index, span, m.into_op(timing));
+        if is_change {
+            self.emit(
+                index,
+                span,
+                Op::ToolChange {
+                    trigger: ToolChangeTrigger::M6,
+                },
+            );
+        }
+    }
+
+    /// The strongest suppression of a block, per the profile's policy for
+    /// several in one block (seed 003).
+    fn suppression(&mut self, found: &[(Suppression, Span)]) -> Option<Suppression> {
+        let (first, first_span) = *found.first()?;
+        if found.len() == 1 {
+            return Some(first);
+        }
+        let strongest = found.iter().map(|(s, _)| *s).max().unwrap_or(first);
+        let policy = self.profile.work_offsets.duplicate_suppression_policy;
+        let message = "several of G53, G153 and SUPA in one block";
+        let diagnostic = match policy {
+            DuplicateSuppressionPolicy::FirstWins => return Some(first),
+            DuplicateSuppressionPolicy::Warn => Diagnostic::warning(DUPLICATE_SUPPRESSION, message)
+                .with_help("the strongest one acts (SUPA > G153 > G53); write only that one"),
+            DuplicateSuppressionPolicy::Error => Diagnostic::error(DUPLICATE_SUPPRESSION, message)
+                .with_help("the profile forbids this (`duplicate_suppression_policy = \"error\"`); write only one"),
+        };
+        let mut diagnostic = diagnostic.with_label(first_span, "first");
+        for (_, span) in &found[1..] {
+            diagnostic = diagnostic.with_label(*span, "again");
+        }
+        self.diagnostics.push(diagnostic);
+        Some(strongest)
+    }
+}
+
+/// How a statement kind is named in "not lowered yet" warnings.
+fn statement_name(kind: &StatementKind) -> &'static str {
+    use StatementKind as S;
+    match kind {
+        S::Def(_) => "`DEF`",
+        S::Redef(_) => "`REDEF`",
+        S::Define(_) => "`DEFINE`",
+        S::Proc(_) => "`PROC`",
+        S::EndProc => "`ENDPROC`",
+        S::Extern(_) => "`EXTERN`",
+        S::IndirectCall(_) => "`CALL`",
+        S::PCall(_) => "`PCALL`",
+        S::MCall(_) => "`MCALL`",
+        S::Ret(_) => "`RET`",
+        S::Goto(_) => "a jump",
+        S::IfGoto(_) => "`IF … GOTO`",
+        S::If(_) | S::Else | S::EndIf => "`IF`/`ELSE`/`ENDIF`",
+        S::While(_) | S::EndWhile => "`WHILE`",
+        S::For(_) | S::EndFor => "`FOR`",
+        S::Loop | S::EndLoop => "`LOOP`",
+        S::Repeat | S::Until(_) => "`REPEAT`/`UNTIL`",
+        S::RepeatSection(_) => "`REPEAT` of a section",
+        S::Case(_) => "`CASE`",
+        S::Frame(_) => "a frame instruction",
+        S::SyncAction(_) => "a synchronous action",
+        S::Word(_) | S::Assign(_) | S::Call(_) => "this statement",
+    }
+}

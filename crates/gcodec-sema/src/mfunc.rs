@@ -1,0 +1,191 @@
+//! M functions per seed 001: the accepted forms, the value range, the
+//! extended address, the per-block limit, classes and the unknown-code
+//! policy.
+
+use gcodec_ail::{MClass, MTiming, Op};
+use gcodec_parser::ast::{Extension, Word, WordValue};
+use gcodec_profile::{Policy, Profile};
+use gcodec_source::{Diagnostic, Span};
+
+use crate::lower::INVALID_VALUE;
+use crate::tools::{spindle_exists, unknown_spindle};
+use crate::values::whole_number;
+
+const EXTENSION_FORBIDDEN: &str = "gcodec::lower::m_extension_forbidden";
+const TOO_MANY_M: &str = "gcodec::lower::too_many_m_functions";
+const UNKNOWN_M: &str = "gcodec::lower::unknown_m_function";
+
+/// Largest M value (seed 001: a 32-bit non-negative INT).
+const MAX_M: f64 = 2_147_483_647.0;
+
+/// A checked M word.
+pub(crate) struct MWord {
+    pub value: u32,
+    pub extension: Option<u32>,
+    pub class: MClass,
+    pub raw: String,
+    pub span: Span,
+}
+
+impl MWord {
+    pub(crate) fn into_op(self, timing: MTiming) -> Op {
+        Op::MFunction {
+            m_value: self.value,
+            address_extension: self.extension,
+            class: self.class,
+            timing,
+            raw: self.raw,
+        }
+    }
+}
+
+/// `M0 M1 M2 M17 M30` act after the block's motion (seed 001).
+pub(crate) fn acts_after_motion(value: u32) -> bool {
+    matches!(value, 0 | 1 | 2 | 17 | 30)
+}
+
+/// The built-in class of a predefined M function, `None` for the others.
+fn predefined_class(value: u32, change_m: u32) -> Option<MClass> {
+    Some(match value {
+        0 | 1 | 2 | 17 | 30 => MClass::ProgramFlow,
+        3 | 4 | 5 | 19 | 70 => MClass::Spindle,
+        40..=45 => MClass::Gearbox,
+        v if v == change_m => MClass::Tool,
+        _ => return None,
+    })
+}
+
+/// Checks one M word; `None` when it is rejected (its diagnostic pushed).
+pub(crate) fn check(
+    word: &Word,
+    value: &WordValue,
+    span: Span,
+    profile: &Profile,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Option<MWord> {
+    let Some(number) = whole_number(value) else {
+        diagnostics.push(
+            Diagnostic::error(INVALID_VALUE, "an M function takes a whole number")
+                .with_label(span, "not a whole number constant")
+                .with_help("write e.g. `M3` or `M2=3`; M values are 0…2147483647"),
+        );
+        return None;
+    };
+    if !(0.0..=MAX_M).contains(&number) {
+        diagnostics.push(
+            Diagnostic::error(INVALID_VALUE, format!("M{number} is out of range"))
+                .with_label(span, "out of range")
+                .with_help("M values are 0…2147483647"),
+        );
+        return None;
+    }
+    let m = number as u32;
+    let extension = match word.extension() {
+        None => None,
+        Some(Extension::Number {
+            value: ext,
+            span: ext_span,
+        }) => {
+            if acts_after_motion(m) {
+                diagnostics.push(
+                    Diagnostic::error(
+                        EXTENSION_FORBIDDEN,
+                        format!("M{m} takes no address extension"),
+                    )
+                    .with_label(span, "extended address")
+                    .with_help("M0, M1, M2, M17 and M30 are written without a spindle number"),
+                );
+                return None;
+            }
+            if !profile.m_functions.enable_extended_m_address {
+                diagnostics.push(
+                    Diagnostic::error(
+                        EXTENSION_FORBIDDEN,
+                        "this machine has no extended M addresses",
+                    )
+                    .with_label(span, "extended address")
+                    .with_help("the profile sets `enable_extended_m_address = false`"),
+                );
+                return None;
+            }
+            if !spindle_exists(profile, *ext) {
+                diagnostics.push(unknown_spindle(*ext, *ext_span));
+                return None;
+            }
+            Some(*ext)
+        }
+        Some(Extension::Index { .. }) => {
+            diagnostics.push(
+                Diagnostic::error(INVALID_VALUE, "an M address extension is a spindle number")
+                    .with_label(span, "computed extension")
+                    .with_help("write e.g. `M2=3`"),
+            );
+            return None;
+        }
+    };
+    let change_m = *profile.tool_change.change_m_code.get_ref();
+    let overridden = profile
+        .m_functions
+        .mcode_class_overrides
+        .iter()
+        .find(|(k, _)| k.get_ref().parse::<u32>() == Ok(m))
+        .map(|(_, class)| convert_class(*class));
+    let class = match overridden.or_else(|| predefined_class(m, change_m)) {
+        Some(class) => class,
+        None => {
+            let message = format!("M{m} is not a predefined M function");
+            let help =
+                "machine-specific M functions are listed in the profile's `mcode_class_overrides`";
+            match profile.m_functions.unknown_mcode_policy {
+                Policy::Error => diagnostics.push(
+                    Diagnostic::error(UNKNOWN_M, message)
+                        .with_label(span, "unknown")
+                        .with_help(help),
+                ),
+                Policy::Warning => diagnostics.push(
+                    Diagnostic::warning(UNKNOWN_M, message)
+                        .with_label(span, "unknown")
+                        .with_help(help),
+                ),
+                Policy::Ignore => {}
+            }
+            MClass::Custom
+        }
+    };
+    let raw = match extension {
+        Some(ext) => format!("M{ext}={m}"),
+        None => format!("M{m}"),
+    };
+    Some(MWord {
+        value: m,
+        extension,
+        class,
+        raw,
+        span,
+    })
+}
+
+/// Reports the M words past the profile's per-block limit.
+pub(crate) fn check_count(words: &[MWord], profile: &Profile, diagnostics: &mut Vec<Diagnostic>) {
+    let max = *profile.m_functions.max_m_per_block.get_ref() as usize;
+    if let Some(first_excess) = words.get(max) {
+        diagnostics.push(
+            Diagnostic::error(
+                TOO_MANY_M,
+                format!("more than {max} M functions in one block"),
+            )
+            .with_label(first_excess.span, "one too many")
+            .with_help("split the block; the limit is `max_m_per_block` in the profile"),
+        );
+    }
+}
+
+fn convert_class(class: gcodec_profile::MClass) -> MClass {
+    match class {
+        gcodec_profile::MClass::ProgramFlow => MClass::ProgramFlow,
+        gcodec_profile::MClass::Spindle => MClass::Spindle,
+        gcodec_profile::MClass::Tool => MClass::Tool,
+        gcodec_profile::MClass::Gearbox => MClass::Gearbox,
+        gcodec_profile::MClass::Custom => MClass::Custom,
+    }
+}

@@ -1,0 +1,185 @@
+//! Tool selection per seed 000: the selector forms each tool-management
+//! mode accepts, normalised into one selector model, with the timing the
+//! profile's tool-change mode gives; and spindle numbers.
+
+use gcodec_ail::{Op, SelectorKind, ToolTiming};
+use gcodec_parser::ast::{ExprKind, Extension, Word, WordValue};
+use gcodec_profile::{Profile, ToolChangeMode, UnresolvedToolPolicy};
+use gcodec_source::{Diagnostic, Span};
+
+use crate::lower::{INVALID_VALUE, UNKNOWN_SPINDLE};
+
+const SELECTOR_FORM: &str = "gcodec::lower::tool_selector_form";
+const UNRESOLVED_TOOL: &str = "gcodec::lower::unresolved_tool";
+
+/// Whether the machine has spindle `number`.
+pub(crate) fn spindle_exists(profile: &Profile, number: u32) -> bool {
+    profile
+        .machine
+        .spindles
+        .iter()
+        .any(|s| *s.get_ref() == number)
+}
+
+/// The diagnostic for a spindle number the machine does not have.
+pub(crate) fn unknown_spindle(number: u32, span: Span) -> Diagnostic {
+    Diagnostic::error(
+        UNKNOWN_SPINDLE,
+        format!("this machine has no spindle {number}"),
+    )
+    .with_label(span, "spindle number")
+    .with_help("the profile's `[machine] spindles` lists the spindles")
+}
+
+/// What a `T` word selects, before the mode is applied.
+enum Selector {
+    Number(u32),
+    Name(String),
+}
+
+/// Checks a `T` word and returns its `tool_select`; `None` when it is
+/// rejected (its diagnostic pushed).
+pub(crate) fn select(
+    word: &Word,
+    value: &WordValue,
+    span: Span,
+    profile: &Profile,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Option<Op> {
+    let management = profile.tool_change.tool_management_enabled;
+    let spindle = match word.extension() {
+        None => None,
+        Some(Extension::Number { value, span }) => {
+            if !spindle_exists(profile, *value) {
+                diagnostics.push(unknown_spindle(*value, *span));
+                return None;
+            }
+            Some(*value)
+        }
+        Some(Extension::Index { .. }) => {
+            diagnostics.push(form_error(
+                span,
+                "a `T` extension is a spindle number, e.g. `T1=5`",
+            ));
+            return None;
+        }
+    };
+    let (selector, assigned) = match value {
+        WordValue::Constant(n) if n.integer && n.value >= 0.0 => {
+            (Selector::Number(n.value as u32), false)
+        }
+        WordValue::Assigned {
+            modifier: None,
+            expr,
+        } => match &expr.kind {
+            ExprKind::Number {
+                value,
+                integer: true,
+            } if *value >= 0.0 && *value <= f64::from(i32::MAX) => {
+                (Selector::Number(*value as u32), true)
+            }
+            ExprKind::String { value } => (Selector::Name(value.to_string()), true),
+            _ => {
+                diagnostics.push(form_error(
+                    span,
+                    "select a tool by a whole number or a name in quotes",
+                ));
+                return None;
+            }
+        },
+        _ => {
+            diagnostics.push(
+                Diagnostic::error(INVALID_VALUE, "a tool number is a whole number")
+                    .with_label(span, "not a tool number"),
+            );
+            return None;
+        }
+    };
+    let (kind, selector_value) = match (&selector, management) {
+        (Selector::Name(_), false) => {
+            diagnostics.push(form_error(
+                span,
+                "tools are selected by name only with tool management; this machine selects by number (`T5`)",
+            ));
+            return None;
+        }
+        (Selector::Number(_), true) if !assigned => {
+            diagnostics.push(form_error(
+                span,
+                "with tool management, select a tool by name (`T=\"DRILL_10\"`) or location (`T=5`)",
+            ));
+            return None;
+        }
+        (Selector::Number(n), false) => (SelectorKind::Number, n.to_string()),
+        (Selector::Number(n), true) => (SelectorKind::Location, n.to_string()),
+        (Selector::Name(name), true) => (SelectorKind::Name, name.clone()),
+    };
+    resolve(profile, kind, &selector_value, span, diagnostics);
+    let timing = match profile.tool_change.tool_change_mode {
+        ToolChangeMode::Direct => ToolTiming::Immediate,
+        ToolChangeMode::DeferredM6 => ToolTiming::DeferredUntilM6,
+    };
+    let raw = match (&selector, spindle, assigned) {
+        (Selector::Name(name), Some(s), _) => format!("T{s}=\"{name}\""),
+        (Selector::Name(name), None, _) => format!("T=\"{name}\""),
+        (Selector::Number(n), Some(s), _) => format!("T{s}={n}"),
+        (Selector::Number(n), None, true) => format!("T={n}"),
+        (Selector::Number(n), None, false) => format!("T{n}"),
+    };
+    Some(Op::ToolSelect {
+        selector_kind: kind,
+        selector_value,
+        spindle_extension: spindle,
+        timing,
+        raw,
+    })
+}
+
+/// Checks a selection against the tool table, when the profile has one:
+/// `on_unresolved_tool` says what an unknown tool is. `T0` deselects.
+fn resolve(
+    profile: &Profile,
+    kind: SelectorKind,
+    value: &str,
+    span: Span,
+    diagnostics: &mut Vec<Diagnostic>,
+) {
+    if profile.tools.is_empty() || value == "0" {
+        return;
+    }
+    let found = profile.tools.iter().any(|t| match kind {
+        SelectorKind::Number => t.number.get_ref().to_string() == value,
+        SelectorKind::Location => t.location.is_some_and(|l| l.to_string() == value),
+        SelectorKind::Name => t
+            .name
+            .as_ref()
+            .is_some_and(|n| n.get_ref().eq_ignore_ascii_case(value)),
+    });
+    if found {
+        return;
+    }
+    let message = format!("no tool `{value}` in the machine's tool table");
+    let help = "the profile's `[[tools]]` lists the tools";
+    match profile.tool_change.on_unresolved_tool {
+        UnresolvedToolPolicy::Error => diagnostics.push(
+            Diagnostic::error(UNRESOLVED_TOOL, message)
+                .with_label(span, "unknown tool")
+                .with_help(help),
+        ),
+        UnresolvedToolPolicy::Warning => diagnostics.push(
+            Diagnostic::warning(UNRESOLVED_TOOL, message)
+                .with_label(span, "unknown tool")
+                .with_help(help),
+        ),
+        UnresolvedToolPolicy::Fallback => {}
+    }
+}
+
+fn form_error(span: Span, help: &'static str) -> Diagnostic {
+    Diagnostic::error(
+        SELECTOR_FORM,
+        "this tool selection is not accepted on this machine",
+    )
+    .with_label(span, "tool selection")
+    .with_help(help)
+}

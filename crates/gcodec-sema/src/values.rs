@@ -1,0 +1,135 @@
+//! Syntax-tree expressions and word values as AIL values.
+
+use gcodec_ail::{self as ail, Value};
+use gcodec_parser::ast::{self, ExprKind, WordValue};
+
+/// An expression as an AIL value: a plain number stays a constant (so do
+/// signed numbers, `-5`), anything else becomes a tree.
+pub(crate) fn value(expr: &ast::Expr) -> Value {
+    match constant(expr) {
+        Some(v) => Value::Const(v),
+        None => Value::Expr(Box::new(tree(expr))),
+    }
+}
+
+/// The number an expression is written as, if it is one (`5`, `-5`, `+.5`).
+pub(crate) fn constant(expr: &ast::Expr) -> Option<f64> {
+    match &expr.kind {
+        ExprKind::Number { value, .. } => Some(*value),
+        ExprKind::Unary {
+            op: ast::UnaryOp::Neg,
+            operand,
+        } => constant(operand).map(|v| -v),
+        ExprKind::Unary {
+            op: ast::UnaryOp::Plus,
+            operand,
+        } => constant(operand),
+        _ => None,
+    }
+}
+
+/// A word's value and its dimension modifier (`AC`, `IC`, …) if written.
+pub(crate) fn word_value(value: &WordValue) -> (Value, Option<String>) {
+    match value {
+        WordValue::Constant(n) => (Value::Const(n.value), None),
+        WordValue::Assigned { modifier, expr } => (
+            self::value(expr),
+            modifier.as_ref().map(|m| m.kind.keyword().to_owned()),
+        ),
+    }
+}
+
+/// A whole number written as a constant (`M3`, `T=5`, `D1`), if the value
+/// is one.
+pub(crate) fn whole_number(value: &WordValue) -> Option<f64> {
+    match value {
+        WordValue::Constant(n) if n.integer => Some(n.value),
+        WordValue::Assigned {
+            modifier: None,
+            expr,
+        } => match &expr.kind {
+            ExprKind::Number {
+                value,
+                integer: true,
+            } => Some(*value),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+/// The expression tree. Recursion follows the parser's bounded depth
+/// (`MAX_EXPRESSION_DEPTH`, `MAX_OPERATORS_PER_BLOCK`).
+pub(crate) fn tree(expr: &ast::Expr) -> ail::Expr {
+    match &expr.kind {
+        ExprKind::Number { value, .. } => ail::Expr::Number { value: *value },
+        ExprKind::String { value } => ail::Expr::String {
+            value: value.to_string(),
+        },
+        ExprKind::Bool { value } => ail::Expr::Bool { value: *value },
+        ExprKind::Var { var } => variable(var),
+        ExprKind::Call(call) => ail::Expr::Call {
+            name: call.name.to_ascii_uppercase().to_string(),
+            args: call.args.iter().map(|a| a.as_ref().map(tree)).collect(),
+        },
+        ExprKind::Unary { op, operand } => ail::Expr::Unary {
+            operator: unary(*op),
+            operand: Box::new(tree(operand)),
+        },
+        ExprKind::Binary(b) => ail::Expr::Binary {
+            operator: binary(b.op),
+            lhs: Box::new(tree(&b.lhs)),
+            rhs: Box::new(tree(&b.rhs)),
+        },
+    }
+}
+
+/// A variable reference as an AIL variable.
+pub(crate) fn variable(var: &ast::VarRef) -> ail::Expr {
+    ail::Expr::Var {
+        var_kind: match var.kind {
+            ast::VarKind::RParameter => ail::VarKind::RParameter,
+            ast::VarKind::Name => ail::VarKind::User,
+            ast::VarKind::System => ail::VarKind::System,
+        },
+        name: var.name.to_ascii_uppercase().to_string(),
+        indices: var.indices.iter().map(tree).collect(),
+    }
+}
+
+fn unary(op: ast::UnaryOp) -> ail::UnaryOp {
+    match op {
+        ast::UnaryOp::Neg => ail::UnaryOp::Neg,
+        ast::UnaryOp::Plus => ail::UnaryOp::Plus,
+        ast::UnaryOp::Not => ail::UnaryOp::Not,
+        ast::UnaryOp::BNot => ail::UnaryOp::BNot,
+        ast::UnaryOp::ToString => ail::UnaryOp::ToString,
+    }
+}
+
+fn binary(op: ast::BinaryOp) -> ail::BinaryOp {
+    use ail::BinaryOp as B;
+    use ast::BinaryOp as A;
+    match op {
+        A::Mul => B::Mul,
+        A::Div => B::Div,
+        A::IntDiv => B::IntDiv,
+        A::Mod => B::Mod,
+        A::Add => B::Add,
+        A::Sub => B::Sub,
+        A::BAnd => B::BAnd,
+        A::BXor => B::BXor,
+        A::BOr => B::BOr,
+        A::And => B::And,
+        A::Xor => B::Xor,
+        A::Or => B::Or,
+        A::Concat => B::Concat,
+        A::Eq => B::Eq,
+        A::Ne => B::Ne,
+        A::Lt => B::Lt,
+        A::Gt => B::Gt,
+        A::Le => B::Le,
+        A::Ge => B::Ge,
+        A::Chain => B::Chain,
+    }
+}
