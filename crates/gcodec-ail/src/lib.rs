@@ -87,8 +87,13 @@ pub enum Op {
     /// `T5`, `T=5`, `T1=5`, `T="DRILL_10"` (seed 000).
     ToolSelect {
         selector_kind: SelectorKind,
-        /// The tool number or location as digits, or the tool name.
+        /// The tool number or location as digits, the tool name, or a
+        /// computed selector as written.
         selector_value: String,
+        /// The expression of a `computed` selector (`T=NAMES[I]`),
+        /// evaluated when the block runs.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        selector_expr: Option<Expr>,
         /// `T1=…`: the spindle the selection is for.
         spindle_extension: Option<u32>,
         timing: ToolTiming,
@@ -99,10 +104,15 @@ pub enum Op {
     /// the `T` word (direct mode) (seed 000).
     ToolChange { trigger: ToolChangeTrigger },
     /// `D1`: the cutting edge; `D0` deselects the tool offset.
-    CuttingEdge { edge: u32 },
+    CuttingEdge { edge: Value },
     /// `M3`, `M2=5` (seed 001).
     MFunction {
-        m_value: u32,
+        /// `null` when the value is computed (`M1=DIR`): see `m_expr`.
+        m_value: Option<u32>,
+        /// The expression of a computed value, evaluated when the block
+        /// runs (the executor checks its range then).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        m_expr: Option<Expr>,
         address_extension: Option<u32>,
         class: MClass,
         timing: MTiming,
@@ -187,6 +197,9 @@ pub enum SelectorKind {
     Number,
     Name,
     Location,
+    /// A value computed when the block runs: a number, or with tool
+    /// management a name or location, depending on its type then.
+    Computed,
 }
 
 /// When a selection takes effect (seed 000).

@@ -51,6 +51,7 @@ fn tool_select_has_the_seed_000_fields() {
     let value = round_trip(Op::ToolSelect {
         selector_kind: SelectorKind::Name,
         selector_value: "DRILL_10".into(),
+        selector_expr: None,
         spindle_extension: None,
         timing: ToolTiming::DeferredUntilM6,
         raw: "T=\"DRILL_10\"".into(),
@@ -81,7 +82,8 @@ fn tool_change_has_the_seed_000_trigger() {
 #[test]
 fn m_function_has_the_seed_001_fields() {
     let value = round_trip(Op::MFunction {
-        m_value: 3,
+        m_value: Some(3),
+        m_expr: None,
         address_extension: None,
         class: MClass::Spindle,
         timing: MTiming::InBlock,

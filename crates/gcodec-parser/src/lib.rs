@@ -25,4 +25,4 @@ pub use driver::{
     MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, parse, parse_bytes,
     parse_bytes_in_segments, parse_bytes_with_grammar_only,
 };
-pub use outline::write_outline;
+pub use outline::{write_expr, write_outline};

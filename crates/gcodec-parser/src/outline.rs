@@ -383,7 +383,8 @@ fn write_var(v: &VarRef, out: &mut impl Write) -> fmt::Result {
 
 /// Expressions are written fully parenthesised so the outline shows how
 /// precedence grouped them.
-fn write_expr(e: &Expr, out: &mut impl Write) -> fmt::Result {
+/// Writes an expression fully parenthesised, as the outline shows it.
+pub fn write_expr(e: &Expr, out: &mut impl Write) -> fmt::Result {
     match &e.kind {
         ExprKind::Number { value, .. } => write!(out, "{value}"),
         ExprKind::String { value } => write!(out, "\"{value}\""),

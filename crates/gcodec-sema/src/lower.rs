@@ -83,7 +83,7 @@ struct BlockPlan {
     feed: Option<(Value, Span)>,
     spindle: Vec<(Option<u32>, Value, Span)>,
     tools: Vec<(Op, Span)>,
-    edge: Option<(u32, Span)>,
+    edge: Option<(Value, Span)>,
     m_functions: Vec<mfunc::MWord>,
     targets: Vec<(AxisValue, Span)>,
     circle: Circle,
@@ -295,15 +295,30 @@ impl<'a> Lowering<'a> {
                     plan.tools.push((op, span));
                 }
             }
-            "D" => match (word.extension(), values::whole_number(&value)) {
-                (None, Some(d)) if (0.0..=32_000.0).contains(&d) => {
-                    plan.edge = Some((d as u32, span))
+            "D" => match (word.extension(), values::whole_number(&value), &*value) {
+                (None, Some(d), _) if (0.0..=32_000.0).contains(&d) => {
+                    plan.edge = Some((Value::Const(d), span))
                 }
-                (None, Some(_)) => self.diagnostics.push(
+                (None, Some(_), _) => self.diagnostics.push(
                     Diagnostic::error(INVALID_VALUE, "cutting edges are D0…D32000")
                         .with_label(span, "out of range"),
                 ),
-                _ => self.not_lowered(span, "a computed or extended D number"),
+                // `D=EDGES[I]`: computed when the block runs.
+                (
+                    None,
+                    None,
+                    ast::WordValue::Assigned {
+                        modifier: None,
+                        expr,
+                    },
+                ) if values::constant(expr).is_none() => {
+                    plan.edge = Some((values::value(expr), span))
+                }
+                (None, None, _) => self.diagnostics.push(
+                    Diagnostic::error(INVALID_VALUE, "a cutting edge is a whole number")
+                        .with_label(span, "not a whole number"),
+                ),
+                _ => self.not_lowered(span, "an extended D number"),
             },
             "F" if word.extension().is_none() => {
                 plan.feed = Some((values::word_value(&value).0, span));
@@ -516,7 +531,7 @@ impl<'a> Lowering<'a> {
         let (after, before): (Vec<_>, Vec<_>) = plan
             .m_functions
             .into_iter()
-            .partition(|m| has_motion && mfunc::acts_after_motion(m.value));
+            .partition(|m| has_motion && m.value.is_some_and(mfunc::acts_after_motion));
         for m in before {
             self.emit_m(index, m, MTiming::InBlock, deferred);
         }
@@ -569,7 +584,7 @@ impl<'a> Lowering<'a> {
     /// `deferred_m6` mode.
     fn emit_m(&mut self, index: usize, m: mfunc::MWord, timing: MTiming, deferred: bool) {
         let is_change = deferred
-            && m.value == *self.profile.tool_change.change_m_code.get_ref()
+            && m.value == Some(*self.profile.tool_change.change_m_code.get_ref())
             && m.extension.is_none();
         let span = m.span;
         self.emit(index, span, m.into_op(timing));

@@ -9,7 +9,7 @@ use gcodec_source::{Diagnostic, Span};
 
 use crate::lower::INVALID_VALUE;
 use crate::tools::{spindle_exists, unknown_spindle};
-use crate::values::whole_number;
+use crate::values::{constant, tree, whole_number};
 
 const EXTENSION_FORBIDDEN: &str = "gcodec::lower::m_extension_forbidden";
 const TOO_MANY_M: &str = "gcodec::lower::too_many_m_functions";
@@ -20,7 +20,9 @@ const MAX_M: f64 = 2_147_483_647.0;
 
 /// A checked M word.
 pub(crate) struct MWord {
-    pub value: u32,
+    /// `None` for a computed value (`M1=DIR`).
+    pub value: Option<u32>,
+    pub expr: Option<gcodec_ail::Expr>,
     pub extension: Option<u32>,
     pub class: MClass,
     pub raw: String,
@@ -31,6 +33,7 @@ impl MWord {
     pub(crate) fn into_op(self, timing: MTiming) -> Op {
         Op::MFunction {
             m_value: self.value,
+            m_expr: self.expr,
             address_extension: self.extension,
             class: self.class,
             timing,
@@ -63,13 +66,41 @@ pub(crate) fn check(
     profile: &Profile,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Option<MWord> {
-    let Some(number) = whole_number(value) else {
-        diagnostics.push(
-            Diagnostic::error(INVALID_VALUE, "an M function takes a whole number")
-                .with_label(span, "not a whole number constant")
-                .with_help("write e.g. `M3` or `M2=3`; M values are 0…2147483647"),
-        );
-        return None;
+    let number = match (whole_number(value), value) {
+        (Some(number), _) => number,
+        // `M1=DIR`: computed when the block runs; the executor checks the
+        // value then.
+        (
+            None,
+            WordValue::Assigned {
+                modifier: None,
+                expr,
+            },
+        ) if constant(expr).is_none() => {
+            let extension = extension(word, span, profile, diagnostics)?;
+            let mut text = String::new();
+            let _ = gcodec_parser::write_expr(expr, &mut text);
+            let raw = match extension {
+                Some(ext) => format!("M{ext}={text}"),
+                None => format!("M={text}"),
+            };
+            return Some(MWord {
+                value: None,
+                expr: Some(tree(expr)),
+                extension,
+                class: MClass::Custom,
+                raw,
+                span,
+            });
+        }
+        _ => {
+            diagnostics.push(
+                Diagnostic::error(INVALID_VALUE, "an M function takes a whole number")
+                    .with_label(span, "not a whole number")
+                    .with_help("write e.g. `M3` or `M2=3`; M values are 0…2147483647"),
+            );
+            return None;
+        }
     };
     if !(0.0..=MAX_M).contains(&number) {
         diagnostics.push(
@@ -80,49 +111,18 @@ pub(crate) fn check(
         return None;
     }
     let m = number as u32;
-    let extension = match word.extension() {
-        None => None,
-        Some(Extension::Number {
-            value: ext,
-            span: ext_span,
-        }) => {
-            if acts_after_motion(m) {
-                diagnostics.push(
-                    Diagnostic::error(
-                        EXTENSION_FORBIDDEN,
-                        format!("M{m} takes no address extension"),
-                    )
-                    .with_label(span, "extended address")
-                    .with_help("M0, M1, M2, M17 and M30 are written without a spindle number"),
-                );
-                return None;
-            }
-            if !profile.m_functions.enable_extended_m_address {
-                diagnostics.push(
-                    Diagnostic::error(
-                        EXTENSION_FORBIDDEN,
-                        "this machine has no extended M addresses",
-                    )
-                    .with_label(span, "extended address")
-                    .with_help("the profile sets `enable_extended_m_address = false`"),
-                );
-                return None;
-            }
-            if !spindle_exists(profile, *ext) {
-                diagnostics.push(unknown_spindle(*ext, *ext_span));
-                return None;
-            }
-            Some(*ext)
-        }
-        Some(Extension::Index { .. }) => {
-            diagnostics.push(
-                Diagnostic::error(INVALID_VALUE, "an M address extension is a spindle number")
-                    .with_label(span, "computed extension")
-                    .with_help("write e.g. `M2=3`"),
-            );
-            return None;
-        }
-    };
+    if acts_after_motion(m) && word.extension().is_some() {
+        diagnostics.push(
+            Diagnostic::error(
+                EXTENSION_FORBIDDEN,
+                format!("M{m} takes no address extension"),
+            )
+            .with_label(span, "extended address")
+            .with_help("M0, M1, M2, M17 and M30 are written without a spindle number"),
+        );
+        return None;
+    }
+    let extension = extension(word, span, profile, diagnostics)?;
     let change_m = *profile.tool_change.change_m_code.get_ref();
     let overridden = profile
         .m_functions
@@ -157,12 +157,55 @@ pub(crate) fn check(
         None => format!("M{m}"),
     };
     Some(MWord {
-        value: m,
+        value: Some(m),
+        expr: None,
         extension,
         class,
         raw,
         span,
     })
+}
+
+/// The spindle extension of an M word (`M2=…`), checked: `None` when it
+/// is rejected (its diagnostic pushed).
+fn extension(
+    word: &Word,
+    span: Span,
+    profile: &Profile,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Option<Option<u32>> {
+    match word.extension() {
+        None => Some(None),
+        Some(Extension::Number {
+            value: ext,
+            span: ext_span,
+        }) => {
+            if !profile.m_functions.enable_extended_m_address {
+                diagnostics.push(
+                    Diagnostic::error(
+                        EXTENSION_FORBIDDEN,
+                        "this machine has no extended M addresses",
+                    )
+                    .with_label(span, "extended address")
+                    .with_help("the profile sets `enable_extended_m_address = false`"),
+                );
+                return None;
+            }
+            if !spindle_exists(profile, *ext) {
+                diagnostics.push(unknown_spindle(*ext, *ext_span));
+                return None;
+            }
+            Some(Some(*ext))
+        }
+        Some(Extension::Index { .. }) => {
+            diagnostics.push(
+                Diagnostic::error(INVALID_VALUE, "an M address extension is a spindle number")
+                    .with_label(span, "computed extension")
+                    .with_help("write e.g. `M2=3`"),
+            );
+            None
+        }
+    }
 }
 
 /// Reports the M words past the profile's per-block limit.

@@ -35,6 +35,8 @@ pub(crate) fn unknown_spindle(number: u32, span: Span) -> Diagnostic {
 enum Selector {
     Number(u32),
     Name(String),
+    /// `T=NAMES[I]`: known when the block runs.
+    Computed(gcodec_ail::Expr, String),
 }
 
 /// Checks a `T` word and returns its `tool_select`; `None` when it is
@@ -79,12 +81,17 @@ pub(crate) fn select(
                 (Selector::Number(*value as u32), true)
             }
             ExprKind::String { value } => (Selector::Name(value.to_string()), true),
-            _ => {
+            ExprKind::Number { .. } => {
                 diagnostics.push(form_error(
                     span,
                     "select a tool by a whole number or a name in quotes",
                 ));
                 return None;
+            }
+            _ => {
+                let mut text = String::new();
+                let _ = gcodec_parser::write_expr(expr, &mut text);
+                (Selector::Computed(crate::values::tree(expr), text), true)
             }
         },
         _ => {
@@ -96,6 +103,7 @@ pub(crate) fn select(
         }
     };
     let (kind, selector_value) = match (&selector, management) {
+        (Selector::Computed(_, text), _) => (SelectorKind::Computed, text.clone()),
         (Selector::Name(_), false) => {
             diagnostics.push(form_error(
                 span,
@@ -120,15 +128,22 @@ pub(crate) fn select(
         ToolChangeMode::DeferredM6 => ToolTiming::DeferredUntilM6,
     };
     let raw = match (&selector, spindle, assigned) {
+        (Selector::Computed(_, text), Some(s), _) => format!("T{s}={text}"),
+        (Selector::Computed(_, text), None, _) => format!("T={text}"),
         (Selector::Name(name), Some(s), _) => format!("T{s}=\"{name}\""),
         (Selector::Name(name), None, _) => format!("T=\"{name}\""),
         (Selector::Number(n), Some(s), _) => format!("T{s}={n}"),
         (Selector::Number(n), None, true) => format!("T={n}"),
         (Selector::Number(n), None, false) => format!("T{n}"),
     };
+    let selector_expr = match selector {
+        Selector::Computed(expr, _) => Some(expr),
+        _ => None,
+    };
     Some(Op::ToolSelect {
         selector_kind: kind,
         selector_value,
+        selector_expr,
         spindle_extension: spindle,
         timing,
         raw,
@@ -144,12 +159,13 @@ fn resolve(
     span: Span,
     diagnostics: &mut Vec<Diagnostic>,
 ) {
-    if profile.tools.is_empty() || value == "0" {
+    if profile.tools.is_empty() || value == "0" || kind == SelectorKind::Computed {
         return;
     }
     let found = profile.tools.iter().any(|t| match kind {
         SelectorKind::Number => t.number.get_ref().to_string() == value,
         SelectorKind::Location => t.location.is_some_and(|l| l.to_string() == value),
+        SelectorKind::Computed => true,
         SelectorKind::Name => t
             .name
             .as_ref()

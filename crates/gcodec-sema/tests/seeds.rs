@@ -206,8 +206,12 @@ fn seed001_forms_range_extensions_and_count() {
         errors(&lower_with(&p, "M2147483648")),
         ["gcodec::lower::invalid_value"]
     );
+    // A computed value is checked when the block runs.
+    let computed = lower_with(&p, "M=R1");
+    assert_eq!(errors(&computed), [] as [&str; 0]);
+    assert_eq!(ops(&computed, "m_function")[0]["m_value"], Value::Null);
     assert_eq!(
-        errors(&lower_with(&p, "M=R1")),
+        errors(&lower_with(&p, "M=-1")),
         ["gcodec::lower::invalid_value"]
     );
     assert_eq!(
@@ -282,7 +286,15 @@ fn seed001_instruction_metadata() {
         .unwrap();
     let m30 = instructions
         .iter()
-        .position(|i| matches!(i.op, gcodec_ail::Op::MFunction { m_value: 30, .. }))
+        .position(|i| {
+            matches!(
+                i.op,
+                gcodec_ail::Op::MFunction {
+                    m_value: Some(30),
+                    ..
+                }
+            )
+        })
         .unwrap();
     assert!(m30 > motion);
     assert_eq!(
@@ -444,4 +456,25 @@ fn seed003_duplicate_suppression_policy() {
     );
     assert_eq!(codes(&first), [] as [&str; 0]);
     assert_eq!(ops(&first, "work_offset")[0]["suppression"], "g53");
+}
+
+/// Computed values (`T=NAMES[I]`, `M1=DIR`, `D=EDGES[I]`) are lowered to
+/// expressions the executor evaluates, not rejected.
+#[test]
+fn computed_tool_m_and_edge_values_are_expressions() {
+    let managed = profile("[tool_change]\ntool_management_enabled = true\n");
+    let l = lower_with(&managed, "T=NAMES[I] D=EDGES[I] M1=DIR");
+    assert_eq!(errors(&l), [] as [&str; 0]);
+    let t = &ops(&l, "tool_select")[0];
+    assert_eq!(t["selector_kind"], "computed");
+    assert_eq!(t["selector_expr"]["name"], "NAMES");
+    let m = &ops(&l, "m_function")[0];
+    assert_eq!(m["m_value"], Value::Null);
+    assert_eq!(m["m_expr"]["name"], "DIR");
+    assert_eq!(m["address_extension"], 1);
+    assert_eq!(ops(&l, "cutting_edge")[0]["edge"]["name"], "EDGES");
+    // Constant values stay constants.
+    let l = lower_with(&profile(""), "T5 D2 M3");
+    assert_eq!(ops(&l, "cutting_edge")[0]["edge"], 2.0);
+    assert!(ops(&l, "tool_select")[0].get("selector_expr").is_none());
 }
