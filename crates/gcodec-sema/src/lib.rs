@@ -16,6 +16,7 @@
 //! Each such construct gives the warning `gcodec::lower::not_lowered`
 //! rather than being dropped in silence.
 
+mod flow;
 pub mod ggroups;
 mod lower;
 mod mfunc;

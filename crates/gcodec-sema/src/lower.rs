@@ -13,10 +13,13 @@ use gcodec_ail::{
     AxisValue, ByteRange, Circle, Document, Instruction, MTiming, MotionKind, Op, Source,
     Suppression, SuppressionScope, ToolChangeTrigger, Value,
 };
-use gcodec_parser::ast::{self, Block, CallTarget, Extension, Program, StatementKind, Word};
+use gcodec_parser::ast::{
+    self, Block, CallTarget, Extension, GotoKind, Program, StatementKind, StructureKind, Word,
+};
 use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
 use gcodec_source::{Diagnostic, Span};
 
+use crate::flow::{self, Flow, Resolved, Role};
 use crate::{ggroups, mfunc, sysvars, tools, values};
 
 /// The result of lowering: always a document, plus what was wrong.
@@ -36,6 +39,7 @@ impl Lowered {
 /// Lowers `program` for the machine `profile` describes.
 pub fn lower(program: &Program, profile: &Profile) -> Lowered {
     let mut lowering = Lowering::new(program, profile);
+    lowering.report_duplicate_labels();
     for (index, block) in program.blocks.iter().enumerate() {
         lowering.block(index, block);
     }
@@ -61,6 +65,17 @@ pub(crate) const UNKNOWN_SPINDLE: &str = "gcodec::lower::unknown_spindle";
 const BLOCK_TOO_LONG: &str = "gcodec::lower::block_too_long";
 pub(crate) const INVALID_VALUE: &str = "gcodec::lower::invalid_value";
 const UNKNOWN_SYSTEM_VARIABLE: &str = "gcodec::lower::unknown_system_variable";
+const MISSING_JUMP_TARGET: &str = "gcodec::lower::missing_jump_target";
+const DUPLICATE_LABEL: &str = "gcodec::lower::duplicate_label";
+
+/// Where a jump searches, for messages.
+fn direction(kind: GotoKind) -> &'static str {
+    match kind {
+        GotoKind::GotoF => "forward (towards the program end)",
+        GotoKind::GotoB => "backward (towards the program start)",
+        _ => "forward or backward",
+    }
+}
 
 /// The state carried from block to block.
 struct Lowering<'a> {
@@ -73,6 +88,7 @@ struct Lowering<'a> {
     modal: [Option<&'static str>; 64],
     /// The Group 8 selection (index per `$P_UIFR`).
     group8: u8,
+    flow: Flow,
 }
 
 /// What one block says, collected before instructions are emitted.
@@ -89,6 +105,11 @@ struct BlockPlan {
     circle: Circle,
     circle_span: Option<Span>,
     other: Vec<(Op, Span)>,
+    /// Labels and jumps that act when the block is entered, before
+    /// anything else in it.
+    head: Vec<(Op, Span)>,
+    /// Jumps and labels that act after everything else in the block.
+    tail: Vec<(Op, Span)>,
 }
 
 impl<'a> Lowering<'a> {
@@ -117,6 +138,36 @@ impl<'a> Lowering<'a> {
             diagnostics: Vec::new(),
             modal,
             group8,
+            flow: Flow::new(program),
+        }
+    }
+
+    /// Labels defined twice: allowed (jumps find the nearest in their
+    /// direction), but rarely meant.
+    fn report_duplicate_labels(&mut self) {
+        let mut duplicates: Vec<(String, Vec<usize>)> = self
+            .flow
+            .duplicate_labels()
+            .map(|(name, blocks)| (name.clone(), blocks.clone()))
+            .collect();
+        duplicates.sort_by_key(|(_, blocks)| blocks[0]);
+        for (name, blocks) in duplicates {
+            let span = |b: usize| {
+                self.program.blocks[b]
+                    .label
+                    .as_ref()
+                    .map_or(self.program.blocks[b].span, |l| l.span)
+            };
+            let mut diagnostic = Diagnostic::warning(
+                DUPLICATE_LABEL,
+                format!("label `{name}` is defined {} times", blocks.len()),
+            )
+            .with_label(span(blocks[0]), "first")
+            .with_help("a jump goes to the nearest one in its search direction");
+            for &b in &blocks[1..] {
+                diagnostic = diagnostic.with_label(span(b), "again");
+            }
+            self.diagnostics.push(diagnostic);
         }
     }
 
@@ -154,15 +205,267 @@ impl<'a> Lowering<'a> {
             );
         }
         let mut plan = BlockPlan::default();
+        self.structure_parts(index, block, &mut plan);
         for statement in &block.statements {
-            self.statement(statement, &mut plan);
+            self.statement(index, statement, &mut plan);
         }
         self.emit_block(index, block, plan);
     }
 
-    fn statement(&mut self, statement: &ast::Statement, plan: &mut BlockPlan) {
+    /// The labels and jumps a block carries as a jump target and as a
+    /// part of structures; the conditions are added by [`Self::statement`].
+    fn structure_parts(&mut self, index: usize, block: &Block, plan: &mut BlockPlan) {
+        let at = block.span;
+        for name in self.flow.targets(index) {
+            plan.head.push((Op::Label { name: name.clone() }, at));
+        }
+        for &(structure, role) in self.flow.roles(index) {
+            let s = &self.program.structures[structure];
+            let line = s.open as usize + 1;
+            let label = |part: &str| flow::structure_label(s.kind, line, part);
+            let jump = |target: String| Op::Jump {
+                target,
+                condition: None,
+            };
+            match (s.kind, role) {
+                (
+                    StructureKind::While | StructureKind::Loop | StructureKind::Repeat,
+                    Role::Open,
+                ) => {
+                    plan.head.push((
+                        Op::Label {
+                            name: label("start"),
+                        },
+                        at,
+                    ));
+                }
+                (StructureKind::If, Role::Middle) => {
+                    plan.head.push((jump(label("end")), at));
+                    plan.head.push((
+                        Op::Label {
+                            name: label("else"),
+                        },
+                        at,
+                    ));
+                }
+                (StructureKind::If, Role::Close) => {
+                    plan.head.push((Op::Label { name: label("end") }, at));
+                }
+                (StructureKind::While | StructureKind::Loop, Role::Close) => {
+                    plan.tail.push((jump(label("start")), at));
+                    plan.tail.push((Op::Label { name: label("end") }, at));
+                }
+                // The FOR counter and the UNTIL condition come with their
+                // statements.
+                _ => {}
+            }
+        }
+    }
+
+    /// The structure of `kind` that block `index` plays `role` in.
+    fn structure_at(
+        &self,
+        index: usize,
+        kind: StructureKind,
+        role: Role,
+    ) -> Option<&'a ast::ControlStructure> {
+        let program = self.program;
+        self.flow
+            .roles(index)
+            .iter()
+            .find(|(s, r)| *r == role && program.structures[*s].kind == kind)
+            .map(|(s, _)| &program.structures[*s])
+    }
+
+    /// `IF`, `WHILE`, `UNTIL`, `FOR`, `ENDFOR` and jumps.
+    fn flow_statement(&mut self, index: usize, statement: &ast::Statement, plan: &mut BlockPlan) {
+        let span = statement.span;
+        let not = |cond: &ast::Expr| {
+            Some(gcodec_ail::Expr::Unary {
+                operator: gcodec_ail::UnaryOp::Not,
+                operand: Box::new(values::tree(cond)),
+            })
+        };
+        match &statement.kind {
+            StatementKind::If(c) => {
+                self.check_variables(&c.condition);
+                if let Some(s) = self.structure_at(index, StructureKind::If, Role::Open) {
+                    let line = s.open as usize + 1;
+                    let part = if s.middle.is_some() { "else" } else { "end" };
+                    plan.tail.push((
+                        Op::Jump {
+                            target: flow::structure_label(StructureKind::If, line, part),
+                            condition: not(&c.condition),
+                        },
+                        span,
+                    ));
+                }
+            }
+            StatementKind::While(c) => {
+                self.check_variables(&c.condition);
+                if let Some(s) = self.structure_at(index, StructureKind::While, Role::Open) {
+                    let line = s.open as usize + 1;
+                    plan.head.push((
+                        Op::Jump {
+                            target: flow::structure_label(StructureKind::While, line, "end"),
+                            condition: not(&c.condition),
+                        },
+                        span,
+                    ));
+                }
+            }
+            StatementKind::Until(c) => {
+                self.check_variables(&c.condition);
+                if let Some(s) = self.structure_at(index, StructureKind::Repeat, Role::Close) {
+                    let line = s.open as usize + 1;
+                    plan.tail.push((
+                        Op::Jump {
+                            target: flow::structure_label(StructureKind::Repeat, line, "start"),
+                            condition: not(&c.condition),
+                        },
+                        span,
+                    ));
+                }
+            }
+            StatementKind::For(f) => {
+                self.check_variable(&f.var);
+                self.check_variables(&f.start);
+                self.check_variables(&f.end);
+                let Some(s) = self.structure_at(index, StructureKind::For, Role::Open) else {
+                    return;
+                };
+                let line = s.open as usize + 1;
+                let var = values::variable(&f.var);
+                // The counter is set, then checked before every pass
+                // (reference §8.2: the loop ends once it exceeds the end).
+                plan.head.push((
+                    Op::Assign {
+                        target: var.clone(),
+                        value: values::value(&f.start),
+                    },
+                    span,
+                ));
+                plan.head.push((
+                    Op::Label {
+                        name: flow::structure_label(StructureKind::For, line, "start"),
+                    },
+                    span,
+                ));
+                plan.head.push((
+                    Op::Jump {
+                        target: flow::structure_label(StructureKind::For, line, "end"),
+                        condition: Some(gcodec_ail::Expr::Binary {
+                            operator: gcodec_ail::BinaryOp::Gt,
+                            lhs: Box::new(var),
+                            rhs: Box::new(values::tree(&f.end)),
+                        }),
+                    },
+                    span,
+                ));
+            }
+            StatementKind::EndFor => {
+                let Some(s) = self.structure_at(index, StructureKind::For, Role::Close) else {
+                    return;
+                };
+                let line = s.open as usize + 1;
+                let open = &self.program.blocks[s.open as usize];
+                let var = open.statements.iter().find_map(|st| match &st.kind {
+                    StatementKind::For(f) => Some(values::variable(&f.var)),
+                    _ => None,
+                });
+                if let Some(var) = var {
+                    plan.tail.push((
+                        Op::Assign {
+                            target: var.clone(),
+                            value: gcodec_ail::Value::Expr(Box::new(gcodec_ail::Expr::Binary {
+                                operator: gcodec_ail::BinaryOp::Add,
+                                lhs: Box::new(var),
+                                rhs: Box::new(gcodec_ail::Expr::Number { value: 1.0 }),
+                            })),
+                        },
+                        span,
+                    ));
+                }
+                plan.tail.push((
+                    Op::Jump {
+                        target: flow::structure_label(StructureKind::For, line, "start"),
+                        condition: None,
+                    },
+                    span,
+                ));
+                plan.tail.push((
+                    Op::Label {
+                        name: flow::structure_label(StructureKind::For, line, "end"),
+                    },
+                    span,
+                ));
+            }
+            StatementKind::Goto(jump) => self.jump(index, jump, None, span, plan),
+            StatementKind::IfGoto(g) => {
+                self.check_variables(&g.condition);
+                let condition = Some(values::tree(&g.condition));
+                self.jump(index, &g.jump, condition, span, plan);
+            }
+            _ => {}
+        }
+    }
+
+    fn jump(
+        &mut self,
+        index: usize,
+        jump: &ast::Jump,
+        condition: Option<gcodec_ail::Expr>,
+        span: Span,
+        plan: &mut BlockPlan,
+    ) {
+        let Some(target) = &jump.target else {
+            return self.not_lowered(span, "`GOTOS`");
+        };
+        match self.flow.resolve(index, jump.goto, target) {
+            Resolved::Label(target) => plan.tail.push((Op::Jump { target, condition }, span)),
+            Resolved::Computed => self.not_lowered(span, "a jump to a computed target"),
+            Resolved::Missing(name) if jump.goto == GotoKind::GotoC => {
+                // GOTOC goes on with the next block: nothing to do.
+                let _ = name;
+            }
+            Resolved::Missing(name) => {
+                self.diagnostics.push(
+                    Diagnostic::warning(
+                        MISSING_JUMP_TARGET,
+                        format!("`{name}` is not found {}", direction(jump.goto)),
+                    )
+                    .with_label(span, "this jump")
+                    .with_help("the control stops with alarm 14080 when this jump runs; GOTOC would go on instead"),
+                );
+                plan.tail.push((
+                    Op::Jump {
+                        target: format!("{name}@missing"),
+                        condition,
+                    },
+                    span,
+                ));
+            }
+        }
+    }
+
+    fn statement(&mut self, index: usize, statement: &ast::Statement, plan: &mut BlockPlan) {
         let span = statement.span;
         match &statement.kind {
+            StatementKind::If(_)
+            | StatementKind::While(_)
+            | StatementKind::Until(_)
+            | StatementKind::For(_)
+            | StatementKind::EndFor
+            | StatementKind::Goto(_)
+            | StatementKind::IfGoto(_) => self.flow_statement(index, statement, plan),
+            // Their labels and jumps come from the structure pairing.
+            StatementKind::Else
+            | StatementKind::EndIf
+            | StatementKind::EndWhile
+            | StatementKind::Loop
+            | StatementKind::EndLoop
+            | StatementKind::Repeat => {}
+            StatementKind::Def(def) => self.declare(def, span, plan),
             StatementKind::Word(word) => self.word(word, span, plan),
             StatementKind::Assign(assign) => match &assign.value {
                 ast::Initializer::Expr(e) => {
@@ -180,6 +483,42 @@ impl<'a> Lowering<'a> {
             },
             StatementKind::Call(call) => self.call(call, span, plan),
             kind => self.not_lowered(span, statement_name(kind)),
+        }
+    }
+
+    /// `DEF TYPE name[dims]=init, …`: one declaration per variable.
+    fn declare(&mut self, def: &ast::Def, span: Span, plan: &mut BlockPlan) {
+        let data_type = match &def.ty.kind {
+            ast::TypeKind::Int => "INT",
+            ast::TypeKind::Real => "REAL",
+            ast::TypeKind::Bool => "BOOL",
+            ast::TypeKind::Char => "CHAR",
+            ast::TypeKind::String { .. } => "STRING",
+            ast::TypeKind::Axis => "AXIS",
+            ast::TypeKind::Frame => "FRAME",
+        };
+        for var in &def.vars {
+            let init = match &var.init {
+                None => Vec::new(),
+                Some(ast::Initializer::Expr(e)) => vec![Some(values::value(e))],
+                Some(ast::Initializer::List { items, .. }) => items
+                    .iter()
+                    .map(|i| i.as_ref().map(values::value))
+                    .collect(),
+                Some(ast::Initializer::Rep { .. }) => {
+                    self.not_lowered(var.span, "a `REP` initialiser");
+                    continue;
+                }
+            };
+            plan.other.push((
+                Op::Declare {
+                    name: var.name.to_ascii_uppercase().to_string(),
+                    data_type: data_type.to_owned(),
+                    dims: var.dims.iter().map(values::value).collect(),
+                    init,
+                },
+                span,
+            ));
         }
     }
 
@@ -454,7 +793,11 @@ impl<'a> Lowering<'a> {
         );
     }
 
-    fn emit_block(&mut self, index: usize, block: &Block, plan: BlockPlan) {
+    fn emit_block(&mut self, index: usize, block: &Block, mut plan: BlockPlan) {
+        for (op, span) in std::mem::take(&mut plan.head) {
+            self.emit(index, span, op);
+        }
+        let tail = std::mem::take(&mut plan.tail);
         // Work offset: the Group 8 selection and the block's suppression.
         let group8 = plan.g_codes.iter().find(|(g, _, _)| *g == 8);
         let suppression = self.suppression(&plan.suppressions);
@@ -577,6 +920,9 @@ impl<'a> Lowering<'a> {
         }
         for m in after {
             self.emit_m(index, m, MTiming::PostMotion, deferred);
+        }
+        for (op, span) in tail {
+            self.emit(index, span, op);
         }
     }
 

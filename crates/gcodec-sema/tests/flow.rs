@@ -1,0 +1,143 @@
+//! Control structures lower to labels and conditional jumps; `GOTO…`
+//! targets are found as the control searches for them.
+
+use gcodec_ail::Op;
+use gcodec_sema::{Lowered, lower};
+
+fn lower_src(src: &str) -> Lowered {
+    let parsed = gcodec_parser::parse_bytes("flow.mpf", src.as_bytes());
+    assert!(parsed.diagnostics.is_empty(), "{:#?}", parsed.diagnostics);
+    let profile = gcodec_profile::builtin().expect("built-in profile");
+    lower(&parsed.program, &profile)
+}
+
+fn listing(l: &Lowered) -> String {
+    let mut out = String::new();
+    gcodec_ail::write_listing(&l.document, &mut out).unwrap();
+    out
+}
+
+fn labels(l: &Lowered) -> Vec<String> {
+    l.document
+        .instructions
+        .iter()
+        .filter_map(|i| match &i.op {
+            Op::Label { name } => Some(name.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
+fn jump_targets(l: &Lowered) -> Vec<String> {
+    l.document
+        .instructions
+        .iter()
+        .filter_map(|i| match &i.op {
+            Op::Jump { target, .. } => Some(target.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
+const STRUCTURES: &str = "N10 R1=0
+N20 WHILE R1<3
+N30   IF R1==1
+N40     G1 X1
+N50   ELSE
+N60     G1 X2
+N70   ENDIF
+N80   R1=R1+1
+N90 ENDWHILE
+N100 FOR R2=1 TO 3
+N110 ENDFOR
+N120 LOOP
+N130   IF R2>3 GOTOF DONE
+N140 ENDLOOP
+N150 REPEAT
+N160 UNTIL R1>5
+DONE: M30
+";
+
+#[test]
+fn every_structure_becomes_labels_and_jumps() {
+    let l = lower_src(STRUCTURES);
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+    // Every jump lands on a label of the document.
+    let labels = labels(&l);
+    for target in jump_targets(&l) {
+        assert!(labels.contains(&target), "{target} in {labels:?}");
+    }
+    insta::assert_snapshot!(listing(&l));
+}
+
+#[test]
+fn jumps_search_as_the_control_does() {
+    // Two labels `LB`: GOTOF finds the next one, GOTOB the previous one.
+    let l = lower_src("LB: X1\nGOTOF LB\nLB: X2\nGOTOB LB\n");
+    assert_eq!(jump_targets(&l), ["LB@3", "LB@3"]);
+    let l = lower_src("LB: X1\nX2\nGOTOB LB\nLB: X3\n");
+    assert_eq!(jump_targets(&l), ["LB@1"]);
+    // GOTO searches forward first, then backward.
+    let l = lower_src("N10 X1\nGOTO N10\n");
+    assert_eq!(jump_targets(&l), ["N10@1"]);
+    let codes: Vec<_> = l.diagnostics.iter().map(|d| d.code).collect();
+    assert!(codes.is_empty(), "{codes:?}");
+}
+
+#[test]
+fn labels_defined_twice_are_a_warning() {
+    let l = lower_src("LB: X1\nLB: X2\n");
+    let codes: Vec<_> = l
+        .diagnostics
+        .iter()
+        .map(|d| (d.code, d.is_error()))
+        .collect();
+    assert_eq!(codes, [("gcodec::lower::duplicate_label", false)]);
+}
+
+/// A missing target fails only when the jump runs (alarm 14080); GOTOC
+/// goes on with the next block.
+#[test]
+fn missing_targets_warn_and_gotoc_goes_on() {
+    let l = lower_src("GOTOF NOWHERE\n");
+    let codes: Vec<_> = l
+        .diagnostics
+        .iter()
+        .map(|d| (d.code, d.is_error()))
+        .collect();
+    assert_eq!(codes, [("gcodec::lower::missing_jump_target", false)]);
+    assert_eq!(jump_targets(&l), ["NOWHERE@missing"]);
+    // GOTOB does not look forward.
+    let l = lower_src("GOTOB LB\nLB: X1\n");
+    assert_eq!(l.diagnostics.len(), 1);
+    let l = lower_src("GOTOC NOWHERE\nX1\n");
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+    assert!(jump_targets(&l).is_empty());
+}
+
+#[test]
+fn declarations_lower_per_variable() {
+    let l = lower_src("DEF REAL A=1.5, B[3]=(1,2,3)\nDEF INT N\n");
+    let declared: Vec<_> = l
+        .document
+        .instructions
+        .iter()
+        .filter_map(|i| match &i.op {
+            Op::Declare {
+                name,
+                data_type,
+                init,
+                ..
+            } => Some((name.clone(), data_type.clone(), init.len())),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        declared,
+        [
+            ("A".to_owned(), "REAL".to_owned(), 1),
+            ("B".to_owned(), "REAL".to_owned(), 3),
+            ("N".to_owned(), "INT".to_owned(), 0)
+        ]
+    );
+}
