@@ -309,29 +309,122 @@ pub fn json_schema() -> String {
 }
 
 /// Writes the readable listing of `gcodec lower --format text`: one
-/// instruction a line, `line:col kind fields…`, the fields as compact JSON.
+/// instruction a line, `line:col kind field=value…`, expressions in infix
+/// form (`R1+5`), fully parenthesised so that the order of evaluation shows.
 pub fn write_listing(document: &Document, out: &mut impl std::fmt::Write) -> std::fmt::Result {
     for instruction in &document.instructions {
         let source = &instruction.source;
-        let mut fields = serde_json::to_value(&instruction.op).unwrap_or_default();
-        let kind = fields
-            .get("kind")
-            .and_then(|k| k.as_str())
-            .unwrap_or("?")
-            .to_owned();
-        if let Some(map) = fields.as_object_mut() {
-            map.remove("kind");
-        }
+        let fields = serde_json::to_value(&instruction.op).unwrap_or_default();
+        let kind = fields.get("kind").and_then(|k| k.as_str()).unwrap_or("?");
         write!(out, "{:>6}:{:<4} {kind}", source.line, source.col)?;
-        match fields.as_object() {
-            Some(map) if !map.is_empty() => {
-                for (key, value) in map {
-                    write!(out, " {key}={value}")?;
-                }
-                writeln!(out)?;
+        if let Some(map) = fields.as_object() {
+            for (key, value) in map.iter().filter(|(k, v)| *k != "kind" && !v.is_null()) {
+                write!(out, " {key}={}", listing_value(value))?;
             }
-            _ => writeln!(out)?,
         }
+        writeln!(out)?;
     }
     Ok(())
+}
+
+/// A field of the listing: expressions (objects with `op`) in infix form,
+/// everything else as compact JSON.
+fn listing_value(value: &serde_json::Value) -> String {
+    use serde_json::Value as J;
+    let text = |v: &J| v.as_str().unwrap_or("?").to_owned();
+    match value {
+        J::Array(items) => {
+            let items: Vec<String> = items.iter().map(listing_value).collect();
+            format!("[{}]", items.join(", "))
+        }
+        J::Object(map) => match map.get("op").and_then(J::as_str) {
+            Some("number") => map.get("value").map_or_else(String::new, listing_value),
+            Some("string") => format!("\"{}\"", text(&map["value"])),
+            Some("bool") => map
+                .get("value")
+                .map_or_else(String::new, ToString::to_string),
+            Some("var") => {
+                let name = text(&map["name"]);
+                let indices: Vec<String> = map["indices"]
+                    .as_array()
+                    .map(|i| i.iter().map(listing_value).collect())
+                    .unwrap_or_default();
+                match (name.as_str(), indices.as_slice()) {
+                    (_, []) => name,
+                    ("R", [index]) if map["var_kind"] == "r_parameter" => format!("R{index}"),
+                    _ => format!("{name}[{}]", indices.join(",")),
+                }
+            }
+            Some("call") => {
+                let args: Vec<String> = map["args"]
+                    .as_array()
+                    .map(|a| {
+                        a.iter()
+                            .map(|x| {
+                                if x.is_null() {
+                                    String::new()
+                                } else {
+                                    listing_value(x)
+                                }
+                            })
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                format!("{}({})", text(&map["name"]), args.join(","))
+            }
+            Some("unary") => {
+                let op = match map["operator"].as_str() {
+                    Some("neg") => "-",
+                    Some("plus") => "+",
+                    Some("not") => "NOT ",
+                    Some("b_not") => "B_NOT ",
+                    _ => "<<",
+                };
+                format!("{op}{}", listing_value(&map["operand"]))
+            }
+            Some("binary") => {
+                let op = match map["operator"].as_str().unwrap_or("") {
+                    "mul" => "*",
+                    "div" => "/",
+                    "int_div" => " DIV ",
+                    "mod" => " MOD ",
+                    "add" => "+",
+                    "sub" => "-",
+                    "b_and" => " B_AND ",
+                    "b_xor" => " B_XOR ",
+                    "b_or" => " B_OR ",
+                    "and" => " AND ",
+                    "xor" => " XOR ",
+                    "or" => " OR ",
+                    "concat" => "<<",
+                    "eq" => "==",
+                    "ne" => "<>",
+                    "lt" => "<",
+                    "gt" => ">",
+                    "le" => "<=",
+                    "ge" => ">=",
+                    _ => ":",
+                };
+                format!(
+                    "({}{op}{})",
+                    listing_value(&map["lhs"]),
+                    listing_value(&map["rhs"])
+                )
+            }
+            _ => {
+                let fields: Vec<String> = map
+                    .iter()
+                    .filter(|(_, v)| !v.is_null() && v.as_array().is_none_or(|a| !a.is_empty()))
+                    .map(|(k, v)| format!("{k}={}", listing_value(v)))
+                    .collect();
+                format!("{{{}}}", fields.join(" "))
+            }
+        },
+        J::Number(n) => match n.as_f64() {
+            // Whole numbers as the program writes them: `R1`, not `R1.0`.
+            Some(v) if v.fract() == 0.0 && v.abs() < 1e15 => format!("{}", v as i64),
+            _ => n.to_string(),
+        },
+        other => other.to_string(),
+    }
 }

@@ -447,3 +447,82 @@ fn profile_show_prints_the_effective_profile() {
     assert_eq!(json["machine"]["control"], "828d");
     assert_eq!(json["tool_change"]["tool_change_mode"], "direct");
 }
+
+fn example(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+}
+
+/// `gcodec lower` with the built-in profile: a listing on stdout, the
+/// warnings for what is not lowered yet on stderr, exit 0.
+#[test]
+fn lower_lists_instructions_with_their_lines() {
+    let out = gcodec(["lower".as_ref(), example("pocket_mill.mpf").as_os_str()]);
+    assert_no_panic(&out);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let listing = stdout(&out);
+    assert!(listing.contains("tool_change trigger=\"m6\""), "{listing}");
+    assert!(listing.lines().all(|l| {
+        l.trim_start()
+            .split(':')
+            .next()
+            .is_some_and(|n| n.parse::<u32>().is_ok())
+    }));
+    assert!(listing.trim_end().ends_with("end"), "{listing}");
+}
+
+/// JSON is the versioned AIL document; every instruction has its source.
+#[test]
+fn lower_json_is_the_ail_document() {
+    let out = gcodec([
+        "lower".as_ref(),
+        "--format".as_ref(),
+        "json".as_ref(),
+        "--profile".as_ref(),
+        profile("lathe_828d.toml").as_os_str(),
+        example("lathe_shaft.mpf").as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let doc = json(&out);
+    assert_eq!(doc["ail_version"], 1);
+    let instructions = doc["instructions"].as_array().expect("instructions");
+    assert!(instructions.len() > 10);
+    for i in instructions {
+        assert!(i["kind"].is_string(), "{i}");
+        assert!(i["source"]["line"].as_u64().is_some_and(|l| l >= 1), "{i}");
+        assert!(i["source"]["span"]["end"].is_u64(), "{i}");
+    }
+    // The lathe profile changes tools with T.
+    assert!(
+        instructions
+            .iter()
+            .any(|i| i["kind"] == "tool_change" && i["trigger"] == "t_word")
+    );
+}
+
+/// A lowering error (a spindle the machine lacks) exits 1; a bad profile 2.
+#[test]
+fn lower_exit_codes() {
+    let path = temp_file("lower", "spindle.mpf", "S4=1000\n");
+    let out = gcodec(["lower".as_ref(), path.as_os_str()]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    assert!(
+        stderr(&out).contains("gcodec::lower::unknown_spindle"),
+        "{}",
+        stderr(&out)
+    );
+    let bad = temp_file("lower", "bad.toml", "[machine]\nname = 1\n");
+    let out = gcodec([
+        "lower".as_ref(),
+        "--profile".as_ref(),
+        bad.as_os_str(),
+        path.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_USAGE);
+    assert!(
+        stderr(&out).contains("gcodec::profile::schema"),
+        "{}",
+        stderr(&out)
+    );
+}

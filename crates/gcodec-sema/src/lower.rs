@@ -726,7 +726,7 @@ impl<'a> Lowering<'a> {
                 .with_label(word.address_span(span), "unknown here")
                 .with_help("the profile's `[[axes]]` lists the machine's axes"),
             ),
-            _ => self.not_lowered(span, "this address"),
+            _ => self.not_lowered(span, &format!("the address `{address}`")),
         }
     }
 
