@@ -17,6 +17,7 @@
 
 mod expr;
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
 pub use expr::{BinaryOp, Expr, UnaryOp, Value, VarKind};
@@ -131,7 +132,7 @@ pub enum Op {
     ModalChange {
         group: u8,
         /// The command in upper case (`G17`, `DIAMON`).
-        code: String,
+        code: Cow<'static, str>,
     },
     /// A traversing block.
     Motion {
@@ -277,7 +278,7 @@ pub enum MotionKind {
 #[serde(deny_unknown_fields)]
 pub struct AxisValue {
     /// The axis or address in upper case (`X`, `C1`, `I`).
-    pub axis: String,
+    pub axis: Cow<'static, str>,
     pub value: Value,
     /// `AC(…)`, `IC(…)`, … when written; otherwise the modal G90/G91 holds.
     pub mode: Option<String>,

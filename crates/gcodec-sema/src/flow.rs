@@ -60,8 +60,18 @@ impl Flow {
                 roles.entry(c as usize).or_default().push((i, Role::Close));
             }
         }
+        // Only the block numbers some jump names are indexed: most blocks
+        // of a program have a number, few are jumped to.
+        let mut numbers: HashMap<u64, Vec<usize>> = program
+            .blocks
+            .iter()
+            .flat_map(jumps)
+            .filter_map(|(_, target)| match target {
+                JumpTarget::BlockNumber { value, .. } => Some((*value, Vec::new())),
+                _ => None,
+            })
+            .collect();
         let mut labels: HashMap<String, Vec<usize>> = HashMap::new();
-        let mut numbers: HashMap<u64, Vec<usize>> = HashMap::new();
         for (i, block) in program.blocks.iter().enumerate() {
             if let Some(label) = &block.label {
                 labels
@@ -70,7 +80,9 @@ impl Flow {
                     .push(i);
             }
             if let Some(BlockNumber { value, .. }) = &block.number {
-                numbers.entry(*value).or_default().push(i);
+                if let Some(blocks) = numbers.get_mut(value) {
+                    blocks.push(i);
+                }
             }
         }
         let mut flow = Self {

@@ -7,6 +7,8 @@
 //! selection and cutting edge, M functions acting before the motion, the
 //! motion, then `M0 M1 M2 M17 M30` after it (seed 001).
 
+use std::borrow::Cow;
+use std::collections::HashMap;
 use std::sync::Arc;
 
 use gcodec_ail::{
@@ -68,6 +70,39 @@ const UNKNOWN_SYSTEM_VARIABLE: &str = "gcodec::lower::unknown_system_variable";
 const MISSING_JUMP_TARGET: &str = "gcodec::lower::missing_jump_target";
 const DUPLICATE_LABEL: &str = "gcodec::lower::duplicate_label";
 
+/// A diagnostic at the severity a profile policy chose: an error or a
+/// warning.
+pub(crate) fn by_policy(error: bool, code: &'static str, message: String) -> Diagnostic {
+    if error {
+        Diagnostic::error(code, message)
+    } else {
+        Diagnostic::warning(code, message)
+    }
+}
+
+/// `G<n>` for a G word's value, written into `buf`: no allocation and no
+/// float formatting for the commonest word of all.
+fn g_code_text(n: f64, buf: &mut [u8; 24]) -> &str {
+    use std::io::Write as _;
+    let mut rest = &mut buf[..];
+    let _ = write!(rest, "G{}", n as u64);
+    let len = 24 - rest.len();
+    std::str::from_utf8(&buf[..len]).unwrap_or("G")
+}
+
+/// An address as an AIL axis name: single letters and the common
+/// multi-letter names without allocating.
+fn axis_name(address: &str) -> Cow<'static, str> {
+    const NAMES: [&str; 26] = [
+        "A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "M", "N", "O", "P", "Q", "R",
+        "S", "T", "U", "V", "W", "X", "Y", "Z",
+    ];
+    match address.as_bytes() {
+        [b @ b'A'..=b'Z'] => Cow::Borrowed(NAMES[usize::from(b - b'A')]),
+        _ => Cow::Owned(address.to_owned()),
+    }
+}
+
 /// Where a jump searches, for messages.
 fn direction(kind: GotoKind) -> &'static str {
     match kind {
@@ -89,6 +124,8 @@ struct Lowering<'a> {
     /// The Group 8 selection (index per `$P_UIFR`).
     group8: u8,
     flow: Flow,
+    /// `mcode_class_overrides` by M value.
+    m_overrides: HashMap<u32, gcodec_ail::MClass>,
 }
 
 /// What one block says, collected before instructions are emitted.
@@ -134,11 +171,26 @@ impl<'a> Lowering<'a> {
             program,
             profile,
             file: Arc::from(program.file.as_str()),
-            document: Document::new(),
+            document: Document {
+                // About one instruction per statement, plus labels, jumps and
+                // modal changes: reserving avoids copying a large vector.
+                instructions: Vec::with_capacity(
+                    program
+                        .blocks
+                        .iter()
+                        .map(|b| b.statements.len())
+                        .sum::<usize>()
+                        * 5
+                        / 4
+                        + 16,
+                ),
+                ..Document::new()
+            },
             diagnostics: Vec::new(),
             modal,
             group8,
             flow: Flow::new(program),
+            m_overrides: mfunc::overrides(profile),
         }
     }
 
@@ -606,9 +658,10 @@ impl<'a> Lowering<'a> {
         match address {
             "G" => match (word.extension(), values::whole_number(&value)) {
                 (None, Some(n)) if n >= 0.0 => {
-                    let code = format!("G{n}");
-                    match ggroups::lookup(&code) {
-                        Some((group, _)) => self.g_code(&code, group, span, plan),
+                    let mut buf = [0; 24];
+                    let code = g_code_text(n, &mut buf);
+                    match ggroups::lookup(code) {
+                        Some((group, _)) => self.g_code(code, group, span, plan),
                         None => self.diagnostics.push(
                             Diagnostic::error(
                                 UNKNOWN_G,
@@ -621,9 +674,14 @@ impl<'a> Lowering<'a> {
                 _ => self.not_lowered(span, "a G command with an extension or a computed value"),
             },
             "M" => {
-                if let Some(m) =
-                    mfunc::check(word, &value, span, self.profile, &mut self.diagnostics)
-                {
+                if let Some(m) = mfunc::check(
+                    word,
+                    &value,
+                    span,
+                    self.profile,
+                    &self.m_overrides,
+                    &mut self.diagnostics,
+                ) {
                     plan.m_functions.push(m);
                 }
             }
@@ -683,7 +741,7 @@ impl<'a> Lowering<'a> {
             "I" | "J" | "K" => {
                 let (v, mode) = values::word_value(&value);
                 let target = AxisValue {
-                    axis: address.to_owned(),
+                    axis: axis_name(address),
                     value: v,
                     mode,
                 };
@@ -709,7 +767,7 @@ impl<'a> Lowering<'a> {
                 let (v, mode) = values::word_value(&value);
                 plan.targets.push((
                     AxisValue {
-                        axis: address.to_owned(),
+                        axis: axis_name(address),
                         value: v,
                         mode,
                     },
@@ -835,7 +893,7 @@ impl<'a> Lowering<'a> {
                 span,
                 Op::ModalChange {
                     group,
-                    code: code.to_owned(),
+                    code: Cow::Borrowed(code),
                 },
             );
         }

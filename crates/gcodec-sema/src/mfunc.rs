@@ -2,12 +2,14 @@
 //! extended address, the per-block limit, classes and the unknown-code
 //! policy.
 
+use std::collections::HashMap;
+
 use gcodec_ail::{MClass, MTiming, Op};
 use gcodec_parser::ast::{Extension, Word, WordValue};
 use gcodec_profile::{Policy, Profile};
 use gcodec_source::{Diagnostic, Span};
 
-use crate::lower::INVALID_VALUE;
+use crate::lower::{INVALID_VALUE, by_policy};
 use crate::tools::{spindle_exists, unknown_spindle};
 use crate::values::{constant, tree, whole_number};
 
@@ -64,6 +66,7 @@ pub(crate) fn check(
     value: &WordValue,
     span: Span,
     profile: &Profile,
+    overrides: &HashMap<u32, MClass>,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Option<MWord> {
     let number = match (whole_number(value), value) {
@@ -124,30 +127,24 @@ pub(crate) fn check(
     }
     let extension = extension(word, span, profile, diagnostics)?;
     let change_m = *profile.tool_change.change_m_code.get_ref();
-    let overridden = profile
-        .m_functions
-        .mcode_class_overrides
-        .iter()
-        .find(|(k, _)| k.get_ref().parse::<u32>() == Ok(m))
-        .map(|(_, class)| convert_class(*class));
+    let overridden = overrides.get(&m).copied();
     let class = match overridden.or_else(|| predefined_class(m, change_m)) {
         Some(class) => class,
         None => {
             let message = format!("M{m} is not a predefined M function");
             let help =
                 "machine-specific M functions are listed in the profile's `mcode_class_overrides`";
-            match profile.m_functions.unknown_mcode_policy {
-                Policy::Error => diagnostics.push(
-                    Diagnostic::error(UNKNOWN_M, message)
+            let severity = match profile.m_functions.unknown_mcode_policy {
+                Policy::Error => Some(true),
+                Policy::Warning => Some(false),
+                Policy::Ignore => None,
+            };
+            if let Some(error) = severity {
+                diagnostics.push(
+                    by_policy(error, UNKNOWN_M, message)
                         .with_label(span, "unknown")
                         .with_help(help),
-                ),
-                Policy::Warning => diagnostics.push(
-                    Diagnostic::warning(UNKNOWN_M, message)
-                        .with_label(span, "unknown")
-                        .with_help(help),
-                ),
-                Policy::Ignore => {}
+                );
             }
             MClass::Custom
         }
@@ -221,6 +218,16 @@ pub(crate) fn check_count(words: &[MWord], profile: &Profile, diagnostics: &mut 
             .with_help("split the block; the limit is `max_m_per_block` in the profile"),
         );
     }
+}
+
+/// The profile's `mcode_class_overrides` by M value, read once.
+pub(crate) fn overrides(profile: &Profile) -> HashMap<u32, MClass> {
+    profile
+        .m_functions
+        .mcode_class_overrides
+        .iter()
+        .filter_map(|(k, class)| Some((k.get_ref().parse::<u32>().ok()?, convert_class(*class))))
+        .collect()
 }
 
 fn convert_class(class: gcodec_profile::MClass) -> MClass {

@@ -7,7 +7,7 @@ use gcodec_parser::ast::{ExprKind, Extension, Word, WordValue};
 use gcodec_profile::{Profile, ToolChangeMode, UnresolvedToolPolicy};
 use gcodec_source::{Diagnostic, Span};
 
-use crate::lower::{INVALID_VALUE, UNKNOWN_SPINDLE};
+use crate::lower::{INVALID_VALUE, UNKNOWN_SPINDLE, by_policy};
 
 const SELECTOR_FORM: &str = "gcodec::lower::tool_selector_form";
 const UNRESOLVED_TOOL: &str = "gcodec::lower::unresolved_tool";
@@ -176,18 +176,17 @@ fn resolve(
     }
     let message = format!("no tool `{value}` in the machine's tool table");
     let help = "the profile's `[[tools]]` lists the tools";
-    match profile.tool_change.on_unresolved_tool {
-        UnresolvedToolPolicy::Error => diagnostics.push(
-            Diagnostic::error(UNRESOLVED_TOOL, message)
+    let severity = match profile.tool_change.on_unresolved_tool {
+        UnresolvedToolPolicy::Error => Some(true),
+        UnresolvedToolPolicy::Warning => Some(false),
+        UnresolvedToolPolicy::Fallback => None,
+    };
+    if let Some(error) = severity {
+        diagnostics.push(
+            by_policy(error, UNRESOLVED_TOOL, message)
                 .with_label(span, "unknown tool")
                 .with_help(help),
-        ),
-        UnresolvedToolPolicy::Warning => diagnostics.push(
-            Diagnostic::warning(UNRESOLVED_TOOL, message)
-                .with_label(span, "unknown tool")
-                .with_help(help),
-        ),
-        UnresolvedToolPolicy::Fallback => {}
+        );
     }
 }
 
