@@ -9,10 +9,11 @@
 //! the duplicate policy), M functions (seed 001), tool selection and
 //! cutting edges (seed 000), feed, spindle speeds (spindle numbers against
 //! the profile), axis words (axes from the profile), motion with circle
-//! data, assignments, `MSG` and `STOPRE`, and the block-length limit.
+//! data, assignments, declarations, `MSG` and `STOPRE`, calls by name and
+//! number, `RET`, control structures and jumps, and the block-length limit.
 //!
-//! Not built yet: control flow, declarations, calls, frames, index-shape
-//! checks of system variables, labels and jump targets, `PROC` signatures.
+//! Not built yet: `CASE`, `CALL`/`PCALL`/`MCALL`, frames, index-shape
+//! checks of system variables, `PROC` signatures and call arity.
 //! Each such construct gives the warning `gcodec::lower::not_lowered`
 //! rather than being dropped in silence.
 

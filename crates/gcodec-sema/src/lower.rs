@@ -142,6 +142,8 @@ struct BlockPlan {
     circle: Circle,
     circle_span: Option<Span>,
     other: Vec<(Op, Span)>,
+    /// Subprogram and cycle calls: they run after the block's motion.
+    calls: Vec<(Op, Span)>,
     /// Labels and jumps that act when the block is entered, before
     /// anything else in it.
     head: Vec<(Op, Span)>,
@@ -518,6 +520,15 @@ impl<'a> Lowering<'a> {
             | StatementKind::EndLoop
             | StatementKind::Repeat => {}
             StatementKind::Def(def) => self.declare(def, span, plan),
+            StatementKind::Ret(ret) => {
+                let values = ret
+                    .args
+                    .iter()
+                    .flatten()
+                    .map(|a| a.as_ref().map_or(Value::Const(0.0), values::value))
+                    .collect();
+                plan.tail.push((Op::Return { values }, span));
+            }
             StatementKind::Word(word) => self.word(word, span, plan),
             StatementKind::Assign(assign) => match &assign.value {
                 ast::Initializer::Expr(e) => {
@@ -575,8 +586,10 @@ impl<'a> Lowering<'a> {
     }
 
     fn call(&mut self, call: &ast::Call, span: Span, plan: &mut BlockPlan) {
-        let CallTarget::Name { name, .. } = &call.target else {
-            return self.not_lowered(span, "a subprogram call by number");
+        let name = match &call.target {
+            CallTarget::Name { name, .. } => name.clone(),
+            // `L123`: the program `L123`, digits as written.
+            CallTarget::Number { digits, .. } => format!("L{digits}").into(),
         };
         let upper = name.to_ascii_uppercase();
         let upper = upper.as_str();
@@ -611,7 +624,25 @@ impl<'a> Lowering<'a> {
                 }
             }
         }
-        self.not_lowered(span, "a call")
+        // A subprogram, cycle or predefined procedure: the executor finds
+        // it on the search path or knows it.
+        let args = call.args.as_deref().unwrap_or_default();
+        for arg in args.iter().flatten() {
+            self.check_variables(arg);
+        }
+        let passes = call
+            .passes
+            .as_ref()
+            .map(|p| values::word_value(&p.word.value(p.span)).0);
+        plan.calls.push((
+            Op::Call {
+                target: upper.to_string(),
+                args: args.iter().map(|a| a.as_ref().map(values::value)).collect(),
+                passes,
+                modal: false,
+            },
+            span,
+        ));
     }
 
     /// Reports the unknown system variables of an expression. Recursion
@@ -978,6 +1009,9 @@ impl<'a> Lowering<'a> {
         }
         for m in after {
             self.emit_m(index, m, MTiming::PostMotion, deferred);
+        }
+        for (op, span) in std::mem::take(&mut plan.calls) {
+            self.emit(index, span, op);
         }
         for (op, span) in tail {
             self.emit(index, span, op);

@@ -141,3 +141,33 @@ fn declarations_lower_per_variable() {
         ]
     );
 }
+
+/// Calls by name or number lower to `call`, after the block's motion, with
+/// their arguments and pass count; `RET` to `return`.
+#[test]
+fn calls_and_returns() {
+    let l = lower_src("G1 X1 CYCLE81(10,0,2,,-5)\nL123 P3\nRET\n");
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+    let ops: Vec<serde_json::Value> = l
+        .document
+        .instructions
+        .iter()
+        .map(|i| {
+            let mut v = serde_json::to_value(&i.op).unwrap();
+            v.as_object_mut().unwrap().retain(|k, _| k != "source");
+            v
+        })
+        .collect();
+    let kinds: Vec<&str> = ops.iter().map(|v| v["kind"].as_str().unwrap()).collect();
+    assert_eq!(
+        kinds,
+        ["modal_change", "motion", "call", "call", "return", "end"]
+    );
+    assert_eq!(ops[2]["target"], "CYCLE81");
+    assert_eq!(
+        ops[2]["args"],
+        serde_json::json!([10.0, 0.0, 2.0, null, -5.0])
+    );
+    assert_eq!(ops[3]["target"], "L123");
+    assert_eq!(ops[3]["passes"], 3.0);
+}
