@@ -4,9 +4,9 @@
 //! Built so far: the G-group registry ([`ggroups`], all 64 groups of the
 //! language reference §3.2); the system-variable registry ([`sysvars`]: the
 //! names of the reference and of the corpus, with their index shapes; an
-//! unknown `$` name is an error, as on the control); lowering of G commands (unknown commands, two
-//! of one group, Group 8 against the profile's offsets, G53/G153/SUPA with
-//! the duplicate policy), M functions (seed 001), tool selection and
+//! unknown `$` name is an error, as on the control); lowering of G
+//! commands (unknown commands, two of one group, Group 8 against the
+//! profile's offsets, G53/G153/SUPA with the duplicate policy), M functions (seed 001), tool selection and
 //! cutting edges (seed 000), feed, spindle speeds (spindle numbers against
 //! the profile), axis words (axes from the profile), motion with circle
 //! data, assignments, declarations, `MSG` and `STOPRE`, calls by name and
