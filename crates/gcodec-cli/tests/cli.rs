@@ -376,7 +376,9 @@ fn profile(name: &str) -> PathBuf {
 fn profile_check_accepts_every_shipped_profile() {
     for name in [
         "default.toml",
+        "grinder_fb422.toml",
         "lathe_828d.toml",
+        "mill_5axis.toml",
         "mill_g505_g599.toml",
         "mill_tool_management.toml",
     ] {

@@ -45,7 +45,9 @@ fn every_shipped_profile_loads() {
         names,
         [
             "default.toml",
+            "grinder_fb422.toml",
             "lathe_828d.toml",
+            "mill_5axis.toml",
             "mill_g505_g599.toml",
             "mill_tool_management.toml"
         ]

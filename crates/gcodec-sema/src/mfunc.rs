@@ -9,7 +9,7 @@ use gcodec_parser::ast::{Extension, Word, WordValue};
 use gcodec_profile::{Policy, Profile};
 use gcodec_source::{Diagnostic, Span};
 
-use crate::lower::{INVALID_VALUE, by_policy};
+use crate::lower::{INVALID_VALUE, NOT_LOWERED, by_policy};
 use crate::tools::{spindle_exists, unknown_spindle};
 use crate::values::{constant, tree, whole_number};
 
@@ -195,10 +195,14 @@ fn extension(
             Some(Some(*ext))
         }
         Some(Extension::Index { .. }) => {
+            // `M[SPINU]=3`: a spindle chosen when the block runs.
             diagnostics.push(
-                Diagnostic::error(INVALID_VALUE, "an M address extension is a spindle number")
-                    .with_label(span, "computed extension")
-                    .with_help("write e.g. `M2=3`"),
+                Diagnostic::warning(
+                    NOT_LOWERED,
+                    "an M function with a computed spindle number is not lowered yet",
+                )
+                .with_label(span, "left out of the instruction list")
+                .with_help("gcodec does not translate this construct yet; the program cannot be run as written"),
             );
             None
         }
