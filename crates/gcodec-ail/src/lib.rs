@@ -86,39 +86,14 @@ pub struct ByteRange {
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Op {
     /// `T5`, `T=5`, `T1=5`, `T="DRILL_10"` (seed 000).
-    ToolSelect {
-        selector_kind: SelectorKind,
-        /// The tool number or location as digits, the tool name, or a
-        /// computed selector as written.
-        selector_value: String,
-        /// The expression of a `computed` selector (`T=NAMES[I]`),
-        /// evaluated when the block runs.
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        selector_expr: Option<Expr>,
-        /// `T1=…`: the spindle the selection is for.
-        spindle_extension: Option<u32>,
-        timing: ToolTiming,
-        /// The word as written.
-        raw: String,
-    },
+    ToolSelect(Box<ToolSelect>),
     /// The change itself: by the change M function (deferred mode) or by
     /// the `T` word (direct mode) (seed 000).
     ToolChange { trigger: ToolChangeTrigger },
     /// `D1`: the cutting edge; `D0` deselects the tool offset.
     CuttingEdge { edge: Value },
     /// `M3`, `M2=5` (seed 001).
-    MFunction {
-        /// `null` when the value is computed (`M1=DIR`): see `m_expr`.
-        m_value: Option<u32>,
-        /// The expression of a computed value, evaluated when the block
-        /// runs (the executor checks its range then).
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        m_expr: Option<Expr>,
-        address_extension: Option<u32>,
-        class: MClass,
-        timing: MTiming,
-        raw: String,
-    },
+    MFunction(Box<MFunction>),
     /// The Group 8 selection and the block's suppression (seed 003).
     WorkOffset {
         /// The modal Group 8 code after this block, lower case (`g54`).
@@ -158,29 +133,18 @@ pub enum Op {
         values: Vec<AxisValue>,
     },
     /// `DEF`.
-    Declare {
-        name: String,
-        data_type: String,
-        dims: Vec<Value>,
-        init: Vec<Option<Value>>,
-    },
+    Declare(Box<Declare>),
     /// `R1=…`, `NAME=…`, `$…=…`.
-    Assign { target: Expr, value: Value },
+    Assign { target: Box<Expr>, value: Value },
     /// A jump target: a label, a block number, or a structure boundary.
     Label { name: String },
     /// Continue at `target`, if `condition` holds (always when absent).
     Jump {
         target: String,
-        condition: Option<Expr>,
+        condition: Option<Box<Expr>>,
     },
     /// A call of a subprogram or cycle.
-    Call {
-        target: String,
-        args: Vec<Option<Value>>,
-        passes: Option<Value>,
-        /// `MCALL`: called after every traversing block until cancelled.
-        modal: bool,
-    },
+    Call(Box<Call>),
     /// `RET`, `M17` at the end of a subprogram.
     Return { values: Vec<Value> },
     /// `MSG("…")`.
@@ -189,6 +153,58 @@ pub enum Op {
     Stop { reason: String },
     /// The end of the program text.
     End,
+}
+
+/// A tool selection (seed 000).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ToolSelect {
+    pub selector_kind: SelectorKind,
+    /// The tool number or location as digits, the tool name, or a
+    /// computed selector as written.
+    pub selector_value: String,
+    /// The expression of a `computed` selector (`T=NAMES[I]`),
+    /// evaluated when the block runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub selector_expr: Option<Expr>,
+    /// `T1=…`: the spindle the selection is for.
+    pub spindle_extension: Option<u32>,
+    pub timing: ToolTiming,
+    /// The word as written.
+    pub raw: String,
+}
+
+/// An M function (seed 001).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MFunction {
+    /// `null` when the value is computed (`M1=DIR`): see `m_expr`.
+    pub m_value: Option<u32>,
+    /// The expression of a computed value, evaluated when the block
+    /// runs (the executor checks its range then).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub m_expr: Option<Expr>,
+    pub address_extension: Option<u32>,
+    pub class: MClass,
+    pub timing: MTiming,
+    pub raw: String,
+}
+
+/// A `DEF` of one variable.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct Declare {
+    pub name: String,
+    pub data_type: String,
+    pub dims: Vec<Value>,
+    pub init: Vec<Option<Value>>,
+}
+
+/// A call of a subprogram, cycle or predefined procedure.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct Call {
+    pub target: String,
+    pub args: Vec<Option<Value>>,
+    pub passes: Option<Value>,
+    /// `MCALL`: called after every traversing block until cancelled.
+    pub modal: bool,
 }
 
 /// How a tool is named (seed 000).

@@ -48,14 +48,14 @@ fn round_trip(op: Op) -> serde_json::Value {
 
 #[test]
 fn tool_select_has_the_seed_000_fields() {
-    let value = round_trip(Op::ToolSelect {
+    let value = round_trip(Op::ToolSelect(Box::new(ToolSelect {
         selector_kind: SelectorKind::Name,
         selector_value: "DRILL_10".into(),
         selector_expr: None,
         spindle_extension: None,
         timing: ToolTiming::DeferredUntilM6,
         raw: "T=\"DRILL_10\"".into(),
-    });
+    })));
     assert_eq!(
         value,
         json!({
@@ -81,14 +81,14 @@ fn tool_change_has_the_seed_000_trigger() {
 
 #[test]
 fn m_function_has_the_seed_001_fields() {
-    let value = round_trip(Op::MFunction {
+    let value = round_trip(Op::MFunction(Box::new(MFunction {
         m_value: Some(3),
         m_expr: None,
         address_extension: None,
         class: MClass::Spindle,
         timing: MTiming::InBlock,
         raw: "M3".into(),
-    });
+    })));
     assert_eq!(value["kind"], "m_function");
     assert_eq!(value["m_value"], 3);
     assert_eq!(value["address_extension"], serde_json::Value::Null);

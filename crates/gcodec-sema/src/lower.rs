@@ -335,10 +335,10 @@ impl<'a> Lowering<'a> {
     fn flow_statement(&mut self, index: usize, statement: &ast::Statement, plan: &mut BlockPlan) {
         let span = statement.span;
         let not = |cond: &ast::Expr| {
-            Some(gcodec_ail::Expr::Unary {
+            Some(Box::new(gcodec_ail::Expr::Unary {
                 operator: gcodec_ail::UnaryOp::Not,
                 operand: Box::new(values::tree(cond)),
-            })
+            }))
         };
         match &statement.kind {
             StatementKind::If(c) => {
@@ -394,7 +394,7 @@ impl<'a> Lowering<'a> {
                 // (reference §8.2: the loop ends once it exceeds the end).
                 plan.head.push((
                     Op::Assign {
-                        target: var.clone(),
+                        target: Box::new(var.clone()),
                         value: values::value(&f.start),
                     },
                     span,
@@ -408,11 +408,11 @@ impl<'a> Lowering<'a> {
                 plan.head.push((
                     Op::Jump {
                         target: flow::structure_label(StructureKind::For, line, "end"),
-                        condition: Some(gcodec_ail::Expr::Binary {
+                        condition: Some(Box::new(gcodec_ail::Expr::Binary {
                             operator: gcodec_ail::BinaryOp::Gt,
                             lhs: Box::new(var),
                             rhs: Box::new(values::tree(&f.end)),
-                        }),
+                        })),
                     },
                     span,
                 ));
@@ -430,7 +430,7 @@ impl<'a> Lowering<'a> {
                 if let Some(var) = var {
                     plan.tail.push((
                         Op::Assign {
-                            target: var.clone(),
+                            target: Box::new(var.clone()),
                             value: gcodec_ail::Value::Expr(Box::new(gcodec_ail::Expr::Binary {
                                 operator: gcodec_ail::BinaryOp::Add,
                                 lhs: Box::new(var),
@@ -457,7 +457,7 @@ impl<'a> Lowering<'a> {
             StatementKind::Goto(jump) => self.jump(index, jump, None, span, plan),
             StatementKind::IfGoto(g) => {
                 self.check_variables(&g.condition);
-                let condition = Some(values::tree(&g.condition));
+                let condition = Some(Box::new(values::tree(&g.condition)));
                 self.jump(index, &g.jump, condition, span, plan);
             }
             _ => {}
@@ -468,7 +468,7 @@ impl<'a> Lowering<'a> {
         &mut self,
         index: usize,
         jump: &ast::Jump,
-        condition: Option<gcodec_ail::Expr>,
+        condition: Option<Box<gcodec_ail::Expr>>,
         span: Span,
         plan: &mut BlockPlan,
     ) {
@@ -536,7 +536,7 @@ impl<'a> Lowering<'a> {
                     self.check_variables(e);
                     plan.other.push((
                         Op::Assign {
-                            target: values::variable(&assign.target),
+                            target: Box::new(values::variable(&assign.target)),
                             value: values::value(e),
                         },
                         span,
@@ -574,12 +574,12 @@ impl<'a> Lowering<'a> {
                 }
             };
             plan.other.push((
-                Op::Declare {
+                Op::Declare(Box::new(gcodec_ail::Declare {
                     name: var.name.to_ascii_uppercase().to_string(),
                     data_type: data_type.to_owned(),
                     dims: var.dims.iter().map(values::value).collect(),
                     init,
-                },
+                })),
                 span,
             ));
         }
@@ -635,12 +635,12 @@ impl<'a> Lowering<'a> {
             .as_ref()
             .map(|p| values::word_value(&p.word.value(p.span)).0);
         plan.calls.push((
-            Op::Call {
+            Op::Call(Box::new(gcodec_ail::Call {
                 target: upper.to_string(),
                 args: args.iter().map(|a| a.as_ref().map(values::value)).collect(),
                 passes,
                 modal: false,
-            },
+            })),
             span,
         ));
     }
@@ -937,10 +937,7 @@ impl<'a> Lowering<'a> {
         for (op, span) in plan.tools {
             let direct = matches!(
                 op,
-                Op::ToolSelect {
-                    timing: gcodec_ail::ToolTiming::Immediate,
-                    ..
-                }
+                Op::ToolSelect(ref t) if t.timing == gcodec_ail::ToolTiming::Immediate
             );
             self.emit(index, span, op);
             if direct {

@@ -33,14 +33,14 @@ pub(crate) struct MWord {
 
 impl MWord {
     pub(crate) fn into_op(self, timing: MTiming) -> Op {
-        Op::MFunction {
+        Op::MFunction(Box::new(gcodec_ail::MFunction {
             m_value: self.value,
             m_expr: self.expr,
             address_extension: self.extension,
             class: self.class,
             timing,
             raw: self.raw,
-        }
+        }))
     }
 }
 

@@ -140,14 +140,14 @@ pub(crate) fn select(
         Selector::Computed(expr, _) => Some(expr),
         _ => None,
     };
-    Some(Op::ToolSelect {
+    Some(Op::ToolSelect(Box::new(gcodec_ail::ToolSelect {
         selector_kind: kind,
         selector_value,
         selector_expr,
         spindle_extension: spindle,
         timing,
         raw,
-    })
+    })))
 }
 
 /// Checks a selection against the tool table, when the profile has one:

@@ -123,12 +123,7 @@ fn declarations_lower_per_variable() {
         .instructions
         .iter()
         .filter_map(|i| match &i.op {
-            Op::Declare {
-                name,
-                data_type,
-                init,
-                ..
-            } => Some((name.clone(), data_type.clone(), init.len())),
+            Op::Declare(d) => Some((d.name.clone(), d.data_type.clone(), d.init.len())),
             _ => None,
         })
         .collect();

@@ -286,15 +286,7 @@ fn seed001_instruction_metadata() {
         .unwrap();
     let m30 = instructions
         .iter()
-        .position(|i| {
-            matches!(
-                i.op,
-                gcodec_ail::Op::MFunction {
-                    m_value: Some(30),
-                    ..
-                }
-            )
-        })
+        .position(|i| matches!(&i.op, gcodec_ail::Op::MFunction(m) if m.m_value == Some(30)))
         .unwrap();
     assert!(m30 > motion);
     assert_eq!(
