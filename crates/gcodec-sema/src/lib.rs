@@ -10,9 +10,10 @@
 //! cutting edges (seed 000), feed, spindle speeds (spindle numbers against
 //! the profile), axis words (axes from the profile), motion with circle
 //! data, assignments, declarations, `MSG` and `STOPRE`, calls by name and
-//! number, `RET`, control structures and jumps, and the block-length limit.
+//! number, `RET`, frame instructions, control structures and jumps, and
+//! the block-length limit.
 //!
-//! Not built yet: `CASE`, `CALL`/`PCALL`/`MCALL`, frames, index-shape
+//! Not built yet: `CASE`, `CALL`/`PCALL`/`MCALL`, index-shape
 //! checks of system variables, `PROC` signatures and call arity.
 //! Each such construct gives the warning `gcodec::lower::not_lowered`
 //! rather than being dropped in silence.

@@ -520,6 +520,33 @@ impl<'a> Lowering<'a> {
             | StatementKind::EndLoop
             | StatementKind::Repeat => {}
             StatementKind::Def(def) => self.declare(def, span, plan),
+            // `TRANS X10 Y5`, `AROT RPL=45`, `MIRROR X0`; the bare keyword
+            // resets. The executor composes the frame chain.
+            StatementKind::Frame(frame) => {
+                let values = frame
+                    .words
+                    .iter()
+                    .map(|w| {
+                        let value = w.word.value(w.span);
+                        if let ast::WordValue::Assigned { expr, .. } = &*value {
+                            self.check_variables(expr);
+                        }
+                        let (value, mode) = values::word_value(&value);
+                        AxisValue {
+                            axis: axis_name(w.word.address()),
+                            value,
+                            mode,
+                        }
+                    })
+                    .collect();
+                plan.other.push((
+                    Op::Frame {
+                        op: frame.op.keyword().to_owned(),
+                        values,
+                    },
+                    span,
+                ));
+            }
             StatementKind::Ret(ret) => {
                 let values = ret
                     .args

@@ -166,3 +166,30 @@ fn calls_and_returns() {
     assert_eq!(ops[3]["target"], "L123");
     assert_eq!(ops[3]["passes"], 3.0);
 }
+
+/// Frame instructions lower to `frame` with their values; the bare
+/// keyword (no values) resets.
+#[test]
+fn frames() {
+    let l = lower_src("TRANS X10 Y=R1\nAROT RPL=45\nMIRROR X0\nTRANS\n");
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+    let frames: Vec<(String, Vec<String>)> = l
+        .document
+        .instructions
+        .iter()
+        .filter_map(|i| match &i.op {
+            Op::Frame { op, values } => Some((
+                op.clone(),
+                values.iter().map(|v| v.axis.to_string()).collect(),
+            )),
+            _ => None,
+        })
+        .collect();
+    let expected: Vec<(String, Vec<String>)> = vec![
+        ("TRANS".into(), vec!["X".into(), "Y".into()]),
+        ("AROT".into(), vec!["RPL".into()]),
+        ("MIRROR".into(), vec!["X".into()]),
+        ("TRANS".into(), vec![]),
+    ];
+    assert_eq!(frames, expected);
+}
