@@ -142,10 +142,7 @@ fn load_profile(
     options: DiagnosticOptions,
 ) -> Result<gcodec_profile::Profile, u8> {
     let file = match path {
-        Some(path) => read(path).map_err(|d| {
-            report(&[d], None, options);
-            EXIT_USAGE
-        })?,
+        Some(path) => read(path, options)?,
         None => SourceFile::new(gcodec_profile::BUILTIN_NAME, gcodec_profile::BUILTIN_TOML),
     };
     let Ok(text) = std::str::from_utf8(file.bytes()) else {
@@ -190,13 +187,16 @@ fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: Diagno
     let _ = std::io::stderr().write_all(text.as_bytes());
 }
 
-fn read(path: &Path) -> Result<SourceFile, Diagnostic> {
+/// Reads a file; an unreadable one is reported and is exit code 2.
+fn read(path: &Path, options: DiagnosticOptions) -> Result<SourceFile, u8> {
     SourceFile::read(path).map_err(|e| {
-        Diagnostic::error(
+        let d = Diagnostic::error(
             "gcodec::io::read",
             format!("cannot read `{}`: {e}", path.display()),
         )
-        .with_help("check the path and that the file is readable")
+        .with_help("check the path and that the file is readable");
+        report(&[d], None, options);
+        EXIT_USAGE
     })
 }
 
@@ -206,13 +206,9 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     for path in files {
-        let file = match read(path) {
-            Ok(f) => f,
-            Err(d) => {
-                report(&[d], None, options);
-                exit = EXIT_USAGE;
-                continue;
-            }
+        let Ok(file) = read(path, options) else {
+            exit = EXIT_USAGE;
+            continue;
         };
         let parsed = gcodec_parser::parse(&file);
         report(&parsed.diagnostics, Some(&file), options);
@@ -249,17 +245,14 @@ fn lower(path: &Path, profile: Option<&Path>, format: Format, options: Diagnosti
         Ok(p) => p,
         Err(code) => return code,
     };
-    let file = match read(path) {
+    let file = match read(path, options) {
         Ok(f) => f,
-        Err(d) => {
-            report(&[d], None, options);
-            return EXIT_USAGE;
-        }
+        Err(code) => return code,
     };
     let parsed = gcodec_parser::parse(&file);
     let lowered = gcodec_sema::lower(&parsed.program, &profile);
     let mut diagnostics = parsed.diagnostics;
-    diagnostics.extend(lowered.diagnostics.iter().cloned());
+    diagnostics.extend(lowered.diagnostics);
     diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
     report(&diagnostics, Some(&file), options);
     let mut exit = if diagnostics.iter().any(Diagnostic::is_error) {

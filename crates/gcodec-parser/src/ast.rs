@@ -352,7 +352,7 @@ impl Word {
 }
 
 /// An upper-case ASCII letter as a string (`?` for any other byte).
-pub(crate) fn letter_str(letter: u8) -> &'static str {
+pub fn letter_str(letter: u8) -> &'static str {
     const LETTERS: &str = "ABCDEFGHIJKLMNOPQRSTUVWXYZ";
     match letter {
         b'A'..=b'Z' => {

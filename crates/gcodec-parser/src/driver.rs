@@ -116,22 +116,11 @@ fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment
                 .collect()
         })
     };
-    // A segment that wrote fewer blocks than it has lines (never expected)
-    // gets empty blocks for the rest, so every slot is written.
-    for (slot, part) in runs(&mut blocks.spare_capacity_mut()[..total], &lines)
-        .into_iter()
-        .zip(&parts)
-    {
-        for block in &mut slot[part.filled..] {
-            block.write(Block::default());
-        }
-    }
-    // SAFETY: `blocks` has capacity for `total`, and each of the first
-    // `total` slots was written: by its segment up to `part.filled` (a
-    // segment writes its slots in order and reports how many), and by the
-    // loop above from there to the end of its run. Had a segment thread
-    // panicked, `resume_unwind` above would have left before this point and
-    // the written blocks would only leak.
+    // SAFETY: `blocks` has capacity for `total`, the runs cover the first
+    // `total` slots, and `run_segment` writes every slot of its run before
+    // it returns. Had a segment thread panicked, `resume_unwind` above
+    // would have left before this point and the written blocks would only
+    // leak.
     unsafe { blocks.set_len(total) };
     let mut program = Program {
         file: name.to_owned(),
@@ -222,11 +211,10 @@ struct Segmented {
     diagnostics: Vec<Diagnostic>,
     /// Blocks holding a structure statement, by index in the segment.
     structure_blocks: Vec<u32>,
-    /// How many of its slots the segment wrote, from the first.
-    filled: usize,
 }
 
-/// Parses one segment into `blocks`, one per line.
+/// Parses one segment into `blocks`, one per line, and writes every slot
+/// of `blocks`.
 fn run_segment(
     src: &[u8],
     segment: Segment,
@@ -249,12 +237,16 @@ fn run_segment(
     };
     driver.run(segment);
     debug_assert_eq!(driver.filled, driver.blocks.len(), "one block per line");
+    // Should a segment ever hold fewer blocks than lines, the rest are
+    // empty blocks: every slot is written either way.
+    for slot in &mut driver.blocks[driver.filled..] {
+        slot.write(Block::default());
+    }
     Segmented {
         header: driver.header,
         path: driver.path,
         diagnostics: driver.diagnostics,
         structure_blocks: driver.structure_blocks,
-        filled: driver.filled,
     }
 }
 

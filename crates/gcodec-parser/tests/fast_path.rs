@@ -19,12 +19,7 @@ fn assert_same(name: &str, src: &[u8]) {
 
 #[test]
 fn fixtures_and_corpus_parse_the_same_either_way() {
-    let all = common::all_programs();
-    assert!(all.len() >= 30, "found only {} programs", all.len());
-    for path in all {
-        let bytes = std::fs::read(&path).expect("readable");
-        assert_same(&path.display().to_string(), &bytes);
-    }
+    common::each_program(assert_same);
 }
 
 #[test]

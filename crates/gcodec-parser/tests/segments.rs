@@ -19,12 +19,7 @@ fn assert_split_invariant(name: &str, src: &[u8]) {
 
 #[test]
 fn fixtures_and_corpus_parse_the_same_in_segments() {
-    let all = common::all_programs();
-    assert!(all.len() >= 30, "found only {} programs", all.len());
-    for path in all {
-        let bytes = std::fs::read(&path).expect("readable");
-        assert_split_invariant(&path.display().to_string(), &bytes);
-    }
+    common::each_program(assert_split_invariant);
 }
 
 #[test]

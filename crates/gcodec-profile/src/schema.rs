@@ -5,6 +5,7 @@
 
 use std::collections::BTreeMap;
 
+pub use gcodec_ail::MClass;
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
@@ -197,7 +198,8 @@ pub struct MFunctions {
     /// `M<n>=<value>` addresses a spindle.
     #[serde(default = "yes")]
     pub enable_extended_m_address: bool,
-    /// M value → class, overriding the built-in classification.
+    /// M value → class, overriding the built-in classification. The
+    /// classes are those of the `m_function` instruction (seed 001).
     #[serde(default)]
     pub mcode_class_overrides: BTreeMap<Spanned<String>, MClass>,
 }
@@ -211,17 +213,6 @@ impl Default for MFunctions {
             mcode_class_overrides: BTreeMap::new(),
         }
     }
-}
-
-/// The classes of seed 001.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum MClass {
-    ProgramFlow,
-    Spindle,
-    Tool,
-    Gearbox,
-    Custom,
 }
 
 /// Work offsets per seed 003.
@@ -256,6 +247,23 @@ impl Default for WorkOffsets {
             duplicate_suppression_policy: default_duplicate_suppression_policy(),
             values: BTreeMap::new(),
         }
+    }
+}
+
+impl WorkOffsets {
+    /// Which Group 8 indices (`$P_UIFR` numbering, 0…99) the machine has,
+    /// from `supported_group8_offsets`; entries that do not read as a range
+    /// (reported by the profile check) add nothing.
+    pub fn supported_group8(&self) -> [bool; 100] {
+        let mut supported = [false; 100];
+        for entry in &self.supported_group8_offsets {
+            if let Ok((lo, hi)) = crate::group8_range(entry.get_ref()) {
+                for slot in &mut supported[usize::from(lo)..=usize::from(hi)] {
+                    *slot = true;
+                }
+            }
+        }
+        supported
     }
 }
 

@@ -60,13 +60,19 @@ impl Flow {
                 roles.entry(c as usize).or_default().push((i, Role::Close));
             }
         }
-        // Only the block numbers some jump names are indexed: most blocks
-        // of a program have a number, few are jumped to.
-        let mut numbers: HashMap<u64, Vec<usize>> = program
+        // One walk over the statements finds every jump with a static
+        // target.
+        let jumps: Vec<(usize, GotoKind, &JumpTarget)> = program
             .blocks
             .iter()
-            .flat_map(jumps)
-            .filter_map(|(_, target)| match target {
+            .enumerate()
+            .flat_map(|(i, block)| jumps(block).map(move |(kind, target)| (i, kind, target)))
+            .collect();
+        // Only the block numbers some jump names are indexed: most blocks
+        // of a program have a number, few are jumped to.
+        let mut numbers: HashMap<u64, Vec<usize>> = jumps
+            .iter()
+            .filter_map(|(_, _, target)| match target {
                 JumpTarget::BlockNumber { value, .. } => Some((*value, Vec::new())),
                 _ => None,
             })
@@ -92,14 +98,12 @@ impl Flow {
             numbers,
         };
         // Every jump's target block carries its label.
-        for (i, block) in program.blocks.iter().enumerate() {
-            for (kind, target) in jumps(block) {
-                if let Some(to) = flow.search(i, kind, target) {
-                    let name = label_name(target, to);
-                    let names = flow.targets.entry(to).or_default();
-                    if !names.contains(&name) {
-                        names.push(name);
-                    }
+        for (i, kind, target) in jumps {
+            if let Some(to) = flow.search(i, kind, target) {
+                let name = label_name(target, to);
+                let names = flow.targets.entry(to).or_default();
+                if !names.contains(&name) {
+                    names.push(name);
                 }
             }
         }
@@ -176,17 +180,13 @@ fn target_text(target: &JumpTarget) -> String {
 }
 
 /// The jumps of a block with a static target.
-fn jumps(block: &Block) -> Vec<(GotoKind, &JumpTarget)> {
-    let mut out = Vec::new();
-    for st in &block.statements {
+fn jumps(block: &Block) -> impl Iterator<Item = (GotoKind, &JumpTarget)> {
+    block.statements.iter().filter_map(|st| {
         let jump = match &st.kind {
             StatementKind::Goto(j) => j.as_ref(),
             StatementKind::IfGoto(g) => &g.jump,
-            _ => continue,
+            _ => return None,
         };
-        if let Some(target) = &jump.target {
-            out.push((jump.goto, target));
-        }
-    }
-    out
+        Some((jump.goto, jump.target.as_ref()?))
+    })
 }

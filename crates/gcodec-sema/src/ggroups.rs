@@ -689,9 +689,15 @@ pub fn group(number: u8) -> Option<&'static GGroup> {
 /// values; `None` for non-modal and unassigned groups and for numbers
 /// outside 1…64.
 pub fn default_member(number: u8) -> Option<&'static str> {
-    let group = group(number)?;
-    let index = usize::from(group.default_index?);
-    let name = *group.members.get(index.checked_sub(1)?)?;
+    member(number, group(number)?.default_index?)
+}
+
+/// The command at a group number and 1-based index, as the registry
+/// spells it; `None` outside the table and for index gaps.
+pub fn member(number: u8, index: u8) -> Option<&'static str> {
+    let name = *group(number)?
+        .members
+        .get(usize::from(index).checked_sub(1)?)?;
     (!name.is_empty()).then_some(name)
 }
 

@@ -57,7 +57,7 @@ pub fn lower(program: &Program, profile: &Profile) -> Lowered {
     }
 }
 
-pub(crate) const NOT_LOWERED: &str = "gcodec::lower::not_lowered";
+const NOT_LOWERED: &str = "gcodec::lower::not_lowered";
 const UNKNOWN_G: &str = "gcodec::lower::unknown_g";
 const G_GROUP_CONFLICT: &str = "gcodec::lower::g_group_conflict";
 const UNSUPPORTED_OFFSET: &str = "gcodec::lower::unsupported_offset";
@@ -69,6 +69,16 @@ pub(crate) const INVALID_VALUE: &str = "gcodec::lower::invalid_value";
 const UNKNOWN_SYSTEM_VARIABLE: &str = "gcodec::lower::unknown_system_variable";
 const MISSING_JUMP_TARGET: &str = "gcodec::lower::missing_jump_target";
 const DUPLICATE_LABEL: &str = "gcodec::lower::duplicate_label";
+
+/// The warning for a construct lowering does not translate yet: it is
+/// named, never dropped in silence.
+pub(crate) fn not_lowered(span: Span, what: &str) -> Diagnostic {
+    Diagnostic::warning(NOT_LOWERED, format!("{what} is not lowered yet"))
+        .with_label(span, "left out of the instruction list")
+        .with_help(
+            "gcodec does not translate this construct yet; the program cannot be run as written",
+        )
+}
 
 /// A diagnostic at the severity a profile policy chose: an error or a
 /// warning.
@@ -90,15 +100,10 @@ fn g_code_text(n: f64, buf: &mut [u8; 24]) -> &str {
     std::str::from_utf8(&buf[..len]).unwrap_or("G")
 }
 
-/// An address as an AIL axis name: single letters and the common
-/// multi-letter names without allocating.
+/// An address as an AIL axis name: single letters without allocating.
 fn axis_name(address: &str) -> Cow<'static, str> {
-    const NAMES: [&str; 26] = [
-        "A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "M", "N", "O", "P", "Q", "R",
-        "S", "T", "U", "V", "W", "X", "Y", "Z",
-    ];
     match address.as_bytes() {
-        [b @ b'A'..=b'Z'] => Cow::Borrowed(NAMES[usize::from(b - b'A')]),
+        [b @ b'A'..=b'Z'] => Cow::Borrowed(ast::letter_str(*b)),
         _ => Cow::Owned(address.to_owned()),
     }
 }
@@ -126,6 +131,8 @@ struct Lowering<'a> {
     flow: Flow,
     /// `mcode_class_overrides` by M value.
     m_overrides: HashMap<u32, gcodec_ail::MClass>,
+    /// The Group 8 indices the machine has.
+    group8_supported: [bool; 100],
 }
 
 /// What one block says, collected before instructions are emitted.
@@ -161,8 +168,7 @@ impl<'a> Lowering<'a> {
             let lookup = ggroups::lookup(code.get_ref());
             if let (Ok(g), Some((found, index))) = (group.get_ref().parse::<u8>(), lookup) {
                 if g == found {
-                    modal[usize::from(g) - 1] = ggroups::group(g)
-                        .and_then(|grp| grp.members.get(usize::from(index) - 1).copied());
+                    modal[usize::from(g) - 1] = ggroups::member(g, index);
                 }
             }
         }
@@ -193,6 +199,7 @@ impl<'a> Lowering<'a> {
             group8,
             flow: Flow::new(program),
             m_overrides: mfunc::overrides(profile),
+            group8_supported: profile.work_offsets.supported_group8(),
         }
     }
 
@@ -622,8 +629,8 @@ impl<'a> Lowering<'a> {
         let upper = upper.as_str();
         if call.args.is_none() {
             // `DIAMON`, `SUPA`, `CFC`: G commands written as names.
-            if let Some((group, _)) = ggroups::lookup(upper) {
-                return self.g_code(upper, group, span, plan);
+            if let Some((group, index)) = ggroups::lookup(upper) {
+                return self.g_code(group, index, span, plan);
             }
             if upper == "STOPRE" {
                 return plan.other.push((
@@ -719,7 +726,7 @@ impl<'a> Lowering<'a> {
                     let mut buf = [0; 24];
                     let code = g_code_text(n, &mut buf);
                     match ggroups::lookup(code) {
-                        Some((group, _)) => self.g_code(code, group, span, plan),
+                        Some((group, index)) => self.g_code(group, index, span, plan),
                         None => self.diagnostics.push(
                             Diagnostic::error(
                                 UNKNOWN_G,
@@ -853,13 +860,11 @@ impl<'a> Lowering<'a> {
             .any(|a| a.name.get_ref().eq_ignore_ascii_case(name))
     }
 
-    fn g_code(&mut self, code: &str, group: u8, span: Span, plan: &mut BlockPlan) {
-        let Some((_, index)) = ggroups::lookup(code) else {
+    /// A G command at its registry position (`group`, 1-based `index`).
+    fn g_code(&mut self, group: u8, index: u8, span: Span, plan: &mut BlockPlan) {
+        let Some(member) = ggroups::member(group, index) else {
             return;
         };
-        let member = ggroups::group(group)
-            .and_then(|g| g.members.get(usize::from(index) - 1).copied())
-            .unwrap_or("");
         if group == 9 {
             let suppression = match member {
                 "G53" => Suppression::G53,
@@ -871,12 +876,9 @@ impl<'a> Lowering<'a> {
         }
         if group == 8 {
             let supported = self
-                .profile
-                .work_offsets
-                .supported_group8_offsets
-                .iter()
-                .filter_map(|r| gcodec_profile::group8_range(r.get_ref()).ok())
-                .any(|(lo, hi)| (lo..=hi).contains(&(index - 1)));
+                .group8_supported
+                .get(usize::from(index) - 1)
+                .is_some_and(|s| *s);
             if !supported {
                 return self.diagnostics.push(
                     Diagnostic::error(
@@ -902,11 +904,7 @@ impl<'a> Lowering<'a> {
     }
 
     fn not_lowered(&mut self, span: Span, what: &str) {
-        self.diagnostics.push(
-            Diagnostic::warning(NOT_LOWERED, format!("{what} is not lowered yet"))
-                .with_label(span, "left out of the instruction list")
-                .with_help("gcodec does not translate this construct yet; the program cannot be run as written"),
-        );
+        self.diagnostics.push(not_lowered(span, what));
     }
 
     fn emit_block(&mut self, index: usize, block: &Block, mut plan: BlockPlan) {
@@ -1087,11 +1085,11 @@ impl<'a> Lowering<'a> {
     }
 }
 
-/// How a statement kind is named in "not lowered yet" warnings.
+/// How a statement kind [`Lowering::statement`] does not lower is named
+/// in its warning.
 fn statement_name(kind: &StatementKind) -> &'static str {
     use StatementKind as S;
     match kind {
-        S::Def(_) => "`DEF`",
         S::Redef(_) => "`REDEF`",
         S::Define(_) => "`DEFINE`",
         S::Proc(_) => "`PROC`",
@@ -1100,18 +1098,9 @@ fn statement_name(kind: &StatementKind) -> &'static str {
         S::IndirectCall(_) => "`CALL`",
         S::PCall(_) => "`PCALL`",
         S::MCall(_) => "`MCALL`",
-        S::Ret(_) => "`RET`",
-        S::Goto(_) => "a jump",
-        S::IfGoto(_) => "`IF … GOTO`",
-        S::If(_) | S::Else | S::EndIf => "`IF`/`ELSE`/`ENDIF`",
-        S::While(_) | S::EndWhile => "`WHILE`",
-        S::For(_) | S::EndFor => "`FOR`",
-        S::Loop | S::EndLoop => "`LOOP`",
-        S::Repeat | S::Until(_) => "`REPEAT`/`UNTIL`",
         S::RepeatSection(_) => "`REPEAT` of a section",
         S::Case(_) => "`CASE`",
-        S::Frame(_) => "a frame instruction",
         S::SyncAction(_) => "a synchronous action",
-        S::Word(_) | S::Assign(_) | S::Call(_) => "this statement",
+        _ => "this statement",
     }
 }

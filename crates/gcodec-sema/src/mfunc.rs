@@ -9,9 +9,9 @@ use gcodec_parser::ast::{Extension, Word, WordValue};
 use gcodec_profile::{Policy, Profile};
 use gcodec_source::{Diagnostic, Span};
 
-use crate::lower::{INVALID_VALUE, NOT_LOWERED, by_policy};
+use crate::lower::{INVALID_VALUE, by_policy, not_lowered};
 use crate::tools::{spindle_exists, unknown_spindle};
-use crate::values::{constant, tree, whole_number};
+use crate::values::{constant, source_text, tree, whole_number};
 
 const EXTENSION_FORBIDDEN: &str = "gcodec::lower::m_extension_forbidden";
 const TOO_MANY_M: &str = "gcodec::lower::too_many_m_functions";
@@ -81,8 +81,7 @@ pub(crate) fn check(
             },
         ) if constant(expr).is_none() => {
             let extension = extension(word, span, profile, diagnostics)?;
-            let mut text = String::new();
-            let _ = gcodec_parser::write_expr(expr, &mut text);
+            let text = source_text(expr);
             let raw = match extension {
                 Some(ext) => format!("M{ext}={text}"),
                 None => format!("M={text}"),
@@ -196,14 +195,10 @@ fn extension(
         }
         Some(Extension::Index { .. }) => {
             // `M[SPINU]=3`: a spindle chosen when the block runs.
-            diagnostics.push(
-                Diagnostic::warning(
-                    NOT_LOWERED,
-                    "an M function with a computed spindle number is not lowered yet",
-                )
-                .with_label(span, "left out of the instruction list")
-                .with_help("gcodec does not translate this construct yet; the program cannot be run as written"),
-            );
+            diagnostics.push(not_lowered(
+                span,
+                "an M function with a computed spindle number",
+            ));
             None
         }
     }
@@ -230,16 +225,6 @@ pub(crate) fn overrides(profile: &Profile) -> HashMap<u32, MClass> {
         .m_functions
         .mcode_class_overrides
         .iter()
-        .filter_map(|(k, class)| Some((k.get_ref().parse::<u32>().ok()?, convert_class(*class))))
+        .filter_map(|(k, class)| Some((k.get_ref().parse::<u32>().ok()?, *class)))
         .collect()
-}
-
-fn convert_class(class: gcodec_profile::MClass) -> MClass {
-    match class {
-        gcodec_profile::MClass::ProgramFlow => MClass::ProgramFlow,
-        gcodec_profile::MClass::Spindle => MClass::Spindle,
-        gcodec_profile::MClass::Tool => MClass::Tool,
-        gcodec_profile::MClass::Gearbox => MClass::Gearbox,
-        gcodec_profile::MClass::Custom => MClass::Custom,
-    }
 }

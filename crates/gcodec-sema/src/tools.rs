@@ -8,6 +8,7 @@ use gcodec_profile::{Profile, ToolChangeMode, UnresolvedToolPolicy};
 use gcodec_source::{Diagnostic, Span};
 
 use crate::lower::{INVALID_VALUE, UNKNOWN_SPINDLE, by_policy};
+use crate::values::{source_text, whole_number};
 
 const SELECTOR_FORM: &str = "gcodec::lower::tool_selector_form";
 const UNRESOLVED_TOOL: &str = "gcodec::lower::unresolved_tool";
@@ -66,20 +67,18 @@ pub(crate) fn select(
             return None;
         }
     };
-    let (selector, assigned) = match value {
-        WordValue::Constant(n) if n.integer && n.value >= 0.0 => {
-            (Selector::Number(n.value as u32), false)
+    let (selector, assigned) = match (value, whole_number(value)) {
+        (WordValue::Constant(_), Some(n)) if n >= 0.0 => (Selector::Number(n as u32), false),
+        (WordValue::Assigned { .. }, Some(n)) if (0.0..=f64::from(i32::MAX)).contains(&n) => {
+            (Selector::Number(n as u32), true)
         }
-        WordValue::Assigned {
-            modifier: None,
-            expr,
-        } => match &expr.kind {
-            ExprKind::Number {
-                value,
-                integer: true,
-            } if *value >= 0.0 && *value <= f64::from(i32::MAX) => {
-                (Selector::Number(*value as u32), true)
-            }
+        (
+            WordValue::Assigned {
+                modifier: None,
+                expr,
+            },
+            _,
+        ) => match &expr.kind {
             ExprKind::String { value } => (Selector::Name(value.to_string()), true),
             ExprKind::Number { .. } => {
                 diagnostics.push(form_error(
@@ -88,11 +87,10 @@ pub(crate) fn select(
                 ));
                 return None;
             }
-            _ => {
-                let mut text = String::new();
-                let _ = gcodec_parser::write_expr(expr, &mut text);
-                (Selector::Computed(crate::values::tree(expr), text), true)
-            }
+            _ => (
+                Selector::Computed(crate::values::tree(expr), source_text(expr)),
+                true,
+            ),
         },
         _ => {
             diagnostics.push(

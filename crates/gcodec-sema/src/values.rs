@@ -58,6 +58,14 @@ pub(crate) fn whole_number(value: &WordValue) -> Option<f64> {
     }
 }
 
+/// An expression as the outline writes it, for the `raw` form of a
+/// computed value (`M1=DIR`, `T=NAMES[I]`).
+pub(crate) fn source_text(expr: &ast::Expr) -> String {
+    let mut text = String::new();
+    let _ = gcodec_parser::write_expr(expr, &mut text);
+    text
+}
+
 /// The expression tree. Recursion follows the parser's bounded depth
 /// (`MAX_EXPRESSION_DEPTH`, `MAX_OPERATORS_PER_BLOCK`).
 pub(crate) fn tree(expr: &ast::Expr) -> ail::Expr {

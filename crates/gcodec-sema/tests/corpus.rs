@@ -4,7 +4,9 @@
 //! not know) are allowed. `SYNTAX_CHECK.SPF` is excluded: its
 //! machine-dependent lines are errors by design (`syntax_check.rs`).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
+
+mod common;
 
 /// The machine a part of the corpus was written for; the default profile
 /// for everything else. `tool.mpf` selects tools by name, so its machine
@@ -22,56 +24,16 @@ const MACHINES: &[(&str, &str)] = &[
     ("peer-cead/tool.mpf", "mill_tool_management.toml"),
 ];
 
-fn corpus_dir() -> PathBuf {
-    std::env::var_os("GCODEC_CORPUS_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            PathBuf::from(concat!(
-                env!("CARGO_MANIFEST_DIR"),
-                "/../../../shared/corpus"
-            ))
-        })
-}
-
-fn programs(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let path = entry.path();
-        if path.is_dir() {
-            programs(&path, out);
-        } else if path
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| e.eq_ignore_ascii_case("mpf") || e.eq_ignore_ascii_case("spf"))
-        {
-            out.push(path);
-        }
-    }
-}
-
-fn profile(name: &str) -> gcodec_profile::Profile {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../profiles")
-        .join(name);
-    let text = std::fs::read_to_string(&path).expect("profile");
-    gcodec_profile::load(&text).unwrap_or_else(|d| panic!("{name}: {d:#?}"))
-}
-
 #[test]
 fn the_corpus_lowers_without_errors() {
-    let dir = corpus_dir();
-    if !dir.is_dir() {
-        eprintln!(
-            "notice: {} is absent; the corpus lowering test is skipped",
-            dir.display()
-        );
+    let Some(dir) = common::corpus_dir() else {
         return;
-    }
-    let mut files = Vec::new();
-    programs(&dir, &mut files);
-    files.sort();
+    };
+    // Part programs only: the corpus's `.DEF` files are definitions.
+    let files: Vec<PathBuf> = common::programs(&dir)
+        .into_iter()
+        .filter(|p| !p.extension().is_some_and(|e| e.eq_ignore_ascii_case("def")))
+        .collect();
     assert!(files.len() >= 50, "found only {} programs", files.len());
     let mut failures = Vec::new();
     for path in files.iter().filter(|p| !p.ends_with("SYNTAX_CHECK.SPF")) {
@@ -82,7 +44,7 @@ fn the_corpus_lowers_without_errors() {
             .map_or("default.toml", |(_, p)| p);
         let bytes = std::fs::read(path).expect("readable");
         let parsed = gcodec_parser::parse_bytes(&shown, &bytes);
-        let mut profile = profile(machine);
+        let mut profile = common::profile(machine);
         if shown.contains("peer-cead/tool.mpf") {
             profile.tools.clear();
         }

@@ -1,12 +1,12 @@
 //! insta snapshots of the AIL: the seed features as the JSON document,
 //! and the example programs as listings with their diagnostics.
 
+mod common;
+
 use std::path::PathBuf;
 
 fn repo(path: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .join(path)
+    common::repo().join(path)
 }
 
 fn lower_file(path: &str, profile: &str) -> gcodec_sema::Lowered {
@@ -17,9 +17,7 @@ fn lower_file(path: &str, profile: &str) -> gcodec_sema::Lowered {
         "{path}: {:#?}",
         parsed.diagnostics
     );
-    let text = std::fs::read_to_string(repo(profile)).expect("profile");
-    let profile = gcodec_profile::load(&text).expect("valid profile");
-    gcodec_sema::lower(&parsed.program, &profile)
+    gcodec_sema::lower(&parsed.program, &common::profile(profile))
 }
 
 /// The listing, then one line per diagnostic: code and line.
@@ -40,31 +38,22 @@ fn listing(path: &str, profile: &str) -> String {
 
 #[test]
 fn seed_features_document() {
-    let lowered = lower_file(
-        "tests/fixtures/lower/seed_features.mpf",
-        "profiles/default.toml",
-    );
+    let lowered = lower_file("tests/fixtures/lower/seed_features.mpf", "default.toml");
     assert!(lowered.diagnostics.is_empty(), "{:#?}", lowered.diagnostics);
     insta::assert_json_snapshot!(lowered.document);
 }
 
 #[test]
 fn example_pocket_mill() {
-    insta::assert_snapshot!(listing("examples/pocket_mill.mpf", "profiles/default.toml"));
+    insta::assert_snapshot!(listing("examples/pocket_mill.mpf", "default.toml"));
 }
 
 #[test]
 fn example_lathe_shaft() {
-    insta::assert_snapshot!(listing(
-        "examples/lathe_shaft.mpf",
-        "profiles/lathe_828d.toml"
-    ));
+    insta::assert_snapshot!(listing("examples/lathe_shaft.mpf", "lathe_828d.toml"));
 }
 
 #[test]
 fn example_chamfer_edge() {
-    insta::assert_snapshot!(listing(
-        "examples/chamfer_edge.spf",
-        "profiles/default.toml"
-    ));
+    insta::assert_snapshot!(listing("examples/chamfer_edge.spf", "default.toml"));
 }

@@ -2,18 +2,10 @@
 //! the control rejects for the machine: lowering with the default profile
 //! rejects each of them, on its own.
 
-use std::path::PathBuf;
+mod common;
 
 fn syntax_check_file() -> Option<String> {
-    let corpus = std::env::var_os("GCODEC_CORPUS_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            PathBuf::from(concat!(
-                env!("CARGO_MANIFEST_DIR"),
-                "/../../../shared/corpus"
-            ))
-        });
-    let path = corpus.join("real/deathaxe+sublime-s840d/examples/SYNTAX_CHECK.SPF");
+    let path = common::corpus_dir()?.join("real/deathaxe+sublime-s840d/examples/SYNTAX_CHECK.SPF");
     match std::fs::read(&path) {
         Ok(bytes) => Some(String::from_utf8_lossy(&bytes).into_owned()),
         Err(_) => {

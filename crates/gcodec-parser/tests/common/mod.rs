@@ -60,3 +60,14 @@ pub fn all_programs() -> Vec<PathBuf> {
     }
     all
 }
+
+/// Calls `check` with the name and bytes of every program of
+/// [`all_programs`] (at least our own 30).
+pub fn each_program(mut check: impl FnMut(&str, &[u8])) {
+    let all = all_programs();
+    assert!(all.len() >= 30, "found only {} programs", all.len());
+    for path in all {
+        let bytes = std::fs::read(&path).expect("readable");
+        check(&path.display().to_string(), &bytes);
+    }
+}
