@@ -1,0 +1,255 @@
+//! Control structures and jumps: the labels, conditional jumps and loop
+//! counters that `IF`, `WHILE`, `FOR`, `LOOP`, `REPEAT … UNTIL` and the
+//! `GOTO` family lower to.
+
+use gcodec_ail::Op;
+use gcodec_parser::ast::{self, Block, GotoKind, StatementKind, StructureKind};
+use gcodec_source::{Diagnostic, Span};
+
+use crate::flow::{self, Resolved, Role};
+use crate::values;
+
+use super::{BlockPlan, Lowering, MISSING_JUMP_TARGET, direction};
+
+impl<'a> Lowering<'a> {
+    /// The labels and jumps a block carries as a jump target and as a
+    /// part of structures; the conditions are added by [`Self::statement`].
+    pub(super) fn structure_parts(&mut self, index: usize, block: &Block, plan: &mut BlockPlan) {
+        let at = block.span;
+        for name in self.flow.targets(index) {
+            plan.head.push((Op::Label { name: name.clone() }, at));
+        }
+        for &(structure, role) in self.flow.roles(index) {
+            let s = &self.program.structures[structure];
+            let line = s.open as usize + 1;
+            let label = |part: &str| flow::structure_label(s.kind, line, part);
+            let jump = |target: String| Op::Jump {
+                target,
+                condition: None,
+            };
+            match (s.kind, role) {
+                (
+                    StructureKind::While | StructureKind::Loop | StructureKind::Repeat,
+                    Role::Open,
+                ) => {
+                    plan.head.push((
+                        Op::Label {
+                            name: label("start"),
+                        },
+                        at,
+                    ));
+                }
+                (StructureKind::If, Role::Middle) => {
+                    plan.head.push((jump(label("end")), at));
+                    plan.head.push((
+                        Op::Label {
+                            name: label("else"),
+                        },
+                        at,
+                    ));
+                }
+                (StructureKind::If, Role::Close) => {
+                    plan.head.push((Op::Label { name: label("end") }, at));
+                }
+                (StructureKind::While | StructureKind::Loop, Role::Close) => {
+                    plan.tail.push((jump(label("start")), at));
+                    plan.tail.push((Op::Label { name: label("end") }, at));
+                }
+                // The FOR counter and the UNTIL condition come with their
+                // statements.
+                _ => {}
+            }
+        }
+    }
+
+    /// The structure of `kind` that block `index` plays `role` in.
+    pub(super) fn structure_at(
+        &self,
+        index: usize,
+        kind: StructureKind,
+        role: Role,
+    ) -> Option<&'a ast::ControlStructure> {
+        let program = self.program;
+        self.flow
+            .roles(index)
+            .iter()
+            .find(|(s, r)| *r == role && program.structures[*s].kind == kind)
+            .map(|(s, _)| &program.structures[*s])
+    }
+
+    /// `IF`, `WHILE`, `UNTIL`, `FOR`, `ENDFOR` and jumps.
+    pub(super) fn flow_statement(
+        &mut self,
+        index: usize,
+        statement: &ast::Statement,
+        plan: &mut BlockPlan,
+    ) {
+        let span = statement.span;
+        let not = |cond: &ast::Expr| {
+            Some(Box::new(gcodec_ail::Expr::Unary {
+                operator: gcodec_ail::UnaryOp::Not,
+                operand: Box::new(values::tree(cond)),
+            }))
+        };
+        match &statement.kind {
+            StatementKind::If(c) => {
+                self.check_variables(&c.condition);
+                if let Some(s) = self.structure_at(index, StructureKind::If, Role::Open) {
+                    let line = s.open as usize + 1;
+                    let part = if s.middle.is_some() { "else" } else { "end" };
+                    plan.tail.push((
+                        Op::Jump {
+                            target: flow::structure_label(StructureKind::If, line, part),
+                            condition: not(&c.condition),
+                        },
+                        span,
+                    ));
+                }
+            }
+            StatementKind::While(c) => {
+                self.check_variables(&c.condition);
+                if let Some(s) = self.structure_at(index, StructureKind::While, Role::Open) {
+                    let line = s.open as usize + 1;
+                    plan.head.push((
+                        Op::Jump {
+                            target: flow::structure_label(StructureKind::While, line, "end"),
+                            condition: not(&c.condition),
+                        },
+                        span,
+                    ));
+                }
+            }
+            StatementKind::Until(c) => {
+                self.check_variables(&c.condition);
+                if let Some(s) = self.structure_at(index, StructureKind::Repeat, Role::Close) {
+                    let line = s.open as usize + 1;
+                    plan.tail.push((
+                        Op::Jump {
+                            target: flow::structure_label(StructureKind::Repeat, line, "start"),
+                            condition: not(&c.condition),
+                        },
+                        span,
+                    ));
+                }
+            }
+            StatementKind::For(f) => {
+                self.check_variable(&f.var);
+                self.check_variables(&f.start);
+                self.check_variables(&f.end);
+                let Some(s) = self.structure_at(index, StructureKind::For, Role::Open) else {
+                    return;
+                };
+                let line = s.open as usize + 1;
+                let var = values::variable(&f.var);
+                // The counter is set, then checked before every pass
+                // (reference §8.2: the loop ends once it exceeds the end).
+                plan.head.push((
+                    Op::Assign {
+                        target: Box::new(var.clone()),
+                        value: values::value(&f.start),
+                    },
+                    span,
+                ));
+                plan.head.push((
+                    Op::Label {
+                        name: flow::structure_label(StructureKind::For, line, "start"),
+                    },
+                    span,
+                ));
+                plan.head.push((
+                    Op::Jump {
+                        target: flow::structure_label(StructureKind::For, line, "end"),
+                        condition: Some(Box::new(gcodec_ail::Expr::Binary {
+                            operator: gcodec_ail::BinaryOp::Gt,
+                            lhs: Box::new(var),
+                            rhs: Box::new(values::tree(&f.end)),
+                        })),
+                    },
+                    span,
+                ));
+            }
+            StatementKind::EndFor => {
+                let Some(s) = self.structure_at(index, StructureKind::For, Role::Close) else {
+                    return;
+                };
+                let line = s.open as usize + 1;
+                let open = &self.program.blocks[s.open as usize];
+                let var = open.statements.iter().find_map(|st| match &st.kind {
+                    StatementKind::For(f) => Some(values::variable(&f.var)),
+                    _ => None,
+                });
+                if let Some(var) = var {
+                    plan.tail.push((
+                        Op::Assign {
+                            target: Box::new(var.clone()),
+                            value: gcodec_ail::Value::Expr(Box::new(gcodec_ail::Expr::Binary {
+                                operator: gcodec_ail::BinaryOp::Add,
+                                lhs: Box::new(var),
+                                rhs: Box::new(gcodec_ail::Expr::Number { value: 1.0 }),
+                            })),
+                        },
+                        span,
+                    ));
+                }
+                plan.tail.push((
+                    Op::Jump {
+                        target: flow::structure_label(StructureKind::For, line, "start"),
+                        condition: None,
+                    },
+                    span,
+                ));
+                plan.tail.push((
+                    Op::Label {
+                        name: flow::structure_label(StructureKind::For, line, "end"),
+                    },
+                    span,
+                ));
+            }
+            StatementKind::Goto(jump) => self.jump(index, jump, None, span, plan),
+            StatementKind::IfGoto(g) => {
+                self.check_variables(&g.condition);
+                let condition = Some(Box::new(values::tree(&g.condition)));
+                self.jump(index, &g.jump, condition, span, plan);
+            }
+            _ => {}
+        }
+    }
+
+    pub(super) fn jump(
+        &mut self,
+        index: usize,
+        jump: &ast::Jump,
+        condition: Option<Box<gcodec_ail::Expr>>,
+        span: Span,
+        plan: &mut BlockPlan,
+    ) {
+        let Some(target) = &jump.target else {
+            return self.not_lowered(span, "`GOTOS`");
+        };
+        match self.flow.resolve(index, jump.goto, target) {
+            Resolved::Label(target) => plan.tail.push((Op::Jump { target, condition }, span)),
+            Resolved::Computed => self.not_lowered(span, "a jump to a computed target"),
+            Resolved::Missing(name) if jump.goto == GotoKind::GotoC => {
+                // GOTOC goes on with the next block: nothing to do.
+                let _ = name;
+            }
+            Resolved::Missing(name) => {
+                self.diagnostics.push(
+                    Diagnostic::warning(
+                        MISSING_JUMP_TARGET,
+                        format!("`{name}` is not found {}", direction(jump.goto)),
+                    )
+                    .with_label(span, "this jump")
+                    .with_help("the control stops with alarm 14080 when this jump runs; GOTOC would go on instead"),
+                );
+                plan.tail.push((
+                    Op::Jump {
+                        target: format!("{name}@missing"),
+                        condition,
+                    },
+                    span,
+                ));
+            }
+        }
+    }
+}

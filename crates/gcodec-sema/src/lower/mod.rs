@@ -1,0 +1,459 @@
+//! Lowers a parsed program block by block into AIL, checking each word
+//! against the machine profile and tracking the modal state of
+//! straight-line code.
+//!
+//! Within a block, instructions come in the order the control acts on
+//! them: work offset and other modal G commands, feed, spindle speed, tool
+//! selection and cutting edge, M functions acting before the motion, the
+//! motion, then `M0 M1 M2 M17 M30` after it (seed 001).
+
+use std::borrow::Cow;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use gcodec_ail::{
+    AxisValue, ByteRange, Circle, Document, Instruction, MTiming, MotionKind, Op, Source,
+    Suppression, SuppressionScope, ToolChangeTrigger, Value,
+};
+use gcodec_parser::ast::{self, Block, GotoKind, Program};
+use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
+use gcodec_source::{Diagnostic, Span};
+
+use crate::flow::Flow;
+use crate::{ggroups, mfunc};
+
+mod control;
+mod statements;
+mod variables;
+mod words;
+
+/// The result of lowering: always a document, plus what was wrong.
+#[derive(Clone, Debug)]
+pub struct Lowered {
+    pub document: Document,
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Lowered {
+    /// True if any diagnostic is an error.
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(Diagnostic::is_error)
+    }
+}
+
+/// Lowers `program` for the machine `profile` describes.
+pub fn lower(program: &Program, profile: &Profile) -> Lowered {
+    let mut lowering = Lowering::new(program, profile);
+    lowering.report_duplicate_labels();
+    for (index, block) in program.blocks.iter().enumerate() {
+        lowering.block(index, block);
+    }
+    let end = program.blocks.last().map_or(0, |b| b.span.end);
+    let source = lowering.source_at(program.blocks.len().max(1) - 1, Span::new(end, end));
+    lowering.document.instructions.push(Instruction {
+        op: Op::End,
+        source,
+    });
+    Lowered {
+        document: lowering.document,
+        diagnostics: lowering.diagnostics,
+    }
+}
+
+const NOT_LOWERED: &str = "gcodec::lower::not_lowered";
+const UNKNOWN_G: &str = "gcodec::lower::unknown_g";
+const G_GROUP_CONFLICT: &str = "gcodec::lower::g_group_conflict";
+const UNSUPPORTED_OFFSET: &str = "gcodec::lower::unsupported_offset";
+const DUPLICATE_SUPPRESSION: &str = "gcodec::lower::duplicate_suppression";
+const UNKNOWN_ADDRESS: &str = "gcodec::lower::unknown_address";
+pub(crate) const UNKNOWN_SPINDLE: &str = "gcodec::lower::unknown_spindle";
+const BLOCK_TOO_LONG: &str = "gcodec::lower::block_too_long";
+pub(crate) const INVALID_VALUE: &str = "gcodec::lower::invalid_value";
+const UNKNOWN_SYSTEM_VARIABLE: &str = "gcodec::lower::unknown_system_variable";
+const MISSING_JUMP_TARGET: &str = "gcodec::lower::missing_jump_target";
+const DUPLICATE_LABEL: &str = "gcodec::lower::duplicate_label";
+
+/// The warning for a construct lowering does not translate yet: it is
+/// named, never dropped in silence.
+pub(crate) fn not_lowered(span: Span, what: &str) -> Diagnostic {
+    Diagnostic::warning(NOT_LOWERED, format!("{what} is not lowered yet"))
+        .with_label(span, "left out of the instruction list")
+        .with_help(
+            "gcodec does not translate this construct yet; the program cannot be run as written",
+        )
+}
+
+/// A diagnostic at the severity a profile policy chose: an error or a
+/// warning.
+pub(crate) fn by_policy(error: bool, code: &'static str, message: String) -> Diagnostic {
+    if error {
+        Diagnostic::error(code, message)
+    } else {
+        Diagnostic::warning(code, message)
+    }
+}
+
+/// `G<n>` for a G word's value, written into `buf`: no allocation and no
+/// float formatting for the commonest word of all.
+fn g_code_text(n: f64, buf: &mut [u8; 24]) -> &str {
+    use std::io::Write as _;
+    let mut rest = &mut buf[..];
+    let _ = write!(rest, "G{}", n as u64);
+    let len = 24 - rest.len();
+    std::str::from_utf8(&buf[..len]).unwrap_or("G")
+}
+
+/// An address as an AIL axis name: single letters without allocating.
+fn axis_name(address: &str) -> Cow<'static, str> {
+    match address.as_bytes() {
+        [b @ b'A'..=b'Z'] => Cow::Borrowed(ast::letter_str(*b)),
+        _ => Cow::Owned(address.to_owned()),
+    }
+}
+
+/// Where a jump searches, for messages.
+fn direction(kind: GotoKind) -> &'static str {
+    match kind {
+        GotoKind::GotoF => "forward (towards the program end)",
+        GotoKind::GotoB => "backward (towards the program start)",
+        _ => "forward or backward",
+    }
+}
+
+/// The state carried from block to block.
+struct Lowering<'a> {
+    program: &'a Program,
+    profile: &'a Profile,
+    file: Arc<str>,
+    document: Document,
+    diagnostics: Vec<Diagnostic>,
+    /// Modal code of each G group (index = group − 1).
+    modal: [Option<&'static str>; 64],
+    /// The Group 8 selection (index per `$P_UIFR`).
+    group8: u8,
+    flow: Flow,
+    /// `mcode_class_overrides` by M value.
+    m_overrides: HashMap<u32, gcodec_ail::MClass>,
+    /// The Group 8 indices the machine has.
+    group8_supported: [bool; 100],
+}
+
+/// What one block says, collected before instructions are emitted.
+#[derive(Default)]
+struct BlockPlan {
+    g_codes: Vec<(u8, &'static str, Span)>,
+    suppressions: Vec<(Suppression, Span)>,
+    feed: Option<(Value, Span)>,
+    spindle: Vec<(Option<u32>, Value, Span)>,
+    tools: Vec<(Op, Span)>,
+    edge: Option<(Value, Span)>,
+    m_functions: Vec<mfunc::MWord>,
+    targets: Vec<(AxisValue, Span)>,
+    circle: Circle,
+    circle_span: Option<Span>,
+    other: Vec<(Op, Span)>,
+    /// Subprogram and cycle calls: they run after the block's motion.
+    calls: Vec<(Op, Span)>,
+    /// Labels and jumps that act when the block is entered, before
+    /// anything else in it.
+    head: Vec<(Op, Span)>,
+    /// Jumps and labels that act after everything else in the block.
+    tail: Vec<(Op, Span)>,
+}
+
+impl<'a> Lowering<'a> {
+    fn new(program: &'a Program, profile: &'a Profile) -> Self {
+        let mut modal = [None; 64];
+        for (i, slot) in modal.iter_mut().enumerate() {
+            *slot = ggroups::default_member(i as u8 + 1);
+        }
+        for (group, code) in &profile.modal_defaults {
+            let lookup = ggroups::lookup(code.get_ref());
+            if let (Ok(g), Some((found, index))) = (group.get_ref().parse::<u8>(), lookup) {
+                if g == found {
+                    modal[usize::from(g) - 1] = ggroups::member(g, index);
+                }
+            }
+        }
+        let group8 =
+            gcodec_profile::group8_index(profile.work_offsets.default_group8_offset.get_ref())
+                .unwrap_or(0);
+        Self {
+            program,
+            profile,
+            file: Arc::from(program.file.as_str()),
+            document: Document {
+                // About one instruction per statement, plus labels, jumps and
+                // modal changes: reserving avoids copying a large vector.
+                instructions: Vec::with_capacity(
+                    program
+                        .blocks
+                        .iter()
+                        .map(|b| b.statements.len())
+                        .sum::<usize>()
+                        * 5
+                        / 4
+                        + 16,
+                ),
+                ..Document::new()
+            },
+            diagnostics: Vec::new(),
+            modal,
+            group8,
+            flow: Flow::new(program),
+            m_overrides: mfunc::overrides(profile),
+            group8_supported: profile.work_offsets.supported_group8(),
+        }
+    }
+
+    /// Labels defined twice: allowed (jumps find the nearest in their
+    /// direction), but rarely meant.
+    fn report_duplicate_labels(&mut self) {
+        let mut duplicates: Vec<(String, Vec<usize>)> = self
+            .flow
+            .duplicate_labels()
+            .map(|(name, blocks)| (name.clone(), blocks.clone()))
+            .collect();
+        duplicates.sort_by_key(|(_, blocks)| blocks[0]);
+        for (name, blocks) in duplicates {
+            let span = |b: usize| {
+                self.program.blocks[b]
+                    .label
+                    .as_ref()
+                    .map_or(self.program.blocks[b].span, |l| l.span)
+            };
+            let mut diagnostic = Diagnostic::warning(
+                DUPLICATE_LABEL,
+                format!("label `{name}` is defined {} times", blocks.len()),
+            )
+            .with_label(span(blocks[0]), "first")
+            .with_help("a jump goes to the nearest one in its search direction");
+            for &b in &blocks[1..] {
+                diagnostic = diagnostic.with_label(span(b), "again");
+            }
+            self.diagnostics.push(diagnostic);
+        }
+    }
+
+    fn source_at(&self, block: usize, span: Span) -> Source {
+        let start = self.program.blocks.get(block).map_or(0, |b| b.span.start);
+        Source {
+            file: self.file.clone(),
+            line: block as u32 + 1,
+            col: span.start.saturating_sub(start) + 1,
+            span: ByteRange {
+                start: span.start,
+                end: span.end,
+            },
+        }
+    }
+
+    fn emit(&mut self, block: usize, span: Span, op: Op) {
+        let source = self.source_at(block, span);
+        self.document.instructions.push(Instruction { op, source });
+    }
+
+    fn block(&mut self, index: usize, block: &Block) {
+        let max = *self.profile.program.max_block_length.get_ref();
+        if block.span.len() > max {
+            self.diagnostics.push(
+                Diagnostic::error(
+                    BLOCK_TOO_LONG,
+                    format!(
+                        "the block is {} characters long; the control accepts {max}",
+                        block.span.len()
+                    ),
+                )
+                .with_label(block.span, "this block")
+                .with_help("split the block; the limit is `max_block_length` in the profile"),
+            );
+        }
+        let mut plan = BlockPlan::default();
+        self.structure_parts(index, block, &mut plan);
+        for statement in &block.statements {
+            self.statement(index, statement, &mut plan);
+        }
+        self.emit_block(index, block, plan);
+    }
+
+    fn not_lowered(&mut self, span: Span, what: &str) {
+        self.diagnostics.push(not_lowered(span, what));
+    }
+
+    fn emit_block(&mut self, index: usize, block: &Block, mut plan: BlockPlan) {
+        for (op, span) in std::mem::take(&mut plan.head) {
+            self.emit(index, span, op);
+        }
+        let tail = std::mem::take(&mut plan.tail);
+        // Work offset: the Group 8 selection and the block's suppression.
+        let group8 = plan.g_codes.iter().find(|(g, _, _)| *g == 8);
+        let suppression = self.suppression(&plan.suppressions);
+        if let Some((_, code, _)) = group8 {
+            self.group8 = gcodec_profile::group8_index(code).unwrap_or(self.group8);
+        }
+        if group8.is_some() || suppression.is_some() {
+            let span = group8
+                .map(|(_, _, s)| *s)
+                .or(plan.suppressions.first().map(|(_, s)| *s))
+                .unwrap_or(block.span);
+            let selected = gcodec_profile::group8_code(self.group8)
+                .unwrap_or_default()
+                .to_ascii_lowercase();
+            self.emit(
+                index,
+                span,
+                Op::WorkOffset {
+                    group8_selected: selected,
+                    suppression,
+                    suppression_scope: suppression.map(|_| SuppressionScope::Block),
+                },
+            );
+        }
+        for &(group, code, span) in &plan.g_codes {
+            if group == 8 {
+                continue;
+            }
+            let modal = ggroups::group(group).is_some_and(|g| g.effect == ggroups::Effect::Modal);
+            if modal {
+                self.modal[usize::from(group) - 1] = Some(code);
+            }
+            self.emit(
+                index,
+                span,
+                Op::ModalChange {
+                    group,
+                    code: Cow::Borrowed(code),
+                },
+            );
+        }
+        if let Some((value, span)) = plan.feed {
+            self.emit(index, span, Op::Feed { value });
+        }
+        for (spindle, speed, span) in plan.spindle {
+            self.emit(index, span, Op::SpindleSpeed { spindle, speed });
+        }
+        for (op, span) in plan.tools {
+            let direct = matches!(
+                op,
+                Op::ToolSelect(ref t) if t.timing == gcodec_ail::ToolTiming::Immediate
+            );
+            self.emit(index, span, op);
+            if direct {
+                self.emit(
+                    index,
+                    span,
+                    Op::ToolChange {
+                        trigger: ToolChangeTrigger::TWord,
+                    },
+                );
+            }
+        }
+        if let Some((edge, span)) = plan.edge {
+            self.emit(index, span, Op::CuttingEdge { edge });
+        }
+        let has_motion = !plan.targets.is_empty();
+        mfunc::check_count(&plan.m_functions, self.profile, &mut self.diagnostics);
+        let deferred =
+            self.profile.tool_change.tool_change_mode == gcodec_profile::ToolChangeMode::DeferredM6;
+        let (after, before): (Vec<_>, Vec<_>) = plan
+            .m_functions
+            .into_iter()
+            .partition(|m| has_motion && m.value.is_some_and(mfunc::acts_after_motion));
+        for m in before {
+            self.emit_m(index, m, MTiming::InBlock, deferred);
+        }
+        for (op, span) in plan.other {
+            self.emit(index, span, op);
+        }
+        if has_motion || plan.circle_span.is_some() {
+            let first = plan
+                .targets
+                .first()
+                .map(|(_, s)| *s)
+                .or(plan.circle_span)
+                .unwrap_or(block.span);
+            let motion = match self.modal[0] {
+                Some("G0") => MotionKind::Rapid,
+                Some("G2") => MotionKind::ArcCw,
+                Some("G3") => MotionKind::ArcCcw,
+                Some("CIP") => MotionKind::ArcThroughPoint,
+                Some("CT") => MotionKind::ArcTangential,
+                Some("G1") => MotionKind::Linear,
+                other => {
+                    self.not_lowered(first, &format!("motion under `{}`", other.unwrap_or("?")));
+                    MotionKind::Linear
+                }
+            };
+            let arc = matches!(
+                motion,
+                MotionKind::ArcCw
+                    | MotionKind::ArcCcw
+                    | MotionKind::ArcThroughPoint
+                    | MotionKind::ArcTangential
+            );
+            let circle = arc.then(|| Box::new(plan.circle));
+            self.emit(
+                index,
+                first,
+                Op::Motion {
+                    motion,
+                    targets: plan.targets.into_iter().map(|(t, _)| t).collect(),
+                    circle,
+                },
+            );
+        }
+        for m in after {
+            self.emit_m(index, m, MTiming::PostMotion, deferred);
+        }
+        for (op, span) in std::mem::take(&mut plan.calls) {
+            self.emit(index, span, op);
+        }
+        for (op, span) in tail {
+            self.emit(index, span, op);
+        }
+    }
+
+    /// An M function, and the tool change when it is the change M code in
+    /// `deferred_m6` mode.
+    fn emit_m(&mut self, index: usize, m: mfunc::MWord, timing: MTiming, deferred: bool) {
+        let is_change = deferred
+            && m.value == Some(*self.profile.tool_change.change_m_code.get_ref())
+            && m.extension.is_none();
+        let span = m.span;
+        self.emit(index, span, m.into_op(timing));
+        if is_change {
+            self.emit(
+                index,
+                span,
+                Op::ToolChange {
+                    trigger: ToolChangeTrigger::M6,
+                },
+            );
+        }
+    }
+
+    /// The strongest suppression of a block, per the profile's policy for
+    /// several in one block (seed 003).
+    fn suppression(&mut self, found: &[(Suppression, Span)]) -> Option<Suppression> {
+        let (first, first_span) = *found.first()?;
+        if found.len() == 1 {
+            return Some(first);
+        }
+        let strongest = found.iter().map(|(s, _)| *s).max().unwrap_or(first);
+        let policy = self.profile.work_offsets.duplicate_suppression_policy;
+        let message = "several of G53, G153 and SUPA in one block";
+        let diagnostic = match policy {
+            DuplicateSuppressionPolicy::FirstWins => return Some(first),
+            DuplicateSuppressionPolicy::Warn => Diagnostic::warning(DUPLICATE_SUPPRESSION, message)
+                .with_help("the strongest one acts (SUPA > G153 > G53); write only that one"),
+            DuplicateSuppressionPolicy::Error => Diagnostic::error(DUPLICATE_SUPPRESSION, message)
+                .with_help("the profile forbids this (`duplicate_suppression_policy = \"error\"`); write only one"),
+        };
+        let mut diagnostic = diagnostic.with_label(first_span, "first");
+        for (_, span) in &found[1..] {
+            diagnostic = diagnostic.with_label(*span, "again");
+        }
+        self.diagnostics.push(diagnostic);
+        Some(strongest)
+    }
+}
