@@ -12,8 +12,8 @@
 //! stale. Any change to the JSON shape that is not additive raises
 //! [`AIL_VERSION`].
 //!
-//! Not built yet (the lowering issue continues here): lowering itself
-//! (`gcodec-sema`) and `gcodec lower`.
+//! `gcodec-sema` writes documents (`gcodec lower`); the executor runs
+//! them.
 
 mod expr;
 
@@ -145,6 +145,26 @@ pub enum Op {
     },
     /// A call of a subprogram or cycle.
     Call(Box<Call>),
+    /// `MCALL` alone: the modal call ends.
+    CancelModalCall,
+    /// `REPEAT`/`REPEATB`: runs the instructions from the label `start`
+    /// to the label `end` `passes` times, then goes on after this
+    /// instruction, like a call of a part of the program.
+    RepeatSection(Box<RepeatSection>),
+    /// A jump whose target is a STRING computed when it runs
+    /// (`GOTOF "LBL"<<I`). The executor searches the document's labels
+    /// (every label and block number is a `label` instruction named
+    /// `<name>@<line>` in such a document) the way `search` says.
+    ComputedJump(Box<ComputedJump>),
+    /// `GOTOS`: back to the start of the program when the PLC asks for it
+    /// (otherwise on with the next instruction); `IF … GOTOS` only if
+    /// `condition` holds.
+    GotoStart { condition: Option<Box<Expr>> },
+    /// `PROC`: the name and formal parameters of the program.
+    Procedure(Box<Procedure>),
+    /// `EXTERN`: the declared signature of a subprogram this program
+    /// calls.
+    External(Box<External>),
     /// `RET`, `M17` at the end of a subprogram.
     Return { values: Vec<Value> },
     /// `MSG("…")`.
@@ -200,7 +220,18 @@ pub struct Declare {
 /// A call of a subprogram, cycle or predefined procedure.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Call {
+    /// The program's name in upper case; for `PCALL` the path as written;
+    /// empty when `target_expr` computes it.
     pub target: String,
+    /// `CALL <expr>`: the name or path, computed when the call runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target_expr: Option<Expr>,
+    /// `CALL … BLOCK <from> TO <to>`: only this part of the program runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub section: Option<CallSection>,
+    /// `PCALL`: `target` is a path in the control's file system.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub by_path: bool,
     pub args: Vec<Option<Value>>,
     pub passes: Option<Value>,
     /// `MCALL`: called after every traversing block until cancelled.
@@ -444,4 +475,97 @@ fn listing_value(value: &serde_json::Value) -> String {
         },
         other => other.to_string(),
     }
+}
+
+/// The part of a program `CALL … BLOCK … TO …` runs: labels or block
+/// numbers (`N100`) as written, in upper case; the executor searches them
+/// in the called program.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CallSection {
+    pub from: Value,
+    pub to: Value,
+}
+
+/// `REPEAT` of a section of the program.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RepeatSection {
+    /// The label before the section's first instruction.
+    pub start: String,
+    /// The label after the section's last instruction.
+    pub end: String,
+    /// How often the section runs (`P=`, 1 when not written).
+    pub passes: Value,
+}
+
+/// How a jump searches for its target (language reference §8.1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum JumpSearch {
+    /// `GOTOF`: towards the end of the program.
+    Forward,
+    /// `GOTOB`: towards its start.
+    Backward,
+    /// `GOTO`, `GOTOC`: forward first, then backward.
+    ForwardThenBackward,
+}
+
+/// A jump to a computed target.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ComputedJump {
+    /// The STRING expression naming a label or a block number (`"N100"`).
+    pub target: Expr,
+    pub search: JumpSearch,
+    /// `GOTOC`: a target that is not found is no alarm; the program goes
+    /// on with the next instruction.
+    pub continue_if_missing: bool,
+    /// Jump only if this holds (`IF … GOTOF …`).
+    pub condition: Option<Expr>,
+}
+
+/// `PROC name(params) attributes`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Procedure {
+    /// In upper case.
+    pub name: String,
+    pub params: Vec<Parameter>,
+    /// `SBLOF`, `DISPLOF`, `SAVE`, … in upper case.
+    pub attributes: Vec<String>,
+}
+
+/// A formal parameter of a `PROC`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Parameter {
+    /// In upper case.
+    pub name: String,
+    /// `INT`, `REAL`, `BOOL`, `CHAR`, `STRING`, `AXIS`, `FRAME`.
+    pub data_type: String,
+    /// `VAR`: the caller's variable itself, not a copy.
+    pub by_reference: bool,
+    pub dims: Vec<Value>,
+    /// The value when the caller leaves the argument out.
+    pub default: Option<Value>,
+}
+
+/// `EXTERN name(types)`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct External {
+    /// In upper case.
+    pub name: String,
+    pub params: Vec<ExternalParameter>,
+}
+
+/// A parameter type of an `EXTERN` declaration.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ExternalParameter {
+    pub data_type: String,
+    pub by_reference: bool,
+    /// One entry per array dimension; empty ones (`REAL[,]`) are `null`.
+    pub dims: Vec<Option<Value>>,
 }

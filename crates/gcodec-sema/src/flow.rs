@@ -9,11 +9,19 @@
 //! a [`gcodec_ail::Op::Label`] named `<target>@<line>`, unique in the
 //! document; structure labels are `<KEYWORD>@<line of the opener>.<part>`.
 //! `@` cannot occur in a label of the language, so no name clashes.
+//!
+//! `REPEAT` sections are found here too: their start as the control
+//! searches it, their end label `SECTION@<line of the REPEAT>.end` after
+//! the section's last block. A program with a computed jump target
+//! (`GOTOF "LBL"<<I`) labels every block with a label or number, since
+//! any of them may be the target.
 
 use std::collections::HashMap;
 
+use gcodec_ail::JumpSearch;
 use gcodec_parser::ast::{
-    Block, BlockNumber, GotoKind, JumpTarget, Program, StatementKind, StructureKind,
+    Block, BlockNumber, CaseArm, GotoKind, Jump, JumpTarget, Program, RepeatSection, StatementKind,
+    StructureKind,
 };
 
 /// What a block is to the structures around it.
@@ -33,6 +41,48 @@ pub(crate) struct Flow {
     /// Blocks by label (upper case) and by block number, in order.
     labels: HashMap<String, Vec<usize>>,
     numbers: HashMap<u64, Vec<usize>>,
+    /// Per `REPEAT` block: its section, or the target that is missing.
+    sections: HashMap<usize, Result<Section, String>>,
+    /// Per block: the section-end labels after its last instruction.
+    section_ends: HashMap<usize, Vec<String>>,
+}
+
+/// Where a jump target is searched from the jump's block.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Search {
+    Forward,
+    Backward,
+    ForwardThenBackward,
+    /// `REPEATB` and the start of `REPEAT a b`: towards the program
+    /// start first.
+    BackwardThenForward,
+}
+
+impl Search {
+    pub(crate) fn of(kind: GotoKind) -> Self {
+        match kind {
+            GotoKind::GotoF => Search::Forward,
+            GotoKind::GotoB => Search::Backward,
+            _ => Search::ForwardThenBackward,
+        }
+    }
+
+    /// As the AIL writes it, for a search at run time.
+    pub(crate) fn ail(self) -> JumpSearch {
+        match self {
+            Search::Forward => JumpSearch::Forward,
+            Search::Backward => JumpSearch::Backward,
+            _ => JumpSearch::ForwardThenBackward,
+        }
+    }
+}
+
+/// A `REPEAT` section: the labels before its first and after its last
+/// instruction.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Section {
+    pub(crate) start: String,
+    pub(crate) end: String,
 }
 
 /// A resolved jump: the label of the target block, or why there is none.
@@ -60,19 +110,39 @@ impl Flow {
                 roles.entry(c as usize).or_default().push((i, Role::Close));
             }
         }
-        // One walk over the statements finds every jump with a static
-        // target.
-        let jumps: Vec<(usize, GotoKind, &JumpTarget)> = program
+        // One walk over the statements finds every jump and section.
+        let jumps: Vec<(usize, Search, &JumpTarget)> = program
             .blocks
             .iter()
             .enumerate()
             .flat_map(|(i, block)| jumps(block).map(move |(kind, target)| (i, kind, target)))
             .collect();
-        // Only the block numbers some jump names are indexed: most blocks
-        // of a program have a number, few are jumped to.
-        let mut numbers: HashMap<u64, Vec<usize>> = jumps
+        let computed_jumps = jumps
             .iter()
-            .filter_map(|(_, _, target)| match target {
+            .any(|(_, _, target)| matches!(target, JumpTarget::Expr(_)));
+        let repeats: Vec<(usize, &RepeatSection)> = program
+            .blocks
+            .iter()
+            .enumerate()
+            .flat_map(|(i, block)| {
+                block
+                    .statements
+                    .iter()
+                    .filter_map(move |st| match &st.kind {
+                        StatementKind::RepeatSection(r) => Some((i, r.as_ref())),
+                        _ => None,
+                    })
+            })
+            .collect();
+        // Only the block numbers some jump or section names are indexed:
+        // most blocks of a program have a number, few are jumped to.
+        let named = jumps.iter().map(|(_, _, t)| *t).chain(
+            repeats
+                .iter()
+                .flat_map(|(_, r)| std::iter::once(&r.start).chain(r.end.as_ref())),
+        );
+        let mut numbers: HashMap<u64, Vec<usize>> = named
+            .filter_map(|target| match target {
                 JumpTarget::BlockNumber { value, .. } => Some((*value, Vec::new())),
                 _ => None,
             })
@@ -88,6 +158,8 @@ impl Flow {
             if let Some(BlockNumber { value, .. }) = &block.number {
                 if let Some(blocks) = numbers.get_mut(value) {
                     blocks.push(i);
+                } else if computed_jumps {
+                    numbers.insert(*value, vec![i]);
                 }
             }
         }
@@ -96,18 +168,98 @@ impl Flow {
             targets: HashMap::new(),
             labels,
             numbers,
+            sections: HashMap::new(),
+            section_ends: HashMap::new(),
         };
         // Every jump's target block carries its label.
         for (i, kind, target) in jumps {
             if let Some(to) = flow.search(i, kind, target) {
-                let name = label_name(target, to);
-                let names = flow.targets.entry(to).or_default();
-                if !names.contains(&name) {
-                    names.push(name);
+                flow.add_target(to, label_name(target, to));
+            }
+        }
+        for (i, repeat) in repeats {
+            let section = flow.section(i, repeat);
+            if let Ok((start, end, _)) = &section {
+                flow.add_target(*start, label_name(&repeat.start, *start));
+                flow.section_ends
+                    .entry(*end)
+                    .or_default()
+                    .push(section_end_label(i));
+            }
+            flow.sections.insert(
+                i,
+                section.map(|(start, _, _)| Section {
+                    start: label_name(&repeat.start, start),
+                    end: section_end_label(i),
+                }),
+            );
+        }
+        // A computed target can be any label or block number: each is
+        // a label instruction for the executor's search.
+        if computed_jumps {
+            for (i, block) in program.blocks.iter().enumerate() {
+                if let Some(label) = &block.label {
+                    flow.add_target(i, format!("{}@{}", label.name.to_ascii_uppercase(), i + 1));
+                }
+                if let Some(BlockNumber { value, .. }) = &block.number {
+                    flow.add_target(i, format!("N{value}@{}", i + 1));
                 }
             }
         }
         flow
+    }
+
+    fn add_target(&mut self, block: usize, name: String) {
+        let names = self.targets.entry(block).or_default();
+        if !names.contains(&name) {
+            names.push(name);
+        }
+    }
+
+    /// The first and last block of the section `REPEAT` in block `at`
+    /// repeats (language reference §8.3; the search rules are gcodec's
+    /// reading, SPEC §10.7): `REPEATB L` the block labelled `L`, searched
+    /// backward first; `REPEAT A B` from `A` (backward first) to the next
+    /// `B` from there; `REPEAT L` from `L` (backward) to the first
+    /// `ENDLABEL` after it, or to the block before the `REPEAT`. The
+    /// third value tells whether a missing target is the end.
+    fn section(&self, at: usize, repeat: &RepeatSection) -> Result<(usize, usize, bool), String> {
+        let start_search = if repeat.single_block || repeat.end.is_some() {
+            Search::BackwardThenForward
+        } else {
+            Search::Backward
+        };
+        let start = self
+            .search(at, start_search, &repeat.start)
+            .ok_or_else(|| target_text(&repeat.start))?;
+        if repeat.single_block {
+            return Ok((start, start, false));
+        }
+        if let Some(end) = &repeat.end {
+            // The end may be the start block itself.
+            let end = self
+                .search(start.wrapping_sub(1), Search::Forward, end)
+                .filter(|&e| e >= start)
+                .ok_or_else(|| target_text(end))?;
+            return Ok((start, end, true));
+        }
+        let end = self
+            .labels
+            .get("ENDLABEL")
+            .and_then(|blocks| blocks.iter().copied().find(|&b| b > start && b < at))
+            .unwrap_or(at.saturating_sub(1).max(start));
+        Ok((start, end, false))
+    }
+
+    /// The section of the `REPEAT` in block `at`, or the name of its
+    /// missing target.
+    pub(crate) fn repeat_section(&self, at: usize) -> Option<&Result<Section, String>> {
+        self.sections.get(&at)
+    }
+
+    /// The labels of the `REPEAT` sections that end with block `index`.
+    pub(crate) fn section_ends(&self, index: usize) -> &[String] {
+        self.section_ends.get(&index).map_or(&[], Vec::as_slice)
     }
 
     /// The structures block `index` opens, splits or closes.
@@ -125,9 +277,9 @@ impl Flow {
         self.labels.iter().filter(|(_, blocks)| blocks.len() > 1)
     }
 
-    /// Resolves the jump `kind` to `target` from block `from`.
-    pub(crate) fn resolve(&self, from: usize, kind: GotoKind, target: &JumpTarget) -> Resolved {
-        match self.search(from, kind, target) {
+    /// Resolves a jump to `target` from block `from`.
+    pub(crate) fn resolve(&self, from: usize, search: Search, target: &JumpTarget) -> Resolved {
+        match self.search(from, search, target) {
             Some(to) => Resolved::Label(label_name(target, to)),
             None if matches!(target, JumpTarget::Expr(_)) => Resolved::Computed,
             None => Resolved::Missing(target_text(target)),
@@ -135,7 +287,7 @@ impl Flow {
     }
 
     /// The block a jump lands on, searching as the control does.
-    fn search(&self, from: usize, kind: GotoKind, target: &JumpTarget) -> Option<usize> {
+    fn search(&self, from: usize, search: Search, target: &JumpTarget) -> Option<usize> {
         let candidates = match target {
             JumpTarget::Label { name, .. } => {
                 self.labels.get(name.to_ascii_uppercase().as_str())?
@@ -143,13 +295,19 @@ impl Flow {
             JumpTarget::BlockNumber { value, .. } => self.numbers.get(value)?,
             JumpTarget::Expr(_) => return None,
         };
-        let forward = || candidates.iter().copied().find(|&b| b > from);
+        // `from` is `usize::MAX` for a search that includes block 0.
+        let forward = || {
+            candidates
+                .iter()
+                .copied()
+                .find(|&b| from == usize::MAX || b > from)
+        };
         let backward = || candidates.iter().rev().copied().find(|&b| b < from);
-        match kind {
-            GotoKind::GotoF => forward(),
-            GotoKind::GotoB => backward(),
-            GotoKind::Goto | GotoKind::GotoC => forward().or_else(backward),
-            GotoKind::GotoS => None,
+        match search {
+            Search::Forward => forward(),
+            Search::Backward => backward(),
+            Search::ForwardThenBackward => forward().or_else(backward),
+            Search::BackwardThenForward => backward().or_else(forward),
         }
     }
 }
@@ -179,14 +337,25 @@ fn target_text(target: &JumpTarget) -> String {
     }
 }
 
-/// The jumps of a block with a static target.
-fn jumps(block: &Block) -> impl Iterator<Item = (GotoKind, &JumpTarget)> {
-    block.statements.iter().filter_map(|st| {
-        let jump = match &st.kind {
-            StatementKind::Goto(j) => j.as_ref(),
-            StatementKind::IfGoto(g) => &g.jump,
-            _ => return None,
+/// The label after the last block of the section of the `REPEAT` in
+/// block `at`.
+fn section_end_label(at: usize) -> String {
+    format!("SECTION@{}.end", at + 1)
+}
+
+/// The jumps of a block: `GOTO…`, `IF … GOTO…` and the arms of `CASE`.
+fn jumps(block: &Block) -> impl Iterator<Item = (Search, &JumpTarget)> {
+    block.statements.iter().flat_map(|st| {
+        let (single, arms, default): (Option<&Jump>, &[CaseArm], Option<&Jump>) = match &st.kind {
+            StatementKind::Goto(j) => (Some(j.as_ref()), &[], None),
+            StatementKind::IfGoto(g) => (Some(&g.jump), &[], None),
+            StatementKind::Case(c) => (None, &c.arms, c.default.as_ref()),
+            _ => (None, &[], None),
         };
-        Some((jump.goto, jump.target.as_ref()?))
+        single
+            .into_iter()
+            .chain(arms.iter().map(|arm| &arm.jump))
+            .chain(default)
+            .filter_map(|jump| Some((Search::of(jump.goto), jump.target.as_ref()?)))
     })
 }

@@ -2,14 +2,16 @@
 //! counters that `IF`, `WHILE`, `FOR`, `LOOP`, `REPEAT … UNTIL` and the
 //! `GOTO` family lower to.
 
-use gcodec_ail::Op;
+use gcodec_ail::{Op, Value};
 use gcodec_parser::ast::{self, Block, GotoKind, StatementKind, StructureKind};
 use gcodec_source::{Diagnostic, Span};
 
-use crate::flow::{self, Resolved, Role};
+use crate::flow::{self, Resolved, Role, Search};
 use crate::values;
 
-use super::{BlockPlan, Lowering, MISSING_JUMP_TARGET, direction};
+use super::{
+    BlockPlan, CASE_VALUE_NOT_CONSTANT, INVALID_VALUE, Lowering, MISSING_JUMP_TARGET, direction,
+};
 
 impl<'a> Lowering<'a> {
     /// The labels and jumps a block carries as a jump target and as a
@@ -211,7 +213,112 @@ impl<'a> Lowering<'a> {
                 let condition = Some(Box::new(values::tree(&g.condition)));
                 self.jump(index, &g.jump, condition, span, plan);
             }
+            StatementKind::Case(case) => self.case(index, case, span, plan),
+            StatementKind::RepeatSection(repeat) => self.repeat(index, repeat, span, plan),
             _ => {}
+        }
+    }
+
+    /// `CASE e OF 1 GOTOF A 2 GOTOF B DEFAULT GOTOF C`: one conditional
+    /// jump per arm, in order, then the default. Without a default and
+    /// without a match the program goes on with the next block.
+    pub(super) fn case(
+        &mut self,
+        index: usize,
+        case: &ast::Case,
+        span: Span,
+        plan: &mut BlockPlan,
+    ) {
+        self.check_variables(&case.selector);
+        let selector = values::tree(&case.selector);
+        for arm in &case.arms {
+            if values::constant(&arm.value).is_none() {
+                self.diagnostics.push(
+                    Diagnostic::error(
+                        CASE_VALUE_NOT_CONSTANT,
+                        "a `CASE` arm compares with a constant",
+                    )
+                    .with_label(arm.value.span, "not a constant")
+                    .with_help("write a number (decimal, 'H…' or 'B…') before the arm's GOTO"),
+                );
+                continue;
+            }
+            let condition = gcodec_ail::Expr::Binary {
+                operator: gcodec_ail::BinaryOp::Eq,
+                lhs: Box::new(selector.clone()),
+                rhs: Box::new(values::tree(&arm.value)),
+            };
+            self.jump(index, &arm.jump, Some(Box::new(condition)), span, plan);
+        }
+        if let Some(default) = &case.default {
+            self.jump(index, default, None, span, plan);
+        }
+    }
+
+    /// `REPEAT L P=n`, `REPEAT A B P=n`, `REPEATB L P=n`: the section as
+    /// [`crate::flow`] found it, run `n` times from here.
+    pub(super) fn repeat(
+        &mut self,
+        index: usize,
+        repeat: &ast::RepeatSection,
+        span: Span,
+        plan: &mut BlockPlan,
+    ) {
+        let passes = match &repeat.passes {
+            None => Value::Const(1.0),
+            Some(p) => {
+                let value = p.word.value(p.span);
+                if let ast::WordValue::Assigned { expr, .. } = &*value {
+                    self.check_variables(expr);
+                }
+                let (passes, _) = values::word_value(&value);
+                if let Value::Const(n) = passes {
+                    if n < 1.0 || n.fract() != 0.0 {
+                        self.diagnostics.push(
+                            Diagnostic::error(
+                                INVALID_VALUE,
+                                "`P` of a `REPEAT` is a whole number of passes, at least 1",
+                            )
+                            .with_label(p.span, "not a whole number ≥ 1"),
+                        );
+                    }
+                }
+                passes
+            }
+        };
+        let keyword = if repeat.single_block {
+            "REPEATB"
+        } else {
+            "REPEAT"
+        };
+        match self.flow.repeat_section(index) {
+            Some(Ok(section)) => plan.tail.push((
+                Op::RepeatSection(Box::new(gcodec_ail::RepeatSection {
+                    start: section.start.clone(),
+                    end: section.end.clone(),
+                    passes,
+                })),
+                span,
+            )),
+            Some(Err(name)) => {
+                let name = name.clone();
+                self.diagnostics.push(
+                    Diagnostic::warning(
+                        MISSING_JUMP_TARGET,
+                        format!("`{name}`, where the section of this `{keyword}` starts or ends, is not found"),
+                    )
+                    .with_label(span, "this repetition")
+                    .with_help("the control stops with alarm 14080 when this block runs; the start label is searched towards the program start first"),
+                );
+                plan.tail.push((
+                    Op::Jump {
+                        target: format!("{name}@missing"),
+                        condition: None,
+                    },
+                    span,
+                ));
+            }
+            None => self.not_lowered(span, "this `REPEAT`"),
         }
     }
 
@@ -224,11 +331,27 @@ impl<'a> Lowering<'a> {
         plan: &mut BlockPlan,
     ) {
         let Some(target) = &jump.target else {
-            return self.not_lowered(span, "`GOTOS`");
+            // `GOTOS`; a condition (`IF … GOTOS`) guards it.
+            return plan.tail.push((Op::GotoStart { condition }, span));
         };
-        match self.flow.resolve(index, jump.goto, target) {
+        let search = Search::of(jump.goto);
+        match self.flow.resolve(index, search, target) {
             Resolved::Label(target) => plan.tail.push((Op::Jump { target, condition }, span)),
-            Resolved::Computed => self.not_lowered(span, "a jump to a computed target"),
+            Resolved::Computed => {
+                let ast::JumpTarget::Expr(expr) = target else {
+                    return;
+                };
+                self.check_variables(expr);
+                plan.tail.push((
+                    Op::ComputedJump(Box::new(gcodec_ail::ComputedJump {
+                        target: values::tree(expr),
+                        search: search.ail(),
+                        continue_if_missing: jump.goto == GotoKind::GotoC,
+                        condition: condition.map(|c| *c),
+                    })),
+                    span,
+                ));
+            }
             Resolved::Missing(name) if jump.goto == GotoKind::GotoC => {
                 // GOTOC goes on with the next block: nothing to do.
                 let _ = name;

@@ -22,7 +22,9 @@ use gcodec_source::{Diagnostic, Span};
 use crate::flow::Flow;
 use crate::{ggroups, mfunc};
 
+mod calls;
 mod control;
+mod frames;
 mod statements;
 mod variables;
 mod words;
@@ -72,6 +74,7 @@ pub(crate) const INVALID_VALUE: &str = "gcodec::lower::invalid_value";
 const UNKNOWN_SYSTEM_VARIABLE: &str = "gcodec::lower::unknown_system_variable";
 const MISSING_JUMP_TARGET: &str = "gcodec::lower::missing_jump_target";
 const DUPLICATE_LABEL: &str = "gcodec::lower::duplicate_label";
+const CASE_VALUE_NOT_CONSTANT: &str = "gcodec::lower::case_value_not_constant";
 
 /// The warning for a construct lowering does not translate yet: it is
 /// named, never dropped in silence.
@@ -136,6 +139,8 @@ struct Lowering<'a> {
     m_overrides: HashMap<u32, gcodec_ail::MClass>,
     /// The Group 8 indices the machine has.
     group8_supported: [bool; 100],
+    /// The `PROC` and `EXTERN` signatures of the program, by name.
+    signatures: HashMap<String, calls::Signature<'a>>,
 }
 
 /// What one block says, collected before instructions are emitted.
@@ -203,6 +208,7 @@ impl<'a> Lowering<'a> {
             flow: Flow::new(program),
             m_overrides: mfunc::overrides(profile),
             group8_supported: profile.work_offsets.supported_group8(),
+            signatures: calls::signatures(program),
         }
     }
 
@@ -272,6 +278,11 @@ impl<'a> Lowering<'a> {
         self.structure_parts(index, block, &mut plan);
         for statement in &block.statements {
             self.statement(index, statement, &mut plan);
+        }
+        // The end of a `REPEAT` section comes after all of its last block.
+        for name in self.flow.section_ends(index) {
+            plan.tail
+                .push((Op::Label { name: name.clone() }, block.span));
         }
         self.emit_block(index, block, plan);
     }

@@ -1,13 +1,13 @@
 //! Statements other than words and control flow: declarations,
 //! assignments, frames, calls, messages and returns.
 
-use gcodec_ail::{AxisValue, Op, Value};
-use gcodec_parser::ast::{self, CallTarget, StatementKind};
+use gcodec_ail::{Op, Value};
+use gcodec_parser::ast::{self, StatementKind};
 use gcodec_source::Span;
 
-use crate::{ggroups, values};
+use crate::values;
 
-use super::{BlockPlan, Lowering, axis_name};
+use super::{BlockPlan, Lowering};
 
 impl Lowering<'_> {
     pub(super) fn statement(
@@ -24,7 +24,9 @@ impl Lowering<'_> {
             | StatementKind::For(_)
             | StatementKind::EndFor
             | StatementKind::Goto(_)
-            | StatementKind::IfGoto(_) => self.flow_statement(index, statement, plan),
+            | StatementKind::IfGoto(_)
+            | StatementKind::Case(_)
+            | StatementKind::RepeatSection(_) => self.flow_statement(index, statement, plan),
             // Their labels and jumps come from the structure pairing.
             StatementKind::Else
             | StatementKind::EndIf
@@ -33,33 +35,7 @@ impl Lowering<'_> {
             | StatementKind::EndLoop
             | StatementKind::Repeat => {}
             StatementKind::Def(def) => self.declare(def, span, plan),
-            // `TRANS X10 Y5`, `AROT RPL=45`, `MIRROR X0`; the bare keyword
-            // resets. The executor composes the frame chain.
-            StatementKind::Frame(frame) => {
-                let values = frame
-                    .words
-                    .iter()
-                    .map(|w| {
-                        let value = w.word.value(w.span);
-                        if let ast::WordValue::Assigned { expr, .. } = &*value {
-                            self.check_variables(expr);
-                        }
-                        let (value, mode) = values::word_value(&value);
-                        AxisValue {
-                            axis: axis_name(w.word.address()),
-                            value,
-                            mode,
-                        }
-                    })
-                    .collect();
-                plan.other.push((
-                    Op::Frame {
-                        op: frame.op.keyword().to_owned(),
-                        values,
-                    },
-                    span,
-                ));
-            }
+            StatementKind::Frame(frame) => self.frame(index, frame, span, plan),
             StatementKind::Ret(ret) => {
                 let values = ret
                     .args
@@ -85,6 +61,13 @@ impl Lowering<'_> {
                 _ => self.not_lowered(span, "an assignment of a list of values"),
             },
             StatementKind::Call(call) => self.call(call, span, plan),
+            StatementKind::IndirectCall(call) => self.indirect_call(call, span, plan),
+            StatementKind::PCall(call) => self.path_call(call, span, plan),
+            StatementKind::MCall(call) => self.modal_call(call, span, plan),
+            StatementKind::Proc(proc) => self.procedure(proc, span, plan),
+            // The end of a procedure's text: a return.
+            StatementKind::EndProc => plan.tail.push((Op::Return { values: Vec::new() }, span)),
+            StatementKind::Extern(decl) => self.external(decl, span, plan),
             kind => self.not_lowered(span, statement_name(kind)),
         }
     }
@@ -124,66 +107,6 @@ impl Lowering<'_> {
             ));
         }
     }
-
-    pub(super) fn call(&mut self, call: &ast::Call, span: Span, plan: &mut BlockPlan) {
-        let name = match &call.target {
-            CallTarget::Name { name, .. } => name.clone(),
-            // `L123`: the program `L123`, digits as written.
-            CallTarget::Number { digits, .. } => format!("L{digits}").into(),
-        };
-        let upper = name.to_ascii_uppercase();
-        let upper = upper.as_str();
-        if call.args.is_none() {
-            // `DIAMON`, `SUPA`, `CFC`: G commands written as names.
-            if let Some((group, index)) = ggroups::lookup(upper) {
-                return self.g_code(group, index, span, plan);
-            }
-            if upper == "STOPRE" {
-                return plan.other.push((
-                    Op::Stop {
-                        reason: upper.to_string(),
-                    },
-                    span,
-                ));
-            }
-        }
-        if upper == "MSG" {
-            if let Some(args) = &call.args {
-                let text = match args.as_slice() {
-                    [] => Some(Value::Expr(Box::new(gcodec_ail::Expr::String {
-                        value: String::new(),
-                    }))),
-                    [Some(text)] | [Some(text), _] => {
-                        self.check_variables(text);
-                        Some(Value::Expr(Box::new(values::tree(text))))
-                    }
-                    _ => None,
-                };
-                if let Some(text) = text {
-                    return plan.other.push((Op::Message { text }, span));
-                }
-            }
-        }
-        // A subprogram, cycle or predefined procedure: the executor finds
-        // it on the search path or knows it.
-        let args = call.args.as_deref().unwrap_or_default();
-        for arg in args.iter().flatten() {
-            self.check_variables(arg);
-        }
-        let passes = call
-            .passes
-            .as_ref()
-            .map(|p| values::word_value(&p.word.value(p.span)).0);
-        plan.calls.push((
-            Op::Call(Box::new(gcodec_ail::Call {
-                target: upper.to_string(),
-                args: args.iter().map(|a| a.as_ref().map(values::value)).collect(),
-                passes,
-                modal: false,
-            })),
-            span,
-        ));
-    }
 }
 
 /// How a statement kind [`Lowering::statement`] does not lower is named
@@ -193,14 +116,6 @@ fn statement_name(kind: &StatementKind) -> &'static str {
     match kind {
         S::Redef(_) => "`REDEF`",
         S::Define(_) => "`DEFINE`",
-        S::Proc(_) => "`PROC`",
-        S::EndProc => "`ENDPROC`",
-        S::Extern(_) => "`EXTERN`",
-        S::IndirectCall(_) => "`CALL`",
-        S::PCall(_) => "`PCALL`",
-        S::MCall(_) => "`MCALL`",
-        S::RepeatSection(_) => "`REPEAT` of a section",
-        S::Case(_) => "`CASE`",
         S::SyncAction(_) => "a synchronous action",
         _ => "this statement",
     }

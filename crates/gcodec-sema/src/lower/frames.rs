@@ -1,0 +1,89 @@
+//! Programmable frame instructions: `TRANS X10 Y5`, `AROT RPL=45`,
+//! `MIRROR X0`; the bare keyword resets. The executor composes the frame
+//! chain (language reference §9.2).
+
+use gcodec_ail::{AxisValue, Op};
+use gcodec_parser::ast;
+use gcodec_source::{Diagnostic, Span};
+
+use crate::values;
+
+use super::{BlockPlan, Lowering, UNKNOWN_ADDRESS, axis_name};
+
+const FRAME_NOT_ALONE: &str = "gcodec::lower::frame_not_alone";
+
+impl Lowering<'_> {
+    pub(super) fn frame(
+        &mut self,
+        index: usize,
+        frame: &ast::Frame,
+        span: Span,
+        plan: &mut BlockPlan,
+    ) {
+        // Frame instructions need a block of their own (reference §9.1).
+        let block = &self.program.blocks[index];
+        if block.statements.len() > 1 {
+            let mut diagnostic = Diagnostic::error(
+                FRAME_NOT_ALONE,
+                format!("`{}` must be alone in its block", frame.op.keyword()),
+            )
+            .with_label(span, "frame instruction");
+            for other in block.statements.iter().filter(|s| s.span != span) {
+                diagnostic = diagnostic.with_label(other.span, "also in the block");
+            }
+            self.diagnostics.push(diagnostic.with_help(
+                "the control rejects the block; put the frame instruction in a block of its own",
+            ));
+        }
+        let rotation = matches!(frame.op, ast::FrameOp::Rot | ast::FrameOp::Arot);
+        let mut values = Vec::with_capacity(frame.words.len());
+        // A rejected word leaves the instruction out: without its values
+        // it would read as the bare keyword, a reset.
+        let mut rejected = false;
+        for w in &frame.words {
+            let address = w.word.address();
+            if address.eq_ignore_ascii_case("AX") {
+                // `AX[_XX]=…`: an axis named by a variable.
+                self.not_lowered(w.span, "a frame value for an axis named by `AX[…]`");
+                rejected = true;
+                continue;
+            }
+            if !(self.is_axis(address) || rotation && address.eq_ignore_ascii_case("RPL")) {
+                self.diagnostics.push(
+                    Diagnostic::error(
+                        UNKNOWN_ADDRESS,
+                        format!("`{address}` is not an axis of this machine"),
+                    )
+                    .with_label(w.word.address_span(w.span), "not an axis")
+                    .with_help(if rotation {
+                        "frames name the machine's axes (the profile's `[[axes]]`), or `RPL=` for a rotation in the plane"
+                    } else {
+                        "frames name the machine's axes (the profile's `[[axes]]`)"
+                    }),
+                );
+                rejected = true;
+                continue;
+            }
+            let value = w.word.value(w.span);
+            if let ast::WordValue::Assigned { expr, .. } = &*value {
+                self.check_variables(expr);
+            }
+            let (value, mode) = values::word_value(&value);
+            values.push(AxisValue {
+                axis: axis_name(address),
+                value,
+                mode,
+            });
+        }
+        if rejected {
+            return;
+        }
+        plan.other.push((
+            Op::Frame {
+                op: frame.op.keyword().to_owned(),
+                values,
+            },
+            span,
+        ));
+    }
+}
