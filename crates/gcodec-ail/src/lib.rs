@@ -116,16 +116,46 @@ pub enum Op {
         targets: Vec<AxisValue>,
         /// The circle data of arcs.
         circle: Option<Box<Circle>>,
+        /// Axes named when the block runs (`AX[_Z]=…`, `AX[AXNAME]=…`).
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        indirect_targets: Vec<IndirectAxisValue>,
+        /// `PW=`, `PL=` of a spline or polynomial block.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        spline: Option<Box<SplineData>>,
+        /// The lead of a thread or tapping block (`G33 Z… K…`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        thread: Option<Box<Thread>>,
+        /// `CHF=`, `CHR=`, `RND=`: the transition inserted between this
+        /// block's contour element and the next one.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        transition: Option<Box<Transition>>,
     },
     /// `F`.
     Feed { value: Value },
-    /// `S`, `S2=…`.
-    SpindleSpeed { spindle: Option<u32>, speed: Value },
+    /// `S`, `S2=…`, `S[SPINU]=…`.
+    SpindleSpeed {
+        spindle: Option<u32>,
+        speed: Value,
+        /// `S[SPINU]=…`: the spindle number, computed when the block runs
+        /// (`spindle` is then `null`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        spindle_expr: Option<Box<Expr>>,
+    },
     /// `G4 F…` (seconds) or `G4 S…` (spindle revolutions).
     Dwell {
         seconds: Option<Value>,
         revolutions: Option<Value>,
     },
+    /// A named address the executor interprets: `SPOS=90`, `FA[X]=400`,
+    /// `OVR=50`, `LIMS=3000`, `DL=1`, `SD=3`, `POS[C]=90`.
+    Address(Box<Address>),
+    /// `H5`, `H2=5`, `H=QU(7)`: an auxiliary function for the PLC
+    /// (reference §4.5), output like an M function.
+    HFunction(Box<HFunction>),
+    /// `G[8]=KORD`: the G command of `group` at the index `index` has when
+    /// the block runs (indirect G programming); group 8 selects the work
+    /// offset.
+    ModalChangeIndirect { group: u8, index: Value },
     /// `TRANS`, `AROT`, …; no values resets the frame.
     Frame {
         /// The instruction in upper case.
@@ -136,6 +166,10 @@ pub enum Op {
     Declare(Box<Declare>),
     /// `R1=…`, `NAME=…`, `$…=…`.
     Assign { target: Box<Expr>, value: Value },
+    /// `A[0]=SET(1,2,3)`, `A[0]=(1,2,3)`, `A[2]=REP(0,5)`: values for
+    /// consecutive elements of an array, from the element `target` names
+    /// on, in storage order (the last index runs fastest).
+    AssignList(Box<AssignList>),
     /// A jump target: a label, a block number, or a structure boundary.
     Label { name: String },
     /// Continue at `target`, if `condition` holds (always when absent).
@@ -203,6 +237,10 @@ pub struct MFunction {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub m_expr: Option<Expr>,
     pub address_extension: Option<u32>,
+    /// `M[SPINU]=3`: the spindle number, computed when the block runs
+    /// (`address_extension` is then `null`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub address_extension_expr: Option<Expr>,
     pub class: MClass,
     pub timing: MTiming,
     pub raw: String,
@@ -214,7 +252,16 @@ pub struct Declare {
     pub name: String,
     pub data_type: String,
     pub dims: Vec<Value>,
+    /// One value per element in storage order (the last index runs
+    /// fastest); an omitted value (`SET(1,,3)`) is `null` and, like the
+    /// elements after the list, keeps the type's initial value (0, FALSE,
+    /// empty).
     pub init: Vec<Option<Value>>,
+    /// `REP(value)` / `REP(value, count)`: `value` for `count` elements
+    /// from the first on (for all of them without `count`); `init` is
+    /// then empty.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub init_repeat: Option<Repeat>,
 }
 
 /// A call of a subprogram, cycle or predefined procedure.
@@ -318,6 +365,32 @@ pub enum MotionKind {
     ArcThroughPoint,
     /// `CT`: a circle tangential to the previous path.
     ArcTangential,
+    /// `ASPLINE`: Akima spline through the programmed points.
+    Aspline,
+    /// `BSPLINE`: B spline with the points as control points.
+    Bspline,
+    /// `CSPLINE`: cubic spline through the programmed points.
+    Cspline,
+    /// `POLY`: polynomial interpolation.
+    Poly,
+    /// `G33`: thread with constant lead.
+    Thread,
+    /// `G34`: thread with increasing lead.
+    ThreadIncreasingLead,
+    /// `G35`: thread with decreasing lead.
+    ThreadDecreasingLead,
+    /// `G331`: rigid tapping.
+    Tapping,
+    /// `G332`: retraction of rigid tapping.
+    TappingRetract,
+    /// `G335`: convex thread, clockwise.
+    ThreadConvexCw,
+    /// `G336`: convex thread, counter-clockwise.
+    ThreadConvexCcw,
+    /// `INVCW`: involute, clockwise.
+    InvoluteCw,
+    /// `INVCCW`: involute, counter-clockwise.
+    InvoluteCcw,
 }
 
 /// A value for one axis (or circle parameter), with its dimension mode.
@@ -345,6 +418,114 @@ pub struct Circle {
     pub intermediate: Vec<AxisValue>,
     /// `TURN=`: extra full turns of a helix.
     pub turns: Option<Value>,
+}
+
+/// A named address (`kind: "address"`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Address {
+    /// The address in upper case: `SPOS`, `FA`, `OVR`, `DL`.
+    pub address: String,
+    /// The axis in brackets, when written as a name (`FA[X]` → `X`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis: Option<String>,
+    /// The axis in brackets, computed when the block runs (`FA[AXN]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis_expr: Option<Expr>,
+    /// The spindle of `SPOS[2]=`, `SPOSA[2]=`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extension: Option<u32>,
+    /// The spindle, computed when the block runs (`SPOS[SPINU]=`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extension_expr: Option<Expr>,
+    pub value: Value,
+    /// `AC`, `IC`, `DC`, `ACP`, `ACN`, … when written.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode: Option<String>,
+    /// Whether the value stays in force after the block.
+    pub scope: AddressScope,
+}
+
+/// How long an address's value holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum AddressScope {
+    /// Until programmed again (`FA`, `OVR`, `LIMS`, `RNDM`, `SD`).
+    Modal,
+    /// This block only (`FB`, `SPOS`, `POS`, `FP`).
+    Block,
+}
+
+/// An H auxiliary function (reference §4.5).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HFunction {
+    /// The value (REAL or INT per MD22110); `null` when computed.
+    pub h_value: Option<f64>,
+    /// The expression of a computed value.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub h_expr: Option<Expr>,
+    /// `H2=5`: the extension 0…99.
+    pub address_extension: Option<u32>,
+    /// `H[I]=5`: the extension, computed when the block runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub address_extension_expr: Option<Expr>,
+    /// `H=QU(…)`: quick output.
+    #[serde(default)]
+    pub quick: bool,
+    pub timing: MTiming,
+    /// The word as written.
+    pub raw: String,
+}
+
+/// A motion target whose axis is named when the block runs (`AX[_Z]=5`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct IndirectAxisValue {
+    /// The expression naming the axis.
+    pub axis: Expr,
+    pub value: Value,
+    pub mode: Option<String>,
+}
+
+/// Spline data of a block: `PW=` point weight, `PL=` parameter interval
+/// length. (`SD=`, the modal spline degree, is an `address`.)
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SplineData {
+    pub weight: Option<Value>,
+    pub interval: Option<Value>,
+}
+
+/// The lead of a thread or tapping block.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Thread {
+    /// `I J K`: the lead along X, Y, Z.
+    pub lead: Vec<AxisValue>,
+    /// `G34`/`G35`: the change of lead (programmed with `F`).
+    pub lead_change: Option<Value>,
+}
+
+/// A contour transition at the end of a block's contour element.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Transition {
+    pub kind: TransitionKind,
+    pub value: Value,
+}
+
+/// Which transition.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum TransitionKind {
+    /// `CHF=`: chamfer, the value is the chamfer's length.
+    Chamfer,
+    /// `CHR=`: chamfer, the value is the leg length in the direction of
+    /// motion.
+    ChamferLeg,
+    /// `RND=`: rounding with this radius.
+    Rounding,
 }
 
 /// The JSON Schema of an AIL document, as checked in under
@@ -568,4 +749,26 @@ pub struct ExternalParameter {
     pub by_reference: bool,
     /// One entry per array dimension; empty ones (`REAL[,]`) are `null`.
     pub dims: Vec<Option<Value>>,
+}
+
+/// Values for consecutive array elements (`assign_list`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct AssignList {
+    /// The first element written (`A[0]`, `R[10]`).
+    pub target: Expr,
+    /// `SET(…)` or `(…)`: one value per element; an omitted one (`null`)
+    /// leaves its element as it is. Empty for `REP`.
+    pub values: Vec<Option<Value>>,
+    /// `REP(value[, count])`: `value` for `count` elements (for the rest
+    /// of the array without `count`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub repeat: Option<Repeat>,
+}
+
+/// `REP(value[, count])`: one value for several consecutive elements.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct Repeat {
+    pub value: Value,
+    /// How many elements; `None`: to the end of the array.
+    pub count: Option<Value>,
 }

@@ -85,6 +85,7 @@ fn m_function_has_the_seed_001_fields() {
         m_value: Some(3),
         m_expr: None,
         address_extension: None,
+        address_extension_expr: None,
         class: MClass::Spindle,
         timing: MTiming::InBlock,
         raw: "M3".into(),
@@ -142,6 +143,10 @@ fn constants_are_plain_numbers_and_expressions_are_trees() {
             },
         ],
         circle: None,
+        indirect_targets: Vec::new(),
+        spline: None,
+        thread: None,
+        transition: None,
     });
     assert_eq!(value["targets"][0]["value"], 10.5);
     assert_eq!(value["targets"][1]["value"]["op"], "binary");

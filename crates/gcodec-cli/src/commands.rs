@@ -40,6 +40,10 @@ enum Command {
         /// The machine profile (TOML); the built-in one if omitted.
         #[arg(long)]
         profile: Option<PathBuf>,
+        /// A definition file (`MGUD.DEF`, `SMAC.DEF`): global user data
+        /// and macros the program may use. Repeat for several files.
+        #[arg(long = "definitions", value_name = "FILE.DEF")]
+        definitions: Vec<PathBuf>,
         /// Output: a listing, one instruction a line, or the AIL document
         /// as JSON.
         #[arg(long, value_enum, default_value_t = Format::Text)]
@@ -115,9 +119,10 @@ pub fn run(cli: Cli) -> u8 {
         Command::Lower {
             file,
             profile,
+            definitions,
             format,
             diagnostics,
-        } => lower(&file, profile.as_deref(), format, diagnostics),
+        } => lower(&file, profile.as_deref(), &definitions, format, diagnostics),
         Command::Profile(ProfileCommand::Check { file, diagnostics }) => {
             match load_profile(Some(&file), diagnostics) {
                 Ok(_) => EXIT_CLEAN,
@@ -240,9 +245,40 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
     exit
 }
 
-fn lower(path: &Path, profile: Option<&Path>, format: Format, options: DiagnosticOptions) -> u8 {
+/// Reads the definition files in order; an unreadable file or one with
+/// errors is reported and is exit code 2.
+fn load_definitions(
+    paths: &[PathBuf],
+    options: DiagnosticOptions,
+) -> Result<gcodec_sema::Definitions, u8> {
+    let mut definitions = gcodec_sema::Definitions::new();
+    let mut bad = false;
+    for path in paths {
+        let file = read(path, options)?;
+        let diagnostics = definitions.load(&file);
+        report(&diagnostics, Some(&file), options);
+        bad |= diagnostics.iter().any(Diagnostic::is_error);
+    }
+    if bad {
+        Err(EXIT_USAGE)
+    } else {
+        Ok(definitions)
+    }
+}
+
+fn lower(
+    path: &Path,
+    profile: Option<&Path>,
+    definitions: &[PathBuf],
+    format: Format,
+    options: DiagnosticOptions,
+) -> u8 {
     let profile = match load_profile(profile, options) {
         Ok(p) => p,
+        Err(code) => return code,
+    };
+    let definitions = match load_definitions(definitions, options) {
+        Ok(d) => d,
         Err(code) => return code,
     };
     let file = match read(path, options) {
@@ -250,7 +286,7 @@ fn lower(path: &Path, profile: Option<&Path>, format: Format, options: Diagnosti
         Err(code) => return code,
     };
     let parsed = gcodec_parser::parse(&file);
-    let lowered = gcodec_sema::lower(&parsed.program, &profile);
+    let lowered = gcodec_sema::lower_with(&parsed.program, &profile, &definitions);
     let mut diagnostics = parsed.diagnostics;
     diagnostics.extend(lowered.diagnostics);
     diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));

@@ -32,6 +32,24 @@ pub struct Profile {
     pub work_offsets: WorkOffsets,
     #[serde(default)]
     pub program: ProgramSettings,
+    #[serde(default)]
+    pub g_codes: GCodes,
+}
+
+/// Which G commands the control has. By default every command of the
+/// G-group registry (reference §3.2); an 828D or a machine without an
+/// option rules some out.
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct GCodes {
+    /// Commands the control rejects: `["G33", "OEMIPO1"]`. Each must be a
+    /// command of the registry (checked by the semantic stage).
+    #[serde(default)]
+    pub unsupported: Vec<Spanned<String>>,
+    /// Whole G groups (1…64) the control lacks, e.g. punching and
+    /// nibbling (35, 36, 38).
+    #[serde(default)]
+    pub unsupported_groups: Vec<Spanned<u8>>,
 }
 
 /// Which control and which machine.

@@ -27,7 +27,62 @@ pub(crate) fn check(profile: &Profile) -> Vec<Diagnostic> {
     check_m_functions(&profile.m_functions, &mut out);
     check_work_offsets(profile, &mut out);
     check_program(&profile.program, &mut out);
+    check_g_codes(&profile.g_codes, &mut out);
     out
+}
+
+/// The form of `[g_codes]` entries. Whether a name is a command of the
+/// control is checked by the semantic stage, which owns the G-group
+/// registry (`gcodec::lower::unknown_profile_g`).
+fn check_g_codes(g: &GCodes, out: &mut Vec<Diagnostic>) {
+    let mut seen = BTreeSet::new();
+    for code in &g.unsupported {
+        let name = code.get_ref();
+        let valid = name.bytes().next().is_some_and(|b| b.is_ascii_alphabetic())
+            && name.bytes().all(|b| b.is_ascii_alphanumeric())
+            && name.len() <= 10;
+        if !valid {
+            out.push(
+                error(
+                    OUT_OF_RANGE,
+                    code,
+                    format!("`{name}` is not a G command"),
+                    "here",
+                )
+                .with_help("write G commands as the program does, e.g. `\"G33\"`, `\"OEMIPO1\"`"),
+            );
+        }
+        if !seen.insert(name.to_ascii_uppercase()) {
+            out.push(error(
+                DUPLICATE,
+                code,
+                format!("`{name}` is listed twice"),
+                "again here",
+            ));
+        }
+    }
+    let mut groups = BTreeSet::new();
+    for group in &g.unsupported_groups {
+        if !(1..=64).contains(group.get_ref()) {
+            out.push(
+                error(
+                    OUT_OF_RANGE,
+                    group,
+                    format!("`{}` is not a G group", group.get_ref()),
+                    "here",
+                )
+                .with_help("G groups are numbered 1 to 64"),
+            );
+        }
+        if !groups.insert(*group.get_ref()) {
+            out.push(error(
+                DUPLICATE,
+                group,
+                format!("group {} is listed twice", group.get_ref()),
+                "again here",
+            ));
+        }
+    }
 }
 
 fn error<T>(
@@ -362,5 +417,51 @@ fn check_program(p: &ProgramSettings, out: &mut Vec<Diagnostic>) {
             "a feed limit must be above 0".into(),
             "here",
         ));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    fn codes(sections: &str) -> Vec<&'static str> {
+        let text = format!("[machine]\nname = \"t\"\ncontrol = \"828d\"\n{sections}");
+        match crate::load(&text) {
+            Ok(_) => Vec::new(),
+            Err(d) => d.iter().map(|d| d.code).collect(),
+        }
+    }
+
+    #[test]
+    fn g_codes_defaults_to_everything_supported() {
+        let profile = crate::load("[machine]\nname = \"t\"\ncontrol = \"828d\"\n").unwrap();
+        assert!(profile.g_codes.unsupported.is_empty());
+        assert!(profile.g_codes.unsupported_groups.is_empty());
+    }
+
+    #[test]
+    fn g_codes_entries_are_checked() {
+        assert!(
+            codes("[g_codes]\nunsupported = [\"G33\", \"OEMIPO1\"]\nunsupported_groups = [35]")
+                .is_empty()
+        );
+        assert_eq!(
+            codes("[g_codes]\nunsupported = [\"G 33\"]"),
+            ["gcodec::profile::out_of_range"]
+        );
+        assert_eq!(
+            codes("[g_codes]\nunsupported = [\"G33\", \"g33\"]"),
+            ["gcodec::profile::duplicate"]
+        );
+        assert_eq!(
+            codes("[g_codes]\nunsupported_groups = [0, 65]"),
+            [
+                "gcodec::profile::out_of_range",
+                "gcodec::profile::out_of_range"
+            ]
+        );
+        assert_eq!(
+            codes("[g_codes]\nunsupported_groups = [35, 35]"),
+            ["gcodec::profile::duplicate"]
+        );
+        assert_eq!(codes("[g_codes]\nunknown = 1"), ["gcodec::profile::schema"]);
     }
 }

@@ -8,10 +8,18 @@ use std::time::Duration;
 
 use criterion::{Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
 
+// The allocator of the `gcodec` binary, configured as it configures it
+// (crates/gcodec-cli/src/main.rs), so that the figure is what users get.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+const MI_OPTION_PURGE_DELAY: libmimalloc_sys::mi_option_t = 15;
+
 #[path = "../../gcodec-parser/benches/program/mod.rs"]
 mod program;
 
 fn bench(c: &mut Criterion) {
+    // SAFETY: `mi_option_set` only stores the value (see the CLI's main).
+    unsafe { libmimalloc_sys::mi_option_set(MI_OPTION_PURGE_DELAY, -1) };
     let src = program::generate(1_000_000);
     let profile = gcodec_profile::builtin().expect("built-in profile");
     let mut group = c.benchmark_group("lex+parse+lower");

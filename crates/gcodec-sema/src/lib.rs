@@ -11,19 +11,28 @@
 //! the profile), axis words (axes from the profile), motion with circle
 //! data, assignments, declarations, `MSG` and `STOPRE`, calls by name and
 //! number, `RET`, frame instructions, control structures and jumps, and
-//! the block-length limit.
+//! the block-length limit; variables ([`definitions`], [`types`]): names
+//! must be defined (`DEF`, `PROC` parameters, global user data of
+//! definition files, macros, axes), assignments are type-checked, array
+//! indices and system-variable index shapes are checked, `REP` and lists
+//! of values are lowered.
 //!
-//! Not built yet: `CASE`, `CALL`/`PCALL`/`MCALL`, index-shape
-//! checks of system variables, `PROC` signatures and call arity.
+//! Not built yet: `CASE`, `CALL`/`PCALL`/`MCALL`, `PROC` signatures and
+//! call arity, macro expansion, `REDEF` attributes.
 //! Each such construct gives the warning `gcodec::lower::not_lowered`
 //! rather than being dropped in silence.
 
+pub mod definitions;
 mod flow;
 pub mod ggroups;
 mod lower;
 mod mfunc;
+pub mod modal;
 pub mod sysvars;
 mod tools;
+pub mod types;
 mod values;
 
-pub use lower::{Lowered, lower};
+pub use definitions::Definitions;
+pub use lower::{Lowered, lower, lower_with};
+pub use types::DataType;

@@ -9,7 +9,7 @@ use gcodec_parser::ast::{Extension, Word, WordValue};
 use gcodec_profile::{Policy, Profile};
 use gcodec_source::{Diagnostic, Span};
 
-use crate::lower::{INVALID_VALUE, by_policy, not_lowered};
+use crate::lower::{INVALID_VALUE, by_policy};
 use crate::tools::{spindle_exists, unknown_spindle};
 use crate::values::{constant, source_text, tree, whole_number};
 
@@ -26,6 +26,8 @@ pub(crate) struct MWord {
     pub value: Option<u32>,
     pub expr: Option<gcodec_ail::Expr>,
     pub extension: Option<u32>,
+    /// `M[SPINU]=3`: the spindle, computed when the block runs.
+    pub extension_expr: Option<gcodec_ail::Expr>,
     pub class: MClass,
     pub raw: String,
     pub span: Span,
@@ -37,6 +39,7 @@ impl MWord {
             m_value: self.value,
             m_expr: self.expr,
             address_extension: self.extension,
+            address_extension_expr: self.extension_expr,
             class: self.class,
             timing,
             raw: self.raw,
@@ -80,16 +83,14 @@ pub(crate) fn check(
                 expr,
             },
         ) if constant(expr).is_none() => {
-            let extension = extension(word, span, profile, diagnostics)?;
+            let (extension, extension_expr) = extension(word, span, profile, diagnostics)?;
             let text = source_text(expr);
-            let raw = match extension {
-                Some(ext) => format!("M{ext}={text}"),
-                None => format!("M={text}"),
-            };
+            let raw = format!("M{}={text}", extension_text(word, extension));
             return Some(MWord {
                 value: None,
                 expr: Some(tree(expr)),
                 extension,
+                extension_expr,
                 class: MClass::Custom,
                 raw,
                 span,
@@ -124,7 +125,7 @@ pub(crate) fn check(
         );
         return None;
     }
-    let extension = extension(word, span, profile, diagnostics)?;
+    let (extension, extension_expr) = extension(word, span, profile, diagnostics)?;
     let change_m = *profile.tool_change.change_m_code.get_ref();
     let overridden = overrides.get(&m).copied();
     let class = match overridden.or_else(|| predefined_class(m, change_m)) {
@@ -148,60 +149,81 @@ pub(crate) fn check(
             MClass::Custom
         }
     };
-    let raw = match extension {
-        Some(ext) => format!("M{ext}={m}"),
+    let raw = match word.extension() {
+        Some(_) => format!("M{}={m}", extension_text(word, extension)),
         None => format!("M{m}"),
     };
     Some(MWord {
         value: Some(m),
         expr: None,
         extension,
+        extension_expr,
         class,
         raw,
         span,
     })
 }
 
-/// The spindle extension of an M word (`M2=…`), checked: `None` when it
-/// is rejected (its diagnostic pushed).
+/// The extension as the `raw` form writes it: `2` for `M2=` (and a
+/// constant `M[2]=`), `[SPINU]` for a computed one.
+fn extension_text(word: &Word, extension: Option<u32>) -> String {
+    match (extension, word.extension()) {
+        (Some(ext), _) => ext.to_string(),
+        (None, Some(Extension::Index { index, .. })) => format!("[{}]", source_text(index)),
+        _ => String::new(),
+    }
+}
+
+/// The spindle extension of an M word (`M2=…`, `M[SPINU]=…`), checked:
+/// `None` when it is rejected (its diagnostic pushed); a computed one is
+/// the expression.
 fn extension(
     word: &Word,
     span: Span,
     profile: &Profile,
     diagnostics: &mut Vec<Diagnostic>,
-) -> Option<Option<u32>> {
-    match word.extension() {
-        None => Some(None),
-        Some(Extension::Number {
-            value: ext,
-            span: ext_span,
-        }) => {
-            if !profile.m_functions.enable_extended_m_address {
+) -> Option<(Option<u32>, Option<gcodec_ail::Expr>)> {
+    let (ext, ext_span) = match word.extension() {
+        None => return Some((None, None)),
+        Some(Extension::Number { value, span }) => (*value, *span),
+        Some(Extension::Index { index, span: at }) => match constant(index) {
+            Some(n) if n.fract() == 0.0 && (0.0..=99.0).contains(&n) => (n as u32, *at),
+            Some(_) => {
                 diagnostics.push(
-                    Diagnostic::error(
-                        EXTENSION_FORBIDDEN,
-                        "this machine has no extended M addresses",
-                    )
-                    .with_label(span, "extended address")
-                    .with_help("the profile sets `enable_extended_m_address = false`"),
+                    Diagnostic::error(INVALID_VALUE, "a spindle number is a whole number 0…99")
+                        .with_label(*at, "not a spindle number"),
                 );
                 return None;
             }
-            if !spindle_exists(profile, *ext) {
-                diagnostics.push(unknown_spindle(*ext, *ext_span));
-                return None;
-            }
-            Some(Some(*ext))
-        }
-        Some(Extension::Index { .. }) => {
             // `M[SPINU]=3`: a spindle chosen when the block runs.
-            diagnostics.push(not_lowered(
-                span,
-                "an M function with a computed spindle number",
-            ));
-            None
-        }
+            None => {
+                if !profile.m_functions.enable_extended_m_address {
+                    diagnostics.push(no_extended_address(span));
+                    return None;
+                }
+                return Some((None, Some(tree(index))));
+            }
+        },
+    };
+    if !profile.m_functions.enable_extended_m_address {
+        diagnostics.push(no_extended_address(span));
+        return None;
     }
+    // Extension 0 is the master spindle (reference §4.2).
+    if ext != 0 && !spindle_exists(profile, ext) {
+        diagnostics.push(unknown_spindle(ext, ext_span));
+        return None;
+    }
+    Some((Some(ext), None))
+}
+
+fn no_extended_address(span: Span) -> Diagnostic {
+    Diagnostic::error(
+        EXTENSION_FORBIDDEN,
+        "this machine has no extended M addresses",
+    )
+    .with_label(span, "extended address")
+    .with_help("the profile sets `enable_extended_m_address = false`")
 }
 
 /// Reports the M words past the profile's per-block limit.

@@ -455,7 +455,10 @@ fn seed003_duplicate_suppression_policy() {
 #[test]
 fn computed_tool_m_and_edge_values_are_expressions() {
     let managed = profile("[tool_change]\ntool_management_enabled = true\n");
-    let l = lower_with(&managed, "T=NAMES[I] D=EDGES[I] M1=DIR");
+    let l = lower_with(
+        &managed,
+        "DEF STRING[32] NAMES[4]\nDEF INT I, EDGES[4], DIR\nT=NAMES[I] D=EDGES[I] M1=DIR",
+    );
     assert_eq!(errors(&l), [] as [&str; 0]);
     let t = &ops(&l, "tool_select")[0];
     assert_eq!(t["selector_kind"], "computed");

@@ -214,7 +214,9 @@ impl<'a> Lowering<'a> {
                 self.jump(index, &g.jump, condition, span, plan);
             }
             StatementKind::Case(case) => self.case(index, case, span, plan),
-            StatementKind::RepeatSection(repeat) => self.repeat(index, repeat, span, plan),
+            StatementKind::RepeatSection(repeat) => {
+                self.repeat_section(index, repeat, span, plan)
+            }
             _ => {}
         }
     }
@@ -257,7 +259,7 @@ impl<'a> Lowering<'a> {
 
     /// `REPEAT L P=n`, `REPEAT A B P=n`, `REPEATB L P=n`: the section as
     /// [`crate::flow`] found it, run `n` times from here.
-    pub(super) fn repeat(
+    pub(super) fn repeat_section(
         &mut self,
         index: usize,
         repeat: &ast::RepeatSection,

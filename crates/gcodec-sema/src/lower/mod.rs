@@ -3,9 +3,11 @@
 //! straight-line code.
 //!
 //! Within a block, instructions come in the order the control acts on
-//! them: work offset and other modal G commands, feed, spindle speed, tool
-//! selection and cutting edge, M functions acting before the motion, the
-//! motion, then `M0 M1 M2 M17 M30` after it (seed 001).
+//! them: work offset and other modal G commands (indirect ones last),
+//! feed, spindle speed, tool selection and cutting edge (then `DL`), M
+//! functions acting before the motion, `H` functions, declarations and
+//! assignments, named addresses (`address`), the dwell, the motion, then
+//! `M0 M1 M2 M17 M30` after it (seed 001).
 
 use std::borrow::Cow;
 use std::collections::HashMap;
@@ -19,9 +21,11 @@ use gcodec_parser::ast::{self, Block, GotoKind, Program};
 use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
 use gcodec_source::{Diagnostic, Span};
 
+use crate::definitions::Definitions;
 use crate::flow::Flow;
 use crate::{ggroups, mfunc};
 
+mod addresses;
 mod calls;
 mod control;
 mod frames;
@@ -43,10 +47,18 @@ impl Lowered {
     }
 }
 
-/// Lowers `program` for the machine `profile` describes.
+/// Lowers `program` for the machine `profile` describes, without global
+/// user data ([`lower_with`]).
 pub fn lower(program: &Program, profile: &Profile) -> Lowered {
-    let mut lowering = Lowering::new(program, profile);
+    lower_with(program, profile, &Definitions::new())
+}
+
+/// Lowers `program` for the machine `profile` describes; the program may
+/// use the global variables and macros of `definitions`.
+pub fn lower_with(program: &Program, profile: &Profile, definitions: &Definitions) -> Lowered {
+    let mut lowering = Lowering::new(program, profile, definitions);
     lowering.report_duplicate_labels();
+    lowering.check_profile_g_codes();
     for (index, block) in program.blocks.iter().enumerate() {
         lowering.block(index, block);
     }
@@ -141,7 +153,16 @@ struct Lowering<'a> {
     group8_supported: [bool; 100],
     /// The `PROC` and `EXTERN` signatures of the program, by name.
     signatures: HashMap<String, calls::Signature<'a>>,
+    /// The names the program may use, by section (`variables.rs`).
+    names: variables::Names<'a>,
 }
+
+/// An `S` word: spindle number, computed spindle number (`S[SPINU]=`),
+/// speed, span.
+type SpindleWord = (Option<u32>, Option<Box<gcodec_ail::Expr>>, Value, Span);
+
+/// A named address as written: address, axis, spindle.
+type AddressKey = (String, Option<String>, Option<u32>);
 
 /// What one block says, collected before instructions are emitted.
 #[derive(Default)]
@@ -149,7 +170,7 @@ struct BlockPlan {
     g_codes: Vec<(u8, &'static str, Span)>,
     suppressions: Vec<(Suppression, Span)>,
     feed: Option<(Value, Span)>,
-    spindle: Vec<(Option<u32>, Value, Span)>,
+    spindle: Vec<SpindleWord>,
     tools: Vec<(Op, Span)>,
     edge: Option<(Value, Span)>,
     m_functions: Vec<mfunc::MWord>,
@@ -164,22 +185,32 @@ struct BlockPlan {
     head: Vec<(Op, Span)>,
     /// Jumps and labels that act after everything else in the block.
     tail: Vec<(Op, Span)>,
+    /// `G[8]=KORD`: group, computed index, span.
+    indirect_g: Vec<(u8, Value, Span)>,
+    /// `H` functions, output with the M functions acting in the block.
+    h_functions: Vec<(Op, Span)>,
+    /// `DL=`: after the cutting edge.
+    after_edge: Vec<(Op, Span)>,
+    /// Named addresses (`address` instructions), just before the motion.
+    addresses: Vec<(Op, Span)>,
+    /// Address, axis, extension of the addresses written, to find
+    /// repetitions.
+    address_keys: Vec<(AddressKey, Span)>,
+    /// `AX[_Z]=…`: targets whose axis is named when the block runs.
+    indirect_targets: Vec<gcodec_ail::IndirectAxisValue>,
+    /// Where the first indirect target is written.
+    motion_span: Option<Span>,
+    /// `PW=`, `PL=`.
+    spline: gcodec_ail::SplineData,
+    spline_span: Option<Span>,
+    /// `CHF=`, `CHR=`, `RND=`.
+    transition: Option<(gcodec_ail::Transition, Span)>,
 }
 
 impl<'a> Lowering<'a> {
-    fn new(program: &'a Program, profile: &'a Profile) -> Self {
-        let mut modal = [None; 64];
-        for (i, slot) in modal.iter_mut().enumerate() {
-            *slot = ggroups::default_member(i as u8 + 1);
-        }
-        for (group, code) in &profile.modal_defaults {
-            let lookup = ggroups::lookup(code.get_ref());
-            if let (Ok(g), Some((found, index))) = (group.get_ref().parse::<u8>(), lookup) {
-                if g == found {
-                    modal[usize::from(g) - 1] = ggroups::member(g, index);
-                }
-            }
-        }
+    fn new(program: &'a Program, profile: &'a Profile, definitions: &'a Definitions) -> Self {
+        let (names, diagnostics) = variables::Names::new(program, profile, definitions);
+        let modal = crate::modal::reset_defaults(profile);
         let group8 =
             gcodec_profile::group8_index(profile.work_offsets.default_group8_offset.get_ref())
                 .unwrap_or(0);
@@ -202,13 +233,14 @@ impl<'a> Lowering<'a> {
                 ),
                 ..Document::new()
             },
-            diagnostics: Vec::new(),
+            diagnostics,
             modal,
             group8,
             flow: Flow::new(program),
             m_overrides: mfunc::overrides(profile),
             group8_supported: profile.work_offsets.supported_group8(),
             signatures: calls::signatures(program),
+            names,
         }
     }
 
@@ -277,7 +309,10 @@ impl<'a> Lowering<'a> {
         let mut plan = BlockPlan::default();
         self.structure_parts(index, block, &mut plan);
         for statement in &block.statements {
-            self.statement(index, statement, &mut plan);
+            // `FAD=5`, `SPOS2=90`: named addresses read as assignments.
+            if !self.address_assignment(statement, &mut plan) {
+                self.statement(index, statement, &mut plan);
+            }
         }
         // The end of a `REPEAT` section comes after all of its last block.
         for name in self.flow.section_ends(index) {
@@ -320,8 +355,15 @@ impl<'a> Lowering<'a> {
                 },
             );
         }
+        // `G4 F…` / `G4 S…`: the dwell takes the block's F and S.
+        let dwell = plan
+            .g_codes
+            .iter()
+            .find(|(g, c, _)| *g == 2 && *c == "G4")
+            .map(|(_, _, s)| *s)
+            .map(|g4| (self.dwell(index, g4, &mut plan), g4));
         for &(group, code, span) in &plan.g_codes {
-            if group == 8 {
+            if group == 8 || dwell.is_some() && code == "G4" {
                 continue;
             }
             let modal = ggroups::group(group).is_some_and(|g| g.effect == ggroups::Effect::Modal);
@@ -337,11 +379,37 @@ impl<'a> Lowering<'a> {
                 },
             );
         }
+        for (group, index_value, span) in std::mem::take(&mut plan.indirect_g) {
+            self.emit(
+                index,
+                span,
+                Op::ModalChangeIndirect {
+                    group,
+                    index: index_value,
+                },
+            );
+        }
+        let modal_group1 = self.modal[0];
+        let thread_kind = matches!(modal_group1, Some("G34" | "G35"));
+        // Under G34/G35 `F` is the change of the thread lead.
+        let lead_change = if thread_kind && !plan.targets.is_empty() {
+            plan.feed.take().map(|(v, _)| v)
+        } else {
+            None
+        };
         if let Some((value, span)) = plan.feed {
             self.emit(index, span, Op::Feed { value });
         }
-        for (spindle, speed, span) in plan.spindle {
-            self.emit(index, span, Op::SpindleSpeed { spindle, speed });
+        for (spindle, spindle_expr, speed, span) in std::mem::take(&mut plan.spindle) {
+            self.emit(
+                index,
+                span,
+                Op::SpindleSpeed {
+                    spindle,
+                    speed,
+                    spindle_expr,
+                },
+            );
         }
         for (op, span) in plan.tools {
             let direct = matches!(
@@ -362,18 +430,39 @@ impl<'a> Lowering<'a> {
         if let Some((edge, span)) = plan.edge {
             self.emit(index, span, Op::CuttingEdge { edge });
         }
-        let has_motion = !plan.targets.is_empty();
+        for (op, span) in std::mem::take(&mut plan.after_edge) {
+            self.emit(index, span, op);
+        }
+        let has_motion = !plan.targets.is_empty() || !plan.indirect_targets.is_empty();
         mfunc::check_count(&plan.m_functions, self.profile, &mut self.diagnostics);
         let deferred =
             self.profile.tool_change.tool_change_mode == gcodec_profile::ToolChangeMode::DeferredM6;
-        let (after, before): (Vec<_>, Vec<_>) = plan
-            .m_functions
+        let (after, before): (Vec<_>, Vec<_>) = std::mem::take(&mut plan.m_functions)
             .into_iter()
             .partition(|m| has_motion && m.value.is_some_and(mfunc::acts_after_motion));
         for m in before {
             self.emit_m(index, m, MTiming::InBlock, deferred);
         }
-        for (op, span) in plan.other {
+        for (op, span) in std::mem::take(&mut plan.h_functions) {
+            self.emit(index, span, op);
+        }
+        for (op, span) in std::mem::take(&mut plan.other) {
+            self.emit(index, span, op);
+        }
+        for (op, span) in std::mem::take(&mut plan.addresses) {
+            self.emit(index, span, op);
+        }
+        let mut spline = Some(std::mem::take(&mut plan.spline));
+        if !has_motion {
+            // Spline data and transitions without a motion: as addresses.
+            self.unattached_motion_data(
+                index,
+                plan.spline_span,
+                plan.transition.take(),
+                spline.take(),
+            );
+        }
+        if let Some((op, span)) = dwell {
             self.emit(index, span, op);
         }
         if has_motion || plan.circle_span.is_some() {
@@ -381,6 +470,7 @@ impl<'a> Lowering<'a> {
                 .targets
                 .first()
                 .map(|(_, s)| *s)
+                .or(plan.motion_span)
                 .or(plan.circle_span)
                 .unwrap_or(block.span);
             let motion = match self.modal[0] {
@@ -390,6 +480,19 @@ impl<'a> Lowering<'a> {
                 Some("CIP") => MotionKind::ArcThroughPoint,
                 Some("CT") => MotionKind::ArcTangential,
                 Some("G1") => MotionKind::Linear,
+                Some("ASPLINE") => MotionKind::Aspline,
+                Some("BSPLINE") => MotionKind::Bspline,
+                Some("CSPLINE") => MotionKind::Cspline,
+                Some("POLY") => MotionKind::Poly,
+                Some("G33") => MotionKind::Thread,
+                Some("G34") => MotionKind::ThreadIncreasingLead,
+                Some("G35") => MotionKind::ThreadDecreasingLead,
+                Some("G331") => MotionKind::Tapping,
+                Some("G332") => MotionKind::TappingRetract,
+                Some("G335") => MotionKind::ThreadConvexCw,
+                Some("G336") => MotionKind::ThreadConvexCcw,
+                Some("INVCW") => MotionKind::InvoluteCw,
+                Some("INVCCW") => MotionKind::InvoluteCcw,
                 other => {
                     self.not_lowered(first, &format!("motion under `{}`", other.unwrap_or("?")));
                     MotionKind::Linear
@@ -401,15 +504,45 @@ impl<'a> Lowering<'a> {
                     | MotionKind::ArcCcw
                     | MotionKind::ArcThroughPoint
                     | MotionKind::ArcTangential
+                    | MotionKind::InvoluteCw
+                    | MotionKind::InvoluteCcw
             );
-            let circle = arc.then(|| Box::new(plan.circle));
+            let threaded = matches!(
+                motion,
+                MotionKind::Thread
+                    | MotionKind::ThreadIncreasingLead
+                    | MotionKind::ThreadDecreasingLead
+                    | MotionKind::Tapping
+                    | MotionKind::TappingRetract
+                    | MotionKind::ThreadConvexCw
+                    | MotionKind::ThreadConvexCcw
+            );
+            let circle_data = std::mem::take(&mut plan.circle);
+            // Under a thread or tapping command `I J K` are the lead.
+            let thread = threaded.then(|| {
+                Box::new(gcodec_ail::Thread {
+                    lead: circle_data.centre.clone(),
+                    lead_change: lead_change.clone(),
+                })
+            });
+            let circle = arc.then(|| Box::new(circle_data));
+            let spline = spline
+                .filter(|s| s.weight.is_some() || s.interval.is_some())
+                .map(Box::new);
             self.emit(
                 index,
                 first,
                 Op::Motion {
                     motion,
-                    targets: plan.targets.into_iter().map(|(t, _)| t).collect(),
+                    targets: std::mem::take(&mut plan.targets)
+                        .into_iter()
+                        .map(|(t, _)| t)
+                        .collect(),
                     circle,
+                    indirect_targets: std::mem::take(&mut plan.indirect_targets),
+                    spline,
+                    thread,
+                    transition: plan.transition.take().map(|(t, _)| Box::new(t)),
                 },
             );
         }

@@ -3,7 +3,6 @@
 
 use gcodec_ail::{Op, Value};
 use gcodec_parser::ast::{self, StatementKind};
-use gcodec_source::Span;
 
 use crate::values;
 
@@ -46,20 +45,9 @@ impl Lowering<'_> {
                 plan.tail.push((Op::Return { values }, span));
             }
             StatementKind::Word(word) => self.word(word, span, plan),
-            StatementKind::Assign(assign) => match &assign.value {
-                ast::Initializer::Expr(e) => {
-                    self.check_variable(&assign.target);
-                    self.check_variables(e);
-                    plan.other.push((
-                        Op::Assign {
-                            target: Box::new(values::variable(&assign.target)),
-                            value: values::value(e),
-                        },
-                        span,
-                    ));
-                }
-                _ => self.not_lowered(span, "an assignment of a list of values"),
-            },
+            StatementKind::Assign(assign) => self.assign(assign, span, plan),
+            StatementKind::Redef(redef) => self.redefine(redef, span),
+            StatementKind::Define(define) => self.define_macro(define, span),
             StatementKind::Call(call) => self.call(call, span, plan),
             StatementKind::IndirectCall(call) => self.indirect_call(call, span, plan),
             StatementKind::PCall(call) => self.path_call(call, span, plan),
@@ -71,42 +59,6 @@ impl Lowering<'_> {
             kind => self.not_lowered(span, statement_name(kind)),
         }
     }
-
-    /// `DEF TYPE name[dims]=init, …`: one declaration per variable.
-    pub(super) fn declare(&mut self, def: &ast::Def, span: Span, plan: &mut BlockPlan) {
-        let data_type = match &def.ty.kind {
-            ast::TypeKind::Int => "INT",
-            ast::TypeKind::Real => "REAL",
-            ast::TypeKind::Bool => "BOOL",
-            ast::TypeKind::Char => "CHAR",
-            ast::TypeKind::String { .. } => "STRING",
-            ast::TypeKind::Axis => "AXIS",
-            ast::TypeKind::Frame => "FRAME",
-        };
-        for var in &def.vars {
-            let init = match &var.init {
-                None => Vec::new(),
-                Some(ast::Initializer::Expr(e)) => vec![Some(values::value(e))],
-                Some(ast::Initializer::List { items, .. }) => items
-                    .iter()
-                    .map(|i| i.as_ref().map(values::value))
-                    .collect(),
-                Some(ast::Initializer::Rep { .. }) => {
-                    self.not_lowered(var.span, "a `REP` initialiser");
-                    continue;
-                }
-            };
-            plan.other.push((
-                Op::Declare(Box::new(gcodec_ail::Declare {
-                    name: var.name.to_ascii_uppercase().to_string(),
-                    data_type: data_type.to_owned(),
-                    dims: var.dims.iter().map(values::value).collect(),
-                    init,
-                })),
-                span,
-            ));
-        }
-    }
 }
 
 /// How a statement kind [`Lowering::statement`] does not lower is named
@@ -114,8 +66,6 @@ impl Lowering<'_> {
 fn statement_name(kind: &StatementKind) -> &'static str {
     use StatementKind as S;
     match kind {
-        S::Redef(_) => "`REDEF`",
-        S::Define(_) => "`DEFINE`",
         S::SyncAction(_) => "a synchronous action",
         _ => "this statement",
     }

@@ -1,5 +1,9 @@
-//! Address words: G commands, M functions, tools, cutting edges, feed,
-//! spindle speeds, circle data and axis targets.
+//! Address words: G commands (also indirect, `G[8]=2`, and the
+//! profile's legacy aliases), M functions, tools, cutting edges, feed,
+//! spindle speeds, circle data, axis targets, `H` functions and the named
+//! addresses of `addresses.rs`.
+
+use std::borrow::Cow;
 
 use gcodec_ail::{AxisValue, Suppression, Value};
 use gcodec_parser::ast::{self, Extension, Word};
@@ -7,10 +11,14 @@ use gcodec_source::{Diagnostic, Span};
 
 use crate::{ggroups, mfunc, tools, values};
 
+use super::addresses::{EXTENSION_NOT_ALLOWED, UNSUPPORTED_G};
 use super::{
     BlockPlan, G_GROUP_CONFLICT, INVALID_VALUE, Lowering, UNKNOWN_ADDRESS, UNKNOWN_G,
     UNSUPPORTED_OFFSET, axis_name, g_code_text,
 };
+
+const COMPUTED_G: &str = "gcodec::lower::computed_g";
+const INVALID_INDIRECT_G: &str = "gcodec::lower::invalid_indirect_g";
 
 impl Lowering<'_> {
     pub(super) fn word(&mut self, word: &Word, span: Span, plan: &mut BlockPlan) {
@@ -19,25 +27,16 @@ impl Lowering<'_> {
         if let ast::WordValue::Assigned { expr, .. } = &*value {
             self.check_variables(expr);
         }
+        if !self.check_modifier(word, &value) {
+            return;
+        }
         match address {
-            "G" => match (word.extension(), values::whole_number(&value)) {
-                (None, Some(n)) if n >= 0.0 => {
-                    let mut buf = [0; 24];
-                    let code = g_code_text(n, &mut buf);
-                    match ggroups::lookup(code) {
-                        Some((group, index)) => self.g_code(group, index, span, plan),
-                        None => self.diagnostics.push(
-                            Diagnostic::error(
-                                UNKNOWN_G,
-                                format!("`{code}` is not a G command of the control"),
-                            )
-                            .with_label(span, "unknown G command"),
-                        ),
-                    }
-                }
-                _ => self.not_lowered(span, "a G command with an extension or a computed value"),
-            },
+            "G" => self.g_word(word, &value, span, plan),
+            "H" => self.h_word(word, &value, span, plan),
             "M" => {
+                if let Some(Extension::Index { index, .. }) = word.extension() {
+                    self.check_variables(index);
+                }
                 if let Some(m) = mfunc::check(
                     word,
                     &value,
@@ -85,22 +84,42 @@ impl Lowering<'_> {
                 plan.feed = Some((values::word_value(&value).0, span));
             }
             "S" => {
-                let spindle = match word.extension() {
-                    None => None,
+                let (spindle, spindle_expr) = match word.extension() {
+                    None => (None, None),
                     Some(Extension::Number { value, span }) => {
                         if !tools::spindle_exists(self.profile, *value) {
                             self.diagnostics.push(tools::unknown_spindle(*value, *span));
                             return;
                         }
-                        Some(*value)
+                        (Some(*value), None)
                     }
-                    Some(Extension::Index { .. }) => {
-                        return self
-                            .not_lowered(span, "a spindle speed with a computed spindle number");
-                    }
+                    // `S[SPINU]=…`: the spindle is chosen when the block runs.
+                    Some(Extension::Index { index, span }) => match values::constant(index) {
+                        Some(n) if n.fract() == 0.0 && (1.0..=99.0).contains(&n) => {
+                            if !tools::spindle_exists(self.profile, n as u32) {
+                                self.diagnostics
+                                    .push(tools::unknown_spindle(n as u32, *span));
+                                return;
+                            }
+                            (Some(n as u32), None)
+                        }
+                        Some(_) => {
+                            return self.diagnostics.push(
+                                Diagnostic::error(
+                                    INVALID_VALUE,
+                                    "a spindle number is a whole number 1…99",
+                                )
+                                .with_label(*span, "not a spindle number"),
+                            );
+                        }
+                        None => {
+                            self.check_variables(index);
+                            (None, Some(Box::new(values::tree(index))))
+                        }
+                    },
                 };
                 plan.spindle
-                    .push((spindle, values::word_value(&value).0, span));
+                    .push((spindle, spindle_expr, values::word_value(&value).0, span));
             }
             "I" | "J" | "K" => {
                 let (v, mode) = values::word_value(&value);
@@ -127,27 +146,59 @@ impl Lowering<'_> {
                 }
                 plan.circle_span.get_or_insert(span);
             }
-            _ if self.is_axis(address) && word.extension().is_none() => {
+            // Named addresses have more than one letter; axis words, the
+            // commonest, skip the table.
+            _ if address.len() > 1 && self.named_address(word, &value, span, plan) => {}
+            // `X10`, `X1=10` (axis X1), `E=0` on a machine with an axis E.
+            _ if match word.extension() {
+                None => self.is_axis(address),
+                Some(Extension::Number { .. }) => self.is_axis(&self.axis_word_name(word)),
+                Some(Extension::Index { .. }) => false,
+            } =>
+            {
                 let (v, mode) = values::word_value(&value);
+                let axis = match word.extension() {
+                    None => axis_name(address),
+                    Some(_) => Cow::Owned(self.axis_word_name(word).to_ascii_uppercase()),
+                };
                 plan.targets.push((
                     AxisValue {
-                        axis: axis_name(address),
+                        axis,
                         value: v,
                         mode,
                     },
                     span,
                 ));
             }
+            "A" | "B" | "C" | "E" | "Q" | "U" | "V" | "W" | "X" | "Y" | "Z"
+                if matches!(word.extension(), Some(Extension::Index { .. })) =>
+            {
+                self.diagnostics.push(
+                    Diagnostic::error(
+                        EXTENSION_NOT_ALLOWED,
+                        format!("`{address}[…]` is not an axis"),
+                    )
+                    .with_label(span, "bracketed extension")
+                    .with_help(
+                        "an axis is named with digits (`X1=10`) or indirectly with `AX[…]=`",
+                    ),
+                )
+            }
+            // `E`: reserved on the control; the CEAD interpreter's extruder.
+            "E" => self.reserved_e(span),
             // An axis letter the machine does not have: the control
             // rejects the block.
-            "A" | "B" | "C" | "U" | "V" | "W" | "X" | "Y" | "Z" => self.diagnostics.push(
-                Diagnostic::error(
-                    UNKNOWN_ADDRESS,
-                    format!("`{address}` is not an axis or address of this machine"),
+            "A" | "B" | "C" | "Q" | "U" | "V" | "W" | "X" | "Y" | "Z" => {
+                let name = self.axis_word_name(word);
+                self.diagnostics.push(
+                    Diagnostic::error(
+                        UNKNOWN_ADDRESS,
+                        format!("`{name}` is not an axis or address of this machine"),
+                    )
+                    .with_label(word.address_span(span), "unknown here")
+                    .with_help("the profile's `[[axes]]` lists the machine's axes"),
                 )
-                .with_label(word.address_span(span), "unknown here")
-                .with_help("the profile's `[[axes]]` lists the machine's axes"),
-            ),
+            }
             _ => self.not_lowered(span, &format!("the address `{address}`")),
         }
     }
@@ -164,6 +215,16 @@ impl Lowering<'_> {
         let Some(member) = ggroups::member(group, index) else {
             return;
         };
+        if let Some(key) = self.g_unsupported(group, member) {
+            return self.diagnostics.push(
+                Diagnostic::error(
+                    UNSUPPORTED_G,
+                    format!("this control does not have `{member}`"),
+                )
+                .with_label(span, "not supported")
+                .with_help(format!("the profile rules it out in `[g_codes] {key}`")),
+            );
+        }
         if group == 9 {
             let suppression = match member {
                 "G53" => Suppression::G53,
@@ -189,6 +250,16 @@ impl Lowering<'_> {
                 );
             }
         }
+        if let Some((_, _, first_span)) = plan.indirect_g.iter().find(|(g, _, _)| *g == group) {
+            return self.diagnostics.push(
+                Diagnostic::error(
+                    G_GROUP_CONFLICT,
+                    format!("`{member}` and `G[{group}]=…` are both in G group {group}; a block holds one command of a group"),
+                )
+                .with_label(span, "second command of the group")
+                .with_label(*first_span, "first"),
+            );
+        }
         if let Some((_, first, first_span)) = plan.g_codes.iter().find(|(g, _, _)| *g == group) {
             return self.diagnostics.push(
                 Diagnostic::error(
@@ -200,5 +271,171 @@ impl Lowering<'_> {
             );
         }
         plan.g_codes.push((group, member, span));
+    }
+}
+
+impl Lowering<'_> {
+    /// A `G` word: `G1`, `G=1`, a legacy alias of a Group 8 code
+    /// (`G58` → `G505` per `legacy_aliases`), or indirect `G[8]=2`.
+    fn g_word(&mut self, word: &Word, value: &ast::WordValue, span: Span, plan: &mut BlockPlan) {
+        match word.extension() {
+            None => match values::whole_number(value) {
+                Some(n) if n >= 0.0 => {
+                    let mut buf = [0; 24];
+                    let code = g_code_text(n, &mut buf);
+                    if let Some(target) = self.legacy_alias(n) {
+                        if let Some((group, index)) = ggroups::lookup(&target) {
+                            return self.g_code(group, index, span, plan);
+                        }
+                    }
+                    match ggroups::lookup(code) {
+                        Some((group, index)) => self.g_code(group, index, span, plan),
+                        None => self.diagnostics.push(
+                            Diagnostic::error(
+                                UNKNOWN_G,
+                                format!("`{code}` is not a G command of the control"),
+                            )
+                            .with_label(span, "unknown G command"),
+                        ),
+                    }
+                }
+                _ => match value {
+                    ast::WordValue::Assigned { expr, .. } if values::constant(expr).is_none() => {
+                        self.diagnostics.push(
+                            Diagnostic::error(
+                                COMPUTED_G,
+                                "a computed G command needs its group",
+                            )
+                            .with_label(span, "no G group")
+                            .with_help("program it indirectly as `G[<group>]=<index>`, e.g. `G[8]=KORD`"),
+                        )
+                    }
+                    _ => self.diagnostics.push(
+                        Diagnostic::error(UNKNOWN_G, "a G command is a whole number ≥ 0")
+                            .with_label(span, "unknown G command"),
+                    ),
+                },
+            },
+            Some(Extension::Index { index, span: at }) => {
+                self.indirect_g(index, *at, value, span, plan)
+            }
+            Some(Extension::Number { .. }) => {
+                self.not_lowered(span, "a G command with a numeric extension")
+            }
+        }
+    }
+
+    /// The Group 8 code a legacy alias (`legacy_aliases`, seed 003) stands
+    /// for, if `G<n>` is one.
+    fn legacy_alias(&self, n: f64) -> Option<String> {
+        let aliases = &self.profile.work_offsets.legacy_aliases;
+        if aliases.is_empty() {
+            return None;
+        }
+        aliases.iter().find_map(|(alias, target)| {
+            let digits = alias.get_ref().get(1..)?;
+            (digits.parse::<u64>().ok()? == n as u64).then(|| target.get_ref().clone())
+        })
+    }
+
+    /// `G[<group>]=<index>` (indirect G programming): the command at
+    /// that index of the group. A constant index lowers as the command;
+    /// a variable one to `modal_change_indirect`. The control allows
+    /// neither arithmetic in the value nor the syntax-determining groups
+    /// 2 and 3, and of group 1 only `G0`…`G3`.
+    fn indirect_g(
+        &mut self,
+        group_expr: &ast::Expr,
+        group_span: Span,
+        value: &ast::WordValue,
+        span: Span,
+        plan: &mut BlockPlan,
+    ) {
+        let group = match values::constant(group_expr) {
+            Some(g) if g.fract() == 0.0 && (1.0..=64.0).contains(&g) => g as u8,
+            Some(_) => {
+                return self.diagnostics.push(
+                    Diagnostic::error(INVALID_INDIRECT_G, "G groups are numbered 1…64")
+                        .with_label(group_span, "not a G group"),
+                );
+            }
+            None => {
+                return self.not_lowered(span, "a G command whose group is computed");
+            }
+        };
+        let invalid = |message: String, help: &'static str| {
+            Diagnostic::error(INVALID_INDIRECT_G, message)
+                .with_label(span, "indirect G command")
+                .with_help(help)
+        };
+        if ggroups::group(group).is_none_or(|g| g.members.is_empty()) {
+            return self.diagnostics.push(invalid(
+                format!("G group {group} has no commands"),
+                "see the G-group table, reference §3.2",
+            ));
+        }
+        if matches!(group, 2 | 3) {
+            return self.diagnostics.push(invalid(
+                format!("the commands of G group {group} cannot be programmed indirectly"),
+                "syntax-determining G commands are written directly",
+            ));
+        }
+        if let Some(n) = values::whole_number(value) {
+            let member = (1.0..=255.0)
+                .contains(&n)
+                .then(|| ggroups::member(group, n as u8))
+                .flatten();
+            return match member {
+                Some(_) if group == 1 && n > 4.0 => self.diagnostics.push(invalid(
+                    "of G group 1 only G0, G1, G2 and G3 can be programmed indirectly".into(),
+                    "write the motion command directly",
+                )),
+                Some(_) => self.g_code(group, n as u8, span, plan),
+                None => self.diagnostics.push(invalid(
+                    format!("G group {group} has no command with index {n}"),
+                    "the index counts the group's commands from 1 (reference §3.2)",
+                )),
+            };
+        }
+        let ast::WordValue::Assigned {
+            modifier: None,
+            expr,
+        } = value
+        else {
+            return self.diagnostics.push(invalid(
+                "an indirect G command takes a whole number or a variable".into(),
+                "write e.g. `G[8]=2` or `G[8]=KORD`",
+            ));
+        };
+        if !matches!(expr.kind, ast::ExprKind::Var { .. }) {
+            return self.diagnostics.push(invalid(
+                "an indirect G command takes a whole number or a variable, no arithmetic".into(),
+                "compute the index into a variable in an earlier block",
+            ));
+        }
+        if group == 1 {
+            return self.not_lowered(span, "a motion command chosen when the block runs");
+        }
+        if let Some((_, first, first_span)) = plan.g_codes.iter().find(|(g, _, _)| *g == group) {
+            return self.diagnostics.push(
+                Diagnostic::error(
+                    G_GROUP_CONFLICT,
+                    format!("`G[{group}]=…` and `{first}` are both in G group {group}; a block holds one command of a group"),
+                )
+                .with_label(span, "second command of the group")
+                .with_label(*first_span, "first"),
+            );
+        }
+        if let Some((_, _, first)) = plan.indirect_g.iter().find(|(g, _, _)| *g == group) {
+            return self.diagnostics.push(
+                Diagnostic::error(
+                    G_GROUP_CONFLICT,
+                    format!("two commands of G group {group} in one block"),
+                )
+                .with_label(span, "second command of the group")
+                .with_label(*first, "first"),
+            );
+        }
+        plan.indirect_g.push((group, values::value(expr), span));
     }
 }

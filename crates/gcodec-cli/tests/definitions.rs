@@ -1,0 +1,118 @@
+//! `gcodec lower --definitions FILE.DEF`: global user data for the
+//! program, read from definition files; IO errors and bad files are exit
+//! code 2.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+const EXIT_CLEAN: i32 = 0;
+const EXIT_DIAGNOSTICS: i32 = 1;
+const EXIT_USAGE: i32 = 2;
+
+fn temp_file(test: &str, name: &str, contents: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("gcodec-defs-{test}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join(name);
+    std::fs::write(&path, contents).expect("write");
+    path
+}
+
+fn gcodec<I, S>(args: I) -> Output
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<std::ffi::OsStr>,
+{
+    Command::new(env!("CARGO_BIN_EXE_gcodec"))
+        .args(args)
+        .env("RUST_BACKTRACE", "1")
+        .output()
+        .expect("gcodec runs")
+}
+
+fn code(out: &Output) -> i32 {
+    out.status.code().expect("exited normally")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+const PROGRAM: &str = "GR_TOOL=\"WHEEL\"\nR1=GR_STEPS[5]*GR_FEED\nM30\n";
+
+#[test]
+fn definitions_make_global_names_known() {
+    let program = temp_file("known", "main.mpf", PROGRAM);
+    // Without the definition file the names are undefined.
+    let out = gcodec(["lower".as_ref(), program.as_os_str()]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS, "{}", stderr(&out));
+    assert!(stderr(&out).contains("gcodec::lower::undefined_variable"));
+    // Two files, the flag repeated.
+    let mgud = temp_file(
+        "known",
+        "MGUD.DEF",
+        "DEF CHAN STRING[32] GR_TOOL\nDEF CHAN REAL GR_STEPS[6]=REP(0.1)\nM30\n",
+    );
+    let ugud = temp_file("known", "UGUD.DEF", "DEF NCK REAL GR_FEED\n");
+    let out = gcodec([
+        "lower".as_ref(),
+        program.as_os_str(),
+        "--definitions".as_ref(),
+        mgud.as_os_str(),
+        "--definitions".as_ref(),
+        ugud.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let listing = String::from_utf8_lossy(&out.stdout);
+    assert!(listing.contains("assign"), "{listing}");
+}
+
+#[test]
+fn types_from_definitions_are_checked() {
+    let program = temp_file("types", "main.mpf", "GR_TOOL=5\n");
+    let mgud = temp_file("types", "MGUD.DEF", "DEF CHAN STRING[32] GR_TOOL\n");
+    let out = gcodec([
+        "lower".as_ref(),
+        program.as_os_str(),
+        "--definitions".as_ref(),
+        mgud.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    assert!(stderr(&out).contains("gcodec::lower::type_mismatch"));
+}
+
+#[test]
+fn an_unreadable_definition_file_is_exit_code_2() {
+    let program = temp_file("io", "main.mpf", PROGRAM);
+    let out = gcodec([
+        "lower",
+        program.to_str().expect("utf-8 path"),
+        "--definitions",
+        "/nonexistent/MGUD.DEF",
+    ]);
+    assert_eq!(code(&out), EXIT_USAGE);
+    let err = stderr(&out);
+    assert!(err.contains("gcodec::io::read"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(out.stdout.is_empty());
+}
+
+#[test]
+fn a_bad_definition_file_is_exit_code_2_with_its_diagnostics() {
+    let program = temp_file("bad", "main.mpf", PROGRAM);
+    let bad = temp_file("bad", "BAD.DEF", "DEF INT AA\nG1 X10\nDEF REAL AA\n");
+    let out = gcodec([
+        "lower".as_ref(),
+        program.as_os_str(),
+        "--definitions".as_ref(),
+        bad.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_USAGE);
+    let err = stderr(&out);
+    assert!(
+        err.contains("gcodec::definitions::not_a_definition"),
+        "{err}"
+    );
+    assert!(err.contains("gcodec::definitions::duplicate"), "{err}");
+    assert!(err.contains("BAD.DEF"), "{err}");
+    assert!(out.stdout.is_empty());
+}

@@ -1,0 +1,896 @@
+//! Named addresses (reference §2.2, §2.6, §2.7): `SPOS`, `FA[X]`, `ACC[X]`,
+//! `OVR`, `LIMS`, `CHF`, `RND`, `PW`, `SD`, `DL`, `AX[X]`, `POS[C]`, …,
+//! `H` auxiliary functions, the dimension-modifier rules of §2.5, dwell
+//! (`G4`) and the checks of the profile's `[g_codes]`.
+//!
+//! What the executor interprets becomes an `address` instruction; what
+//! belongs to the block's motion is attached to it (`AX[…]` targets, `PW`
+//! and `PL` spline data, `CHF`/`CHR`/`RND` transitions, polar `AP`/`RP` and
+//! `ANG` as targets).
+
+use std::borrow::Cow;
+
+use gcodec_ail::{
+    Address, AddressScope, AxisValue, HFunction, IndirectAxisValue, MTiming, Op, TransitionKind,
+    Value,
+};
+use gcodec_parser::ast::{self, DimensionKind, Extension, StatementKind, Word, WordValue};
+use gcodec_profile::AxisKind;
+use gcodec_source::{Diagnostic, Span};
+
+use crate::{ggroups, tools, values};
+
+use super::{BlockPlan, INVALID_VALUE, Lowering, UNKNOWN_ADDRESS};
+
+pub(super) const MODIFIER_NOT_ALLOWED: &str = "gcodec::lower::modifier_not_allowed";
+pub(super) const EXTENSION_NOT_ALLOWED: &str = "gcodec::lower::extension_not_allowed";
+const MISSING_AXIS: &str = "gcodec::lower::missing_axis";
+const ADDRESS_REPEATED: &str = "gcodec::lower::address_repeated";
+const RESERVED_ADDRESS: &str = "gcodec::lower::reserved_address";
+const AXIS_NUMBER: &str = "gcodec::lower::axis_number";
+const DWELL_NOT_ALONE: &str = "gcodec::lower::dwell_not_alone";
+const DWELL_WITHOUT_TIME: &str = "gcodec::lower::dwell_without_time";
+pub(super) const UNSUPPORTED_G: &str = "gcodec::lower::unsupported_g";
+const UNKNOWN_PROFILE_G: &str = "gcodec::lower::unknown_profile_g";
+
+/// What a named address is and where its value goes.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Role {
+    /// An `address` instruction; `axis`: written `NAME[axis]=`;
+    /// `spindle`: takes a spindle number (`SPOS[2]=`).
+    Setting {
+        scope: AddressScope,
+        axis: bool,
+        spindle: bool,
+    },
+    /// Part of the end point of the block's motion: `AP`, `RP`, `ANG`.
+    Target,
+    /// `AX[axis]=`: an axis target named in brackets.
+    IndirectAxis,
+    Transition(TransitionKind),
+    /// `PW=`.
+    Weight,
+    /// `PL=`.
+    Interval,
+    /// `DL=`: emitted after the cutting edge.
+    AdditiveOffset,
+}
+
+const fn setting(scope: AddressScope, axis: bool, spindle: bool) -> Role {
+    Role::Setting {
+        scope,
+        axis,
+        spindle,
+    }
+}
+
+use AddressScope::{Block as B, Modal as M};
+
+/// The named addresses the lowering knows (reference §2.6, §2.7, §3.3).
+/// `CR`, `AR`, `TURN` are circle data (words.rs); `PO[…]` is not lowered.
+const NAMED: &[(&str, Role)] = &[
+    ("ACC", setting(M, true, false)),
+    ("ADIS", setting(M, false, false)),
+    ("ADISPOS", setting(M, false, false)),
+    ("ANG", Role::Target),
+    ("AP", Role::Target),
+    ("AX", Role::IndirectAxis),
+    ("CHF", Role::Transition(TransitionKind::Chamfer)),
+    ("CHR", Role::Transition(TransitionKind::ChamferLeg)),
+    ("DISC", setting(M, false, false)),
+    ("DISCL", setting(B, false, false)),
+    ("DISR", setting(B, false, false)),
+    ("DITE", setting(M, false, false)),
+    ("DITS", setting(M, false, false)),
+    ("DL", Role::AdditiveOffset),
+    ("FA", setting(M, true, false)),
+    ("FAD", setting(B, false, false)),
+    ("FB", setting(B, false, false)),
+    ("FL", setting(M, true, false)),
+    ("FP", setting(B, false, false)),
+    ("FZ", setting(M, false, false)),
+    ("LIMS", setting(M, false, false)),
+    ("OFFN", setting(M, false, false)),
+    ("OVR", setting(M, false, false)),
+    ("OVRA", setting(M, true, false)),
+    ("PL", Role::Interval),
+    ("POS", setting(B, true, false)),
+    ("POSA", setting(B, true, false)),
+    ("PW", Role::Weight),
+    ("RND", Role::Transition(TransitionKind::Rounding)),
+    ("RNDM", setting(M, false, false)),
+    ("RP", Role::Target),
+    ("SD", setting(M, false, false)),
+    ("SF", setting(M, false, false)),
+    ("SPOS", setting(B, false, true)),
+    ("SPOSA", setting(B, false, true)),
+];
+
+fn role(address: &str) -> Option<Role> {
+    NAMED
+        .iter()
+        .find(|(name, _)| name.eq_ignore_ascii_case(address))
+        .map(|(_, r)| *r)
+}
+
+/// Which dimension modifiers an address accepts (reference §2.5).
+#[derive(Clone, Copy)]
+pub(super) enum Modifiers {
+    /// `F S M T D H G`, `CR`, `LIMS`, …
+    None,
+    /// `I J K`, `AP`, `RP`: `AC`, `IC`.
+    AbsoluteIncremental,
+    /// `SPOS`, `SPOSA`: `AC IC DC ACP ACN`.
+    Spindle,
+    /// An axis of the kind given, or unknown until run time.
+    Axis(Option<AxisKind>),
+}
+
+/// How an axis is named in brackets (`FA[X]`, `AX[_Z]`).
+enum AxisRef {
+    /// A name of the profile's axes, in upper case.
+    Named(String),
+    /// A variable or expression, resolved when the block runs.
+    Computed(gcodec_ail::Expr),
+}
+
+/// A name that can only be an axis identifier: an axis letter with an
+/// optional number (`X`, `C2`, `Q1`), as opposed to a variable (`_Z`).
+fn looks_like_axis(name: &str) -> bool {
+    let bytes = name.as_bytes();
+    matches!(
+        bytes.first().map(u8::to_ascii_uppercase),
+        Some(b'A' | b'B' | b'C' | b'E' | b'Q' | b'U' | b'V' | b'W' | b'X' | b'Y' | b'Z')
+    ) && bytes[1..].iter().all(u8::is_ascii_digit)
+        && bytes.len() <= 3
+}
+
+impl Lowering<'_> {
+    /// Checks the profile's `[g_codes]` and `legacy_aliases` against the
+    /// G-group registry, which the profile crate does not know. The
+    /// diagnostics carry no span into the program.
+    pub(super) fn check_profile_g_codes(&mut self) {
+        for code in &self.profile.g_codes.unsupported {
+            if ggroups::lookup(code.get_ref()).is_none() {
+                self.diagnostics.push(
+                    Diagnostic::error(
+                        UNKNOWN_PROFILE_G,
+                        format!(
+                            "the profile's `[g_codes] unsupported` names `{}`, which is not a G command of the control",
+                            code.get_ref()
+                        ),
+                    )
+                    .with_help("list commands of the G-group table (reference §3.2), e.g. `\"G33\"`"),
+                );
+            }
+        }
+        for alias in self.profile.work_offsets.legacy_aliases.keys() {
+            let name = alias.get_ref();
+            if let Some((group, _)) = ggroups::lookup(name) {
+                if group != 3 {
+                    self.diagnostics.push(
+                        Diagnostic::error(
+                            UNKNOWN_PROFILE_G,
+                            format!(
+                                "the profile's `legacy_aliases` redefines `{name}`, a G command of group {group}"
+                            ),
+                        )
+                        .with_help("only codes the control has no other use for (such as `G58`, `G59`) can stand for a settable offset"),
+                    );
+                }
+            }
+        }
+    }
+
+    /// `G<n>` is ruled out by the profile's `[g_codes]`.
+    pub(super) fn g_unsupported(&self, group: u8, member: &str) -> Option<&'static str> {
+        let g = &self.profile.g_codes;
+        if g.unsupported_groups.iter().any(|n| *n.get_ref() == group) {
+            return Some("unsupported_groups");
+        }
+        if g.unsupported.iter().any(|c| {
+            ggroups::lookup(c.get_ref()).and_then(|(gr, i)| ggroups::member(gr, i)) == Some(member)
+        }) {
+            return Some("unsupported");
+        }
+        None
+    }
+
+    /// The modifiers `address` accepts.
+    pub(super) fn modifiers_for(&self, word: &Word) -> Modifiers {
+        let address = word.address();
+        match address {
+            "I" | "J" | "K" | "AP" | "RP" => Modifiers::AbsoluteIncremental,
+            "SPOS" | "SPOSA" => Modifiers::Spindle,
+            "AX" | "POS" | "POSA" => match word.extension() {
+                Some(Extension::Index { index, .. }) => match &index.kind {
+                    ast::ExprKind::Var { var } if var.indices.is_empty() => {
+                        Modifiers::Axis(self.axis_kind(&var.name))
+                    }
+                    _ => Modifiers::Axis(None),
+                },
+                _ => Modifiers::Axis(None),
+            },
+            _ if role(address).is_some() => Modifiers::None,
+            "E" => Modifiers::Axis(self.axis_kind("E")),
+            _ if address.len() == 1
+                && matches!(
+                    address.as_bytes()[0],
+                    b'A' | b'B' | b'C' | b'Q' | b'U' | b'V' | b'W' | b'X' | b'Y' | b'Z'
+                ) =>
+            {
+                let name = self.axis_word_name(word);
+                Modifiers::Axis(self.axis_kind(&name))
+            }
+            _ => Modifiers::None,
+        }
+    }
+
+    /// The axis an axis-letter word names: `X`, or `X1` for `X1=…`.
+    pub(super) fn axis_word_name(&self, word: &Word) -> String {
+        match word.extension() {
+            Some(Extension::Number { value, .. }) => format!("{}{value}", word.address()),
+            _ => word.address().to_owned(),
+        }
+    }
+
+    fn axis_kind(&self, name: &str) -> Option<AxisKind> {
+        self.profile
+            .axes
+            .iter()
+            .find(|a| a.name.get_ref().eq_ignore_ascii_case(name))
+            .map(|a| a.kind)
+    }
+
+    /// Reports a dimension modifier the address does not take (reference
+    /// §2.5); `false` when the word is rejected.
+    pub(super) fn check_modifier(&mut self, word: &Word, value: &WordValue) -> bool {
+        let WordValue::Assigned {
+            modifier: Some(modifier),
+            ..
+        } = value
+        else {
+            return true;
+        };
+        use DimensionKind::*;
+        let kind = modifier.kind;
+        let address = word.address();
+        let (allowed, help): (bool, Cow<'static, str>) = match self.modifiers_for(word) {
+            Modifiers::None => (
+                false,
+                format!("`{address}` takes a plain value; AC and IC apply to axes, I J K, AP, RP and SPOS, DC, ACP and ACN to rotary axes and SPOS/SPOSA").into(),
+            ),
+            Modifiers::AbsoluteIncremental => (
+                matches!(kind, Ac | Ic),
+                format!("`{address}` takes AC or IC").into(),
+            ),
+            Modifiers::Spindle => (
+                matches!(kind, Ac | Ic | Dc | Acp | Acn),
+                "spindle positions take AC, IC, DC, ACP or ACN".into(),
+            ),
+            Modifiers::Axis(axis) => match kind {
+                Dc | Acp | Acn => (
+                    axis != Some(AxisKind::Linear),
+                    "DC, ACP and ACN position rotary axes (and spindles); the profile's `[[axes]]` makes this axis linear".into(),
+                ),
+                Dac | Dic | Rac | Ric => (
+                    axis != Some(AxisKind::Rotary),
+                    "diameter and radius programming (DAC, DIC, RAC, RIC) applies to linear axes".into(),
+                ),
+                _ => (true, "".into()),
+            },
+        };
+        if allowed {
+            return true;
+        }
+        self.diagnostics.push(
+            Diagnostic::error(
+                MODIFIER_NOT_ALLOWED,
+                format!("`{}` is not allowed on `{address}`", kind.keyword()),
+            )
+            .with_label(modifier.span, "dimension modifier")
+            .with_help(help),
+        );
+        false
+    }
+
+    /// An axis named in brackets (`FA[X]`, `AX[_Z]`): a constant axis name
+    /// must be one of the profile's; a variable is resolved when the block
+    /// runs. `None` when the word is rejected (diagnostic pushed).
+    fn bracket_axis(&mut self, word: &Word, span: Span) -> Option<AxisRef> {
+        let address = word.address();
+        let index = match word.extension() {
+            Some(Extension::Index { index, .. }) => index,
+            Some(Extension::Number { span: at, .. }) => {
+                self.diagnostics.push(
+                    Diagnostic::error(
+                        EXTENSION_NOT_ALLOWED,
+                        format!("`{address}` takes its axis in brackets"),
+                    )
+                    .with_label(*at, "a number")
+                    .with_help(format!("write `{address}[X]=…` with the axis name")),
+                );
+                return None;
+            }
+            None => {
+                self.diagnostics.push(
+                    Diagnostic::error(MISSING_AXIS, format!("`{address}` needs an axis"))
+                        .with_label(word.address_span(span), "no axis")
+                        .with_help(format!("write `{address}[X]=…` with the axis name")),
+                );
+                return None;
+            }
+        };
+        match &index.kind {
+            ast::ExprKind::Var { var }
+                if var.indices.is_empty() && var.kind == ast::VarKind::Name =>
+            {
+                let name = var.name.to_ascii_uppercase();
+                if self.is_axis(&name) {
+                    return Some(AxisRef::Named(name.to_string()));
+                }
+                if name == "E" {
+                    self.reserved_e(var.span);
+                    return None;
+                }
+                if looks_like_axis(&name) {
+                    self.diagnostics.push(
+                        Diagnostic::error(
+                            UNKNOWN_ADDRESS,
+                            format!("`{name}` is not an axis of this machine"),
+                        )
+                        .with_label(var.span, "unknown axis")
+                        .with_help("the profile's `[[axes]]` lists the machine's axes"),
+                    );
+                    return None;
+                }
+                // `AX[_Z]`: an AXIS variable or parameter.
+                self.check_variables(index);
+                Some(AxisRef::Computed(values::tree(index)))
+            }
+            ast::ExprKind::Number { .. } => {
+                self.diagnostics.push(
+                    Diagnostic::warning(
+                        AXIS_NUMBER,
+                        format!("`{address}[{}]` names an axis by a number", values::source_text(index)),
+                    )
+                    .with_label(index.span, "not an axis name")
+                    .with_help("SINUMERIK names axes (`ACC[X]`, `ACC[AX4]`); the control rejects a number here. Left out of the instruction list"),
+                );
+                None
+            }
+            _ => {
+                self.check_variables(index);
+                Some(AxisRef::Computed(values::tree(index)))
+            }
+        }
+    }
+
+    /// `E`: reserved on the control (MD20060 forbids it as an axis name);
+    /// the CEAD interpreter's programs use it as the extruder axis.
+    pub(super) fn reserved_e(&mut self, span: Span) {
+        self.diagnostics.push(
+            Diagnostic::warning(RESERVED_ADDRESS, "`E` is a reserved address of the control")
+                .with_label(span, "reserved")
+                .with_help("SINUMERIK reserves `E` (no axis may be named E, MD20060) and rejects it; programs for the CEAD interpreter use it as the extruder axis. Left out of the instruction list; a profile with an axis `E` lowers it as that axis"),
+        );
+    }
+
+    /// A spindle number in brackets or digits (`SPOS[2]=`, `SPOS2=`):
+    /// checked against the profile when constant. `Err` when rejected.
+    fn spindle_extension(
+        &mut self,
+        extension: Option<&Extension>,
+    ) -> Result<(Option<u32>, Option<gcodec_ail::Expr>), ()> {
+        match extension {
+            None => Ok((None, None)),
+            Some(Extension::Number { value, span }) => self.spindle_number(*value, *span),
+            Some(Extension::Index { index, span }) => match values::constant(index) {
+                Some(n) if n >= 0.0 && n.fract() == 0.0 && n <= 99.0 => {
+                    self.spindle_number(n as u32, *span)
+                }
+                Some(_) => {
+                    self.diagnostics.push(
+                        Diagnostic::error(INVALID_VALUE, "a spindle number is a whole number 1…99")
+                            .with_label(*span, "not a spindle number"),
+                    );
+                    Err(())
+                }
+                None => {
+                    self.check_variables(index);
+                    Ok((None, Some(values::tree(index))))
+                }
+            },
+        }
+    }
+
+    fn spindle_number(
+        &mut self,
+        n: u32,
+        span: Span,
+    ) -> Result<(Option<u32>, Option<gcodec_ail::Expr>), ()> {
+        // Extension 0 is the master spindle (reference §4.2).
+        if n != 0 && !tools::spindle_exists(self.profile, n) {
+            self.diagnostics.push(tools::unknown_spindle(n, span));
+            return Err(());
+        }
+        Ok((Some(n), None))
+    }
+
+    /// A named address word (`SPOS=90`, `FA[X]=400`, `CHF=2`); `false`
+    /// when `address` is none of them.
+    pub(super) fn named_address(
+        &mut self,
+        word: &Word,
+        value: &WordValue,
+        span: Span,
+        plan: &mut BlockPlan,
+    ) -> bool {
+        let address = word.address();
+        let Some(role) = role(address) else {
+            return false;
+        };
+        let (v, mode) = values::word_value(value);
+        self.place_address(address, role, word.extension(), v, mode, word, span, plan);
+        true
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn place_address(
+        &mut self,
+        address: &str,
+        role: Role,
+        extension: Option<&Extension>,
+        value: Value,
+        mode: Option<String>,
+        word: &Word,
+        span: Span,
+        plan: &mut BlockPlan,
+    ) {
+        let takes_extension = matches!(
+            role,
+            Role::IndirectAxis
+                | Role::Setting { axis: true, .. }
+                | Role::Setting { spindle: true, .. }
+        );
+        if !takes_extension {
+            if let Some(ext) = extension {
+                let at = match ext {
+                    Extension::Number { span, .. } | Extension::Index { span, .. } => *span,
+                };
+                return self.diagnostics.push(
+                    Diagnostic::error(
+                        EXTENSION_NOT_ALLOWED,
+                        format!("`{address}` takes no address extension"),
+                    )
+                    .with_label(at, "extension")
+                    .with_help(
+                        "extensions are for axes, I J K, S, SPOS, SPOSA, M, H and T (reference §2.2); axial addresses take an axis in brackets (`FA[X]=`)",
+                    ),
+                );
+            }
+        }
+        match role {
+            Role::Setting {
+                scope,
+                axis,
+                spindle,
+            } => {
+                let (axis_name, axis_expr) = if axis {
+                    match self.bracket_axis(word, span) {
+                        Some(AxisRef::Named(n)) => (Some(n), None),
+                        Some(AxisRef::Computed(e)) => (None, Some(e)),
+                        None => return,
+                    }
+                } else {
+                    (None, None)
+                };
+                let (ext, ext_expr) = if spindle {
+                    match self.spindle_extension(extension) {
+                        Ok(found) => found,
+                        Err(()) => return,
+                    }
+                } else {
+                    (None, None)
+                };
+                let key = (address.to_owned(), axis_name.clone(), ext);
+                if axis_expr.is_none() && ext_expr.is_none() {
+                    if let Some((_, first)) = plan.address_keys.iter().find(|(k, _)| *k == key) {
+                        return self.repeated(address, span, *first);
+                    }
+                    plan.address_keys.push((key, span));
+                }
+                plan.addresses.push((
+                    Op::Address(Box::new(Address {
+                        address: address.to_owned(),
+                        axis: axis_name,
+                        axis_expr,
+                        extension: ext,
+                        extension_expr: ext_expr,
+                        value,
+                        mode,
+                        scope,
+                    })),
+                    span,
+                ));
+            }
+            Role::AdditiveOffset => {
+                let ok = match &value {
+                    Value::Const(d) => *d >= 0.0 && d.fract() == 0.0,
+                    Value::Expr(_) => true,
+                };
+                if !ok {
+                    return self.diagnostics.push(
+                        Diagnostic::error(INVALID_VALUE, "`DL` takes a whole number ≥ 0")
+                            .with_label(span, "not a DL number"),
+                    );
+                }
+                let key = ("DL".to_owned(), None, None);
+                if let Some((_, first)) = plan.address_keys.iter().find(|(k, _)| *k == key) {
+                    return self.repeated(address, span, *first);
+                }
+                plan.address_keys.push((key, span));
+                plan.after_edge.push((
+                    Op::Address(Box::new(Address {
+                        address: "DL".to_owned(),
+                        axis: None,
+                        axis_expr: None,
+                        extension: None,
+                        extension_expr: None,
+                        value,
+                        mode: None,
+                        scope: AddressScope::Modal,
+                    })),
+                    span,
+                ));
+            }
+            Role::Target => plan.targets.push((
+                AxisValue {
+                    axis: Cow::Owned(address.to_owned()),
+                    value,
+                    mode,
+                },
+                span,
+            )),
+            Role::IndirectAxis => match self.bracket_axis(word, span) {
+                Some(AxisRef::Named(name)) => plan.targets.push((
+                    AxisValue {
+                        axis: Cow::Owned(name),
+                        value,
+                        mode,
+                    },
+                    span,
+                )),
+                Some(AxisRef::Computed(axis)) => {
+                    plan.indirect_targets
+                        .push(IndirectAxisValue { axis, value, mode });
+                    plan.motion_span.get_or_insert(span);
+                }
+                None => {}
+            },
+            Role::Transition(kind) => {
+                if let Some((_, first)) = &plan.transition {
+                    return self.repeated("CHF/CHR/RND", span, *first);
+                }
+                plan.transition = Some((gcodec_ail::Transition { kind, value }, span));
+            }
+            Role::Weight | Role::Interval => {
+                let slot = if role == Role::Weight {
+                    &mut plan.spline.weight
+                } else {
+                    &mut plan.spline.interval
+                };
+                if slot.is_some() {
+                    return self.repeated(address, span, span);
+                }
+                *slot = Some(value);
+                plan.spline_span.get_or_insert(span);
+            }
+        }
+    }
+
+    fn repeated(&mut self, address: &str, span: Span, first: Span) {
+        let mut d = Diagnostic::error(
+            ADDRESS_REPEATED,
+            format!("`{address}` is programmed twice in one block"),
+        )
+        .with_label(span, "again");
+        if first != span {
+            d = d.with_label(first, "first");
+        }
+        self.diagnostics
+            .push(d.with_help("the control allows an address once per block (alarm 12010)"));
+    }
+
+    /// `FAD=5`, `SPOS2=90`: named addresses the parser reads as
+    /// assignments to a name (it knows no `FAD`, and `SPOS2=` is not one
+    /// of its extension forms). `false` when the statement is something
+    /// else.
+    pub(super) fn address_assignment(
+        &mut self,
+        statement: &ast::Statement,
+        plan: &mut BlockPlan,
+    ) -> bool {
+        let StatementKind::Assign(assign) = &statement.kind else {
+            return false;
+        };
+        let target = &assign.target;
+        if target.kind != ast::VarKind::Name || !target.indices.is_empty() {
+            return false;
+        }
+        let ast::Initializer::Expr(expr) = &assign.value else {
+            return false;
+        };
+        let upper = target.name.to_ascii_uppercase();
+        let (address, spindle) = match upper.as_str() {
+            "FAD" | "DISR" | "DISCL" => (upper.as_str(), None),
+            name => {
+                let digits_at = name
+                    .find(|c: char| c.is_ascii_digit())
+                    .unwrap_or(name.len());
+                let (head, digits) = name.split_at(digits_at);
+                match (head, digits.parse::<u32>()) {
+                    ("SPOS" | "SPOSA", Ok(n)) if digits.len() <= 2 => (head, Some(n)),
+                    _ => return false,
+                }
+            }
+        };
+        let Some(role) = role(address) else {
+            return false;
+        };
+        let span = statement.span;
+        self.check_variables(expr);
+        // `SPOS2=DC(90)`: the modifier is a call in an assignment.
+        let (value, mode) = match &expr.kind {
+            ast::ExprKind::Call(call) if call.args.len() == 1 => {
+                match (DimensionKind::from_name(&call.name), &call.args[0]) {
+                    (Some(kind), Some(arg)) => {
+                        if spindle.is_none() {
+                            self.diagnostics.push(
+                                Diagnostic::error(
+                                    MODIFIER_NOT_ALLOWED,
+                                    format!("`{}` is not allowed on `{address}`", kind.keyword()),
+                                )
+                                .with_label(call.name_span, "dimension modifier")
+                                .with_help(format!("`{address}` takes a plain value")),
+                            );
+                            return true;
+                        }
+                        if !matches!(
+                            kind,
+                            DimensionKind::Ac
+                                | DimensionKind::Ic
+                                | DimensionKind::Dc
+                                | DimensionKind::Acp
+                                | DimensionKind::Acn
+                        ) {
+                            self.diagnostics.push(
+                                Diagnostic::error(
+                                    MODIFIER_NOT_ALLOWED,
+                                    format!("`{}` is not allowed on `{address}`", kind.keyword()),
+                                )
+                                .with_label(call.name_span, "dimension modifier")
+                                .with_help("spindle positions take AC, IC, DC, ACP or ACN"),
+                            );
+                            return true;
+                        }
+                        (values::value(arg), Some(kind.keyword().to_owned()))
+                    }
+                    _ => (values::value(expr), None),
+                }
+            }
+            _ => (values::value(expr), None),
+        };
+        let extension = spindle.map(|value| Extension::Number { span, value });
+        let word = Word::new(
+            span,
+            address,
+            target.span,
+            extension.clone(),
+            WordValue::Assigned {
+                modifier: None,
+                expr: Box::new(expr.clone()),
+            },
+        );
+        self.place_address(
+            address,
+            role,
+            extension.as_ref(),
+            value,
+            mode,
+            &word,
+            span,
+            plan,
+        );
+        true
+    }
+
+    /// `H5`, `H2=5`, `H[I]=5`, `H=QU(7)` (reference §4.5).
+    pub(super) fn h_word(
+        &mut self,
+        word: &Word,
+        value: &WordValue,
+        span: Span,
+        plan: &mut BlockPlan,
+    ) {
+        let (extension, extension_expr) = match word.extension() {
+            None => (None, None),
+            Some(Extension::Number { value, span: at }) => {
+                if *value > 99 {
+                    return self.diagnostics.push(
+                        Diagnostic::error(INVALID_VALUE, "H extensions are 0…99")
+                            .with_label(*at, "out of range"),
+                    );
+                }
+                (Some(*value), None)
+            }
+            Some(Extension::Index { index, span: at }) => match values::constant(index) {
+                Some(n) if (0.0..=99.0).contains(&n) && n.fract() == 0.0 => (Some(n as u32), None),
+                Some(_) => {
+                    return self.diagnostics.push(
+                        Diagnostic::error(INVALID_VALUE, "H extensions are 0…99")
+                            .with_label(*at, "out of range"),
+                    );
+                }
+                None => {
+                    self.check_variables(index);
+                    (None, Some(values::tree(index)))
+                }
+            },
+        };
+        // `H=QU(7)`: quick output of the value.
+        let (expr, quick) = match value {
+            WordValue::Assigned { expr, .. } => match &expr.kind {
+                ast::ExprKind::Call(call)
+                    if call.name.eq_ignore_ascii_case("QU") && call.args.len() == 1 =>
+                {
+                    match &call.args[0] {
+                        Some(arg) => (Some(arg), true),
+                        None => (Some(&**expr), false),
+                    }
+                }
+                _ => (Some(&**expr), false),
+            },
+            WordValue::Constant(_) => (None, false),
+        };
+        let (h_value, h_expr) = match (value, expr) {
+            (WordValue::Constant(n), _) => (Some(n.value), None),
+            (_, Some(e)) => match values::constant(e) {
+                Some(v) => (Some(v), None),
+                None => (None, Some(values::tree(e))),
+            },
+            _ => (None, None),
+        };
+        if h_value.is_some_and(|v| v.abs() > f64::from(f32::MAX)) {
+            return self.diagnostics.push(
+                Diagnostic::error(INVALID_VALUE, "H values range over ±3.4028e38")
+                    .with_label(span, "out of range"),
+            );
+        }
+        let ext_text = match (&extension, word.extension()) {
+            (Some(n), _) => n.to_string(),
+            (None, Some(Extension::Index { index, .. })) => {
+                format!("[{}]", values::source_text(index))
+            }
+            _ => String::new(),
+        };
+        let value_text = match (h_value, expr) {
+            (_, Some(e)) if quick => format!("QU({})", values::source_text(e)),
+            (Some(v), _) => v.to_string(),
+            (None, Some(e)) => values::source_text(e),
+            (None, None) => String::new(),
+        };
+        let raw = if ext_text.is_empty() && !quick && h_expr.is_none() {
+            format!("H{value_text}")
+        } else {
+            format!("H{ext_text}={value_text}")
+        };
+        plan.h_functions.push((
+            Op::HFunction(Box::new(HFunction {
+                h_value,
+                h_expr,
+                address_extension: extension,
+                address_extension_expr: extension_expr,
+                quick,
+                timing: MTiming::InBlock,
+                raw,
+            })),
+            span,
+        ));
+    }
+
+    /// `PW=`, `PL=`, `CHF=`, `CHR=`, `RND=` in a block without motion:
+    /// `address` instructions of block scope, for the executor to judge.
+    pub(super) fn unattached_motion_data(
+        &mut self,
+        index: usize,
+        spline_span: Option<Span>,
+        transition: Option<(gcodec_ail::Transition, Span)>,
+        spline: Option<gcodec_ail::SplineData>,
+    ) {
+        let span = spline_span.unwrap_or_default();
+        let address = |name: &str, value: Value| {
+            Op::Address(Box::new(Address {
+                address: name.to_owned(),
+                axis: None,
+                axis_expr: None,
+                extension: None,
+                extension_expr: None,
+                value,
+                mode: None,
+                scope: AddressScope::Block,
+            }))
+        };
+        if let Some(spline) = spline {
+            if let Some(v) = spline.weight {
+                self.emit(index, span, address("PW", v));
+            }
+            if let Some(v) = spline.interval {
+                self.emit(index, span, address("PL", v));
+            }
+        }
+        if let Some((t, at)) = transition {
+            let name = match t.kind {
+                TransitionKind::Chamfer => "CHF",
+                TransitionKind::ChamferLeg => "CHR",
+                TransitionKind::Rounding => "RND",
+            };
+            self.emit(index, at, address(name, t.value));
+        }
+    }
+
+    /// `G4 F…` / `G4 S…`: the dwell of a block with `G4`, taking the
+    /// block's F and S values (which then are no feed or speed). `G4`
+    /// needs a block of its own (reference §2.7).
+    pub(super) fn dwell(&mut self, index: usize, g4: Span, plan: &mut BlockPlan) -> Op {
+        let block = &self.program.blocks[index];
+        let mut others = Vec::new();
+        for statement in &block.statements {
+            let StatementKind::Word(word) = &statement.kind else {
+                others.push(statement.span);
+                continue;
+            };
+            let ok = match word.address() {
+                "G" => statement.span == g4,
+                "F" => true,
+                "S" => word.extension().is_none(),
+                _ => false,
+            };
+            if !ok {
+                others.push(statement.span);
+            }
+        }
+        if !others.is_empty() {
+            let mut d = Diagnostic::error(DWELL_NOT_ALONE, "`G4` must be alone in its block")
+                .with_label(g4, "dwell");
+            for at in others {
+                d = d.with_label(at, "also in the block");
+            }
+            self.diagnostics.push(d.with_help(
+                "the control programs a dwell in a block of its own: `G4 F<seconds>` or `G4 S<revolutions>`",
+            ));
+        }
+        let seconds = plan.feed.take().map(|(v, _)| v);
+        let revolutions = match plan
+            .spindle
+            .iter()
+            .position(|s| s.0.is_none() && s.1.is_none())
+        {
+            Some(i) => Some(plan.spindle.remove(i).2),
+            None => None,
+        };
+        if seconds.is_none() && revolutions.is_none() {
+            self.diagnostics.push(
+                Diagnostic::error(DWELL_WITHOUT_TIME, "`G4` without a dwell time")
+                    .with_label(g4, "dwell")
+                    .with_help(
+                        "write `G4 F<seconds>` or `G4 S<revolutions of the master spindle>`",
+                    ),
+            );
+        }
+        Op::Dwell {
+            seconds,
+            revolutions,
+        }
+    }
+}

@@ -1,0 +1,468 @@
+//! The data types of the NC language (reference §7.1), the conversions
+//! between them, and what is known about the types of built-in functions
+//! and system variables.
+//!
+//! Also the case-insensitive name map the variable checks use: names are
+//! upper-cased into a stack buffer for each lookup, so a lookup allocates
+//! nothing.
+
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+use gcodec_parser::ast;
+use gcodec_source::{Diagnostic, Span};
+
+use crate::sysvars::{self, IndexShape};
+
+/// A declared data type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DataType {
+    Int,
+    Real,
+    Bool,
+    Char,
+    /// `STRING[n]`; `length` is `None` where it is not a constant (or the
+    /// type of a computed string).
+    String {
+        length: Option<u32>,
+    },
+    Axis,
+    Frame,
+}
+
+impl DataType {
+    /// The type a `DEF` or a `PROC` parameter names; the length of
+    /// `STRING[n]` when it is a constant.
+    pub fn from_ast(kind: &ast::TypeKind) -> Self {
+        match kind {
+            ast::TypeKind::Int => DataType::Int,
+            ast::TypeKind::Real => DataType::Real,
+            ast::TypeKind::Bool => DataType::Bool,
+            ast::TypeKind::Char => DataType::Char,
+            ast::TypeKind::String { length } => DataType::String {
+                length: length.as_deref().and_then(constant_count),
+            },
+            ast::TypeKind::Axis => DataType::Axis,
+            ast::TypeKind::Frame => DataType::Frame,
+        }
+    }
+
+    /// The keyword (`STRING` without its length).
+    pub const fn keyword(self) -> &'static str {
+        match self {
+            DataType::Int => "INT",
+            DataType::Real => "REAL",
+            DataType::Bool => "BOOL",
+            DataType::Char => "CHAR",
+            DataType::String { .. } => "STRING",
+            DataType::Axis => "AXIS",
+            DataType::Frame => "FRAME",
+        }
+    }
+
+    /// The type as written in a message (`STRING[12]`).
+    pub fn describe(self) -> String {
+        match self {
+            DataType::String { length: Some(n) } => format!("STRING[{n}]"),
+            other => other.keyword().to_owned(),
+        }
+    }
+
+    /// Whether a value of type `self` may be assigned to a variable of
+    /// type `to`: the conversion table of the control (alarm 14096, "illegal
+    /// type conversion", Siemens diagnostics manual; reference §7.1).
+    ///
+    /// REAL, INT, BOOL and CHAR convert into each other; CHAR and STRING
+    /// into STRING; STRING into BOOL (empty is FALSE) and CHAR (one
+    /// character, checked by the caller for constants); AXIS and FRAME only
+    /// into themselves. Nothing numeric converts into STRING, AXIS or
+    /// FRAME.
+    pub fn converts_to(self, to: DataType) -> bool {
+        use DataType::*;
+        match (self, to) {
+            (Axis, Axis) | (Frame, Frame) => true,
+            (Axis | Frame, _) | (_, Axis | Frame) => false,
+            (String { .. }, Int | Real) => false,
+            (Int | Real | Bool, String { .. }) => false,
+            _ => true,
+        }
+    }
+
+    /// "a" or "an" before the keyword.
+    pub(crate) const fn article(self) -> &'static str {
+        match self {
+            DataType::Int | DataType::Axis => "an",
+            _ => "a",
+        }
+    }
+
+    /// INT or REAL.
+    pub const fn is_number(self) -> bool {
+        matches!(self, DataType::Int | DataType::Real)
+    }
+}
+
+/// A constant, whole, positive count (an array dimension, a string
+/// length): `10`, not `N` or `2.5`.
+pub(crate) fn constant_count(expr: &ast::Expr) -> Option<u32> {
+    let value = crate::values::constant(expr)?;
+    (value.fract() == 0.0 && value >= 1.0 && value <= f64::from(u32::MAX)).then_some(value as u32)
+}
+
+/// Built-in functions and their result types, sorted by name for binary
+/// search (a test keeps it so).
+const FUNCTIONS: &[(&str, DataType)] = &[
+    ("ABS", DataType::Real),
+    ("ACOS", DataType::Real),
+    ("ASIN", DataType::Real),
+    ("ATAN2", DataType::Real),
+    ("AXNAME", DataType::Axis),
+    ("AXSTRING", DataType::String { length: None }),
+    ("AXTOSPI", DataType::Int),
+    ("BOUND", DataType::Real),
+    ("BTOI", DataType::Int),
+    ("BTOR", DataType::Real),
+    ("CFINE", DataType::Frame),
+    ("CMIRROR", DataType::Frame),
+    ("COS", DataType::Real),
+    ("CROT", DataType::Frame),
+    ("CROTS", DataType::Frame),
+    ("CRPL", DataType::Frame),
+    ("CSCALE", DataType::Frame),
+    ("CTRANS", DataType::Frame),
+    ("EXP", DataType::Real),
+    ("INDEX", DataType::Int),
+    ("INVFRAME", DataType::Frame),
+    ("ISAXIS", DataType::Bool),
+    ("ISFILE", DataType::Bool),
+    ("ISNUMBER", DataType::Bool),
+    ("ISVAR", DataType::Bool),
+    ("ITOB", DataType::Bool),
+    ("ITOR", DataType::Real),
+    ("LN", DataType::Real),
+    ("MATCH", DataType::Int),
+    ("MAXVAL", DataType::Real),
+    ("MEAFRAME", DataType::Frame),
+    ("MINDEX", DataType::Int),
+    ("MINVAL", DataType::Real),
+    ("NUMBER", DataType::Real),
+    ("POT", DataType::Real),
+    ("RINDEX", DataType::Int),
+    ("ROUND", DataType::Real),
+    ("ROUNDUP", DataType::Real),
+    ("RTOB", DataType::Bool),
+    ("RTOI", DataType::Int),
+    ("SIN", DataType::Real),
+    ("SPI", DataType::Axis),
+    ("SPRINT", DataType::String { length: None }),
+    ("SQRT", DataType::Real),
+    ("STRLEN", DataType::Int),
+    ("SUBSTR", DataType::String { length: None }),
+    ("TAN", DataType::Real),
+    ("TOLOWER", DataType::String { length: None }),
+    ("TOUPPER", DataType::String { length: None }),
+    ("TRUNC", DataType::Real),
+];
+
+/// The result type of a built-in function (reference §7.6), by name in
+/// any case; `None` for functions whose type is not listed and for user
+/// functions.
+pub(crate) fn function_type(name: &str) -> Option<DataType> {
+    FUNCTIONS
+        .binary_search_by(|(entry, _)| compare_upper(entry, name))
+        .ok()
+        .map(|i| FUNCTIONS[i].1)
+}
+
+/// System variables of known type, sorted by name.
+const SYSTEM_TYPES: &[(&str, DataType)] = &[
+    ("$AA_IM", DataType::Real),
+    ("$AA_IW", DataType::Real),
+    ("$AA_MW", DataType::Real),
+    ("$AN_CEC_INPUT_AXIS", DataType::Axis),
+    ("$AN_CEC_OUTPUT_AXIS", DataType::Axis),
+    ("$C_TS", DataType::String { length: None }),
+    ("$PI", DataType::Real),
+    ("$P_AXN1", DataType::Axis),
+    ("$P_AXN2", DataType::Axis),
+    ("$P_AXN3", DataType::Axis),
+    ("$P_EP", DataType::Real),
+    ("$P_F", DataType::Real),
+    ("$P_PROG", DataType::String { length: None }),
+    ("$P_TOOLNO", DataType::Int),
+    ("$P_TOOLP", DataType::Int),
+    ("$P_TOOLR", DataType::Real),
+    ("$R", DataType::Real),
+    ("$R<n>", DataType::Real),
+];
+
+/// The type of a system variable read or written with `count` indices,
+/// where the registry's shape or the reference settles it; `None` where
+/// it is not known (never an error).
+pub(crate) fn system_variable_type(var: &sysvars::SysVar, count: usize) -> Option<DataType> {
+    use DataType::*;
+    match (var.shape, count) {
+        // A whole frame, or one of an array of frames; a component is REAL.
+        (IndexShape::Frame, 0) | (IndexShape::FrameComponent, 1) => return Some(Frame),
+        (IndexShape::Frame, 2) | (IndexShape::FrameComponent, 3) => return Some(Real),
+        _ => {}
+    }
+    if var.name.starts_with("$TC_DP") {
+        return Some(Real);
+    }
+    SYSTEM_TYPES
+        .binary_search_by(|(entry, _)| entry.cmp(&var.name))
+        .ok()
+        .map(|i| SYSTEM_TYPES[i].1)
+}
+
+/// The code of an assignment or initialiser of the wrong type.
+pub(crate) const TYPE_MISMATCH: &str = "gcodec::lower::type_mismatch";
+
+/// What is known of a value beyond its type when it is a constant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Constant {
+    None,
+    /// A string constant of this many bytes.
+    String(usize),
+    /// A number.
+    Number(f64),
+}
+
+/// The diagnostic for assigning a value of type `found` (at `span`) to
+/// `name` of type `target`, if the control rejects it: no conversion
+/// exists (alarm 14096), a string constant is longer than `STRING[n]`, a
+/// string constant for a CHAR is not one character, a constant for a
+/// CHAR is outside 0…255.
+pub(crate) fn mismatch(
+    target: DataType,
+    name: &str,
+    found: DataType,
+    constant: Constant,
+    span: Span,
+) -> Option<Diagnostic> {
+    if !found.converts_to(target) {
+        let help = match target {
+            DataType::Axis => {
+                "an AXIS variable takes an axis name (`X`, `AX1`) or an AXIS value (`$P_AXN1`, `AXNAME(\"X\")`); to move the axis it names, write `AX[name]=value`"
+            }
+            DataType::Frame => {
+                "a FRAME takes a frame (`CTRANS(X,10)`, another FRAME, a frame system variable); a component is written `name[X,TR]`"
+            }
+            DataType::String { .. } => {
+                "numbers do not convert to STRING by assignment; concatenate to convert (`\"\"<<R1`)"
+            }
+            _ => {
+                "the control has no conversion between these types (alarm 14096 \"illegal type conversion\")"
+            }
+        };
+        return Some(
+            Diagnostic::error(
+                TYPE_MISMATCH,
+                format!(
+                    "{} {} value cannot be assigned to `{name}`, which is {}",
+                    found.article(),
+                    found.keyword(),
+                    target.describe()
+                ),
+            )
+            .with_label(span, found.keyword().to_owned())
+            .with_help(help),
+        );
+    }
+    let problem = match (target, constant) {
+        (DataType::String { length: Some(n) }, Constant::String(len)) if len > n as usize => {
+            format!("the string has {len} characters; `{name}` is STRING[{n}]")
+        }
+        (DataType::Char, Constant::String(len)) if len != 1 => {
+            format!(
+                "`{name}` is CHAR: a string converts to CHAR only if it has one character; this one has {len}"
+            )
+        }
+        (DataType::Char, Constant::Number(v)) if !(0.0..=255.0).contains(&v) => {
+            format!("`{name}` is CHAR (0…255); {v} is outside")
+        }
+        _ => return None,
+    };
+    Some(
+        Diagnostic::error(TYPE_MISMATCH, problem)
+            .with_label(span, "does not fit")
+            .with_help("the control rejects the value (alarm 14096 \"illegal type conversion\"); shorten it or change the declaration"),
+    )
+}
+
+/// The type and constant of a literal, if the expression is one.
+pub(crate) fn literal(expr: &ast::Expr) -> Option<(DataType, Constant)> {
+    match &expr.kind {
+        ast::ExprKind::String { value } => Some((
+            DataType::String {
+                length: u32::try_from(value.len()).ok(),
+            },
+            Constant::String(value.len()),
+        )),
+        ast::ExprKind::Bool { .. } => Some((DataType::Bool, Constant::None)),
+        _ => {
+            let value = crate::values::constant(expr)?;
+            Some((
+                if number_is_integer(expr) {
+                    DataType::Int
+                } else {
+                    DataType::Real
+                },
+                Constant::Number(value),
+            ))
+        }
+    }
+}
+
+/// Whether a signed number literal (`-5`) is written as an integer.
+fn number_is_integer(expr: &ast::Expr) -> bool {
+    match &expr.kind {
+        ast::ExprKind::Number { integer, .. } => *integer,
+        ast::ExprKind::Unary { operand, .. } => number_is_integer(operand),
+        _ => false,
+    }
+}
+
+/// Compares an upper-case table name with `key` as if `key` were upper case.
+fn compare_upper(upper: &str, key: &str) -> std::cmp::Ordering {
+    upper
+        .bytes()
+        .cmp(key.bytes().map(|b| b.to_ascii_uppercase()))
+}
+
+/// Calls `f` with `name` in upper case, without allocating for names of
+/// up to 64 bytes (the control's names have at most 32 characters).
+pub(crate) fn with_upper<R>(name: &str, f: impl FnOnce(&str) -> R) -> R {
+    let mut buf = [0u8; 64];
+    if name.len() <= buf.len() {
+        for (d, s) in buf.iter_mut().zip(name.bytes()) {
+            *d = s.to_ascii_uppercase();
+        }
+        // Upper-casing ASCII bytes keeps UTF-8 valid.
+        f(std::str::from_utf8(&buf[..name.len()]).unwrap_or_default())
+    } else {
+        f(&name.to_ascii_uppercase())
+    }
+}
+
+/// A fast hash for short names (the FxHash mixing step).
+#[derive(Default, Clone, Copy)]
+pub(crate) struct FxHasher(u64);
+
+impl Hasher for FxHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        const K: u64 = 0x51_7c_c1_b7_27_22_0a_95;
+        let mut chunks = bytes.chunks_exact(8);
+        for chunk in &mut chunks {
+            let word = u64::from_le_bytes(chunk.try_into().unwrap_or_default());
+            self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(K);
+        }
+        for &b in chunks.remainder() {
+            self.0 = (self.0.rotate_left(5) ^ u64::from(b)).wrapping_mul(K);
+        }
+    }
+
+    fn write_u8(&mut self, b: u8) {
+        self.0 = (self.0.rotate_left(5) ^ u64::from(b)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+/// A map from names to values, case-insensitive.
+#[derive(Clone, Debug)]
+pub(crate) struct NameMap<V> {
+    map: HashMap<Box<str>, V, BuildHasherDefault<FxHasher>>,
+}
+
+impl<V> Default for NameMap<V> {
+    fn default() -> Self {
+        Self {
+            map: HashMap::default(),
+        }
+    }
+}
+
+impl<V> NameMap<V> {
+    pub(crate) fn get(&self, name: &str) -> Option<&V> {
+        if self.map.is_empty() {
+            return None;
+        }
+        with_upper(name, |key| self.map.get(key))
+    }
+
+    pub(crate) fn get_mut(&mut self, name: &str) -> Option<&mut V> {
+        with_upper(name, |key| self.map.get_mut(key))
+    }
+
+    pub(crate) fn contains(&self, name: &str) -> bool {
+        self.get(name).is_some()
+    }
+
+    /// Inserts `value` unless the name is taken; returns the value already
+    /// there, if any.
+    pub(crate) fn insert_new(&mut self, name: &str, value: V) -> Option<&V> {
+        let key: Box<str> = name.to_ascii_uppercase().into();
+        match self.map.entry(key) {
+            std::collections::hash_map::Entry::Occupied(e) => Some(e.into_mut()),
+            std::collections::hash_map::Entry::Vacant(e) => {
+                e.insert(value);
+                None
+            }
+        }
+    }
+
+    pub(crate) fn len(&self) -> usize {
+        self.map.len()
+    }
+
+    pub(crate) fn values(&self) -> impl Iterator<Item = &V> {
+        self.map.values()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn function_table_is_sorted() {
+        for pair in FUNCTIONS.windows(2) {
+            assert!(pair[0].0 < pair[1].0, "{} {}", pair[0].0, pair[1].0);
+        }
+        for pair in SYSTEM_TYPES.windows(2) {
+            assert!(pair[0].0 < pair[1].0, "{} {}", pair[0].0, pair[1].0);
+        }
+        assert_eq!(function_type("sin"), Some(DataType::Real));
+        assert_eq!(function_type("CTrans"), Some(DataType::Frame));
+        assert_eq!(function_type("TRUNC"), Some(DataType::Real));
+        assert_eq!(function_type("ABS"), Some(DataType::Real));
+        assert_eq!(function_type("MYFUNC"), None);
+    }
+
+    #[test]
+    fn conversions_follow_the_control() {
+        use DataType::*;
+        let s = String { length: None };
+        assert!(Int.converts_to(Real) && Real.converts_to(Int) && Real.converts_to(Bool));
+        assert!(Char.converts_to(s) && s.converts_to(Bool) && s.converts_to(Char));
+        assert!(!s.converts_to(Real) && !Real.converts_to(s) && !Bool.converts_to(s));
+        assert!(!Real.converts_to(Axis) && !Axis.converts_to(Real) && Axis.converts_to(Axis));
+        assert!(!Frame.converts_to(Real) && Frame.converts_to(Frame) && !Int.converts_to(Frame));
+    }
+
+    #[test]
+    fn name_map_ignores_case() {
+        let mut map = NameMap::default();
+        assert!(map.insert_new("Gr_Tool", 1).is_none());
+        assert_eq!(map.get("GR_TOOL"), Some(&1));
+        assert_eq!(map.get("gr_tool"), Some(&1));
+        assert_eq!(map.insert_new("GR_TOOL", 2), Some(&1));
+        let long = "A".repeat(100);
+        assert!(map.insert_new(&long, 3).is_none());
+        assert_eq!(map.get(&long.to_ascii_lowercase()), Some(&3));
+    }
+}

@@ -1,0 +1,522 @@
+//! The statically known modal state at every block (`gcodec_sema::modal`):
+//! straight-line code, joins, loops, jumps, calls and odd documents.
+
+mod common;
+
+#[path = "../../gcodec-parser/benches/program/mod.rs"]
+mod program;
+
+use std::sync::Arc;
+
+use gcodec_ail::{ByteRange, Document, Instruction, Op, Source, Value};
+use gcodec_profile::Profile;
+use gcodec_sema::modal::{LineState, ModalState, ModalStates, Start};
+
+fn builtin() -> Profile {
+    gcodec_profile::builtin().expect("built-in profile")
+}
+
+/// Lowers `src` with `profile`; the program must parse cleanly.
+fn lower_with(src: &str, profile: &Profile) -> Document {
+    let parsed = gcodec_parser::parse_bytes("modal.mpf", src.as_bytes());
+    assert!(parsed.diagnostics.is_empty(), "{:#?}", parsed.diagnostics);
+    gcodec_sema::lower(&parsed.program, profile).document
+}
+
+/// The states of `src` as a main program on the built-in profile.
+fn main_program(src: &str) -> ModalStates {
+    let profile = builtin();
+    ModalStates::analyse(&lower_with(src, &profile), Start::Reset(&profile))
+}
+
+/// The state at `line`, which must be reached.
+fn at(states: &ModalStates, line: u32) -> &ModalState {
+    states
+        .state_at_line(line)
+        .unwrap_or_else(|| panic!("line {line}: {:?}", states.line_state(line)))
+}
+
+/// Group `group`'s command at `line`.
+fn group_at(states: &ModalStates, line: u32, group: u8) -> Option<&'static str> {
+    at(states, line).get(group)
+}
+
+#[test]
+fn straight_line_states_follow_the_blocks() {
+    let states = main_program("G0 X1\nG17 G91 G4 F2\nG1 X2\nG18 Y1\nM30\n");
+    // Line 1 starts in the built-in profile's reset state.
+    let reset = at(&states, 1);
+    assert_eq!(reset.get(1), Some("G1"));
+    assert_eq!(reset.get(6), Some("G17"));
+    assert_eq!(reset.get(8), Some("G500"));
+    assert_eq!(reset.get(14), Some("G90"));
+    assert_eq!(reset.get(15), Some("G94"));
+    assert_eq!(reset.index(1), Some(2));
+    assert_eq!(reset.modal_call_active(), Some(false));
+    assert_eq!(group_at(&states, 2, 1), Some("G0"));
+    assert_eq!(group_at(&states, 2, 14), Some("G90"));
+    assert_eq!(group_at(&states, 3, 14), Some("G91"));
+    // G4 is non-modal (group 2): no state carries it.
+    assert_eq!(group_at(&states, 3, 2), None);
+    assert_eq!(group_at(&states, 4, 1), Some("G1"));
+    assert_eq!(group_at(&states, 5, 6), Some("G18"));
+    assert_eq!(group_at(&states, 5, 1), Some("G1"));
+    // Out of range groups are no groups.
+    assert_eq!(reset.get(0), None);
+    assert_eq!(reset.get(65), None);
+    // Five lines, five different states.
+    assert_eq!(states.distinct_states(), 5);
+    assert_eq!(
+        states.iter().map(|(line, _)| line).collect::<Vec<_>>(),
+        [1, 2, 3, 4, 5]
+    );
+    assert_eq!(states.line_state(6), LineState::NoInstructions);
+}
+
+#[test]
+fn repeated_commands_share_one_state() {
+    let states = main_program("G0 X1\nG0 X2\nG0 X3\nG0 X4\n");
+    assert_eq!(at(&states, 2), at(&states, 4));
+    // The reset state and the G0 state.
+    assert_eq!(states.distinct_states(), 2);
+}
+
+#[test]
+fn reset_state_comes_from_the_profile() {
+    let lathe = common::profile("lathe_828d.toml");
+    let document = lower_with("G53 X0\nX1\n", &lathe);
+    let states = ModalStates::analyse(&document, Start::Reset(&lathe));
+    let start = at(&states, 1);
+    assert_eq!(start.get(6), Some("G18"));
+    assert_eq!(start.get(15), Some("G95"));
+    assert_eq!(start.get(29), Some("DIAMON"));
+    // Group 8 starts at `default_group8_offset`, the selection the
+    // lowering's `work_offset` instructions start from, so a suppression
+    // keeps it known.
+    assert_eq!(start.get(8), Some("G54"));
+    assert_eq!(group_at(&states, 2, 8), Some("G54"));
+}
+
+#[test]
+fn if_else_whose_branches_agree_stays_known() {
+    let src = "G0 X0\nIF R1==1\nG1 G18 X1\nELSE\nG1 X2\nENDIF\nX3\n";
+    let states = main_program(src);
+    assert_eq!(group_at(&states, 7, 1), Some("G1"));
+    // The branches disagree on the plane.
+    assert_eq!(group_at(&states, 7, 6), None);
+    assert_eq!(group_at(&states, 5, 6), Some("G17"));
+    assert_eq!(group_at(&states, 5, 1), Some("G0"));
+}
+
+#[test]
+fn if_else_whose_branches_disagree_is_unknown() {
+    let src = "G0 X0\nIF R1==1\nG2 X1 CR=5\nELSE\nG3 X2 CR=5\nENDIF\nX3\n";
+    let states = main_program(src);
+    assert_eq!(group_at(&states, 7, 1), None);
+    assert_eq!(group_at(&states, 7, 6), Some("G17"));
+    // An IF without ELSE joins the skipped path.
+    let states = main_program("G0 X0\nIF R1==1\nG1 X1\nENDIF\nX3\n");
+    assert_eq!(group_at(&states, 5, 1), None);
+}
+
+#[test]
+fn a_loop_body_changing_a_group_makes_the_head_unknown() {
+    let src = "G0 X0\nWHILE R1<3\nG1 X1\nR1=R1+1\nENDWHILE\nX2\n";
+    let states = main_program(src);
+    assert_eq!(group_at(&states, 2, 1), None, "loop head");
+    assert_eq!(group_at(&states, 3, 1), None);
+    assert_eq!(group_at(&states, 4, 1), Some("G1"));
+    // The loop may run no pass or several.
+    assert_eq!(group_at(&states, 6, 1), None);
+    assert_eq!(group_at(&states, 6, 6), Some("G17"));
+    // A body that keeps group 1 keeps the head known.
+    let states = main_program("G0 X0\nWHILE R1<3\nX1\nG18\nENDWHILE\nX2\n");
+    assert_eq!(group_at(&states, 2, 1), Some("G0"));
+    assert_eq!(group_at(&states, 2, 6), None);
+    assert_eq!(group_at(&states, 6, 1), Some("G0"));
+}
+
+#[test]
+fn repeat_until_and_for_loops_join_at_their_heads() {
+    let states = main_program("G0 X0\nREPEAT\nX1\nG2 X2 CR=5\nUNTIL R1>2\nX3\n");
+    assert_eq!(group_at(&states, 3, 1), None);
+    assert_eq!(group_at(&states, 6, 1), Some("G2"));
+    // `FOR` sets its counter before the head label in the same block: the
+    // block starts as it is entered; the body sees the join.
+    let states = main_program("G0 X0\nFOR R3=1 TO 5\nX1\nG1 X2\nENDFOR\nX3\n");
+    assert_eq!(group_at(&states, 2, 1), Some("G0"));
+    assert_eq!(group_at(&states, 3, 1), None);
+    assert_eq!(group_at(&states, 6, 1), None);
+}
+
+#[test]
+fn goto_skips_blocks_and_joins_at_its_target() {
+    let states = main_program("G0 X0\nGOTOF SKIP\nG1 X1\nSKIP: X2\n");
+    assert_eq!(states.line_state(3), LineState::Unreachable);
+    assert_eq!(states.unreachable_lines().collect::<Vec<_>>(), [3]);
+    assert_eq!(group_at(&states, 4, 1), Some("G0"));
+    // A backward jump joins into its target.
+    let states = main_program("N10 X0\nG0 X1\nIF R1<5 GOTOB N10\nX2\n");
+    assert_eq!(group_at(&states, 1, 1), None);
+    assert_eq!(group_at(&states, 4, 1), Some("G0"));
+    // A conditional forward jump joins both paths.
+    let states = main_program("G0 X0\nIF R1==1 GOTOF SKIP\nG1 X1\nSKIP: X2\n");
+    assert_eq!(group_at(&states, 3, 1), Some("G0"));
+    assert_eq!(group_at(&states, 4, 1), None);
+}
+
+#[test]
+fn program_end_and_return_end_the_path() {
+    let states = main_program("G0 X0\nM30\nG1 X1\n");
+    assert_eq!(states.line_state(3), LineState::Unreachable);
+    let states = main_program("G0 X0\nG1 X1 M2\nMARK: X2\n");
+    assert_eq!(states.line_state(3), LineState::Unreachable);
+    let states = main_program("G0 X0\nRET\nX1\n");
+    assert_eq!(states.line_state(3), LineState::Unreachable);
+    // M0 stops and goes on.
+    let states = main_program("G0 X0\nM0\nX1\n");
+    assert_eq!(group_at(&states, 3, 1), Some("G0"));
+}
+
+#[test]
+fn a_call_makes_every_group_unknown() {
+    let states = main_program("G0 G18 X0\nL100\nX1\nG1 X2\nCYCLE81(1,2,3)\nX3\n");
+    assert_eq!(group_at(&states, 2, 6), Some("G18"));
+    let after = at(&states, 3);
+    assert_eq!(after.known().count(), 0, "{after:?}");
+    assert_eq!(group_at(&states, 5, 1), Some("G1"));
+    assert_eq!(group_at(&states, 5, 6), None);
+    assert_eq!(at(&states, 6).known().count(), 0);
+}
+
+#[test]
+fn a_modal_call_makes_every_traversing_block_a_call() {
+    let src = "G0 X0\nMCALL CYCLE81(1,2,3)\nG17\nX1\nX2\nMCALL\nG17\nX3\nX4\n";
+    let states = main_program(src);
+    // `MCALL` itself calls nothing.
+    assert_eq!(group_at(&states, 3, 1), Some("G0"));
+    assert_eq!(at(&states, 3).modal_call_active(), Some(true));
+    assert_eq!(group_at(&states, 4, 6), Some("G17"));
+    // After a traversing block the cycle has run.
+    assert_eq!(at(&states, 5).known().count(), 0);
+    assert_eq!(at(&states, 7).modal_call_active(), Some(false));
+    assert_eq!(group_at(&states, 8, 6), Some("G17"));
+    assert_eq!(group_at(&states, 9, 6), Some("G17"));
+    // Paths that disagree on the modal call: motion forgets.
+    let src = "G0 X0\nIF R1==1\nMCALL CYCLE81(1,2,3)\nENDIF\nG17\nX1\nX2\n";
+    let states = main_program(src);
+    assert_eq!(at(&states, 5).modal_call_active(), None);
+    assert_eq!(group_at(&states, 6, 6), Some("G17"));
+    assert_eq!(group_at(&states, 7, 6), None);
+}
+
+#[test]
+fn a_subprogram_starts_unknown() {
+    let profile = builtin();
+    let document = lower_with("G1 X1\nX2\nG17\nX3\n", &profile);
+    let states = ModalStates::analyse(&document, Start::Unknown);
+    assert_eq!(at(&states, 1).known().count(), 0);
+    assert_eq!(group_at(&states, 2, 1), Some("G1"));
+    assert_eq!(group_at(&states, 2, 6), None);
+    assert_eq!(group_at(&states, 4, 6), Some("G17"));
+    // The same text as a main program knows the plane from the start.
+    let states = ModalStates::analyse(&document, Start::Reset(&profile));
+    assert_eq!(group_at(&states, 2, 6), Some("G17"));
+}
+
+#[test]
+fn a_missing_jump_target_ends_the_path() {
+    let profile = builtin();
+    let parsed = gcodec_parser::parse_bytes("m.mpf", b"G0 X0\nGOTOF NOWHERE\nG1 X1\nM30\n");
+    let document = gcodec_sema::lower(&parsed.program, &profile).document;
+    assert!(document.instructions.iter().any(|i| matches!(
+        &i.op,
+        Op::Jump { target, .. } if target == "NOWHERE@missing"
+    )));
+    let states = ModalStates::analyse(&document, Start::Reset(&profile));
+    // Alarm 14080 when the jump runs: nothing after it runs.
+    assert_eq!(states.line_state(3), LineState::Unreachable);
+    // A conditional jump may go on.
+    let parsed = gcodec_parser::parse_bytes("m.mpf", b"G0 X0\nIF R1 GOTOF NOWHERE\nX1\nM30\n");
+    let document = gcodec_sema::lower(&parsed.program, &profile).document;
+    let states = ModalStates::analyse(&document, Start::Reset(&profile));
+    assert_eq!(group_at(&states, 3, 1), Some("G0"));
+}
+
+#[test]
+fn a_computed_jump_may_reach_every_label() {
+    let src = "G0 X0\nIF R2==1 GOTOF \"MA\"<<R1\nG1 X1\nMA1: X2\nG18\nMA2: X3\n";
+    let states = main_program(src);
+    assert_eq!(group_at(&states, 3, 1), Some("G0"));
+    // Reached from line 3 with G1 and from the jump with G0.
+    assert_eq!(group_at(&states, 4, 1), None);
+    assert_eq!(group_at(&states, 4, 6), Some("G17"));
+    // The jump brings G17, the block before G18.
+    assert_eq!(group_at(&states, 6, 6), None);
+    // An unconditional computed jump does not go on.
+    let states = main_program("G0 X0\nGOTOF \"MA\"<<R1\nG1 X1\nMA1: X2\n");
+    assert_eq!(states.line_state(3), LineState::Unreachable);
+    assert_eq!(group_at(&states, 4, 1), Some("G0"));
+}
+
+#[test]
+fn goto_start_joins_into_the_first_block() {
+    let states = main_program("G0 X0\nG2 X1 CR=5\nGOTOS\nX2\n");
+    assert_eq!(group_at(&states, 1, 1), None);
+    assert_eq!(group_at(&states, 1, 6), Some("G17"));
+    assert_eq!(group_at(&states, 4, 1), Some("G2"));
+}
+
+#[test]
+fn repeat_of_a_section_goes_on_as_the_section_ends() {
+    let src = "G2 X0 CR=5\nN10 G0 X0\nN20 G1 X1\nG3 X2 CR=5\nREPEAT N10 N20 P=2\nX3\n";
+    let states = main_program(src);
+    // Neither G3 (the REPEAT ignored) nor unknown (a call of another file).
+    assert_eq!(group_at(&states, 6, 1), Some("G1"));
+    assert_eq!(group_at(&states, 6, 6), Some("G17"));
+    // The section's start is entered with G2, G3 and (second pass) G1.
+    assert_eq!(group_at(&states, 2, 1), None);
+    // The second pass starts where the first ended.
+    let src = "G0 X0\nN10 X1\nN20 G1 X2\nG0 X3\nREPEAT N10 N20 P=2\nX4\n";
+    let states = main_program(src);
+    assert_eq!(group_at(&states, 2, 1), None);
+    assert_eq!(group_at(&states, 6, 1), Some("G1"));
+    let states = main_program(&src.replace("P=2", "P=1"));
+    assert_eq!(group_at(&states, 2, 1), Some("G0"));
+    assert_eq!(group_at(&states, 6, 1), Some("G1"));
+}
+
+#[test]
+fn a_suppression_keeps_group_8_only_where_it_is_known() {
+    let states = main_program("G55 X0\nG53 X1\nX2\n");
+    assert_eq!(group_at(&states, 2, 8), Some("G55"));
+    assert_eq!(group_at(&states, 3, 8), Some("G55"));
+    // Lowering names G56 the selection at line 4 (line order); along the
+    // jump it is G55.
+    let src = "G55 X0\nIF R1==1 GOTOF MARK\nG56\nMARK: G53 X0\nX1\nG57\nX2\n";
+    let states = main_program(src);
+    assert_eq!(group_at(&states, 4, 8), None);
+    assert_eq!(group_at(&states, 5, 8), None);
+    assert_eq!(group_at(&states, 7, 8), Some("G57"));
+}
+
+#[test]
+fn indirect_g_programming_sets_or_forgets_its_group() {
+    let states = main_program("G0 X0\nG[6]=R1\nX1\nG[1]=2\nX2\n");
+    assert_eq!(group_at(&states, 3, 6), None);
+    assert_eq!(group_at(&states, 3, 1), Some("G0"));
+    assert_eq!(group_at(&states, 5, 1), Some("G1"));
+    // Lowering folds a constant index into `modal_change`; another writer
+    // may not.
+    let doc = document(vec![
+        (
+            1,
+            Op::ModalChangeIndirect {
+                group: 6,
+                index: Value::Const(2.0),
+            },
+        ),
+        (
+            2,
+            Op::ModalChangeIndirect {
+                group: 1,
+                index: Value::Const(99.0),
+            },
+        ),
+        (3, Op::End),
+    ]);
+    let states = ModalStates::analyse(&doc, Start::Reset(&builtin()));
+    assert_eq!(group_at(&states, 2, 6), Some("G18"));
+    assert_eq!(group_at(&states, 2, 1), Some("G1"));
+    assert_eq!(group_at(&states, 3, 1), None, "no index 99");
+}
+
+/// A document of hand-made instructions, one per line unless given.
+fn document(ops: Vec<(u32, Op)>) -> Document {
+    let file: Arc<str> = Arc::from("odd.mpf");
+    Document {
+        instructions: ops
+            .into_iter()
+            .map(|(line, op)| Instruction {
+                op,
+                source: Source {
+                    file: file.clone(),
+                    line,
+                    col: 1,
+                    span: ByteRange { start: 0, end: 0 },
+                },
+            })
+            .collect(),
+        ..Document::new()
+    }
+}
+
+fn modal(group: u8, code: &'static str) -> Op {
+    Op::ModalChange {
+        group,
+        code: code.into(),
+    }
+}
+
+fn label(name: &str) -> Op {
+    Op::Label { name: name.into() }
+}
+
+fn jump(target: &str) -> Op {
+    Op::Jump {
+        target: target.into(),
+        condition: None,
+    }
+}
+
+#[test]
+fn odd_documents_give_answers_not_panics() {
+    let profile = builtin();
+    let empty = ModalStates::analyse(&Document::new(), Start::Reset(&profile));
+    assert_eq!(empty.iter().count(), 0);
+    assert_eq!(empty.line_state(1), LineState::NoInstructions);
+    // Wrong groups, a duplicate label (a jump goes to both), lines out of
+    // order, instructions after `end`, a section whose labels are missing.
+    let doc = document(vec![
+        (1, modal(0, "G1")),
+        (1, modal(99, "G1")),
+        (1, modal(6, "G1")),
+        (2, modal(1, "G0")),
+        (2, jump("TWICE")),
+        (5, label("TWICE")),
+        (5, modal(1, "G2")),
+        (5, jump("AFTER")),
+        (3, label("TWICE")),
+        (3, Op::End),
+        (4, label("AFTER")),
+        (
+            4,
+            Op::RepeatSection(Box::new(gcodec_ail::RepeatSection {
+                start: "NONE".into(),
+                end: "NONE.end".into(),
+                passes: Value::Const(1.0),
+            })),
+        ),
+        (6, modal(1, "G3")),
+        (7, Op::End),
+        (2, modal(1, "G1")),
+    ]);
+    let states = ModalStates::analyse(&doc, Start::Reset(&profile));
+    assert_eq!(at(&states, 1).get(6), Some("G17"), "unchanged by line 1");
+    assert_eq!(group_at(&states, 2, 6), None, "G1 is no plane");
+    assert_eq!(group_at(&states, 5, 1), Some("G0"));
+    assert_eq!(group_at(&states, 3, 1), Some("G0"));
+    assert_eq!(group_at(&states, 4, 1), Some("G2"));
+    // After the broken section nothing is known.
+    assert_eq!(at(&states, 6).known().count(), 0);
+    assert_eq!(group_at(&states, 7, 1), Some("G3"));
+    // Line 2 appears again after `end`; its state is its first run's.
+    assert_eq!(
+        states.iter().map(|(l, _)| l).collect::<Vec<_>>(),
+        [1, 2, 3, 4, 5, 6, 7]
+    );
+}
+
+#[test]
+fn random_documents_terminate() {
+    // A fixed LCG: the same documents every run.
+    let mut seed = 0x1234_5678_9ABC_DEF0_u64;
+    let mut next = move |n: u64| {
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (seed >> 33) % n
+    };
+    let codes = ["G0", "G1", "G2", "G17", "G18", "G54", "G55", "DIAMON"];
+    let profile = builtin();
+    let mut reached = 0;
+    for _ in 0..200 {
+        let len = next(60) as u32 + 1;
+        let mut ops = Vec::new();
+        for i in 0..len {
+            let name = format!("L{}", next(8));
+            let condition =
+                (next(2) == 0).then(|| Box::new(gcodec_ail::Expr::Bool { value: true }));
+            let op = match next(12) {
+                0 | 1 => {
+                    let code = codes[next(codes.len() as u64) as usize];
+                    let group = gcodec_sema::ggroups::lookup(code).map_or(1, |(g, _)| g);
+                    modal(group, code)
+                }
+                2 => label(&name),
+                3 => Op::Jump {
+                    target: name,
+                    condition,
+                },
+                4 => Op::ComputedJump(Box::new(gcodec_ail::ComputedJump {
+                    target: gcodec_ail::Expr::String { value: name },
+                    search: gcodec_ail::JumpSearch::Forward,
+                    continue_if_missing: next(2) == 0,
+                    condition: condition.map(|c| *c),
+                })),
+                5 => Op::GotoStart { condition },
+                6 => Op::RepeatSection(Box::new(gcodec_ail::RepeatSection {
+                    start: name,
+                    end: format!("L{}", next(8)),
+                    passes: Value::Const(next(3) as f64),
+                })),
+                7 => Op::Return { values: Vec::new() },
+                8 => Op::CancelModalCall,
+                9 => Op::WorkOffset {
+                    group8_selected: "g55".into(),
+                    suppression: None,
+                    suppression_scope: None,
+                },
+                _ => Op::Motion {
+                    motion: gcodec_ail::MotionKind::Linear,
+                    targets: Vec::new(),
+                    circle: None,
+                    indirect_targets: Vec::new(),
+                    spline: None,
+                    thread: None,
+                    transition: None,
+                },
+            };
+            ops.push((i / 2 + 1, op));
+        }
+        let states = ModalStates::analyse(&document(ops), Start::Reset(&profile));
+        reached += states.iter().count();
+    }
+    assert!(reached > 0);
+}
+
+#[test]
+fn a_hundred_thousand_blocks_keep_one_state_per_distinct_state() {
+    let src = program::generate(100_000);
+    let profile = builtin();
+    let parsed = gcodec_parser::parse_bytes("big.mpf", &src);
+    assert!(parsed.diagnostics.is_empty());
+    let document = gcodec_sema::lower(&parsed.program, &profile).document;
+    let states = ModalStates::analyse(&document, Start::Reset(&profile));
+    let lines = states.iter().count();
+    assert_eq!(states.unreachable_lines().count(), 0);
+    assert!(lines > 90_000, "{lines}");
+    // The generator only ever selects G17, G90 and G54.
+    for (line, state) in states.iter() {
+        assert_eq!(state.get(6), Some("G17"), "line {line}");
+        assert_eq!(state.get(14), Some("G90"), "line {line}");
+    }
+    // Motion commands change inside loops and branches: some blocks do not
+    // know group 1, most do.
+    let unknown_motion = states.iter().filter(|(_, s)| s.get(1).is_none()).count();
+    assert!(
+        unknown_motion > 0 && unknown_motion < lines / 2,
+        "{unknown_motion}"
+    );
+    // Memory: 8 bytes a line, each distinct state once.
+    assert!(
+        states.distinct_states() < 64,
+        "{}",
+        states.distinct_states()
+    );
+    assert!(
+        states.heap_bytes() <= lines * 8 + 64 * 65,
+        "{} bytes",
+        states.heap_bytes()
+    );
+}
