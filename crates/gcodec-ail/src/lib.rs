@@ -96,8 +96,12 @@ pub enum Op {
     MFunction(Box<MFunction>),
     /// The Group 8 selection and the block's suppression (seed 003).
     WorkOffset {
-        /// The modal Group 8 code after this block, lower case (`g54`).
-        group8_selected: String,
+        /// The modal Group 8 code after this block, lower case (`g54`);
+        /// `null` when the block only suppresses and its selection is not
+        /// known before the program runs (the block is reached from places
+        /// with different selections, or starts a subprogram): the
+        /// executor knows it then.
+        group8_selected: Option<String>,
         /// The strongest of `G53`, `G153`, `SUPA` in the block.
         suppression: Option<Suppression>,
         /// `block` when there is a suppression.
@@ -357,6 +361,11 @@ pub enum SuppressionScope {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum MotionKind {
+    /// The motion command of group 1 active when the block runs: not
+    /// known before the program runs, because the block is reached from
+    /// places with different commands (after a jump target, a call, at the
+    /// start of a subprogram) and programs none of its own.
+    Modal,
     Rapid,
     Linear,
     ArcCw,

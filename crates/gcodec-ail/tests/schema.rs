@@ -102,7 +102,7 @@ fn m_function_has_the_seed_001_fields() {
 #[test]
 fn work_offset_has_the_seed_003_fields() {
     let value = round_trip(Op::WorkOffset {
-        group8_selected: "g54".into(),
+        group8_selected: Some("g54".into()),
         suppression: Some(Suppression::G53),
         suppression_scope: Some(SuppressionScope::Block),
     });

@@ -66,8 +66,8 @@ pub enum Start<'a> {
     Unknown,
 }
 
-/// Whether a modal call (`MCALL NAME(…)`) is active: it runs `NAME` after
-/// every traversing block, and `NAME` may change any group.
+// Whether a modal call (`MCALL NAME(…)`) is active: it runs `NAME` after
+// every traversing block, and `NAME` may change any group.
 const CALL_UNKNOWN: u8 = 0;
 const CALL_INACTIVE: u8 = 1;
 const CALL_ACTIVE: u8 = 2;
@@ -78,8 +78,8 @@ const CALL_ACTIVE: u8 = 2;
 pub struct ModalState {
     /// The registry index (1-based, [`ggroups::member`]) of each group's
     /// command, group `n` at `n - 1`; 0 is unknown. Registry indices fit a
-    /// byte (the longest group, 64, has 101 members), so a state is one
-    /// cache line.
+    /// byte (the longest group, 64, has 101 members), so a state is 65
+    /// bytes.
     groups: [u8; GROUP_COUNT],
     /// One of `CALL_UNKNOWN`, `CALL_INACTIVE`, `CALL_ACTIVE`.
     modal_call: u8,
@@ -535,6 +535,11 @@ fn transfer(state: &mut ModalState, op: &Op, lookups: &mut Lookups) -> bool {
             suppression,
             ..
         } => {
+            // `null`: a suppression alone, the selection unknown to
+            // lowering; a suppression never changes the selection.
+            let Some(group8_selected) = group8_selected else {
+                return false;
+            };
             let selected = lookups.member_index(8, group8_selected);
             match suppression {
                 None => state.set(8, selected),

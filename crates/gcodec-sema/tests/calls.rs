@@ -29,7 +29,12 @@ fn listing(l: &Lowered) -> String {
 fn lines(l: &Lowered) -> Vec<String> {
     listing(l)
         .lines()
-        .map(|line| line.split_whitespace().skip(1).collect::<Vec<_>>().join(" "))
+        .map(|line| {
+            line.split_whitespace()
+                .skip(1)
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
         .collect()
 }
 
@@ -248,7 +253,14 @@ fn a_procedure_keeps_its_signature() {
     let params: Vec<(&str, &str, bool, bool)> = p
         .params
         .iter()
-        .map(|q| (q.name.as_str(), q.data_type.as_str(), q.by_reference, q.default.is_some()))
+        .map(|q| {
+            (
+                q.name.as_str(),
+                q.data_type.as_str(),
+                q.by_reference,
+                q.default.is_some(),
+            )
+        })
         .collect();
     assert_eq!(
         params,
@@ -271,7 +283,11 @@ fn proc_opens_the_program() {
 #[test]
 fn endproc_returns() {
     let l = lower_src("PROC P\nX1\nENDPROC\n");
-    assert!(ops(&l).iter().any(|op| matches!(op, Op::Return { values } if values.is_empty())));
+    assert!(
+        ops(&l)
+            .iter()
+            .any(|op| matches!(op, Op::Return { values } if values.is_empty()))
+    );
 }
 
 #[test]
@@ -329,7 +345,90 @@ fn a_frame_with_an_unknown_axis_is_rejected_not_a_reset() {
     let l = lower_src("TRANS Q5\nSCALE RPL=2\nM30\n");
     assert_eq!(
         codes(&l),
-        ["gcodec::lower::unknown_address", "gcodec::lower::unknown_address"]
+        [
+            "gcodec::lower::unknown_address",
+            "gcodec::lower::unknown_address"
+        ]
     );
     assert!(!ops(&l).iter().any(|op| matches!(op, Op::Frame { .. })));
+}
+
+/// The motion kinds of the document, in order.
+fn motions(l: &Lowered) -> Vec<gcodec_ail::MotionKind> {
+    ops(l)
+        .into_iter()
+        .filter_map(|op| match op {
+            Op::Motion { motion, .. } => Some(*motion),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_motion_after_paths_with_different_commands_is_decided_when_it_runs() {
+    use gcodec_ail::MotionKind::*;
+    let l = lower_src("IF R1>0\nG0 X1\nELSE\nG1 X2 F100\nENDIF\nX3\nM30\n");
+    assert_eq!(motions(&l), [Rapid, Linear, Modal]);
+    // Where every path agrees, the dataflow knows the command.
+    let l = lower_src("IF R1>0\nG0 X1\nELSE\nG0 X2\nENDIF\nX3\nM30\n");
+    assert_eq!(motions(&l), [Rapid, Rapid, Rapid]);
+    // A loop whose body changes the command.
+    let l = lower_src("G0 X0\nWHILE R1<3\nX1\nG1 X2 F100\nR1=R1+1\nENDWHILE\nM30\n");
+    assert_eq!(motions(&l), [Rapid, Modal, Linear]);
+}
+
+#[test]
+fn a_motion_after_a_section_repetition_runs_in_the_sections_state() {
+    use gcodec_ail::MotionKind::*;
+    let l = lower_src("N10 G3 X2 CR=5\nN20 G1 X1 F100\nREPEAT N10 N20 P=2\nX3\nM30\n");
+    assert_eq!(motions(&l), [ArcCcw, Linear, Linear]);
+}
+
+#[test]
+fn calls_and_modal_calls_may_change_the_motion_command() {
+    use gcodec_ail::MotionKind::*;
+    let l = lower_src("G0 X0\nCYCLE81(10,0,2,-5)\nX1\nM30\n");
+    assert_eq!(motions(&l), [Rapid, Modal]);
+    let l = lower_src("G0 X0\nMCALL CYCLE81(10,0,2,-5)\nX1\nX2\nMCALL\nM30\n");
+    assert_eq!(motions(&l), [Rapid, Rapid, Modal]);
+}
+
+#[test]
+fn a_subprogram_starts_in_its_callers_state() {
+    use gcodec_ail::MotionKind::*;
+    let lower_as = |file: &str, src: &str| {
+        let parsed = gcodec_parser::parse_bytes(file, src.as_bytes());
+        lower(&parsed.program, &gcodec_profile::builtin().unwrap())
+    };
+    let l = lower_as("SUB.SPF", "X1 Y1\nG1 X2 F100\nM17\n");
+    assert_eq!(motions(&l), [Modal, Linear]);
+    let l = lower_as("CONTOUR.mpf", "PROC CONTOUR\nX1\nM17\n");
+    assert_eq!(motions(&l), [Modal]);
+    let l = lower_as("MAIN.MPF", "X1\nM30\n");
+    assert_eq!(motions(&l), [Linear]);
+}
+
+#[test]
+fn a_suppression_after_paths_with_different_offsets_leaves_the_selection_open() {
+    let selections = |l: &Lowered| -> Vec<Option<String>> {
+        ops(l)
+            .into_iter()
+            .filter_map(|op| match op {
+                Op::WorkOffset {
+                    group8_selected, ..
+                } => Some(group8_selected.clone()),
+                _ => None,
+            })
+            .collect()
+    };
+    let l = lower_src("IF R1>0\nG54\nELSE\nG55\nENDIF\nG53 X0\nM30\n");
+    assert_eq!(
+        selections(&l),
+        [Some("g54".to_owned()), Some("g55".to_owned()), None]
+    );
+    let l = lower_src("G55\nIF R1>0\nX1\nENDIF\nG53 X0\nM30\n");
+    assert_eq!(
+        selections(&l),
+        [Some("g55".to_owned()), Some("g55".to_owned())]
+    );
 }

@@ -463,7 +463,7 @@ fn random_documents_terminate() {
                 7 => Op::Return { values: Vec::new() },
                 8 => Op::CancelModalCall,
                 9 => Op::WorkOffset {
-                    group8_selected: "g55".into(),
+                    group8_selected: Some("g55".into()),
                     suppression: None,
                     suppression_scope: None,
                 },
@@ -519,4 +519,36 @@ fn a_hundred_thousand_blocks_keep_one_state_per_distinct_state() {
         "{} bytes",
         states.heap_bytes()
     );
+}
+
+#[test]
+fn every_fixture_and_corpus_program_is_analysed() {
+    let profile = builtin();
+    let mut reached = 0;
+    let mut paths = common::programs(&common::repo().join("tests/fixtures"));
+    paths.extend(common::programs(&common::repo().join("examples")));
+    if let Some(corpus) = common::corpus_dir() {
+        paths.extend(common::programs(&corpus));
+    }
+    assert!(paths.len() >= 30, "{} programs", paths.len());
+    for path in paths {
+        let name = path.display().to_string();
+        let bytes = std::fs::read(&path).expect("readable");
+        let parsed = gcodec_parser::parse_bytes(&name, &bytes);
+        let document = gcodec_sema::lower(&parsed.program, &profile).document;
+        for start in [Start::Reset(&profile), Start::Unknown] {
+            let states = ModalStates::analyse(&document, start);
+            // Every line with instructions is answered, one way or the other.
+            for instruction in &document.instructions {
+                let line = instruction.source.line;
+                assert_ne!(
+                    states.line_state(line),
+                    LineState::NoInstructions,
+                    "{name}:{line}"
+                );
+            }
+            reached += states.iter().count();
+        }
+    }
+    assert!(reached > 0);
 }

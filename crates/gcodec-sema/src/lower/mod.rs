@@ -68,9 +68,140 @@ pub fn lower_with(program: &Program, profile: &Profile, definitions: &Definition
         op: Op::End,
         source,
     });
+    let subprogram = is_subprogram(program);
+    let mut document = lowering.document;
+    refine(&mut document, profile, subprogram);
     Lowered {
-        document: lowering.document,
+        document,
         diagnostics: lowering.diagnostics,
+    }
+}
+
+/// The motion of a group-1 command.
+fn motion_kind(code: &str) -> Option<MotionKind> {
+    Some(match code {
+        "G0" => MotionKind::Rapid,
+        "G1" => MotionKind::Linear,
+        "G2" => MotionKind::ArcCw,
+        "G3" => MotionKind::ArcCcw,
+        "CIP" => MotionKind::ArcThroughPoint,
+        "CT" => MotionKind::ArcTangential,
+        "ASPLINE" => MotionKind::Aspline,
+        "BSPLINE" => MotionKind::Bspline,
+        "CSPLINE" => MotionKind::Cspline,
+        "POLY" => MotionKind::Poly,
+        "G33" => MotionKind::Thread,
+        "G34" => MotionKind::ThreadIncreasingLead,
+        "G35" => MotionKind::ThreadDecreasingLead,
+        "G331" => MotionKind::Tapping,
+        "G332" => MotionKind::TappingRetract,
+        "G335" => MotionKind::ThreadConvexCw,
+        "G336" => MotionKind::ThreadConvexCcw,
+        "INVCW" => MotionKind::InvoluteCw,
+        "INVCCW" => MotionKind::InvoluteCcw,
+        _ => return None,
+    })
+}
+
+/// Motions with circle data.
+fn is_arc(kind: MotionKind) -> bool {
+    matches!(
+        kind,
+        MotionKind::ArcCw
+            | MotionKind::ArcCcw
+            | MotionKind::ArcThroughPoint
+            | MotionKind::ArcTangential
+            | MotionKind::InvoluteCw
+            | MotionKind::InvoluteCcw
+    )
+}
+
+/// Motions whose `I J K` are the thread lead.
+fn is_threaded(kind: MotionKind) -> bool {
+    matches!(
+        kind,
+        MotionKind::Thread
+            | MotionKind::ThreadIncreasingLead
+            | MotionKind::ThreadDecreasingLead
+            | MotionKind::Tapping
+            | MotionKind::TappingRetract
+            | MotionKind::ThreadConvexCw
+            | MotionKind::ThreadConvexCcw
+    )
+}
+
+/// Whether `program` is a subprogram: it starts in its caller's modal
+/// state. `.SPF` files and programs opening with `PROC` are.
+fn is_subprogram(program: &Program) -> bool {
+    let spf = std::path::Path::new(&program.file)
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("spf"));
+    let proc = program
+        .blocks
+        .iter()
+        .find_map(|b| b.statements.first())
+        .is_some_and(|s| matches!(s.kind, ast::StatementKind::Proc(_)));
+    spf || proc
+}
+
+/// Fills in what lowering left to run time because paths meet
+/// (`motion: modal`, `group8_selected: null`) where the dataflow over the
+/// whole document ([`crate::modal`]) shows every path agrees. Straight-line
+/// programs have nothing to refine and skip the analysis.
+fn refine(document: &mut Document, profile: &Profile, subprogram: bool) {
+    let open = |op: &Op| match op {
+        Op::Motion { motion, .. } => *motion == MotionKind::Modal,
+        Op::WorkOffset {
+            group8_selected, ..
+        } => group8_selected.is_none(),
+        _ => false,
+    };
+    if !document.instructions.iter().any(|i| open(&i.op)) {
+        return;
+    }
+    let start = if subprogram {
+        crate::modal::Start::Unknown
+    } else {
+        crate::modal::Start::Reset(profile)
+    };
+    let states = crate::modal::ModalStates::analyse(document, start);
+    for instruction in &mut document.instructions {
+        if !open(&instruction.op) {
+            continue;
+        }
+        // The block programs no command of its own for the group in
+        // question (else lowering would know it): its state at the start
+        // is the one the instruction runs in.
+        let Some(state) = states.state_at_line(instruction.source.line) else {
+            continue;
+        };
+        match &mut instruction.op {
+            Op::Motion {
+                motion,
+                circle,
+                thread,
+                ..
+            } => {
+                let Some(kind) = state.get(1).and_then(motion_kind) else {
+                    continue;
+                };
+                *motion = kind;
+                if is_threaded(kind) {
+                    if let Some(c) = circle.take() {
+                        *thread = Some(Box::new(gcodec_ail::Thread {
+                            lead: c.centre,
+                            lead_change: None,
+                        }));
+                    }
+                } else if !is_arc(kind) {
+                    *circle = None;
+                }
+            }
+            Op::WorkOffset {
+                group8_selected, ..
+            } => *group8_selected = state.get(8).map(str::to_ascii_lowercase),
+            _ => {}
+        }
     }
 }
 
@@ -142,10 +273,14 @@ struct Lowering<'a> {
     file: Arc<str>,
     document: Document,
     diagnostics: Vec<Diagnostic>,
-    /// Modal code of each G group (index = group − 1).
+    /// Modal code of each G group (index = group − 1) as far as the
+    /// program text tells: group 1 is `None` where paths with different
+    /// motion commands meet (see [`Self::forget_modal_state`]).
     modal: [Option<&'static str>; 64],
-    /// The Group 8 selection (index per `$P_UIFR`).
-    group8: u8,
+    /// The Group 8 selection (index per `$P_UIFR`), `None` where unknown.
+    group8: Option<u8>,
+    /// `MCALL NAME` is in force: the subprogram runs after every motion.
+    modal_call: bool,
     flow: Flow,
     /// `mcode_class_overrides` by M value.
     m_overrides: HashMap<u32, gcodec_ail::MClass>,
@@ -210,10 +345,14 @@ struct BlockPlan {
 impl<'a> Lowering<'a> {
     fn new(program: &'a Program, profile: &'a Profile, definitions: &'a Definitions) -> Self {
         let (names, diagnostics) = variables::Names::new(program, profile, definitions);
-        let modal = crate::modal::reset_defaults(profile);
-        let group8 =
-            gcodec_profile::group8_index(profile.work_offsets.default_group8_offset.get_ref())
-                .unwrap_or(0);
+        let mut modal = crate::modal::reset_defaults(profile);
+        let mut group8 =
+            gcodec_profile::group8_index(profile.work_offsets.default_group8_offset.get_ref());
+        // A subprogram starts in its caller's state.
+        if is_subprogram(program) {
+            modal[0] = None;
+            group8 = None;
+        }
         Self {
             program,
             profile,
@@ -236,6 +375,7 @@ impl<'a> Lowering<'a> {
             diagnostics,
             modal,
             group8,
+            modal_call: false,
             flow: Flow::new(program),
             m_overrides: mfunc::overrides(profile),
             group8_supported: profile.work_offsets.supported_group8(),
@@ -287,8 +427,31 @@ impl<'a> Lowering<'a> {
     }
 
     fn emit(&mut self, block: usize, span: Span, op: Op) {
+        match &op {
+            // A jump target, or a return from code that may change the
+            // state: what follows may be reached in another state.
+            Op::Label { .. } | Op::RepeatSection(_) => self.forget_modal_state(),
+            Op::Call(call) if call.modal => self.modal_call = true,
+            Op::Call(_) => self.forget_modal_state(),
+            Op::CancelModalCall => self.modal_call = false,
+            Op::Motion { .. } if self.modal_call => {
+                // The modal call runs after the motion.
+                let source = self.source_at(block, span);
+                self.document.instructions.push(Instruction { op, source });
+                return self.forget_modal_state();
+            }
+            _ => {}
+        }
         let source = self.source_at(block, span);
         self.document.instructions.push(Instruction { op, source });
+    }
+
+    /// From here on the motion command and the Group 8 selection are not
+    /// known from the text alone; [`refine`] recovers what the dataflow
+    /// over the whole document knows.
+    fn forget_modal_state(&mut self) {
+        self.modal[0] = None;
+        self.group8 = None;
     }
 
     fn block(&mut self, index: usize, block: &Block) {
@@ -335,16 +498,17 @@ impl<'a> Lowering<'a> {
         let group8 = plan.g_codes.iter().find(|(g, _, _)| *g == 8);
         let suppression = self.suppression(&plan.suppressions);
         if let Some((_, code, _)) = group8 {
-            self.group8 = gcodec_profile::group8_index(code).unwrap_or(self.group8);
+            self.group8 = gcodec_profile::group8_index(code).or(self.group8);
         }
         if group8.is_some() || suppression.is_some() {
             let span = group8
                 .map(|(_, _, s)| *s)
                 .or(plan.suppressions.first().map(|(_, s)| *s))
                 .unwrap_or(block.span);
-            let selected = gcodec_profile::group8_code(self.group8)
-                .unwrap_or_default()
-                .to_ascii_lowercase();
+            let selected = self
+                .group8
+                .and_then(gcodec_profile::group8_code)
+                .map(|code| code.to_ascii_lowercase());
             self.emit(
                 index,
                 span,
@@ -474,49 +638,16 @@ impl<'a> Lowering<'a> {
                 .or(plan.circle_span)
                 .unwrap_or(block.span);
             let motion = match self.modal[0] {
-                Some("G0") => MotionKind::Rapid,
-                Some("G2") => MotionKind::ArcCw,
-                Some("G3") => MotionKind::ArcCcw,
-                Some("CIP") => MotionKind::ArcThroughPoint,
-                Some("CT") => MotionKind::ArcTangential,
-                Some("G1") => MotionKind::Linear,
-                Some("ASPLINE") => MotionKind::Aspline,
-                Some("BSPLINE") => MotionKind::Bspline,
-                Some("CSPLINE") => MotionKind::Cspline,
-                Some("POLY") => MotionKind::Poly,
-                Some("G33") => MotionKind::Thread,
-                Some("G34") => MotionKind::ThreadIncreasingLead,
-                Some("G35") => MotionKind::ThreadDecreasingLead,
-                Some("G331") => MotionKind::Tapping,
-                Some("G332") => MotionKind::TappingRetract,
-                Some("G335") => MotionKind::ThreadConvexCw,
-                Some("G336") => MotionKind::ThreadConvexCcw,
-                Some("INVCW") => MotionKind::InvoluteCw,
-                Some("INVCCW") => MotionKind::InvoluteCcw,
-                other => {
-                    self.not_lowered(first, &format!("motion under `{}`", other.unwrap_or("?")));
+                None => MotionKind::Modal,
+                Some(code) => motion_kind(code).unwrap_or_else(|| {
+                    self.not_lowered(first, &format!("motion under `{code}`"));
                     MotionKind::Linear
-                }
+                }),
             };
-            let arc = matches!(
-                motion,
-                MotionKind::ArcCw
-                    | MotionKind::ArcCcw
-                    | MotionKind::ArcThroughPoint
-                    | MotionKind::ArcTangential
-                    | MotionKind::InvoluteCw
-                    | MotionKind::InvoluteCcw
-            );
-            let threaded = matches!(
-                motion,
-                MotionKind::Thread
-                    | MotionKind::ThreadIncreasingLead
-                    | MotionKind::ThreadDecreasingLead
-                    | MotionKind::Tapping
-                    | MotionKind::TappingRetract
-                    | MotionKind::ThreadConvexCw
-                    | MotionKind::ThreadConvexCcw
-            );
+            // Under an unknown command the circle data go with the motion
+            // as written; the executor reads them by the command then.
+            let arc = is_arc(motion) || motion == MotionKind::Modal && plan.circle_span.is_some();
+            let threaded = is_threaded(motion);
             let circle_data = std::mem::take(&mut plan.circle);
             // Under a thread or tapping command `I J K` are the lead.
             let thread = threaded.then(|| {
