@@ -544,16 +544,23 @@ fn g_commands_the_profile_rules_out() {
     assert_eq!(codes(&l), ["gcodec::lower::unsupported_g"]);
 }
 
+/// Profile G names are checked by `gcodec_sema::check_profile`
+/// (tests/profile_check.rs), not by lowering; with an unchecked profile a
+/// name the registry lacks simply matches nothing.
 #[test]
-fn profile_g_names_are_checked_against_the_registry() {
-    let p = profile("[g_codes]\nunsupported = [\"G999\"]\n");
-    let l = lower_with(&p, "G1 X1\n");
-    assert_eq!(codes(&l), ["gcodec::lower::unknown_profile_g"]);
+fn unchecked_profile_g_names_match_nothing() {
+    let p = profile("[g_codes]\nunsupported = [\"G999\", \"NOSUCH\", \"G33\"]\n");
+    assert_clean(&lower_with(&p, "G1 X1\n"));
+    assert_eq!(
+        codes(&lower_with(&p, "G33 Z1 K1\n")),
+        ["gcodec::lower::unsupported_g"]
+    );
     let p = profile(
         "[work_offsets]\nsupported_group8_offsets = [\"G500\", \"G54-G57\", \"G505-G599\"]\nlegacy_aliases = { G1 = \"G505\" }\n",
     );
-    let l = lower_with(&p, "X1\n");
-    assert_eq!(codes(&l), ["gcodec::lower::unknown_profile_g"]);
+    assert!(!gcodec_sema::check_profile(&p).is_empty());
+    let l = lower_with(&p, "X1\nG1 X2\n");
+    assert!(!l.has_errors(), "{:#?}", l.diagnostics);
 }
 
 #[test]
@@ -573,4 +580,35 @@ fn no_panic_on_odd_addresses() {
         let parsed = gcodec_parser::parse_bytes("t.mpf", src.as_bytes());
         let _ = lower(&parsed.program, &mill());
     }
+}
+
+#[test]
+fn an_axis_with_a_longer_name_is_a_target_not_a_variable() {
+    // The parser reads `XV=…` as an assignment: it knows no axes.
+    let profile = common::profile("grinder_fb422.toml");
+    let parsed = gcodec_parser::parse_bytes("xv.mpf", b"G1 XV=10 F100\nXV=IC(2.5)\nXV=ACP(5)\nM30\n");
+    let l = gcodec_sema::lower(&parsed.program, &profile);
+    let codes: Vec<&str> = l.diagnostics.iter().map(|d| d.code).collect();
+    assert_eq!(codes, ["gcodec::lower::modifier_not_allowed"]);
+    let targets: Vec<(String, Option<String>)> = l
+        .document
+        .instructions
+        .iter()
+        .filter_map(|i| match &i.op {
+            gcodec_ail::Op::Motion { targets, .. } => Some(targets),
+            _ => None,
+        })
+        .flatten()
+        .map(|t| (t.axis.to_string(), t.mode.clone()))
+        .collect();
+    assert_eq!(
+        targets,
+        [("XV".to_owned(), None), ("XV".to_owned(), Some("IC".to_owned()))]
+    );
+    assert!(
+        !l.document
+            .instructions
+            .iter()
+            .any(|i| matches!(i.op, gcodec_ail::Op::Assign { .. }))
+    );
 }

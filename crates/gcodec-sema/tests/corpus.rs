@@ -41,8 +41,7 @@ const DEFINITION_FILES: &[(&str, &str)] = &[(
 /// - FB422: its other definition files (the global data of its grinding,
 ///   dressing and measuring cycles such as `NazivToc_A[…]`, the macros
 ///   `M_ROLIK_START`/`M_ROLIK_STOP`) are not in the corpus; the programs
-///   ran on that machine. `XV` is an axis of that machine
-///   (`XV=DODB[0,3]`, `$AA_IM[XV]`) the profile does not list yet.
+///   ran on that machine.
 /// - CEAD: its interpreter creates a variable on its first assignment and
 ///   runs every example after `defaults.mpf` (its README), which defines
 ///   `aa` and `bb`; on a control these would be global user data. `ELX`
@@ -119,7 +118,6 @@ const ASSUMED_NAMES: &[(&str, &[&str])] = &[
             "PREC",
             "DODB",
             "BRZU",
-            "XV",
         ],
     ),
     (

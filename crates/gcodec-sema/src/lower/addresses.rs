@@ -31,7 +31,6 @@ const AXIS_NUMBER: &str = "gcodec::lower::axis_number";
 const DWELL_NOT_ALONE: &str = "gcodec::lower::dwell_not_alone";
 const DWELL_WITHOUT_TIME: &str = "gcodec::lower::dwell_without_time";
 pub(super) const UNSUPPORTED_G: &str = "gcodec::lower::unsupported_g";
-const UNKNOWN_PROFILE_G: &str = "gcodec::lower::unknown_profile_g";
 
 /// What a named address is and where its value goes.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -146,42 +145,6 @@ fn looks_like_axis(name: &str) -> bool {
 }
 
 impl Lowering<'_> {
-    /// Checks the profile's `[g_codes]` and `legacy_aliases` against the
-    /// G-group registry, which the profile crate does not know. The
-    /// diagnostics carry no span into the program.
-    pub(super) fn check_profile_g_codes(&mut self) {
-        for code in &self.profile.g_codes.unsupported {
-            if ggroups::lookup(code.get_ref()).is_none() {
-                self.diagnostics.push(
-                    Diagnostic::error(
-                        UNKNOWN_PROFILE_G,
-                        format!(
-                            "the profile's `[g_codes] unsupported` names `{}`, which is not a G command of the control",
-                            code.get_ref()
-                        ),
-                    )
-                    .with_help("list commands of the G-group table (reference §3.2), e.g. `\"G33\"`"),
-                );
-            }
-        }
-        for alias in self.profile.work_offsets.legacy_aliases.keys() {
-            let name = alias.get_ref();
-            if let Some((group, _)) = ggroups::lookup(name) {
-                if group != 3 {
-                    self.diagnostics.push(
-                        Diagnostic::error(
-                            UNKNOWN_PROFILE_G,
-                            format!(
-                                "the profile's `legacy_aliases` redefines `{name}`, a G command of group {group}"
-                            ),
-                        )
-                        .with_help("only codes the control has no other use for (such as `G58`, `G59`) can stand for a settable offset"),
-                    );
-                }
-            }
-        }
-    }
-
     /// `G<n>` is ruled out by the profile's `[g_codes]`.
     pub(super) fn g_unsupported(&self, group: u8, member: &str) -> Option<&'static str> {
         let g = &self.profile.g_codes;
@@ -602,6 +565,57 @@ impl Lowering<'_> {
             .push(d.with_help("the control allows an address once per block (alarm 12010)"));
     }
 
+    /// `XV=10`, `XV=IC(5)`: an axis target of the block.
+    fn axis_assignment(
+        &mut self,
+        axis: AxisKind,
+        target: &ast::VarRef,
+        expr: &ast::Expr,
+        span: Span,
+        plan: &mut BlockPlan,
+    ) {
+        self.check_variables(expr);
+        let (value, mode) = match &expr.kind {
+            ast::ExprKind::Call(call) if call.args.len() == 1 => {
+                match (DimensionKind::from_name(&call.name), &call.args[0]) {
+                    (Some(kind), Some(arg)) => {
+                        use DimensionKind::*;
+                        let allowed = match kind {
+                            Dc | Acp | Acn => axis != AxisKind::Linear,
+                            Dac | Dic | Rac | Ric => axis != AxisKind::Rotary,
+                            _ => true,
+                        };
+                        if !allowed {
+                            return self.diagnostics.push(
+                                Diagnostic::error(
+                                    MODIFIER_NOT_ALLOWED,
+                                    format!(
+                                        "`{}` is not allowed on `{}`",
+                                        kind.keyword(),
+                                        target.name
+                                    ),
+                                )
+                                .with_label(call.name_span, "dimension modifier")
+                                .with_help("DC, ACP and ACN position rotary axes; DAC, DIC, RAC and RIC apply to linear axes"),
+                            );
+                        }
+                        (values::value(arg), Some(kind.keyword().to_owned()))
+                    }
+                    _ => (values::value(expr), None),
+                }
+            }
+            _ => (values::value(expr), None),
+        };
+        plan.targets.push((
+            AxisValue {
+                axis: Cow::Owned(target.name.to_ascii_uppercase().to_string()),
+                value,
+                mode,
+            },
+            span,
+        ));
+    }
+
     /// `FAD=5`, `SPOS2=90`: named addresses the parser reads as
     /// assignments to a name (it knows no `FAD`, and `SPOS2=` is not one
     /// of its extension forms). `false` when the statement is something
@@ -621,6 +635,12 @@ impl Lowering<'_> {
         let ast::Initializer::Expr(expr) = &assign.value else {
             return false;
         };
+        // `XV=10`: an axis whose name is longer than a letter and a number
+        // reads as an assignment too.
+        if let Some(axis) = self.axis_kind(&target.name) {
+            self.axis_assignment(axis, target, expr, statement.span, plan);
+            return true;
+        }
         let upper = target.name.to_ascii_uppercase();
         let (address, spindle) = match upper.as_str() {
             "FAD" | "DISR" | "DISCL" => (upper.as_str(), None),

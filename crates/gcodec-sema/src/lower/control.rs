@@ -214,9 +214,7 @@ impl<'a> Lowering<'a> {
                 self.jump(index, &g.jump, condition, span, plan);
             }
             StatementKind::Case(case) => self.case(index, case, span, plan),
-            StatementKind::RepeatSection(repeat) => {
-                self.repeat_section(index, repeat, span, plan)
-            }
+            StatementKind::RepeatSection(repeat) => self.repeat_section(index, repeat, span, plan),
             _ => {}
         }
     }

@@ -56,24 +56,227 @@ pub fn lower(program: &Program, profile: &Profile) -> Lowered {
 /// Lowers `program` for the machine `profile` describes; the program may
 /// use the global variables and macros of `definitions`.
 pub fn lower_with(program: &Program, profile: &Profile, definitions: &Definitions) -> Lowered {
-    let mut lowering = Lowering::new(program, profile, definitions);
-    lowering.report_duplicate_labels();
-    lowering.check_profile_g_codes();
-    for (index, block) in program.blocks.iter().enumerate() {
-        lowering.block(index, block);
+    let threads = std::thread::available_parallelism().map_or(1, usize::from);
+    // Below this, a thread costs more than it saves.
+    const BLOCKS_PER_PART: usize = 50_000;
+    let parts = (program.blocks.len() / BLOCKS_PER_PART).clamp(1, threads);
+    lower_in_parts(program, profile, definitions, parts)
+}
+
+/// [`lower_with`], the blocks split into `parts` runs lowered on threads of
+/// their own. The result is the same for every `parts` (a test checks);
+/// public for that test only.
+#[doc(hidden)]
+pub fn lower_in_parts(
+    program: &Program,
+    profile: &Profile,
+    definitions: &Definitions,
+    parts: usize,
+) -> Lowered {
+    let (names, mut diagnostics) = variables::Names::new(program, profile, definitions);
+    let context = Context {
+        flow: Flow::new(program),
+        m_overrides: mfunc::overrides(profile),
+        signatures: calls::signatures(program),
+        names,
+    };
+    diagnostics.extend(duplicate_labels(program, &context.flow));
+    let subprogram = is_subprogram(program);
+    let blocks = program.blocks.len();
+    let parts = parts.clamp(1, blocks.max(1));
+    let ranges: Vec<std::ops::Range<usize>> = (0..parts)
+        .map(|k| blocks * k / parts..blocks * (k + 1) / parts)
+        .collect();
+    let lower_part = |k: usize, range: std::ops::Range<usize>| {
+        let mut lowering = Lowering::new(&context, program, profile, range.clone(), k > 0);
+        if k == 0 && subprogram {
+            // A subprogram starts in its caller's state.
+            lowering.forget_modal_state();
+        }
+        for index in range {
+            lowering.block(index, &program.blocks[index]);
+        }
+        lowering
+    };
+    let mut lowered: Vec<Lowering> = if parts == 1 {
+        vec![lower_part(0, ranges[0].clone())]
+    } else {
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = ranges
+                .iter()
+                .enumerate()
+                .skip(1)
+                .map(|(k, range)| {
+                    let range = range.clone();
+                    scope.spawn(move || lower_part(k, range))
+                })
+                .collect();
+            let mut all = vec![lower_part(0, ranges[0].clone())];
+            // A part that panicked is lowered again on this thread, where
+            // the panic then surfaces as it would without threads.
+            for (k, handle) in handles.into_iter().enumerate() {
+                all.push(
+                    handle
+                        .join()
+                        .unwrap_or_else(|_| lower_part(k + 1, ranges[k + 1].clone())),
+                );
+            }
+            all
+        })
+    };
+    if !stitch(&mut lowered) {
+        // A case the parts cannot settle between them (a modal call in
+        // force across a boundary, an inherited thread or OEM command):
+        // lower in one run.
+        return lower_in_parts(program, profile, definitions, 1);
+    }
+    let mut parts = lowered.into_iter();
+    let Some(mut first) = parts.next() else {
+        unreachable!("at least one part")
+    };
+    for part in parts {
+        let mut instructions = part.document.instructions;
+        first.document.instructions.append(&mut instructions);
+        first.diagnostics.extend(part.diagnostics);
     }
     let end = program.blocks.last().map_or(0, |b| b.span.end);
-    let source = lowering.source_at(program.blocks.len().max(1) - 1, Span::new(end, end));
-    lowering.document.instructions.push(Instruction {
+    let source = first.source_at(blocks.max(1) - 1, Span::new(end, end));
+    first.document.instructions.push(Instruction {
         op: Op::End,
         source,
     });
-    let subprogram = is_subprogram(program);
-    let mut document = lowering.document;
+    let mut document = first.document;
+    diagnostics.append(&mut first.diagnostics);
     refine(&mut document, profile, subprogram);
     Lowered {
         document,
-        diagnostics: lowering.diagnostics,
+        diagnostics,
+    }
+}
+
+/// Labels defined twice: allowed (jumps find the nearest in their
+/// direction), but rarely meant.
+fn duplicate_labels(program: &Program, flow: &Flow) -> Vec<Diagnostic> {
+    let mut duplicates: Vec<(&String, &Vec<usize>)> = flow.duplicate_labels().collect();
+    duplicates.sort_by_key(|(_, blocks)| blocks[0]);
+    let span = |b: usize| {
+        program.blocks[b]
+            .label
+            .as_ref()
+            .map_or(program.blocks[b].span, |l| l.span)
+    };
+    duplicates
+        .into_iter()
+        .map(|(name, blocks)| {
+            let mut diagnostic = Diagnostic::warning(
+                DUPLICATE_LABEL,
+                format!("label `{name}` is defined {} times", blocks.len()),
+            )
+            .with_label(span(blocks[0]), "first")
+            .with_help("a jump goes to the nearest one in its search direction");
+            for &b in &blocks[1..] {
+                diagnostic = diagnostic.with_label(span(b), "again");
+            }
+            diagnostic
+        })
+        .collect()
+}
+
+/// What every part of a lowering reads, computed once before the blocks.
+struct Context<'a> {
+    flow: Flow,
+    /// `mcode_class_overrides` by M value.
+    m_overrides: HashMap<u32, gcodec_ail::MClass>,
+    /// The `PROC` and `EXTERN` signatures of the program, by name.
+    signatures: HashMap<String, calls::Signature<'a>>,
+    /// The names the program may use, by section (`variables.rs`).
+    names: variables::Names<'a>,
+}
+
+/// Settles what the parts after the first left open because they start
+/// in the state the part before them ends in: the motion command and the
+/// Group 8 selection. False if a part needs more than that.
+fn stitch(parts: &mut [Lowering<'_>]) -> bool {
+    let Some(first) = parts.first() else {
+        return true;
+    };
+    if parts.len() > 1 && parts[..parts.len() - 1].iter().any(|p| p.modal_call) {
+        return false;
+    }
+    let (mut group1, mut group8) = (first.modal[0], first.group8);
+    for part in &mut parts[1..] {
+        if !part.pending_motions.is_empty() {
+            let Some(kind) = group1.map(motion_kind) else {
+                // Unknown before the part: `modal`, as in one run.
+                part.pending_motions.clear();
+                continue_with(part, &mut group1, &mut group8);
+                continue;
+            };
+            // One run would have reported the command or read `F` as
+            // the lead change of G34/G35.
+            let Some(kind) = kind.filter(|_| !matches!(group1, Some("G34" | "G35"))) else {
+                return false;
+            };
+            for &i in &part.pending_motions {
+                if let Op::Motion {
+                    motion,
+                    circle,
+                    thread,
+                    ..
+                } = &mut part.document.instructions[i].op
+                {
+                    settle_motion(motion, circle, thread, kind);
+                }
+            }
+        }
+        let selected = group8
+            .and_then(gcodec_profile::group8_code)
+            .map(|code| code.to_ascii_lowercase());
+        for &i in &part.pending_offsets {
+            if let Op::WorkOffset {
+                group8_selected, ..
+            } = &mut part.document.instructions[i].op
+            {
+                group8_selected.clone_from(&selected);
+            }
+        }
+        continue_with(part, &mut group1, &mut group8);
+    }
+    true
+}
+
+/// The state after `part`, given the state before it.
+fn continue_with(
+    part: &Lowering<'_>,
+    group1: &mut Option<&'static str>,
+    group8: &mut Option<u8>,
+) {
+    if !part.group1_inherited {
+        *group1 = part.modal[0];
+    }
+    if !part.group8_inherited {
+        *group8 = part.group8;
+    }
+}
+
+/// Gives a motion whose command was open the command `kind`, moving its
+/// `I J K` to where that command reads them.
+fn settle_motion(
+    motion: &mut MotionKind,
+    circle: &mut Option<Box<gcodec_ail::Circle>>,
+    thread: &mut Option<Box<gcodec_ail::Thread>>,
+    kind: MotionKind,
+) {
+    *motion = kind;
+    if is_threaded(kind) {
+        if let Some(c) = circle.take() {
+            *thread = Some(Box::new(gcodec_ail::Thread {
+                lead: c.centre,
+                lead_change: None,
+            }));
+        }
+    } else if !is_arc(kind) {
+        *circle = None;
     }
 }
 
@@ -182,19 +385,8 @@ fn refine(document: &mut Document, profile: &Profile, subprogram: bool) {
                 thread,
                 ..
             } => {
-                let Some(kind) = state.get(1).and_then(motion_kind) else {
-                    continue;
-                };
-                *motion = kind;
-                if is_threaded(kind) {
-                    if let Some(c) = circle.take() {
-                        *thread = Some(Box::new(gcodec_ail::Thread {
-                            lead: c.centre,
-                            lead_change: None,
-                        }));
-                    }
-                } else if !is_arc(kind) {
-                    *circle = None;
+                if let Some(kind) = state.get(1).and_then(motion_kind) {
+                    settle_motion(motion, circle, thread, kind);
                 }
             }
             Op::WorkOffset {
@@ -281,15 +473,24 @@ struct Lowering<'a> {
     group8: Option<u8>,
     /// `MCALL NAME` is in force: the subprogram runs after every motion.
     modal_call: bool,
-    flow: Flow,
+    /// A part after the first starts in the state the part before it ends
+    /// in: group 1 and the Group 8 selection are that state until the part
+    /// sets or forgets them.
+    group1_inherited: bool,
+    group8_inherited: bool,
+    /// Motions and work offsets that depend on the inherited state
+    /// (indices into `document.instructions`), settled by [`stitch`].
+    pending_motions: Vec<usize>,
+    pending_offsets: Vec<usize>,
+    flow: &'a Flow,
     /// `mcode_class_overrides` by M value.
-    m_overrides: HashMap<u32, gcodec_ail::MClass>,
+    m_overrides: &'a HashMap<u32, gcodec_ail::MClass>,
     /// The Group 8 indices the machine has.
     group8_supported: [bool; 100],
     /// The `PROC` and `EXTERN` signatures of the program, by name.
-    signatures: HashMap<String, calls::Signature<'a>>,
+    signatures: &'a HashMap<String, calls::Signature<'a>>,
     /// The names the program may use, by section (`variables.rs`).
-    names: variables::Names<'a>,
+    names: &'a variables::Names<'a>,
 }
 
 /// An `S` word: spindle number, computed spindle number (`S[SPINU]=`),
@@ -343,73 +544,54 @@ struct BlockPlan {
 }
 
 impl<'a> Lowering<'a> {
-    fn new(program: &'a Program, profile: &'a Profile, definitions: &'a Definitions) -> Self {
-        let (names, diagnostics) = variables::Names::new(program, profile, definitions);
+    /// The lowering of the blocks `range`; `inherits` for a part after
+    /// the first, which starts in the state the part before it ends in.
+    fn new(
+        context: &'a Context<'a>,
+        program: &'a Program,
+        profile: &'a Profile,
+        range: std::ops::Range<usize>,
+        inherits: bool,
+    ) -> Self {
         let mut modal = crate::modal::reset_defaults(profile);
         let mut group8 =
             gcodec_profile::group8_index(profile.work_offsets.default_group8_offset.get_ref());
-        // A subprogram starts in its caller's state.
-        if is_subprogram(program) {
+        if inherits {
             modal[0] = None;
             group8 = None;
         }
+        // About one instruction per statement, plus labels, jumps and
+        // modal changes: reserving avoids copying a large vector. The first
+        // part reserves for all, since the others are appended to it.
+        let statements = |r: std::ops::Range<usize>| -> usize {
+            program.blocks[r].iter().map(|b| b.statements.len()).sum()
+        };
+        let reserve = if inherits {
+            statements(range)
+        } else {
+            statements(0..program.blocks.len())
+        };
         Self {
             program,
             profile,
             file: Arc::from(program.file.as_str()),
             document: Document {
-                // About one instruction per statement, plus labels, jumps and
-                // modal changes: reserving avoids copying a large vector.
-                instructions: Vec::with_capacity(
-                    program
-                        .blocks
-                        .iter()
-                        .map(|b| b.statements.len())
-                        .sum::<usize>()
-                        * 5
-                        / 4
-                        + 16,
-                ),
+                instructions: Vec::with_capacity(reserve * 5 / 4 + 16),
                 ..Document::new()
             },
-            diagnostics,
+            diagnostics: Vec::new(),
             modal,
             group8,
             modal_call: false,
-            flow: Flow::new(program),
-            m_overrides: mfunc::overrides(profile),
+            group1_inherited: inherits,
+            group8_inherited: inherits,
+            pending_motions: Vec::new(),
+            pending_offsets: Vec::new(),
+            flow: &context.flow,
+            m_overrides: &context.m_overrides,
             group8_supported: profile.work_offsets.supported_group8(),
-            signatures: calls::signatures(program),
-            names,
-        }
-    }
-
-    /// Labels defined twice: allowed (jumps find the nearest in their
-    /// direction), but rarely meant.
-    fn report_duplicate_labels(&mut self) {
-        let mut duplicates: Vec<(String, Vec<usize>)> = self
-            .flow
-            .duplicate_labels()
-            .map(|(name, blocks)| (name.clone(), blocks.clone()))
-            .collect();
-        duplicates.sort_by_key(|(_, blocks)| blocks[0]);
-        for (name, blocks) in duplicates {
-            let span = |b: usize| {
-                self.program.blocks[b]
-                    .label
-                    .as_ref()
-                    .map_or(self.program.blocks[b].span, |l| l.span)
-            };
-            let mut diagnostic = Diagnostic::warning(
-                DUPLICATE_LABEL,
-                format!("label `{name}` is defined {} times", blocks.len()),
-            )
-            .with_label(span(blocks[0]), "first")
-            .with_help("a jump goes to the nearest one in its search direction");
-            for &b in &blocks[1..] {
-                diagnostic = diagnostic.with_label(span(b), "again");
-            }
-            self.diagnostics.push(diagnostic);
+            signatures: &context.signatures,
+            names: &context.names,
         }
     }
 
@@ -452,6 +634,8 @@ impl<'a> Lowering<'a> {
     fn forget_modal_state(&mut self) {
         self.modal[0] = None;
         self.group8 = None;
+        self.group1_inherited = false;
+        self.group8_inherited = false;
     }
 
     fn block(&mut self, index: usize, block: &Block) {
@@ -498,7 +682,10 @@ impl<'a> Lowering<'a> {
         let group8 = plan.g_codes.iter().find(|(g, _, _)| *g == 8);
         let suppression = self.suppression(&plan.suppressions);
         if let Some((_, code, _)) = group8 {
-            self.group8 = gcodec_profile::group8_index(code).or(self.group8);
+            if let Some(selected) = gcodec_profile::group8_index(code) {
+                self.group8 = Some(selected);
+                self.group8_inherited = false;
+            }
         }
         if group8.is_some() || suppression.is_some() {
             let span = group8
@@ -509,6 +696,9 @@ impl<'a> Lowering<'a> {
                 .group8
                 .and_then(gcodec_profile::group8_code)
                 .map(|code| code.to_ascii_lowercase());
+            if selected.is_none() && self.group8_inherited {
+                self.pending_offsets.push(self.document.instructions.len());
+            }
             self.emit(
                 index,
                 span,
@@ -533,6 +723,9 @@ impl<'a> Lowering<'a> {
             let modal = ggroups::group(group).is_some_and(|g| g.effect == ggroups::Effect::Modal);
             if modal {
                 self.modal[usize::from(group) - 1] = Some(code);
+                if group == 1 {
+                    self.group1_inherited = false;
+                }
             }
             self.emit(
                 index,
@@ -660,6 +853,9 @@ impl<'a> Lowering<'a> {
             let spline = spline
                 .filter(|s| s.weight.is_some() || s.interval.is_some())
                 .map(Box::new);
+            if motion == MotionKind::Modal && self.group1_inherited {
+                self.pending_motions.push(self.document.instructions.len());
+            }
             self.emit(
                 index,
                 first,

@@ -24,7 +24,7 @@
 //! sections and their names are collected once before lowering; a name is
 //! known from the end of its `DEF` on.
 
-use std::cell::Cell;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use gcodec_ail::Op;
 use gcodec_parser::ast::{self, StatementKind};
@@ -132,8 +132,9 @@ pub(super) struct Names<'a> {
     definitions: &'a Definitions,
     axes: NameMap<()>,
     sections: Vec<Section>,
-    /// The section of the last lookup (lowering goes forward).
-    current: Cell<usize>,
+    /// The section of the last lookup (lowering goes forward): a hint
+    /// only, shared by the threads that lower parts of the program.
+    current: AtomicUsize,
 }
 
 impl<'a> Names<'a> {
@@ -152,7 +153,7 @@ impl<'a> Names<'a> {
             definitions,
             axes,
             sections: vec![Section::default()],
-            current: Cell::new(0),
+            current: AtomicUsize::new(0),
         };
         let diagnostics = names.collect(program);
         (names, diagnostics)
@@ -279,7 +280,7 @@ impl<'a> Names<'a> {
 
     /// The section a byte offset lies in.
     fn section_at(&self, at: u32) -> &Section {
-        let current = self.current.get();
+        let current = self.current.load(Ordering::Relaxed);
         let fits = |i: usize| {
             self.sections[i].start <= at
                 && self.sections.get(i + 1).is_none_or(|next| at < next.start)
@@ -291,7 +292,7 @@ impl<'a> Names<'a> {
             .sections
             .partition_point(|s| s.start <= at)
             .saturating_sub(1);
-        self.current.set(i);
+        self.current.store(i, Ordering::Relaxed);
         &self.sections[i]
     }
 
