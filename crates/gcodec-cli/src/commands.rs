@@ -140,8 +140,11 @@ pub fn run(cli: Cli) -> u8 {
     }
 }
 
-/// Reads and checks a profile (the built-in one for `None`), reporting
-/// its diagnostics; a bad or unreadable profile is exit code 2.
+/// Reads and checks a profile (the built-in one for `None`): its form
+/// ([`gcodec_profile::load`]) and then its G codes against the G-group
+/// registry ([`gcodec_sema::check_profile`]), reporting the diagnostics of
+/// both against the profile's text; a bad or unreadable profile is exit
+/// code 2.
 fn load_profile(
     path: Option<&Path>,
     options: DiagnosticOptions,
@@ -159,10 +162,17 @@ fn load_profile(
         report(&[d], None, options);
         return Err(EXIT_USAGE);
     };
-    gcodec_profile::load(text).map_err(|diagnostics| {
+    let profile = gcodec_profile::load(text).map_err(|diagnostics| {
         report(&diagnostics, Some(&file), options);
         EXIT_USAGE
-    })
+    })?;
+    // The checks that need the G-group registry, against the same text.
+    let diagnostics = gcodec_sema::check_profile(&profile);
+    report(&diagnostics, Some(&file), options);
+    if diagnostics.iter().any(Diagnostic::is_error) {
+        return Err(EXIT_USAGE);
+    }
+    Ok(profile)
 }
 
 fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 {

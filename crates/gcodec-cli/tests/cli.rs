@@ -422,6 +422,69 @@ fn profile_check_reports_a_bad_profile_with_exit_2() {
     );
 }
 
+/// The checks against the G-group registry (`gcodec_sema::check_profile`)
+/// run wherever a profile is loaded, rendered against the profile's text.
+#[test]
+fn profile_check_runs_the_g_group_checks() {
+    let path = temp_file(
+        "profile-g",
+        "bad.toml",
+        "[machine]\nname = \"m\"\ncontrol = \"840d_sl\"\n[modal_defaults]\n1 = \"G17\"\n[g_codes]\nunsupported = [\"G999\"]\n",
+    );
+    let out = gcodec(["profile".as_ref(), "check".as_ref(), path.as_os_str()]);
+    assert_no_panic(&out);
+    assert_eq!(code(&out), EXIT_USAGE);
+    let err = stderr(&out);
+    assert!(err.contains("gcodec::profile::not_in_group"), "{err}");
+    assert!(err.contains("gcodec::profile::unknown_g_code"), "{err}");
+    assert!(err.contains("bad.toml:5:5"), "{err}");
+    assert!(err.contains("group 6"), "{err}");
+    let out = gcodec(["profile".as_ref(), "show".as_ref(), path.as_os_str()]);
+    assert_eq!(code(&out), EXIT_USAGE);
+    assert!(stdout(&out).is_empty(), "{}", stdout(&out));
+
+    // `lower` rejects the profile before it reads the program.
+    let program = temp_file("profile-g", "x.mpf", "G1 X1\n");
+    let out = gcodec([
+        "lower".as_ref(),
+        program.as_os_str(),
+        "--profile".as_ref(),
+        path.as_os_str(),
+    ]);
+    assert_no_panic(&out);
+    assert_eq!(code(&out), EXIT_USAGE);
+    let err = stderr(&out);
+    assert!(err.contains("gcodec::profile::not_in_group"), "{err}");
+    assert!(err.contains("bad.toml"), "{err}");
+    assert!(stdout(&out).is_empty(), "{}", stdout(&out));
+
+    // A legacy alias that redefines a command of another group.
+    let alias = temp_file(
+        "profile-g",
+        "alias.toml",
+        "[machine]\nname = \"m\"\ncontrol = \"840d_sl\"\n[work_offsets]\nsupported_group8_offsets = [\"G500\", \"G54-G57\", \"G505-G599\"]\nlegacy_aliases = { G1 = \"G505\" }\n",
+    );
+    let out = gcodec(["profile".as_ref(), "check".as_ref(), alias.as_os_str()]);
+    assert_eq!(code(&out), EXIT_USAGE);
+    assert!(
+        stderr(&out).contains("gcodec::profile::alias_conflict"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+/// The built-in profile passes every check, `lower` without `--profile`
+/// included.
+#[test]
+fn the_built_in_profile_passes_the_g_group_checks() {
+    let out = gcodec(["profile", "show"]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    assert!(stderr(&out).is_empty(), "{}", stderr(&out));
+    let profile = gcodec_profile::builtin().expect("built-in profile");
+    let diagnostics = gcodec_sema::check_profile(&profile);
+    assert!(diagnostics.is_empty(), "{diagnostics:#?}");
+}
+
 /// `profile show` prints the effective built-in profile; its TOML loads
 /// again, and its JSON names the control.
 #[test]

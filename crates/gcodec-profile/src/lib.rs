@@ -7,9 +7,10 @@
 //! one pass. [`builtin`] is `profiles/default.toml`, compiled in so that
 //! gcodec works with no profile given.
 //!
-//! Not built yet (the lowering issue continues here): checking
-//! `modal_defaults` against the G-group registry (the semantic stage owns
-//! the registry), and the profile's use by lowering and the executor.
+//! The checks that need the G-group registry (`modal_defaults` codes and
+//! groups, `[g_codes] unsupported` names, `legacy_aliases` keys) are
+//! `gcodec_sema::check_profile`, run after [`load`]: the semantic stage
+//! owns the registry. Not built yet: the profile's use by the executor.
 
 mod group8;
 mod schema;

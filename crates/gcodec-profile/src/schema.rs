@@ -19,6 +19,8 @@ pub struct Profile {
     pub axes: Vec<Axis>,
     /// G-group reset defaults (as machine data MD20150 sets them): group
     /// number (1…64) → G code. Groups not named keep the control's default.
+    /// That the group is modal and the code one of its commands is checked
+    /// by the semantic stage (`gcodec_sema::check_profile`).
     #[serde(default)]
     pub modal_defaults: BTreeMap<Spanned<String>, Spanned<String>>,
     #[serde(default)]

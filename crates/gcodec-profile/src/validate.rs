@@ -33,7 +33,7 @@ pub(crate) fn check(profile: &Profile) -> Vec<Diagnostic> {
 
 /// The form of `[g_codes]` entries. Whether a name is a command of the
 /// control is checked by the semantic stage, which owns the G-group
-/// registry (`gcodec::lower::unknown_profile_g`).
+/// registry (`gcodec_sema::check_profile`, `gcodec::profile::unknown_g_code`).
 fn check_g_codes(g: &GCodes, out: &mut Vec<Diagnostic>) {
     let mut seen = BTreeSet::new();
     for code in &g.unsupported {

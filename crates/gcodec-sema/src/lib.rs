@@ -15,7 +15,9 @@
 //! must be defined (`DEF`, `PROC` parameters, global user data of
 //! definition files, macros, axes), assignments are type-checked, array
 //! indices and system-variable index shapes are checked, `REP` and lists
-//! of values are lowered.
+//! of values are lowered; the checks of a machine profile that need the
+//! G-group registry ([`check_profile`]: `modal_defaults`, `[g_codes]`
+//! names, `legacy_aliases` keys).
 //!
 //! Not built yet: `CASE`, `CALL`/`PCALL`/`MCALL`, `PROC` signatures and
 //! call arity, macro expansion, `REDEF` attributes.
@@ -28,11 +30,13 @@ pub mod ggroups;
 mod lower;
 mod mfunc;
 pub mod modal;
+mod profile_check;
 pub mod sysvars;
 mod tools;
 pub mod types;
 mod values;
 
 pub use definitions::Definitions;
-pub use lower::{Lowered, lower, lower_with};
+pub use lower::{Lowered, lower, lower_in_parts, lower_with};
+pub use profile_check::check_profile;
 pub use types::DataType;

@@ -586,7 +586,8 @@ fn no_panic_on_odd_addresses() {
 fn an_axis_with_a_longer_name_is_a_target_not_a_variable() {
     // The parser reads `XV=…` as an assignment: it knows no axes.
     let profile = common::profile("grinder_fb422.toml");
-    let parsed = gcodec_parser::parse_bytes("xv.mpf", b"G1 XV=10 F100\nXV=IC(2.5)\nXV=ACP(5)\nM30\n");
+    let parsed =
+        gcodec_parser::parse_bytes("xv.mpf", b"G1 XV=10 F100\nXV=IC(2.5)\nXV=ACP(5)\nM30\n");
     let l = gcodec_sema::lower(&parsed.program, &profile);
     let codes: Vec<&str> = l.diagnostics.iter().map(|d| d.code).collect();
     assert_eq!(codes, ["gcodec::lower::modifier_not_allowed"]);
@@ -603,7 +604,10 @@ fn an_axis_with_a_longer_name_is_a_target_not_a_variable() {
         .collect();
     assert_eq!(
         targets,
-        [("XV".to_owned(), None), ("XV".to_owned(), Some("IC".to_owned()))]
+        [
+            ("XV".to_owned(), None),
+            ("XV".to_owned(), Some("IC".to_owned()))
+        ]
     );
     assert!(
         !l.document

@@ -246,11 +246,7 @@ fn stitch(parts: &mut [Lowering<'_>]) -> bool {
 }
 
 /// The state after `part`, given the state before it.
-fn continue_with(
-    part: &Lowering<'_>,
-    group1: &mut Option<&'static str>,
-    group8: &mut Option<u8>,
-) {
+fn continue_with(part: &Lowering<'_>, group1: &mut Option<&'static str>, group8: &mut Option<u8>) {
     if !part.group1_inherited {
         *group1 = part.modal[0];
     }
