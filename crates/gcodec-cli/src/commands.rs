@@ -232,9 +232,9 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
         }
         match format {
             Format::Text => {
-                let mut text = String::new();
-                let _ = gcodec_parser::write_outline(&parsed.program, &mut text);
-                let _ = out.write_all(text.as_bytes());
+                let mut outline = FmtToIo::new(&mut out);
+                let _ = gcodec_parser::write_outline(&parsed.program, &mut outline);
+                let _ = outline.finish();
             }
             Format::Json => json.push(parsed.program),
         }
@@ -310,9 +310,9 @@ fn lower(
     let mut out = std::io::BufWriter::new(stdout.lock());
     let written = match format {
         Format::Text => {
-            let mut text = String::new();
-            let _ = gcodec_ail::write_listing(&lowered.document, &mut text);
-            out.write_all(text.as_bytes())
+            let mut listing = FmtToIo::new(&mut out);
+            let _ = gcodec_ail::write_listing(&lowered.document, &mut listing);
+            listing.finish()
         }
         Format::Json => serde_json::to_writer_pretty(&mut out, &lowered.document)
             .map_err(std::io::Error::from)
@@ -321,5 +321,35 @@ fn lower(
     if (written.is_err() || out.flush().is_err()) && exit == EXIT_CLEAN {
         exit = EXIT_USAGE;
     }
+    // The process ends next: freeing a large program's tree and
+    // instruction list block by block would only delay the exit.
+    std::mem::forget(lowered.document);
+    std::mem::forget(parsed.program);
     exit
+}
+
+/// Writes formatted text straight to an `io::Write` (the listing of a
+/// large program is not built in memory first), keeping the first IO error.
+struct FmtToIo<'a, W: Write> {
+    out: &'a mut W,
+    error: Option<std::io::Error>,
+}
+
+impl<'a, W: Write> FmtToIo<'a, W> {
+    fn new(out: &'a mut W) -> Self {
+        Self { out, error: None }
+    }
+
+    fn finish(self) -> std::io::Result<()> {
+        self.error.map_or(Ok(()), Err)
+    }
+}
+
+impl<W: Write> std::fmt::Write for FmtToIo<'_, W> {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        self.out.write_all(s.as_bytes()).map_err(|e| {
+            self.error.get_or_insert(e);
+            std::fmt::Error
+        })
+    }
 }

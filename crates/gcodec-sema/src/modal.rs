@@ -18,8 +18,10 @@
 //! call is active).
 
 use std::cmp::Reverse;
+use std::collections::hash_map::Entry;
 use std::collections::{BinaryHeap, HashMap};
 use std::fmt;
+use std::hash::{BuildHasherDefault, Hasher};
 
 use gcodec_ail::{Document, Instruction, MClass, Op, RepeatSection, Value};
 use gcodec_profile::Profile;
@@ -42,7 +44,11 @@ pub fn reset_defaults(profile: &Profile) -> [Option<&'static str>; GROUP_COUNT] 
     for (group, code) in &profile.modal_defaults {
         let lookup = ggroups::lookup(code.get_ref());
         if let (Ok(g), Some((found, index))) = (group.get_ref().parse::<u8>(), lookup) {
-            if g == found {
+            // A profile `check_profile` rejects (a code of another group,
+            // a non-modal group) changes nothing.
+            let modal_group =
+                ggroups::group(g).is_some_and(|gr| gr.effect == ggroups::Effect::Modal);
+            if g == found && modal_group {
                 modal[usize::from(g) - 1] = ggroups::member(g, index);
             }
         }
@@ -224,11 +230,16 @@ const UNREACHED: u32 = u32::MAX;
 /// The modal state at the start of every block of a document.
 #[derive(Clone, Debug)]
 pub struct ModalStates {
-    /// The distinct states of reached lines.
+    /// The distinct states of reached lines, in the order they first
+    /// start a line.
     states: Vec<ModalState>,
-    /// (line, index into `states` or `UNREACHED`), one per line with
-    /// instructions, sorted by line.
-    lines: Vec<(u32, u32)>,
+    /// The lines with instructions, sorted.
+    lines: Vec<u32>,
+    /// (index into `lines`, index into `states` or `UNREACHED`): from that
+    /// line on, up to the next change, the lines have that state. Sorted;
+    /// the first starts at 0 when there are lines. Consecutive lines in
+    /// one state (straight-line code that changes no group) share an entry.
+    changes: Vec<(u32, u32)>,
 }
 
 impl ModalStates {
@@ -277,61 +288,108 @@ impl ModalStates {
             Start::Unknown => ModalState::unknown(),
         };
         let graph = Graph::new(&document.instructions);
-        let entries = Solver::solve(&graph, initial);
-        Self::collect(&graph, &entries)
+        let mut table = StateTable::new(graph.motions_matter);
+        let initial = table.intern(&initial);
+        let entries = Solver::solve(&graph, &mut table, initial);
+        Self::collect(&graph, &entries, &mut table)
     }
 
     /// Replays each reached basic block from its entry state and records
     /// the state at the first instruction of every line.
-    fn collect(graph: &Graph<'_>, entries: &Entries) -> Self {
-        let mut states = Interner::default();
-        let mut lookups = Lookups::new();
-        // Lowering gives every line with instructions a run of them, in
-        // order, so the last line is about how many there are.
-        let last_line = graph.instructions.last().map_or(0, |i| i.source.line);
-        let mut lines: Vec<(u32, u32)> =
-            Vec::with_capacity((last_line as usize).min(graph.instructions.len()));
-        let mut previous_line = None;
-        for block in 0..graph.block_count() {
-            let entry = entries.state(block);
-            let mut state = entry.cloned();
-            // The id of `state` while it has not changed since interned.
-            let mut id = None;
-            for instruction in graph.block(block) {
-                let line = instruction.source.line;
-                if previous_line != Some(line) {
-                    previous_line = Some(line);
-                    let at = match &state {
-                        Some(state) => *id.get_or_insert_with(|| states.intern(state)),
-                        None => UNREACHED,
-                    };
-                    lines.push((line, at));
-                }
-                if let Some(state) = state.as_mut() {
-                    if transfer(state, &instruction.op, &mut lookups) {
-                        id = None;
-                    }
+    fn collect(graph: &Graph<'_>, entries: &[u32], table: &mut StateTable) -> Self {
+        let mut out = Collector {
+            remap: vec![UNREACHED; table.states.len()],
+            states: Vec::new(),
+            lines: Vec::with_capacity(graph.runs),
+            changes: Vec::new(),
+            last: None,
+        };
+        for (block, &entry) in entries.iter().enumerate() {
+            let mut id = entry;
+            for event in graph.events(block) {
+                if event.code == LINE {
+                    out.record(event.line, id, table);
+                } else if id != UNREACHED {
+                    id = table.step(id, event.code);
                 }
             }
         }
+        let Collector {
+            mut states,
+            mut lines,
+            mut changes,
+            ..
+        } = out;
         // Lowering writes lines in order; another writer may not. The first
         // run of a line in document order is its block's start.
-        if !lines.windows(2).all(|w| w[0].0 < w[1].0) {
-            lines.sort_by_key(|&(line, _)| line);
-            lines.dedup_by_key(|&mut (line, _)| line);
+        if !graph.lines_sorted {
+            let mut pairs = Vec::with_capacity(lines.len());
+            let mut change = 0;
+            let mut current = UNREACHED;
+            for (at, &line) in lines.iter().enumerate() {
+                while let Some(&(from, id)) = changes.get(change) {
+                    if from as usize > at {
+                        break;
+                    }
+                    current = id;
+                    change += 1;
+                }
+                pairs.push((line, current));
+            }
+            pairs.sort_by_key(|&(line, _)| line);
+            pairs.dedup_by_key(|&mut (line, _)| line);
+            lines.clear();
+            changes.clear();
+            for (line, id) in pairs {
+                if changes.last().is_none_or(|&(_, last)| last != id) {
+                    changes.push((lines.len() as u32, id));
+                }
+                lines.push(line);
+            }
         }
         lines.shrink_to_fit();
-        let mut states = states.states;
+        changes.shrink_to_fit();
         states.shrink_to_fit();
-        Self { states, lines }
+        Self {
+            states,
+            lines,
+            changes,
+        }
+    }
+
+    /// The state id (into `states`, or `UNREACHED`) of the `at`th line
+    /// with instructions.
+    fn id_of(&self, at: usize) -> u32 {
+        let after = self
+            .changes
+            .partition_point(|&(from, _)| from as usize <= at);
+        after
+            .checked_sub(1)
+            .and_then(|c| self.changes.get(c))
+            .map_or(UNREACHED, |&(_, id)| id)
+    }
+
+    /// The lines with instructions, in order, with their state ids.
+    fn ids(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        self.changes
+            .iter()
+            .enumerate()
+            .flat_map(move |(c, &(from, id))| {
+                let to = self
+                    .changes
+                    .get(c + 1)
+                    .map_or(self.lines.len(), |&(to, _)| to as usize);
+                let lines = self.lines.get(from as usize..to).unwrap_or(&[]);
+                lines.iter().map(move |&line| (line, id))
+            })
     }
 
     /// What is known about `line` (1-based).
     pub fn line_state(&self, line: u32) -> LineState<'_> {
-        let Ok(at) = self.lines.binary_search_by_key(&line, |&(l, _)| l) else {
+        let Ok(at) = self.lines.binary_search(&line) else {
             return LineState::NoInstructions;
         };
-        match self.states.get(self.lines[at].1 as usize) {
+        match self.states.get(self.id_of(at) as usize) {
             Some(state) => LineState::Reached(state),
             None => LineState::Unreachable,
         }
@@ -349,17 +407,15 @@ impl ModalStates {
 
     /// The reached lines with their states, in line order.
     pub fn iter(&self) -> impl Iterator<Item = (u32, &ModalState)> + '_ {
-        self.lines
-            .iter()
-            .filter_map(|&(line, at)| Some((line, self.states.get(at as usize)?)))
+        self.ids()
+            .filter_map(|(line, at)| Some((line, self.states.get(at as usize)?)))
     }
 
     /// The lines with instructions that no path reaches, in order.
     pub fn unreachable_lines(&self) -> impl Iterator<Item = u32> + '_ {
-        self.lines
-            .iter()
-            .filter(|&&(_, at)| at == UNREACHED)
-            .map(|&(line, _)| line)
+        self.ids()
+            .filter(|&(_, at)| at == UNREACHED)
+            .map(|(line, _)| line)
     }
 
     /// How many different states the reached lines have.
@@ -370,18 +426,157 @@ impl ModalStates {
     /// The heap memory the result holds, in bytes.
     pub fn heap_bytes(&self) -> usize {
         self.states.capacity() * std::mem::size_of::<ModalState>()
-            + self.lines.capacity() * std::mem::size_of::<(u32, u32)>()
+            + self.lines.capacity() * std::mem::size_of::<u32>()
+            + self.changes.capacity() * std::mem::size_of::<(u32, u32)>()
     }
 }
 
-/// Distinct states, each stored once, by dense id.
-#[derive(Default)]
-struct Interner {
+/// Builds the result of [`ModalStates::collect`].
+struct Collector {
+    /// The result's id of each state of the table (`UNREACHED`: none yet).
+    remap: Vec<u32>,
     states: Vec<ModalState>,
-    ids: HashMap<ModalState, u32>,
+    lines: Vec<u32>,
+    changes: Vec<(u32, u32)>,
+    /// The result id of the last line recorded.
+    last: Option<u32>,
 }
 
-impl Interner {
+impl Collector {
+    /// The line `line` starts in the table's state `id` (or `UNREACHED`).
+    fn record(&mut self, line: u32, id: u32, table: &StateTable) {
+        let at = match self.remap.get_mut(id as usize) {
+            Some(slot) if *slot != UNREACHED => *slot,
+            Some(slot) => {
+                let at = self.states.len() as u32;
+                *slot = at;
+                self.states.push(table.states[id as usize].clone());
+                at
+            }
+            None => UNREACHED,
+        };
+        if self.last != Some(at) {
+            self.last = Some(at);
+            self.changes.push((self.lines.len() as u32, at));
+        }
+        self.lines.push(line);
+    }
+}
+
+/// FxHash (rustc's hasher): states and keys here are small and trusted, so
+/// a multiply-rotate hash beats SipHash by far.
+#[derive(Default)]
+struct FxHasher {
+    hash: u64,
+}
+
+const FX_SEED: u64 = 0x51_7c_c1_b7_27_22_0a_95;
+
+impl FxHasher {
+    fn add(&mut self, word: u64) {
+        self.hash = (self.hash.rotate_left(5) ^ word).wrapping_mul(FX_SEED);
+    }
+}
+
+impl Hasher for FxHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        let mut chunks = bytes.chunks_exact(8);
+        for chunk in &mut chunks {
+            let mut word = [0; 8];
+            word.copy_from_slice(chunk);
+            self.add(u64::from_le_bytes(word));
+        }
+        let rest = chunks.remainder();
+        if !rest.is_empty() {
+            let mut word = [0; 8];
+            word[..rest.len()].copy_from_slice(rest);
+            self.add(u64::from_le_bytes(word));
+        }
+    }
+
+    fn write_u8(&mut self, i: u8) {
+        self.add(u64::from(i));
+    }
+
+    fn write_u32(&mut self, i: u32) {
+        self.add(u64::from(i));
+    }
+
+    fn write_u64(&mut self, i: u64) {
+        self.add(i);
+    }
+
+    fn write_usize(&mut self, i: usize) {
+        self.add(i as u64);
+    }
+
+    fn finish(&self) -> u64 {
+        self.hash
+    }
+}
+
+/// Line-start pseudo event: the line of the instruction is in `line`.
+const LINE: u32 = 0;
+// State-changing events, `kind << 16 | group << 8 | index`.
+/// Sets group `group` to `index`.
+const SET: u32 = 1;
+/// A `work_offset` with a suppression selecting `index`: group 8 stays
+/// known only if it already is `index`.
+const SUPPRESSED: u32 = 2;
+const MODAL_CALL: u32 = 3;
+const CANCEL_MODAL_CALL: u32 = 4;
+/// A call: every group unknown.
+const FORGET: u32 = 5;
+/// A traversing block: a call if a modal call may be active.
+const MOTION: u32 = 6;
+
+const fn code(kind: u32, group: u8, index: u8) -> u32 {
+    kind << 16 | (group as u32) << 8 | index as u32
+}
+
+/// Applies the event `code` to `state`; true if the state changed.
+fn apply(state: &mut ModalState, code: u32) -> bool {
+    let group = (code >> 8) as u8;
+    let index = code as u8;
+    match code >> 16 {
+        SET => state.set(group, index),
+        SUPPRESSED if state.index(8) == Some(index) => false,
+        SUPPRESSED => state.set(8, 0),
+        MODAL_CALL => state.set_modal_call(CALL_ACTIVE),
+        CANCEL_MODAL_CALL => state.set_modal_call(CALL_INACTIVE),
+        FORGET => state.forget_groups(),
+        MOTION if state.modal_call != CALL_INACTIVE => state.forget_groups(),
+        _ => false,
+    }
+}
+
+/// Distinct states by dense id, with the effect of events and joins on ids
+/// memoised: the analysis works on ids and builds a state only the first
+/// time an event or a join leads to it.
+struct StateTable {
+    states: Vec<ModalState>,
+    ids: HashMap<ModalState, u32, BuildHasherDefault<FxHasher>>,
+    /// Direct-mapped cache of `(id << 32 | event code) → id`; key
+    /// `u64::MAX` is empty (no event code is `u32::MAX`).
+    steps: Box<[(u64, u32)]>,
+    /// Whether `MOTION` can change anything: only if the document has a
+    /// modal call or a `repeat_section` (the only ways a modal call gets
+    /// active or unknown); else every motion is a no-op.
+    motions_matter: bool,
+}
+
+const STEP_BITS: u32 = 12;
+
+impl StateTable {
+    fn new(motions_matter: bool) -> Self {
+        Self {
+            states: Vec::new(),
+            ids: HashMap::default(),
+            steps: vec![(u64::MAX, 0); 1 << STEP_BITS].into_boxed_slice(),
+            motions_matter,
+        }
+    }
+
     fn intern(&mut self, state: &ModalState) -> u32 {
         if let Some(&id) = self.ids.get(state) {
             return id;
@@ -393,9 +588,53 @@ impl Interner {
         self.ids.insert(state.clone(), id);
         id
     }
+
+    /// The state after the event `code` in the state `id`.
+    fn step(&mut self, id: u32, code: u32) -> u32 {
+        if code >> 16 == MOTION && !self.motions_matter {
+            return id;
+        }
+        let key = u64::from(id) << 32 | u64::from(code);
+        let slot = (key.wrapping_mul(FX_SEED) >> (64 - STEP_BITS)) as usize;
+        if let Some(&(k, to)) = self.steps.get(slot) {
+            if k == key {
+                return to;
+            }
+        }
+        let Some(mut state) = self.states.get(id as usize).cloned() else {
+            return id;
+        };
+        let to = if apply(&mut state, code) {
+            self.intern(&state)
+        } else {
+            id
+        };
+        if let Some(entry) = self.steps.get_mut(slot) {
+            *entry = (key, to);
+        }
+        to
+    }
+
+    /// The join of the states `a` and `b`.
+    fn join(&mut self, a: u32, b: u32) -> u32 {
+        if a == b {
+            return a;
+        }
+        let (Some(mine), Some(theirs)) = (self.states.get(a as usize), self.states.get(b as usize))
+        else {
+            return a;
+        };
+        let mut joined = mine.clone();
+        if joined.join(theirs) {
+            self.intern(&joined)
+        } else {
+            a
+        }
+    }
 }
 
 /// How an instruction affects the control flow.
+#[derive(Clone, Copy)]
 enum Control<'d> {
     /// On with the next instruction.
     Next,
@@ -414,56 +653,6 @@ enum Control<'d> {
     Repeat(&'d RepeatSection),
 }
 
-/// Every `Op` is listed so that a new kind does not slip through as
-/// "no effect on the control flow".
-fn control(op: &Op) -> Control<'_> {
-    match op {
-        Op::Jump { target, condition } => Control::Jump {
-            target,
-            conditional: condition.is_some(),
-        },
-        Op::ComputedJump(jump) => Control::Computed {
-            goes_on: jump.condition.is_some() || jump.continue_if_missing,
-        },
-        Op::GotoStart { .. } => Control::Start,
-        Op::RepeatSection(section) => Control::Repeat(section),
-        Op::Return { .. } | Op::End => Control::Stop,
-        Op::MFunction(m) => {
-            // The program-flow class: the profile may not reclassify these
-            // values (the extension is forbidden for them), but a machine
-            // could map one to a custom function; then it does not end.
-            let ends = m.class == MClass::ProgramFlow
-                && m.address_extension.is_none()
-                && m.address_extension_expr.is_none()
-                && matches!(m.m_value, Some(2 | 17 | 30));
-            if ends { Control::Stop } else { Control::Next }
-        }
-        Op::ToolSelect(_)
-        | Op::ToolChange { .. }
-        | Op::CuttingEdge { .. }
-        | Op::WorkOffset { .. }
-        | Op::ModalChange { .. }
-        | Op::Motion { .. }
-        | Op::Feed { .. }
-        | Op::SpindleSpeed { .. }
-        | Op::Dwell { .. }
-        | Op::Address(_)
-        | Op::HFunction(_)
-        | Op::ModalChangeIndirect { .. }
-        | Op::Frame { .. }
-        | Op::Declare(_)
-        | Op::Assign { .. }
-        | Op::AssignList(_)
-        | Op::Label { .. }
-        | Op::Call(_)
-        | Op::CancelModalCall
-        | Op::Procedure(_)
-        | Op::External(_)
-        | Op::Message { .. }
-        | Op::Stop { .. } => Control::Next,
-    }
-}
-
 /// Whether `group` (1…64) keeps its command after its block.
 fn is_modal_group(group: u8) -> bool {
     ggroups::group(group).is_some_and(|g| g.effect == ggroups::Effect::Modal)
@@ -477,15 +666,18 @@ fn member_index(group: u8, code: &str) -> u8 {
     }
 }
 
-/// [`member_index`] behind a small direct-mapped cache keyed by the
-/// string's address and length. Lowering writes the registry's own
-/// `&'static str`s, so a document's codes are a few distinct strings and
-/// the cache skips nearly every lookup (a third of the analysis' time
-/// without it). Keying by address is sound while the document is borrowed:
-/// two live strings at one address with one length are the same string.
+/// [`member_index`] behind two small direct-mapped caches, keyed by the
+/// code's address (lowering writes the registry's own `&'static str`s) and
+/// by its bytes (every member name but a few fits 8; `group8_selected` is
+/// an owned string). A document's codes are a few distinct strings, so the
+/// caches skip nearly every lookup.
 struct Lookups {
+    /// (bytes, length, group, index); length `u8::MAX` is empty.
+    slots: Box<[(u64, u8, u8, u8); LOOKUP_SLOTS]>,
     /// (address, length, group, index); length `usize::MAX` is empty.
-    slots: Box<[(usize, usize, u8, u8); LOOKUP_SLOTS]>,
+    by_address: Box<[(usize, usize, u8, u8); LOOKUP_SLOTS]>,
+    /// Whether a group is modal, by group number; `None` not yet asked.
+    modal: [Option<bool>; 256],
 }
 
 const LOOKUP_SLOTS: usize = 256;
@@ -493,158 +685,310 @@ const LOOKUP_SLOTS: usize = 256;
 impl Lookups {
     fn new() -> Self {
         Self {
-            slots: Box::new([(0, usize::MAX, 0, 0); LOOKUP_SLOTS]),
+            slots: Box::new([(0, u8::MAX, 0, 0); LOOKUP_SLOTS]),
+            by_address: Box::new([(0, usize::MAX, 0, 0); LOOKUP_SLOTS]),
+            modal: [None; 256],
         }
     }
 
+    fn is_modal_group(&mut self, group: u8) -> bool {
+        *self.modal[usize::from(group)].get_or_insert_with(|| is_modal_group(group))
+    }
+
     fn member_index(&mut self, group: u8, code: &str) -> u8 {
+        // By address first: that reads no string (each of which may be a
+        // cache miss of its own). Sound while the document is borrowed:
+        // two live strings at one address with one length are the same.
         let (address, len) = (code.as_ptr() as usize, code.len());
-        let slot = &mut self.slots[(address ^ (address >> 8) ^ usize::from(group)) % LOOKUP_SLOTS];
+        let by_address = (address ^ (address >> 8) ^ usize::from(group)) % LOOKUP_SLOTS;
+        let slot = &self.by_address[by_address];
         if (slot.0, slot.1, slot.2) == (address, len, group) {
             return slot.3;
         }
+        let index = self.member_index_by_content(group, code);
+        self.by_address[by_address] = (address, len, group, index);
+        index
+    }
+
+    fn member_index_by_content(&mut self, group: u8, code: &str) -> u8 {
+        let bytes = code.as_bytes();
+        if bytes.len() > 8 {
+            return member_index(group, code);
+        }
+        let mut word = [0; 8];
+        word[..bytes.len()].copy_from_slice(bytes);
+        let word = u64::from_le_bytes(word);
+        let len = bytes.len() as u8;
+        let hash = (word ^ u64::from(group) << 56 ^ u64::from(len) << 48).wrapping_mul(FX_SEED);
+        let slot = &mut self.slots[(hash >> 56) as usize % LOOKUP_SLOTS];
+        if (slot.0, slot.1, slot.2) == (word, len, group) {
+            return slot.3;
+        }
         let index = member_index(group, code);
-        *slot = (address, len, group, index);
+        *slot = (word, len, group, index);
         index
     }
 }
 
-/// Applies one instruction to `state`; true if the state changed. Every
-/// `Op` is listed so that a new kind is a compile error here.
-fn transfer(state: &mut ModalState, op: &Op, lookups: &mut Lookups) -> bool {
-    match op {
-        Op::ModalChange { group, code } => {
-            is_modal_group(*group) && state.set(*group, lookups.member_index(*group, code))
-        }
-        Op::ModalChangeIndirect { group, index } => {
-            let index = match index {
-                Value::Const(v) if v.fract() == 0.0 && (1.0..=255.0).contains(v) => {
-                    let v = *v as u8;
-                    if ggroups::member(*group, v).is_some() {
-                        v
-                    } else {
-                        0
-                    }
-                }
-                _ => 0,
-            };
-            is_modal_group(*group) && state.set(*group, index)
-        }
-        Op::WorkOffset {
-            group8_selected,
-            suppression,
-            ..
-        } => {
-            // `null`: a suppression alone, the selection unknown to
-            // lowering; a suppression never changes the selection.
-            let Some(group8_selected) = group8_selected else {
-                return false;
-            };
-            let selected = lookups.member_index(8, group8_selected);
-            match suppression {
-                None => state.set(8, selected),
-                Some(_) if state.index(8) == Some(selected) => false,
-                Some(_) => state.set(8, 0),
-            }
-        }
-        Op::Call(call) if call.modal => state.set_modal_call(CALL_ACTIVE),
-        Op::Call(_) => state.forget_groups(),
-        Op::CancelModalCall => state.set_modal_call(CALL_INACTIVE),
-        // A modal call runs after the block (or may: unknown).
-        Op::Motion { .. } if state.modal_call != CALL_INACTIVE => state.forget_groups(),
-        Op::Motion { .. }
-        | Op::ToolSelect(_)
-        | Op::ToolChange { .. }
-        | Op::CuttingEdge { .. }
-        | Op::MFunction(_)
-        | Op::Feed { .. }
-        | Op::SpindleSpeed { .. }
-        | Op::Dwell { .. }
-        | Op::Address(_)
-        | Op::HFunction(_)
-        | Op::Frame { .. }
-        | Op::Declare(_)
-        | Op::Assign { .. }
-        | Op::AssignList(_)
-        | Op::Label { .. }
-        | Op::Jump { .. }
-        | Op::RepeatSection(_)
-        | Op::ComputedJump(_)
-        | Op::GotoStart { .. }
-        | Op::Procedure(_)
-        | Op::External(_)
-        | Op::Return { .. }
-        | Op::Message { .. }
-        | Op::Stop { .. }
-        | Op::End => false,
-    }
+/// One entry of [`Graph::events`]: a line starts (`code` `LINE`), or an
+/// instruction that may change the state (`code` from [`code`]).
+#[derive(Clone, Copy)]
+struct Event {
+    code: u32,
+    line: u32,
 }
 
-/// The document cut into basic blocks: a block starts at the first
-/// instruction, at every label and after every instruction that does not
-/// simply go on.
+/// A basic block: it starts at the first instruction, at every label and
+/// after every instruction that does not simply go on.
+struct Block<'d> {
+    /// Its first event in [`Graph::events`].
+    first_event: u32,
+    /// The label it starts with.
+    label: Option<&'d str>,
+    /// What its last instruction does.
+    control: Control<'d>,
+}
+
+/// The document cut into basic blocks, each reduced to the events that
+/// matter to the state: line starts and state changes, in order.
 struct Graph<'d> {
-    instructions: &'d [Instruction],
-    /// The first instruction of each block.
-    starts: Vec<u32>,
-    /// (name, block) of every label, sorted by name.
-    labels: Vec<(&'d str, u32)>,
+    events: Vec<Event>,
+    blocks: Vec<Block<'d>>,
+    /// The block of every label, in order.
+    labels: Vec<u32>,
+    /// The next label of the same name, by index into `labels`
+    /// (`u32::MAX`: none).
+    label_next: Vec<u32>,
+    /// The first and last label (index into `labels`) of each name.
+    label_names: HashMap<&'d str, (u32, u32), BuildHasherDefault<FxHasher>>,
     /// (end label, block ending in the `repeat_section`, the section),
     /// sorted by the end label.
     repeats: Vec<(&'d str, u32, &'d RepeatSection)>,
+    /// The number of line runs (maximal runs of instructions on one line).
+    runs: usize,
+    /// Whether each run's line is greater than the one before.
+    lines_sorted: bool,
+    /// See [`StateTable::motions_matter`].
+    motions_matter: bool,
 }
 
 impl<'d> Graph<'d> {
+    /// One pass over the instructions. Every `Op` is listed so that a new
+    /// kind is a compile error here.
     fn new(instructions: &'d [Instruction]) -> Self {
-        let mut starts = Vec::new();
+        let mut lookups = Lookups::new();
+        let mut events = Vec::with_capacity(instructions.len());
+        let mut blocks: Vec<Block<'d>> = Vec::new();
         let mut labels = Vec::new();
+        let mut label_list: Vec<&'d str> = Vec::new();
         let mut repeats = Vec::new();
+        let mut runs = 0;
+        let mut lines_sorted = true;
+        let mut motions_matter = false;
+        let mut previous_line = None;
         let mut starts_block = true;
-        for (at, instruction) in instructions.iter().enumerate() {
-            if starts_block || matches!(instruction.op, Op::Label { .. }) {
-                starts.push(at as u32);
+        // Whether the last state event of this block is a `MOTION`: a
+        // motion after it changes nothing more (after the first, either
+        // no modal call is active or every group is already unknown).
+        let mut after_motion = false;
+        for instruction in instructions {
+            let op = &instruction.op;
+            if starts_block || matches!(op, Op::Label { .. }) {
+                blocks.push(Block {
+                    first_event: events.len() as u32,
+                    label: None,
+                    control: Control::Next,
+                });
+                after_motion = false;
             }
-            let block = starts.len() as u32 - 1;
-            if let Op::Label { name } = &instruction.op {
-                labels.push((name.as_str(), block));
+            let line = instruction.source.line;
+            if previous_line != Some(line) {
+                if previous_line.is_some_and(|previous| previous >= line) {
+                    lines_sorted = false;
+                }
+                previous_line = Some(line);
+                runs += 1;
+                events.push(Event { code: LINE, line });
             }
-            let control = control(&instruction.op);
-            if let Control::Repeat(section) = control {
-                repeats.push((section.end.as_str(), block, section));
+            let block = blocks.len() as u32 - 1;
+            let mut control = Control::Next;
+            let mut event = None;
+            match op {
+                Op::ModalChange { group, code: name } => {
+                    if lookups.is_modal_group(*group) {
+                        event = Some(code(SET, *group, lookups.member_index(*group, name)));
+                    }
+                }
+                Op::ModalChangeIndirect { group, index } => {
+                    let index = match index {
+                        Value::Const(v) if v.fract() == 0.0 && (1.0..=255.0).contains(v) => {
+                            let v = *v as u8;
+                            if ggroups::member(*group, v).is_some() {
+                                v
+                            } else {
+                                0
+                            }
+                        }
+                        _ => 0,
+                    };
+                    if lookups.is_modal_group(*group) {
+                        event = Some(code(SET, *group, index));
+                    }
+                }
+                Op::WorkOffset {
+                    group8_selected,
+                    suppression,
+                    ..
+                } => {
+                    // `null`: a suppression alone, the selection unknown to
+                    // lowering; a suppression never changes the selection.
+                    if let Some(selected) = group8_selected {
+                        let selected = lookups.member_index(8, selected);
+                        let kind = if suppression.is_some() {
+                            SUPPRESSED
+                        } else {
+                            SET
+                        };
+                        event = Some(code(kind, 8, selected));
+                    }
+                }
+                Op::Call(call) if call.modal => {
+                    motions_matter = true;
+                    event = Some(code(MODAL_CALL, 0, 0));
+                }
+                Op::Call(_) => event = Some(code(FORGET, 0, 0)),
+                Op::CancelModalCall => event = Some(code(CANCEL_MODAL_CALL, 0, 0)),
+                // A modal call runs after the block (or may: unknown).
+                Op::Motion { .. } => {
+                    if !after_motion {
+                        events.push(Event {
+                            code: code(MOTION, 0, 0),
+                            line,
+                        });
+                        after_motion = true;
+                    }
+                }
+                Op::Label { name } => {
+                    labels.push(block);
+                    label_list.push(name.as_str());
+                    if let Some(last) = blocks.last_mut() {
+                        last.label = Some(name.as_str());
+                    }
+                }
+                Op::Jump { target, condition } => {
+                    control = Control::Jump {
+                        target,
+                        conditional: condition.is_some(),
+                    };
+                }
+                Op::ComputedJump(jump) => {
+                    control = Control::Computed {
+                        goes_on: jump.condition.is_some() || jump.continue_if_missing,
+                    };
+                }
+                Op::GotoStart { .. } => control = Control::Start,
+                Op::RepeatSection(section) => {
+                    motions_matter = true;
+                    repeats.push((section.end.as_str(), block, &**section));
+                    control = Control::Repeat(section);
+                }
+                Op::Return { .. } | Op::End => control = Control::Stop,
+                Op::MFunction(m) => {
+                    // The program-flow class: the profile may not
+                    // reclassify these values (the extension is forbidden
+                    // for them), but a machine could map one to a custom
+                    // function; then it does not end.
+                    let ends = m.class == MClass::ProgramFlow
+                        && m.address_extension.is_none()
+                        && m.address_extension_expr.is_none()
+                        && matches!(m.m_value, Some(2 | 17 | 30));
+                    if ends {
+                        control = Control::Stop;
+                    }
+                }
+                Op::ToolSelect(_)
+                | Op::ToolChange { .. }
+                | Op::CuttingEdge { .. }
+                | Op::Feed { .. }
+                | Op::SpindleSpeed { .. }
+                | Op::Dwell { .. }
+                | Op::Address(_)
+                | Op::HFunction(_)
+                | Op::Frame { .. }
+                | Op::Declare(_)
+                | Op::Assign { .. }
+                | Op::AssignList(_)
+                | Op::Procedure(_)
+                | Op::External(_)
+                | Op::Message { .. }
+                | Op::Stop { .. } => {}
+            }
+            if let Some(code) = event {
+                events.push(Event { code, line });
+                after_motion = false;
             }
             starts_block = !matches!(control, Control::Next);
+            if starts_block {
+                if let Some(last) = blocks.last_mut() {
+                    last.control = control;
+                }
+            }
         }
-        labels.sort_unstable();
+        let mut label_next = vec![u32::MAX; label_list.len()];
+        let mut label_names: HashMap<&'d str, (u32, u32), BuildHasherDefault<FxHasher>> =
+            HashMap::with_capacity_and_hasher(label_list.len(), Default::default());
+        for (at, name) in label_list.into_iter().enumerate() {
+            let at = at as u32;
+            match label_names.entry(name) {
+                Entry::Occupied(mut chain) => {
+                    let (_, last) = chain.get_mut();
+                    if let Some(next) = label_next.get_mut(*last as usize) {
+                        *next = at;
+                    }
+                    *last = at;
+                }
+                Entry::Vacant(chain) => {
+                    chain.insert((at, at));
+                }
+            }
+        }
         repeats.sort_unstable_by_key(|&(end, block, _)| (end, block));
         Self {
-            instructions,
-            starts,
+            events,
+            blocks,
             labels,
+            label_next,
+            label_names,
             repeats,
+            runs,
+            lines_sorted,
+            motions_matter,
         }
     }
 
     fn block_count(&self) -> usize {
-        self.starts.len()
+        self.blocks.len()
     }
 
-    fn block(&self, block: usize) -> &'d [Instruction] {
-        let start = self.starts[block] as usize;
+    /// The events of `block`.
+    fn events(&self, block: usize) -> &[Event] {
+        let start = self.blocks.get(block).map_or(0, |b| b.first_event as usize);
         let end = self
-            .starts
+            .blocks
             .get(block + 1)
-            .map_or(self.instructions.len(), |&s| s as usize);
-        &self.instructions[start..end]
+            .map_or(self.events.len(), |b| b.first_event as usize);
+        self.events.get(start..end).unwrap_or(&[])
     }
 
     /// The blocks of the labels named `name` (several if it is defined
     /// more than once; none if it does not exist).
     fn labelled<'a>(&'a self, name: &'a str) -> impl Iterator<Item = u32> + 'a {
-        let from = self.labels.partition_point(|&(n, _)| n < name);
-        self.labels[from..]
-            .iter()
-            .take_while(move |&&(n, _)| n == name)
-            .map(|&(_, block)| block)
+        let first = self
+            .label_names
+            .get(name)
+            .map_or(u32::MAX, |&(first, _)| first);
+        std::iter::successors(Some(first), |&at| self.label_next.get(at as usize).copied())
+            .map_while(|at| self.labels.get(at as usize).copied())
     }
 
     /// The `repeat_section`s whose section ends at the label `name`.
@@ -660,46 +1004,32 @@ impl<'d> Graph<'d> {
     }
 }
 
-/// The entry state of every basic block (`UNREACHED` or an interned id).
-struct Entries {
-    ids: Vec<u32>,
-    interner: Interner,
-}
-
-impl Entries {
-    fn state(&self, block: usize) -> Option<&ModalState> {
-        self.interner.states.get(*self.ids.get(block)? as usize)
-    }
-}
-
 /// The worklist iteration to the fixed point.
-struct Solver<'g, 'd> {
+struct Solver<'g, 'd, 't> {
     graph: &'g Graph<'d>,
-    entries: Entries,
+    table: &'t mut StateTable,
+    /// The entry state of every block (`UNREACHED` or an id).
+    entries: Vec<u32>,
     /// Blocks to (re)visit, lowest first, so straight-line code is walked
     /// in order and each block once.
     queue: BinaryHeap<Reverse<u32>>,
     queued: Vec<bool>,
     /// What `computed_jump`s bring to every label.
-    computed: Option<ModalState>,
-    lookups: Lookups,
+    computed: Option<u32>,
 }
 
-impl<'g, 'd> Solver<'g, 'd> {
-    fn solve(graph: &'g Graph<'d>, initial: ModalState) -> Entries {
+impl<'g, 'd, 't> Solver<'g, 'd, 't> {
+    fn solve(graph: &'g Graph<'d>, table: &'t mut StateTable, initial: u32) -> Vec<u32> {
         let count = graph.block_count();
         let mut solver = Solver {
             graph,
-            entries: Entries {
-                ids: vec![UNREACHED; count],
-                interner: Interner::default(),
-            },
+            table,
+            entries: vec![UNREACHED; count],
             queue: BinaryHeap::new(),
             queued: vec![false; count],
             computed: None,
-            lookups: Lookups::new(),
         };
-        solver.flow_into(0, &initial);
+        solver.flow_into(0, initial);
         while let Some(Reverse(block)) = solver.queue.pop() {
             solver.queued[block as usize] = false;
             solver.visit(block);
@@ -707,23 +1037,29 @@ impl<'g, 'd> Solver<'g, 'd> {
         solver.entries
     }
 
+    fn entry(&self, block: u32) -> Option<u32> {
+        self.entries
+            .get(block as usize)
+            .copied()
+            .filter(|&id| id != UNREACHED)
+    }
+
     /// Joins `state` into the entry of `block`, queueing it if that
     /// changed. Each entry rises at most 66 times (reached, then each
     /// group and the modal call unknown), which bounds the iteration.
-    fn flow_into(&mut self, block: u32, state: &ModalState) {
-        let Some(&id) = self.entries.ids.get(block as usize) else {
+    fn flow_into(&mut self, block: u32, state: u32) {
+        let Some(&id) = self.entries.get(block as usize) else {
             return;
         };
         let joined = if id == UNREACHED {
-            state.clone()
+            state
         } else {
-            let mut joined = self.entries.interner.states[id as usize].clone();
-            if !joined.join(state) {
-                return;
-            }
-            joined
+            self.table.join(id, state)
         };
-        self.entries.ids[block as usize] = self.entries.interner.intern(&joined);
+        if joined == id {
+            return;
+        }
+        self.entries[block as usize] = joined;
         if !std::mem::replace(&mut self.queued[block as usize], true) {
             self.queue.push(Reverse(block));
         }
@@ -731,56 +1067,53 @@ impl<'g, 'd> Solver<'g, 'd> {
 
     fn visit(&mut self, block: u32) {
         let graph = self.graph;
-        let Some(entry) = self.entries.state(block as usize).cloned() else {
+        let Some(entry) = self.entry(block) else {
             return;
         };
-        let instructions = graph.block(block as usize);
-        let Some((last, _)) = instructions.split_last() else {
+        let Some(info) = graph.blocks.get(block as usize) else {
             return;
         };
-        if let Some(Instruction {
-            op: Op::Label { name },
-            ..
-        }) = instructions.first()
-        {
-            self.section_ends_at(name, &entry);
+        if let Some(name) = info.label {
+            self.section_ends_at(name, entry);
         }
         let mut state = entry;
-        for instruction in instructions {
-            transfer(&mut state, &instruction.op, &mut self.lookups);
+        for event in graph.events(block as usize) {
+            if event.code != LINE {
+                state = self.table.step(state, event.code);
+            }
         }
         let next = block + 1;
-        match control(&last.op) {
-            Control::Next => self.flow_into(next, &state),
+        match info.control {
+            Control::Next => self.flow_into(next, state),
             Control::Stop => {}
             Control::Jump {
                 target,
                 conditional,
             } => {
                 for to in graph.labelled(target) {
-                    self.flow_into(to, &state);
+                    self.flow_into(to, state);
                 }
                 if conditional {
-                    self.flow_into(next, &state);
+                    self.flow_into(next, state);
                 }
             }
             Control::Computed { goes_on } => {
-                self.computed_jump(&state);
+                self.computed_jump(state);
                 if goes_on {
-                    self.flow_into(next, &state);
+                    self.flow_into(next, state);
                 }
             }
             Control::Start => {
-                self.flow_into(0, &state);
-                self.flow_into(next, &state);
+                self.flow_into(0, state);
+                self.flow_into(next, state);
             }
-            Control::Repeat(section) => self.repeat(block, section, &state),
+            Control::Repeat(section) => self.repeat(block, section, state),
         }
     }
 
     /// A `repeat_section` in the last instruction of `block`, reached in
     /// `state`.
-    fn repeat(&mut self, block: u32, section: &'d RepeatSection, state: &ModalState) {
+    fn repeat(&mut self, block: u32, section: &'d RepeatSection, state: u32) {
         let graph = self.graph;
         let next = block + 1;
         let at_end: Vec<u32> = graph.labelled(&section.end).collect();
@@ -788,11 +1121,11 @@ impl<'g, 'd> Solver<'g, 'd> {
             // What runs instead is the executor's business.
             let mut unknown = ModalState::unknown();
             unknown.modal_call = CALL_UNKNOWN;
-            self.flow_into(next, &unknown);
+            let unknown = self.table.intern(&unknown);
+            self.flow_into(next, unknown);
             return;
         }
-        let starts: Vec<u32> = graph.labelled(&section.start).collect();
-        for &to in &starts {
+        for to in graph.labelled(&section.start) {
             self.flow_into(to, state);
         }
         if !matches!(section.passes, Value::Const(p) if p >= 1.0) {
@@ -803,18 +1136,18 @@ impl<'g, 'd> Solver<'g, 'd> {
         // was: take what is already known there (`section_ends_at` does
         // the rest when it changes).
         for end in at_end {
-            if let Some(at) = self.entries.state(end as usize).cloned() {
-                self.section_end(block, section, &at);
+            if let Some(at) = self.entry(end) {
+                self.section_end(block, section, at);
             }
         }
     }
 
     /// The label `name` starts a block reached in `state`: the sections
     /// ending there return to after their `repeat_section`s.
-    fn section_ends_at(&mut self, name: &str, state: &ModalState) {
+    fn section_ends_at(&mut self, name: &str, state: u32) {
         let graph = self.graph;
         for (block, section) in graph.repeats_ending_at(name) {
-            if self.entries.ids[block as usize] != UNREACHED {
+            if self.entry(block).is_some() {
                 self.section_end(block, section, state);
             }
         }
@@ -822,7 +1155,7 @@ impl<'g, 'd> Solver<'g, 'd> {
 
     /// The section of the `repeat_section` ending `block` reaches its end
     /// in `state`.
-    fn section_end(&mut self, block: u32, section: &'d RepeatSection, state: &ModalState) {
+    fn section_end(&mut self, block: u32, section: &'d RepeatSection, state: u32) {
         let graph = self.graph;
         if graph.labelled(&section.start).next().is_none() {
             return;
@@ -830,26 +1163,23 @@ impl<'g, 'd> Solver<'g, 'd> {
         self.flow_into(block + 1, state);
         if !matches!(section.passes, Value::Const(p) if p == 1.0) {
             // The next pass starts where this one ended.
-            let starts: Vec<u32> = graph.labelled(&section.start).collect();
-            for to in starts {
+            for to in graph.labelled(&section.start) {
                 self.flow_into(to, state);
             }
         }
     }
 
     /// A `computed_jump` reached in `state` may go to any label.
-    fn computed_jump(&mut self, state: &ModalState) {
-        let changed = match &mut self.computed {
-            Some(computed) => computed.join(state),
-            None => {
-                self.computed = Some(state.clone());
-                true
-            }
+    fn computed_jump(&mut self, state: u32) {
+        let computed = match self.computed {
+            Some(computed) => self.table.join(computed, state),
+            None => state,
         };
-        if let (true, Some(computed)) = (changed, self.computed.clone()) {
+        if self.computed != Some(computed) {
+            self.computed = Some(computed);
             let graph = self.graph;
-            for &(_, block) in &graph.labels {
-                self.flow_into(block, &computed);
+            for &block in &graph.labels {
+                self.flow_into(block, computed);
             }
         }
     }

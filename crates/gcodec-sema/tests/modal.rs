@@ -552,3 +552,384 @@ fn every_fixture_and_corpus_program_is_analysed() {
     }
     assert!(reached > 0);
 }
+
+/// A straightforward reference for the analysis: one state per
+/// instruction, iterated round-robin to the fixed point. `None`: not
+/// reached; else (registry index per group, 0 unknown; modal call: 0
+/// unknown, 1 inactive, 2 active).
+mod reference {
+    use std::collections::{BTreeMap, HashSet};
+
+    use gcodec_ail::{Document, MClass, Op, Value};
+    use gcodec_sema::ggroups;
+    use gcodec_sema::modal::ModalState;
+
+    pub type State = ([u8; 64], u8);
+
+    fn modal_group(group: u8) -> bool {
+        ggroups::group(group).is_some_and(|g| g.effect == ggroups::Effect::Modal)
+    }
+
+    fn member_index(group: u8, code: &str) -> u8 {
+        match ggroups::lookup(code) {
+            Some((found, index)) if found == group => index,
+            _ => 0,
+        }
+    }
+
+    fn set(state: &mut State, group: u8, index: u8) {
+        if (1..=64).contains(&group) {
+            state.0[usize::from(group) - 1] = index;
+        }
+    }
+
+    fn transfer(state: &mut State, op: &Op) {
+        match op {
+            Op::ModalChange { group, code } if modal_group(*group) => {
+                set(state, *group, member_index(*group, code));
+            }
+            Op::ModalChangeIndirect { group, index } if modal_group(*group) => {
+                let index = match index {
+                    Value::Const(v) if v.fract() == 0.0 && (1.0..=255.0).contains(v) => {
+                        let v = *v as u8;
+                        if ggroups::member(*group, v).is_some() {
+                            v
+                        } else {
+                            0
+                        }
+                    }
+                    _ => 0,
+                };
+                set(state, *group, index);
+            }
+            Op::WorkOffset {
+                group8_selected: Some(selected),
+                suppression,
+                ..
+            } => {
+                let selected = member_index(8, selected);
+                if suppression.is_none() || !(state.0[7] != 0 && state.0[7] == selected) {
+                    state.0[7] = if suppression.is_none() { selected } else { 0 };
+                }
+            }
+            Op::Call(call) if call.modal => state.1 = 2,
+            Op::Call(_) => state.0 = [0; 64],
+            Op::CancelModalCall => state.1 = 1,
+            Op::Motion { .. } if state.1 != 1 => state.0 = [0; 64],
+            _ => {}
+        }
+    }
+
+    fn join(into: &mut Option<State>, state: &State) -> bool {
+        match into {
+            None => {
+                *into = Some(*state);
+                true
+            }
+            Some(mine) => {
+                let before = *mine;
+                for (m, t) in mine.0.iter_mut().zip(&state.0) {
+                    if m != t {
+                        *m = 0;
+                    }
+                }
+                if mine.1 != state.1 {
+                    mine.1 = 0;
+                }
+                *mine != before
+            }
+        }
+    }
+
+    /// The state before each instruction.
+    pub fn states(document: &Document, initial: State) -> Vec<Option<State>> {
+        let ops: Vec<&Op> = document.instructions.iter().map(|i| &i.op).collect();
+        let n = ops.len();
+        let labels = |name: &str| -> Vec<usize> {
+            (0..n)
+                .filter(|&i| matches!(ops[i], Op::Label { name: l } if l == name))
+                .collect()
+        };
+        let all_labels: Vec<usize> = (0..n)
+            .filter(|&i| matches!(ops[i], Op::Label { .. }))
+            .collect();
+        let mut at: Vec<Option<State>> = vec![None; n];
+        if n == 0 {
+            return at;
+        }
+        at[0] = Some(initial);
+        let mut changed = true;
+        while changed {
+            changed = false;
+            for i in 0..n {
+                let Some(mut state) = at[i] else { continue };
+                transfer(&mut state, ops[i]);
+                let mut flows: Vec<(usize, State)> = Vec::new();
+                match ops[i] {
+                    Op::Jump { target, condition } => {
+                        flows.extend(labels(target).into_iter().map(|l| (l, state)));
+                        if condition.is_some() {
+                            flows.push((i + 1, state));
+                        }
+                    }
+                    Op::ComputedJump(jump) => {
+                        flows.extend(all_labels.iter().map(|&l| (l, state)));
+                        if jump.condition.is_some() || jump.continue_if_missing {
+                            flows.push((i + 1, state));
+                        }
+                    }
+                    Op::GotoStart { .. } => {
+                        flows.push((0, state));
+                        flows.push((i + 1, state));
+                    }
+                    Op::RepeatSection(section) => {
+                        let starts = labels(&section.start);
+                        let ends = labels(&section.end);
+                        if starts.is_empty() || ends.is_empty() {
+                            flows.push((i + 1, ([0; 64], 0)));
+                        } else {
+                            flows.extend(starts.iter().map(|&l| (l, state)));
+                            if !matches!(section.passes, Value::Const(p) if p >= 1.0) {
+                                flows.push((i + 1, state));
+                            }
+                            for end in ends {
+                                let Some(end) = at[end] else { continue };
+                                flows.push((i + 1, end));
+                                if !matches!(section.passes, Value::Const(p) if p == 1.0) {
+                                    flows.extend(starts.iter().map(|&l| (l, end)));
+                                }
+                            }
+                        }
+                    }
+                    Op::Return { .. } | Op::End => {}
+                    Op::MFunction(m)
+                        if m.class == MClass::ProgramFlow
+                            && m.address_extension.is_none()
+                            && m.address_extension_expr.is_none()
+                            && matches!(m.m_value, Some(2 | 17 | 30)) => {}
+                    _ => flows.push((i + 1, state)),
+                }
+                for (to, state) in flows {
+                    if to < n && join(&mut at[to], &state) {
+                        changed = true;
+                    }
+                }
+            }
+        }
+        at
+    }
+
+    /// The state of each line with instructions (its first run's), and
+    /// how many distinct states the reached runs have (the analysis keeps
+    /// those of later runs of a line too).
+    pub fn lines(document: &Document, initial: State) -> (BTreeMap<u32, Option<State>>, usize) {
+        let at = states(document, initial);
+        let mut lines = BTreeMap::new();
+        let mut distinct = HashSet::new();
+        let mut previous = None;
+        for (i, instruction) in document.instructions.iter().enumerate() {
+            let line = instruction.source.line;
+            if previous != Some(line) {
+                previous = Some(line);
+                lines.entry(line).or_insert(at[i]);
+                distinct.extend(at[i]);
+            }
+        }
+        (lines, distinct.len())
+    }
+
+    pub fn of(state: &ModalState) -> State {
+        let mut groups = [0; 64];
+        for (g, slot) in groups.iter_mut().enumerate() {
+            *slot = state.index(g as u8 + 1).unwrap_or(0);
+        }
+        let call = match state.modal_call_active() {
+            None => 0,
+            Some(false) => 1,
+            Some(true) => 2,
+        };
+        (groups, call)
+    }
+}
+
+/// Asserts that the analysis agrees with the reference on `document`.
+fn check_against_reference(document: &Document, profile: &Profile, name: &str) {
+    for (start, initial) in [
+        (
+            Start::Reset(profile),
+            reference::of(&ModalState::reset(profile)),
+        ),
+        (Start::Unknown, reference::of(&ModalState::unknown())),
+    ] {
+        let states = ModalStates::analyse(document, start);
+        let (expected, distinct) = reference::lines(document, initial);
+        let reached: Vec<(u32, reference::State)> = states
+            .iter()
+            .map(|(line, state)| (line, reference::of(state)))
+            .collect();
+        let expected_reached: Vec<(u32, reference::State)> = expected
+            .iter()
+            .filter_map(|(&line, state)| Some((line, (*state)?)))
+            .collect();
+        assert_eq!(reached, expected_reached, "{name}");
+        let unreachable: Vec<u32> = states.unreachable_lines().collect();
+        let expected_unreachable: Vec<u32> = expected
+            .iter()
+            .filter(|(_, state)| state.is_none())
+            .map(|(&line, _)| line)
+            .collect();
+        assert_eq!(unreachable, expected_unreachable, "{name}");
+        for (&line, state) in &expected {
+            match (states.line_state(line), state) {
+                (LineState::Reached(s), Some(e)) => assert_eq!(reference::of(s), *e, "{name}"),
+                (LineState::Unreachable, None) => {}
+                (got, _) => panic!("{name}:{line}: {got:?}"),
+            }
+        }
+        let last = expected.keys().last().copied().unwrap_or(0);
+        for line in 0..=last + 1 {
+            if !expected.contains_key(&line) {
+                assert_eq!(states.line_state(line), LineState::NoInstructions, "{name}");
+            }
+        }
+        assert_eq!(states.distinct_states(), distinct, "{name}");
+    }
+}
+
+#[test]
+fn the_analysis_agrees_with_a_reference_on_programs() {
+    let profile = builtin();
+    let mut paths = common::programs(&common::repo().join("tests/fixtures"));
+    paths.extend(common::programs(&common::repo().join("examples")));
+    if let Some(corpus) = common::corpus_dir() {
+        paths.extend(common::programs(&corpus));
+    }
+    for path in paths {
+        let name = path.display().to_string();
+        let bytes = std::fs::read(&path).expect("readable");
+        let parsed = gcodec_parser::parse_bytes(&name, &bytes);
+        let document = gcodec_sema::lower(&parsed.program, &profile).document;
+        check_against_reference(&document, &profile, &name);
+    }
+    let src = program::generate(3_000);
+    let parsed = gcodec_parser::parse_bytes("gen.mpf", &src);
+    let document = gcodec_sema::lower(&parsed.program, &profile).document;
+    check_against_reference(&document, &profile, "generated");
+    for src in [
+        "G0 X0\nMCALL CYCLE81(1,2,3)\nG17\nX1\nX2\nMCALL\nG17\nX3\nX4\n",
+        "G0 X0\nIF R1==1\nMCALL CYCLE81(1,2,3)\nENDIF\nG17\nX1\nX2\n",
+        "G2 X0 CR=5\nN10 G0 X0\nN20 G1 X1\nG3 X2 CR=5\nREPEAT N10 N20 P=2\nX3\n",
+        "G0 X0\nN10 X1\nN20 G1 X2\nG0 X3\nREPEAT N10 N20 P=R1\nX4\n",
+        "G55 X0\nIF R1==1 GOTOF MARK\nG56\nMARK: G53 X0\nX1\nG57\nX2\n",
+        "G0 X0\nIF R2==1 GOTOF \"MA\"<<R1\nG1 X1\nMA1: X2\nG18\nMA2: X3\n",
+        "G0 X0\nG2 X1 CR=5\nGOTOS\nX2\nM30\nX3\n",
+    ] {
+        check_against_reference(&lower_with(src, &profile), &profile, src);
+    }
+}
+
+#[test]
+fn the_analysis_agrees_with_a_reference_on_random_documents() {
+    let mut seed = 0x0BAD_5EED_1234_5678_u64;
+    let mut next = move |n: u64| {
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (seed >> 33) % n
+    };
+    let codes = ["G0", "G1", "G2", "G17", "G18", "G54", "G55", "DIAMON", "G4"];
+    let profile = builtin();
+    for round in 0..2_000 {
+        let len = next(50) as u32 + 1;
+        let labels = next(6) + 1;
+        let mut ops = Vec::new();
+        let mut line = 1;
+        for _ in 0..len {
+            let name = format!("L{}", next(labels));
+            let condition =
+                (next(2) == 0).then(|| Box::new(gcodec_ail::Expr::Bool { value: true }));
+            let motion = || Op::Motion {
+                motion: gcodec_ail::MotionKind::Linear,
+                targets: Vec::new(),
+                circle: None,
+                indirect_targets: Vec::new(),
+                spline: None,
+                thread: None,
+                transition: None,
+            };
+            let op = match next(20) {
+                0..=2 => {
+                    let code = codes[next(codes.len() as u64) as usize];
+                    let group = gcodec_sema::ggroups::lookup(code).map_or(1, |(g, _)| g);
+                    modal(group, code)
+                }
+                3 => modal(1, "G17"),
+                4 | 5 => label(&name),
+                6 => Op::Jump {
+                    target: if next(8) == 0 {
+                        "NOWHERE@missing".into()
+                    } else {
+                        name
+                    },
+                    condition,
+                },
+                7 => Op::ComputedJump(Box::new(gcodec_ail::ComputedJump {
+                    target: gcodec_ail::Expr::String { value: name },
+                    search: gcodec_ail::JumpSearch::Forward,
+                    continue_if_missing: next(2) == 0,
+                    condition: condition.map(|c| *c),
+                })),
+                8 => Op::GotoStart { condition },
+                9 => Op::RepeatSection(Box::new(gcodec_ail::RepeatSection {
+                    start: name,
+                    end: format!("L{}", next(labels + 1)),
+                    passes: if next(4) == 0 {
+                        Value::Expr(Box::new(gcodec_ail::Expr::Bool { value: true }))
+                    } else {
+                        Value::Const(next(3) as f64)
+                    },
+                })),
+                10 => {
+                    if next(3) == 0 {
+                        Op::End
+                    } else {
+                        Op::Return { values: Vec::new() }
+                    }
+                }
+                11 => Op::CancelModalCall,
+                12 => Op::WorkOffset {
+                    group8_selected: [None, Some("g55".into()), Some("G54".into())]
+                        [next(3) as usize]
+                        .clone(),
+                    suppression: (next(2) == 0).then_some(gcodec_ail::Suppression::G53),
+                    suppression_scope: None,
+                },
+                13 => Op::Call(Box::new(gcodec_ail::Call {
+                    target: "SUB".into(),
+                    target_expr: None,
+                    section: None,
+                    by_path: false,
+                    args: Vec::new(),
+                    passes: None,
+                    modal: next(2) == 0,
+                })),
+                14 => Op::ModalChangeIndirect {
+                    group: [1, 6, 2, 8][next(4) as usize],
+                    index: Value::Const(next(5) as f64),
+                },
+                _ => motion(),
+            };
+            ops.push((line, op));
+            // Mostly one or two instructions a line, in order; sometimes a
+            // gap, sometimes a line again.
+            match next(10) {
+                0..=3 => {}
+                4..=7 => line += 1,
+                8 => line += 2,
+                _ => line = next(u64::from(line) + 1) as u32 + 1,
+            }
+        }
+        let document = document(ops);
+        check_against_reference(&document, &profile, &format!("round {round}"));
+    }
+}
