@@ -120,19 +120,12 @@ pub enum Op {
         targets: Vec<AxisValue>,
         /// The circle data of arcs.
         circle: Option<Box<Circle>>,
-        /// Axes named when the block runs (`AX[_Z]=…`, `AX[AXNAME]=…`).
-        #[serde(default, skip_serializing_if = "Vec::is_empty")]
-        indirect_targets: Vec<IndirectAxisValue>,
-        /// `PW=`, `PL=` of a spline or polynomial block.
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        spline: Option<Box<SplineData>>,
-        /// The lead of a thread or tapping block (`G33 Z… K…`).
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        thread: Option<Box<Thread>>,
-        /// `CHF=`, `CHR=`, `RND=`: the transition inserted between this
-        /// block's contour element and the next one.
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        transition: Option<Box<Transition>>,
+        /// The rarer parts of a motion (axes named when the block runs,
+        /// spline data, thread lead, contour transition), kept out of line
+        /// so that the commonest instruction stays small. In JSON their
+        /// fields are the motion's own, each left out when absent.
+        #[serde(flatten, default, deserialize_with = "MotionDetails::deserialize_flat")]
+        details: Option<Box<MotionDetails>>,
     },
     /// `F`.
     Feed { value: Value },
@@ -410,7 +403,37 @@ pub struct AxisValue {
     pub axis: Cow<'static, str>,
     pub value: Value,
     /// `AC(…)`, `IC(…)`, … when written; otherwise the modal G90/G91 holds.
-    pub mode: Option<String>,
+    pub mode: Option<DimensionMode>,
+}
+
+/// A dimension modifier written on one value (`X=AC(10)`, `C=ACP(90)`),
+/// as the control spells it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "UPPERCASE")]
+pub enum DimensionMode {
+    /// Absolute for this value.
+    Ac,
+    /// Incremental for this value.
+    Ic,
+    /// Rotary axis: absolute, the shorter way.
+    Dc,
+    /// Rotary axis: absolute, in the positive direction.
+    Acp,
+    /// Rotary axis: absolute, in the negative direction.
+    Acn,
+    /// Indexing positions: absolute, incremental, shorter way, positive,
+    /// negative direction.
+    Cac,
+    Cic,
+    Cdc,
+    Cacp,
+    Cacn,
+    /// Diameter (`DAC`, `DIC`) or radius (`RAC`, `RIC`), absolute or
+    /// incremental.
+    Dac,
+    Dic,
+    Rac,
+    Ric,
 }
 
 /// The data of an arc, in the form it was programmed.
@@ -450,7 +473,7 @@ pub struct Address {
     pub value: Value,
     /// `AC`, `IC`, `DC`, `ACP`, `ACN`, … when written.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub mode: Option<String>,
+    pub mode: Option<DimensionMode>,
     /// Whether the value stays in force after the block.
     pub scope: AddressScope,
 }
@@ -487,6 +510,40 @@ pub struct HFunction {
     pub raw: String,
 }
 
+/// The rarer parts of a motion ([`Op::Motion`]).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MotionDetails {
+    /// Axes named when the block runs (`AX[_Z]=…`, `AX[AXNAME]=…`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub indirect_targets: Vec<IndirectAxisValue>,
+    /// `PW=`, `PL=` of a spline or polynomial block.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spline: Option<SplineData>,
+    /// The lead of a thread or tapping block (`G33 Z… K…`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thread: Option<Thread>,
+    /// `CHF=`, `CHR=`, `RND=`: the transition inserted between this
+    /// block's contour element and the next one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transition: Option<Transition>,
+}
+
+impl MotionDetails {
+    /// Nothing but defaults.
+    pub fn is_empty(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// The details of a motion, `None` when it has none (as it was
+    /// written), so that a document reads back as it was.
+    fn deserialize_flat<'de, D: serde::Deserializer<'de>>(
+        deserializer: D,
+    ) -> Result<Option<Box<Self>>, D::Error> {
+        let details = Self::deserialize(deserializer)?;
+        Ok((!details.is_empty()).then(|| Box::new(details)))
+    }
+}
+
 /// A motion target whose axis is named when the block runs (`AX[_Z]=5`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -494,7 +551,7 @@ pub struct IndirectAxisValue {
     /// The expression naming the axis.
     pub axis: Expr,
     pub value: Value,
-    pub mode: Option<String>,
+    pub mode: Option<DimensionMode>,
 }
 
 /// Spline data of a block: `PW=` point weight, `PL=` parameter interval

@@ -139,14 +139,11 @@ fn constants_are_plain_numbers_and_expressions_are_trees() {
                     }),
                     rhs: Box::new(Expr::Number { value: 5.0 }),
                 })),
-                mode: Some("IC".into()),
+                mode: Some(DimensionMode::Ic),
             },
         ],
         circle: None,
-        indirect_targets: Vec::new(),
-        spline: None,
-        thread: None,
-        transition: None,
+        details: None,
     });
     assert_eq!(value["targets"][0]["value"], 10.5);
     assert_eq!(value["targets"][1]["value"]["op"], "binary");
@@ -167,4 +164,51 @@ fn documents_carry_their_version() {
     assert_eq!(value["instructions"][0]["kind"], "end");
     let back: Document = serde_json::from_value(value).expect("reads back");
     assert_eq!(back, doc);
+}
+
+#[test]
+fn motion_details_are_fields_of_the_motion() {
+    let value = round_trip(Op::Motion {
+        motion: MotionKind::Thread,
+        targets: vec![AxisValue {
+            axis: "Z".into(),
+            value: Value::Const(-10.0),
+            mode: None,
+        }],
+        circle: None,
+        details: Some(Box::new(MotionDetails {
+            thread: Some(Thread {
+                lead: vec![AxisValue {
+                    axis: "K".into(),
+                    value: Value::Const(2.0),
+                    mode: None,
+                }],
+                lead_change: None,
+            }),
+            transition: Some(Transition {
+                kind: TransitionKind::Chamfer,
+                value: Value::Const(1.0),
+            }),
+            ..MotionDetails::default()
+        })),
+    });
+    assert_eq!(value["thread"]["lead"][0]["axis"], "K");
+    assert_eq!(value["transition"]["kind"], "chamfer");
+    // Absent details are absent fields, not nulls, and read back as none.
+    assert!(value.get("spline").is_none() && value.get("indirect_targets").is_none());
+    let plain = round_trip(Op::Motion {
+        motion: MotionKind::Linear,
+        targets: Vec::new(),
+        circle: None,
+        details: None,
+    });
+    assert!(plain.get("thread").is_none());
+    assert!(plain["circle"].is_null());
+}
+
+#[test]
+fn an_instruction_stays_small() {
+    // The commonest instructions are motions; a document of a large
+    // program holds millions.
+    assert!(std::mem::size_of::<Instruction>() <= 88);
 }

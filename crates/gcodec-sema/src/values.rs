@@ -1,7 +1,7 @@
 //! Syntax-tree expressions and word values as AIL values.
 
-use gcodec_ail::{self as ail, Value};
-use gcodec_parser::ast::{self, ExprKind, WordValue};
+use gcodec_ail::{self as ail, DimensionMode, Value};
+use gcodec_parser::ast::{self, DimensionKind, ExprKind, WordValue};
 
 /// An expression as an AIL value: a plain number stays a constant (so do
 /// signed numbers, `-5`), anything else becomes a tree.
@@ -29,13 +29,34 @@ pub(crate) fn constant(expr: &ast::Expr) -> Option<f64> {
 }
 
 /// A word's value and its dimension modifier (`AC`, `IC`, …) if written.
-pub(crate) fn word_value(value: &WordValue) -> (Value, Option<String>) {
+pub(crate) fn word_value(value: &WordValue) -> (Value, Option<DimensionMode>) {
     match value {
         WordValue::Constant(n) => (Value::Const(n.value), None),
-        WordValue::Assigned { modifier, expr } => (
-            self::value(expr),
-            modifier.as_ref().map(|m| m.kind.keyword().to_owned()),
-        ),
+        WordValue::Assigned { modifier, expr } => {
+            (self::value(expr), modifier.as_ref().map(|m| mode(m.kind)))
+        }
+    }
+}
+
+/// A dimension modifier as the AIL writes it.
+pub(crate) fn mode(kind: DimensionKind) -> DimensionMode {
+    use DimensionKind as K;
+    use DimensionMode as M;
+    match kind {
+        K::Ac => M::Ac,
+        K::Ic => M::Ic,
+        K::Dc => M::Dc,
+        K::Acp => M::Acp,
+        K::Acn => M::Acn,
+        K::Cac => M::Cac,
+        K::Cic => M::Cic,
+        K::Cdc => M::Cdc,
+        K::Cacp => M::Cacp,
+        K::Cacn => M::Cacn,
+        K::Dac => M::Dac,
+        K::Dic => M::Dic,
+        K::Rac => M::Rac,
+        K::Ric => M::Ric,
     }
 }
 

@@ -591,7 +591,7 @@ fn an_axis_with_a_longer_name_is_a_target_not_a_variable() {
     let l = gcodec_sema::lower(&parsed.program, &profile);
     let codes: Vec<&str> = l.diagnostics.iter().map(|d| d.code).collect();
     assert_eq!(codes, ["gcodec::lower::modifier_not_allowed"]);
-    let targets: Vec<(String, Option<String>)> = l
+    let targets: Vec<(String, Option<gcodec_ail::DimensionMode>)> = l
         .document
         .instructions
         .iter()
@@ -600,13 +600,13 @@ fn an_axis_with_a_longer_name_is_a_target_not_a_variable() {
             _ => None,
         })
         .flatten()
-        .map(|t| (t.axis.to_string(), t.mode.clone()))
+        .map(|t| (t.axis.to_string(), t.mode))
         .collect();
     assert_eq!(
         targets,
         [
             ("XV".to_owned(), None),
-            ("XV".to_owned(), Some("IC".to_owned()))
+            ("XV".to_owned(), Some(gcodec_ail::DimensionMode::Ic))
         ]
     );
     assert!(

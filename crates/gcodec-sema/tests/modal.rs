@@ -471,10 +471,7 @@ fn random_documents_terminate() {
                     motion: gcodec_ail::MotionKind::Linear,
                     targets: Vec::new(),
                     circle: None,
-                    indirect_targets: Vec::new(),
-                    spline: None,
-                    thread: None,
-                    transition: None,
+                    details: None,
                 },
             };
             ops.push((i / 2 + 1, op));
@@ -852,10 +849,7 @@ fn the_analysis_agrees_with_a_reference_on_random_documents() {
                 motion: gcodec_ail::MotionKind::Linear,
                 targets: Vec::new(),
                 circle: None,
-                indirect_targets: Vec::new(),
-                spline: None,
-                thread: None,
-                transition: None,
+                details: None,
             };
             let op = match next(20) {
                 0..=2 => {

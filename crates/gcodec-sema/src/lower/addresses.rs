@@ -405,7 +405,7 @@ impl Lowering<'_> {
         role: Role,
         extension: Option<&Extension>,
         value: Value,
-        mode: Option<String>,
+        mode: Option<gcodec_ail::DimensionMode>,
         word: &Word,
         span: Span,
         plan: &mut BlockPlan,
@@ -507,23 +507,23 @@ impl Lowering<'_> {
                     span,
                 ));
             }
-            Role::Target => plan.targets.push((
+            Role::Target => plan.add_target(
                 AxisValue {
                     axis: Cow::Owned(address.to_owned()),
                     value,
                     mode,
                 },
                 span,
-            )),
+            ),
             Role::IndirectAxis => match self.bracket_axis(word, span) {
-                Some(AxisRef::Named(name)) => plan.targets.push((
+                Some(AxisRef::Named(name)) => plan.add_target(
                     AxisValue {
                         axis: Cow::Owned(name),
                         value,
                         mode,
                     },
                     span,
-                )),
+                ),
                 Some(AxisRef::Computed(axis)) => {
                     plan.indirect_targets
                         .push(IndirectAxisValue { axis, value, mode });
@@ -599,21 +599,21 @@ impl Lowering<'_> {
                                 .with_help("DC, ACP and ACN position rotary axes; DAC, DIC, RAC and RIC apply to linear axes"),
                             );
                         }
-                        (values::value(arg), Some(kind.keyword().to_owned()))
+                        (values::value(arg), Some(values::mode(kind)))
                     }
                     _ => (values::value(expr), None),
                 }
             }
             _ => (values::value(expr), None),
         };
-        plan.targets.push((
+        plan.add_target(
             AxisValue {
                 axis: Cow::Owned(target.name.to_ascii_uppercase().to_string()),
                 value,
                 mode,
             },
             span,
-        ));
+        );
     }
 
     /// `FAD=5`, `SPOS2=90`: named addresses the parser reads as
@@ -694,7 +694,7 @@ impl Lowering<'_> {
                             );
                             return true;
                         }
-                        (values::value(arg), Some(kind.keyword().to_owned()))
+                        (values::value(arg), Some(values::mode(kind)))
                     }
                     _ => (values::value(expr), None),
                 }

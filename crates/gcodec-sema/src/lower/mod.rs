@@ -221,11 +221,11 @@ fn stitch(parts: &mut [Lowering<'_>]) -> bool {
                 if let Op::Motion {
                     motion,
                     circle,
-                    thread,
+                    details,
                     ..
                 } = &mut part.document.instructions[i].op
                 {
-                    settle_motion(motion, circle, thread, kind);
+                    settle_motion(motion, circle, details, kind);
                 }
             }
         }
@@ -260,16 +260,16 @@ fn continue_with(part: &Lowering<'_>, group1: &mut Option<&'static str>, group8:
 fn settle_motion(
     motion: &mut MotionKind,
     circle: &mut Option<Box<gcodec_ail::Circle>>,
-    thread: &mut Option<Box<gcodec_ail::Thread>>,
+    details: &mut Option<Box<gcodec_ail::MotionDetails>>,
     kind: MotionKind,
 ) {
     *motion = kind;
     if is_threaded(kind) {
         if let Some(c) = circle.take() {
-            *thread = Some(Box::new(gcodec_ail::Thread {
+            details.get_or_insert_default().thread = Some(gcodec_ail::Thread {
                 lead: c.centre,
                 lead_change: None,
-            }));
+            });
         }
     } else if !is_arc(kind) {
         *circle = None;
@@ -378,11 +378,11 @@ fn refine(document: &mut Document, profile: &Profile, subprogram: bool) {
             Op::Motion {
                 motion,
                 circle,
-                thread,
+                details,
                 ..
             } => {
                 if let Some(kind) = state.get(1).and_then(motion_kind) {
-                    settle_motion(motion, circle, thread, kind);
+                    settle_motion(motion, circle, details, kind);
                 }
             }
             Op::WorkOffset {
@@ -506,7 +506,9 @@ struct BlockPlan {
     tools: Vec<(Op, Span)>,
     edge: Option<(Value, Span)>,
     m_functions: Vec<mfunc::MWord>,
-    targets: Vec<(AxisValue, Span)>,
+    targets: Vec<AxisValue>,
+    /// Where the first target is written.
+    target_span: Option<Span>,
     circle: Circle,
     circle_span: Option<Span>,
     other: Vec<(Op, Span)>,
@@ -537,6 +539,13 @@ struct BlockPlan {
     spline_span: Option<Span>,
     /// `CHF=`, `CHR=`, `RND=`.
     transition: Option<(gcodec_ail::Transition, Span)>,
+}
+
+impl BlockPlan {
+    fn add_target(&mut self, target: AxisValue, span: Span) {
+        self.target_span.get_or_insert(span);
+        self.targets.push(target);
+    }
 }
 
 impl<'a> Lowering<'a> {
@@ -820,9 +829,7 @@ impl<'a> Lowering<'a> {
         }
         if has_motion || plan.circle_span.is_some() {
             let first = plan
-                .targets
-                .first()
-                .map(|(_, s)| *s)
+                .target_span
                 .or(plan.motion_span)
                 .or(plan.circle_span)
                 .unwrap_or(block.span);
@@ -839,16 +846,18 @@ impl<'a> Lowering<'a> {
             let threaded = is_threaded(motion);
             let circle_data = std::mem::take(&mut plan.circle);
             // Under a thread or tapping command `I J K` are the lead.
-            let thread = threaded.then(|| {
-                Box::new(gcodec_ail::Thread {
-                    lead: circle_data.centre.clone(),
-                    lead_change: lead_change.clone(),
-                })
+            let thread = threaded.then(|| gcodec_ail::Thread {
+                lead: circle_data.centre.clone(),
+                lead_change: lead_change.clone(),
             });
             let circle = arc.then(|| Box::new(circle_data));
-            let spline = spline
-                .filter(|s| s.weight.is_some() || s.interval.is_some())
-                .map(Box::new);
+            let details = gcodec_ail::MotionDetails {
+                indirect_targets: std::mem::take(&mut plan.indirect_targets),
+                spline: spline.filter(|s| s.weight.is_some() || s.interval.is_some()),
+                thread,
+                transition: plan.transition.take().map(|(t, _)| t),
+            };
+            let details = (!details.is_empty()).then(|| Box::new(details));
             if motion == MotionKind::Modal && self.group1_inherited {
                 self.pending_motions.push(self.document.instructions.len());
             }
@@ -857,15 +866,9 @@ impl<'a> Lowering<'a> {
                 first,
                 Op::Motion {
                     motion,
-                    targets: std::mem::take(&mut plan.targets)
-                        .into_iter()
-                        .map(|(t, _)| t)
-                        .collect(),
+                    targets: std::mem::take(&mut plan.targets),
                     circle,
-                    indirect_targets: std::mem::take(&mut plan.indirect_targets),
-                    spline,
-                    thread,
-                    transition: plan.transition.take().map(|(t, _)| Box::new(t)),
+                    details,
                 },
             );
         }

@@ -161,14 +161,14 @@ impl Lowering<'_> {
                     None => axis_name(address),
                     Some(_) => Cow::Owned(self.axis_word_name(word).to_ascii_uppercase()),
                 };
-                plan.targets.push((
+                plan.add_target(
                     AxisValue {
                         axis,
                         value: v,
                         mode,
                     },
                     span,
-                ));
+                );
             }
             "A" | "B" | "C" | "E" | "Q" | "U" | "V" | "W" | "X" | "Y" | "Z"
                 if matches!(word.extension(), Some(Extension::Index { .. })) =>
