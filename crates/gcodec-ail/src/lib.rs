@@ -154,11 +154,7 @@ pub enum Op {
     /// offset.
     ModalChangeIndirect { group: u8, index: Value },
     /// `TRANS`, `AROT`, …; no values resets the frame.
-    Frame {
-        /// The instruction in upper case.
-        op: String,
-        values: Vec<AxisValue>,
-    },
+    Frame(Box<Frame>),
     /// `DEF`.
     Declare(Box<Declare>),
     /// `R1=…`, `NAME=…`, `$…=…`.
@@ -508,6 +504,18 @@ pub struct HFunction {
     pub timing: MTiming,
     /// The word as written.
     pub raw: String,
+}
+
+/// A programmable frame instruction.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Frame {
+    /// The instruction in upper case (`TRANS`, `AROT`).
+    pub op: String,
+    pub values: Vec<AxisValue>,
+    /// Values for axes named when the block runs (`ATRANS AX[_XX]=5`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub indirect_values: Vec<IndirectAxisValue>,
 }
 
 /// The rarer parts of a motion ([`Op::Motion`]).

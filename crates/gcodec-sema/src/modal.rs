@@ -914,7 +914,7 @@ impl<'d> Graph<'d> {
                 | Op::Dwell { .. }
                 | Op::Address(_)
                 | Op::HFunction(_)
-                | Op::Frame { .. }
+                | Op::Frame(_)
                 | Op::Declare(_)
                 | Op::Assign { .. }
                 | Op::AssignList(_)

@@ -323,7 +323,7 @@ fn frames_stand_alone_and_name_axes() {
     let frames: Vec<(String, usize)> = ops(&l)
         .into_iter()
         .filter_map(|op| match op {
-            Op::Frame { op, values } => Some((op.clone(), values.len())),
+            Op::Frame(f) => Some((f.op.clone(), f.values.len())),
             _ => None,
         })
         .collect();
@@ -350,7 +350,7 @@ fn a_frame_with_an_unknown_axis_is_rejected_not_a_reset() {
             "gcodec::lower::unknown_address"
         ]
     );
-    assert!(!ops(&l).iter().any(|op| matches!(op, Op::Frame { .. })));
+    assert!(!ops(&l).iter().any(|op| matches!(op, Op::Frame(_))));
 }
 
 /// The motion kinds of the document, in order.
@@ -431,4 +431,35 @@ fn a_suppression_after_paths_with_different_offsets_leaves_the_selection_open() 
         selections(&l),
         [Some("g55".to_owned()), Some("g55".to_owned())]
     );
+}
+
+#[test]
+fn structure_blocks_carry_no_label_and_no_skip_mark() {
+    let l = lower_src("LBL1: IF R1>0\nX1\nENDIF\n/WHILE R1<2\nR1=R1+1\nENDWHILE\nM30\n");
+    assert_eq!(
+        codes(&l),
+        [
+            "gcodec::lower::label_in_structure_block",
+            "gcodec::lower::skipped_structure_block"
+        ]
+    );
+    // A label before the structure, and skipped blocks inside it, are fine.
+    let l = lower_src("LBL1:\nIF R1>0\n/X1\nENDIF\nM30\n");
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+}
+
+#[test]
+fn frame_values_for_axes_named_in_brackets() {
+    let l = lower_src("DEF AXIS _XX=X\nATRANS AX[_XX]=5 AX[Y]=2\nM30\n");
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+    let Some(Op::Frame(frame)) = ops(&l).into_iter().find(|op| matches!(op, Op::Frame(_))) else {
+        panic!("{}", listing(&l));
+    };
+    assert_eq!(frame.op, "ATRANS");
+    assert_eq!(frame.values.len(), 1);
+    assert_eq!(frame.values[0].axis, "Y");
+    assert_eq!(frame.indirect_values.len(), 1);
+    let l = lower_src("ATRANS AX[Q]=5\nM30\n");
+    assert_eq!(codes(&l), ["gcodec::lower::unknown_address"]);
+    assert!(!ops(&l).iter().any(|op| matches!(op, Op::Frame(_))));
 }

@@ -85,14 +85,18 @@ fn jumps_search_as_the_control_does() {
 }
 
 #[test]
-fn labels_defined_twice_are_a_warning() {
+fn labels_defined_twice_are_advice() {
+    // The control accepts them (the nearest one wins), so neither an
+    // error nor a warning.
     let l = lower_src("LB: X1\nLB: X2\n");
-    let codes: Vec<_> = l
-        .diagnostics
-        .iter()
-        .map(|d| (d.code, d.is_error()))
-        .collect();
-    assert_eq!(codes, [("gcodec::lower::duplicate_label", false)]);
+    let codes: Vec<_> = l.diagnostics.iter().map(|d| (d.code, d.severity)).collect();
+    assert_eq!(
+        codes,
+        [(
+            "gcodec::lower::duplicate_label",
+            gcodec_source::Severity::Advice
+        )]
+    );
 }
 
 /// A missing target fails only when the jump runs (alarm 14080); GOTOC
@@ -178,9 +182,9 @@ fn frames() {
         .instructions
         .iter()
         .filter_map(|i| match &i.op {
-            Op::Frame { op, values } => Some((
-                op.clone(),
-                values.iter().map(|v| v.axis.to_string()).collect(),
+            Op::Frame(f) => Some((
+                f.op.clone(),
+                f.values.iter().map(|v| v.axis.to_string()).collect(),
             )),
             _ => None,
         })

@@ -63,6 +63,15 @@ impl Diagnostic {
         }
     }
 
+    /// Advice with `code` and `message`: something worth a look that the
+    /// control itself accepts.
+    pub fn advice(code: &'static str, message: impl Into<Cow<'static, str>>) -> Self {
+        Self {
+            severity: Severity::Advice,
+            ..Self::error(code, message)
+        }
+    }
+
     /// Adds a labelled span.
     pub fn with_label(mut self, span: Span, message: impl Into<Cow<'static, str>>) -> Self {
         self.labels.push(Label {

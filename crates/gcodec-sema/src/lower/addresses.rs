@@ -126,7 +126,7 @@ pub(super) enum Modifiers {
 }
 
 /// How an axis is named in brackets (`FA[X]`, `AX[_Z]`).
-enum AxisRef {
+pub(super) enum AxisRef {
     /// A name of the profile's axes, in upper case.
     Named(String),
     /// A variable or expression, resolved when the block runs.
@@ -260,7 +260,7 @@ impl Lowering<'_> {
     /// An axis named in brackets (`FA[X]`, `AX[_Z]`): a constant axis name
     /// must be one of the profile's; a variable is resolved when the block
     /// runs. `None` when the word is rejected (diagnostic pushed).
-    fn bracket_axis(&mut self, word: &Word, span: Span) -> Option<AxisRef> {
+    pub(super) fn bracket_axis(&mut self, word: &Word, span: Span) -> Option<AxisRef> {
         let address = word.address();
         let index = match word.extension() {
             Some(Extension::Index { index, .. }) => index,

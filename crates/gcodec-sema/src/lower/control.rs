@@ -9,9 +9,11 @@ use gcodec_source::{Diagnostic, Span};
 use crate::flow::{self, Resolved, Role, Search};
 use crate::values;
 
-use super::{
-    BlockPlan, CASE_VALUE_NOT_CONSTANT, INVALID_VALUE, Lowering, MISSING_JUMP_TARGET, direction,
-};
+use super::{BlockPlan, INVALID_VALUE, Lowering, MISSING_JUMP_TARGET, direction};
+
+const CASE_VALUE_NOT_CONSTANT: &str = "gcodec::lower::case_value_not_constant";
+const LABEL_IN_STRUCTURE_BLOCK: &str = "gcodec::lower::label_in_structure_block";
+const SKIPPED_STRUCTURE_BLOCK: &str = "gcodec::lower::skipped_structure_block";
 
 impl<'a> Lowering<'a> {
     /// The labels and jumps a block carries as a jump target and as a
@@ -61,6 +63,38 @@ impl<'a> Lowering<'a> {
                 // statements.
                 _ => {}
             }
+        }
+    }
+
+    /// A block with a control-structure element carries no label and no
+    /// skip mark (language reference §8.2, §1.7: the control does not allow
+    /// them there).
+    pub(super) fn check_structure_block(&mut self, index: usize, block: &Block) {
+        if self.flow.roles(index).is_empty() {
+            return;
+        }
+        let element = block.statements.first().map_or(block.span, |s| s.span);
+        if let Some(label) = &block.label {
+            self.diagnostics.push(
+                Diagnostic::error(
+                    LABEL_IN_STRUCTURE_BLOCK,
+                    "a block with a control-structure element carries no label",
+                )
+                .with_label(label.span, "label")
+                .with_label(element, "control-structure element")
+                .with_help("put the label in a block of its own before this one"),
+            );
+        }
+        if let Some(skip) = &block.skip {
+            self.diagnostics.push(
+                Diagnostic::error(
+                    SKIPPED_STRUCTURE_BLOCK,
+                    "a block with a control-structure element cannot be skipped",
+                )
+                .with_label(skip.span, "skip mark")
+                .with_label(element, "control-structure element")
+                .with_help("skip the blocks inside the structure instead, or jump around it"),
+            );
         }
     }
 

@@ -2,12 +2,15 @@
 //! `MIRROR X0`; the bare keyword resets. The executor composes the frame
 //! chain (language reference §9.2).
 
-use gcodec_ail::{AxisValue, Op};
+use std::borrow::Cow;
+
+use gcodec_ail::{AxisValue, IndirectAxisValue, Op};
 use gcodec_parser::ast;
 use gcodec_source::{Diagnostic, Span};
 
 use crate::values;
 
+use super::addresses::AxisRef;
 use super::{BlockPlan, Lowering, UNKNOWN_ADDRESS, axis_name};
 
 const FRAME_NOT_ALONE: &str = "gcodec::lower::frame_not_alone";
@@ -37,15 +40,32 @@ impl Lowering<'_> {
         }
         let rotation = matches!(frame.op, ast::FrameOp::Rot | ast::FrameOp::Arot);
         let mut values = Vec::with_capacity(frame.words.len());
+        let mut indirect_values = Vec::new();
         // A rejected word leaves the instruction out: without its values
         // it would read as the bare keyword, a reset.
         let mut rejected = false;
         for w in &frame.words {
             let address = w.word.address();
             if address.eq_ignore_ascii_case("AX") {
-                // `AX[_XX]=…`: an axis named by a variable.
-                self.not_lowered(w.span, "a frame value for an axis named by `AX[…]`");
-                rejected = true;
+                // `AX[X]=…`, `AX[_XX]=…`: an axis named in brackets,
+                // by a variable when the block runs.
+                let axis = self.bracket_axis(&w.word, w.span);
+                let value = w.word.value(w.span);
+                if let ast::WordValue::Assigned { expr, .. } = &*value {
+                    self.check_variables(expr);
+                }
+                let (value, mode) = values::word_value(&value);
+                match axis {
+                    Some(AxisRef::Named(name)) => values.push(AxisValue {
+                        axis: Cow::Owned(name),
+                        value,
+                        mode,
+                    }),
+                    Some(AxisRef::Computed(axis)) => {
+                        indirect_values.push(IndirectAxisValue { axis, value, mode })
+                    }
+                    None => rejected = true,
+                }
                 continue;
             }
             if !(self.is_axis(address) || rotation && address.eq_ignore_ascii_case("RPL")) {
@@ -79,10 +99,11 @@ impl Lowering<'_> {
             return;
         }
         plan.other.push((
-            Op::Frame {
+            Op::Frame(Box::new(gcodec_ail::Frame {
                 op: frame.op.keyword().to_owned(),
                 values,
-            },
+                indirect_values,
+            })),
             span,
         ));
     }

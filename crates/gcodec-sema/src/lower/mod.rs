@@ -168,7 +168,8 @@ fn duplicate_labels(program: &Program, flow: &Flow) -> Vec<Diagnostic> {
     duplicates
         .into_iter()
         .map(|(name, blocks)| {
-            let mut diagnostic = Diagnostic::warning(
+            // The control does not check this (reference §1.7): advice.
+            let mut diagnostic = Diagnostic::advice(
                 DUPLICATE_LABEL,
                 format!("label `{name}` is defined {} times", blocks.len()),
             )
@@ -405,7 +406,6 @@ pub(crate) const INVALID_VALUE: &str = "gcodec::lower::invalid_value";
 const UNKNOWN_SYSTEM_VARIABLE: &str = "gcodec::lower::unknown_system_variable";
 const MISSING_JUMP_TARGET: &str = "gcodec::lower::missing_jump_target";
 const DUPLICATE_LABEL: &str = "gcodec::lower::duplicate_label";
-const CASE_VALUE_NOT_CONSTANT: &str = "gcodec::lower::case_value_not_constant";
 
 /// The warning for a construct lowering does not translate yet: it is
 /// named, never dropped in silence.
@@ -658,6 +658,7 @@ impl<'a> Lowering<'a> {
                 .with_help("split the block; the limit is `max_block_length` in the profile"),
             );
         }
+        self.check_structure_block(index, block);
         let mut plan = BlockPlan::default();
         self.structure_parts(index, block, &mut plan);
         for statement in &block.statements {
