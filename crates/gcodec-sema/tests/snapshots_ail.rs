@@ -57,3 +57,26 @@ fn example_lathe_shaft() {
 fn example_chamfer_edge() {
     insta::assert_snapshot!(listing("examples/chamfer_edge.spf", "default.toml"));
 }
+
+/// One fixture per construct family, each with the profile of its machine.
+const FAMILIES: &[(&str, &str)] = &[
+    ("control_flow.mpf", "default.toml"),
+    ("calls.mpf", "default.toml"),
+    ("procedure.spf", "default.toml"),
+    ("addresses.mpf", "default.toml"),
+    ("variables.mpf", "default.toml"),
+    ("frames.mpf", "mill_5axis.toml"),
+];
+
+#[test]
+fn construct_families() {
+    for (file, profile) in FAMILIES {
+        let path = format!("tests/fixtures/lower/{file}");
+        let text = listing(&path, profile);
+        assert!(
+            !text.contains("Error ") && !text.contains("Warning "),
+            "{file}: the family fixtures lower cleanly:\n{text}"
+        );
+        insta::assert_snapshot!(format!("family_{file}").replace('.', "_"), text);
+    }
+}
