@@ -2,24 +2,13 @@
 //! diagnostics, run on the parse fixtures in `tests/fixtures/parse/`.
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use serde_json::Value;
 
-/// Exit codes documented in `commands.rs`.
-const EXIT_CLEAN: i32 = 0;
-const EXIT_DIAGNOSTICS: i32 = 1;
-const EXIT_USAGE: i32 = 2;
+mod common;
 
-/// Writes `contents` to `name` in a temporary folder of this test run
-/// (one per `test`, so tests running in parallel do not meet).
-fn temp_file(test: &str, name: &str, contents: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("gcodec-cli-{test}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let path = dir.join(name);
-    std::fs::write(&path, contents).expect("write");
-    path
-}
+use common::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, code, gcodec, stderr, stdout, temp_file};
 
 fn fixture(relative: &str) -> PathBuf {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -29,41 +18,12 @@ fn fixture(relative: &str) -> PathBuf {
     path
 }
 
-/// Runs `gcodec` with `args`, as a pipe (not a terminal), with a backtrace
-/// requested so that any panic would show.
-fn gcodec<I, S>(args: I) -> Output
-where
-    I: IntoIterator<Item = S>,
-    S: AsRef<std::ffi::OsStr>,
-{
-    Command::new(env!("CARGO_BIN_EXE_gcodec"))
-        .args(args)
-        .env("RUST_BACKTRACE", "1")
-        .env_remove("NO_COLOR")
-        .output()
-        .expect("gcodec runs")
-}
-
 /// `gcodec parse --format json FILES...`.
 fn parse_json(files: &[&PathBuf]) -> Output {
     let mut args: Vec<&std::ffi::OsStr> =
         vec!["parse".as_ref(), "--format".as_ref(), "json".as_ref()];
     args.extend(files.iter().map(|f| f.as_os_str()));
     gcodec(args)
-}
-
-fn stdout(out: &Output) -> String {
-    String::from_utf8(out.stdout.clone()).expect("stdout is UTF-8")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8(out.stderr.clone()).expect("stderr is UTF-8")
-}
-
-fn code(out: &Output) -> i32 {
-    out.status
-        .code()
-        .expect("gcodec exited normally, not by a signal")
 }
 
 /// A failure must be a message, not a crash.

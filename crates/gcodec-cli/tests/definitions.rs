@@ -2,40 +2,9 @@
 //! program, read from definition files; IO errors and bad files are exit
 //! code 2.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-const EXIT_CLEAN: i32 = 0;
-const EXIT_DIAGNOSTICS: i32 = 1;
-const EXIT_USAGE: i32 = 2;
-
-fn temp_file(test: &str, name: &str, contents: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("gcodec-defs-{test}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let path = dir.join(name);
-    std::fs::write(&path, contents).expect("write");
-    path
-}
-
-fn gcodec<I, S>(args: I) -> Output
-where
-    I: IntoIterator<Item = S>,
-    S: AsRef<std::ffi::OsStr>,
-{
-    Command::new(env!("CARGO_BIN_EXE_gcodec"))
-        .args(args)
-        .env("RUST_BACKTRACE", "1")
-        .output()
-        .expect("gcodec runs")
-}
-
-fn code(out: &Output) -> i32 {
-    out.status.code().expect("exited normally")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+use common::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, code, gcodec, stderr, temp_file};
 
 const PROGRAM: &str = "GR_TOOL=\"WHEEL\"\nR1=GR_STEPS[5]*GR_FEED\nM30\n";
 

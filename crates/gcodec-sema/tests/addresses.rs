@@ -9,10 +9,7 @@ use serde_json::{Value, json};
 
 mod common;
 
-fn profile(sections: &str) -> Profile {
-    let text = format!("[machine]\nname = \"test\"\ncontrol = \"840d_sl\"\n{sections}");
-    gcodec_profile::load(&text).unwrap_or_else(|d| panic!("{d:#?}"))
-}
+use common::{codes, lower_with, machine as profile, ops};
 
 /// X Y Z linear, C rotary, spindles 1 and 2.
 fn mill() -> Profile {
@@ -23,32 +20,6 @@ fn mill() -> Profile {
          [[axes]]\nname = \"Z\"\nkind = \"linear\"\ngeometry = true\n\
          [[axes]]\nname = \"C\"\nkind = \"rotary\"\n",
     )
-}
-
-fn lower_with(profile: &Profile, src: &str) -> Lowered {
-    let parsed = gcodec_parser::parse_bytes("test.mpf", src.as_bytes());
-    assert!(
-        parsed.diagnostics.is_empty(),
-        "{src}: {:#?}",
-        parsed.diagnostics
-    );
-    lower(&parsed.program, profile)
-}
-
-/// The instructions of `kind`, as JSON without their source.
-fn ops(lowered: &Lowered, kind: &str) -> Vec<Value> {
-    lowered
-        .document
-        .instructions
-        .iter()
-        .filter_map(|i| {
-            let mut v = serde_json::to_value(i).ok()?;
-            (v["kind"] == kind).then(|| {
-                v.as_object_mut().map(|m| m.remove("source"));
-                v
-            })
-        })
-        .collect()
 }
 
 fn kinds(lowered: &Lowered) -> Vec<String> {
@@ -63,10 +34,6 @@ fn kinds(lowered: &Lowered) -> Vec<String> {
                 .to_owned()
         })
         .collect()
-}
-
-fn codes(lowered: &Lowered) -> Vec<&'static str> {
-    lowered.diagnostics.iter().map(|d| d.code).collect()
 }
 
 fn assert_clean(lowered: &Lowered) {

@@ -3,53 +3,11 @@
 //! belong to `gcodec run`): seed 000 tool change, seed 001 M functions,
 //! seed 003 work offsets.
 
-use gcodec_profile::Profile;
-use gcodec_sema::{Lowered, lower};
 use serde_json::{Value, json};
 
-fn profile(sections: &str) -> Profile {
-    let text = format!("[machine]\nname = \"test\"\ncontrol = \"840d_sl\"\n{sections}");
-    gcodec_profile::load(&text).unwrap_or_else(|d| panic!("{d:#?}"))
-}
+mod common;
 
-fn lower_with(profile: &Profile, src: &str) -> Lowered {
-    let parsed = gcodec_parser::parse_bytes("test.mpf", src.as_bytes());
-    assert!(
-        parsed.diagnostics.is_empty(),
-        "{src}: {:#?}",
-        parsed.diagnostics
-    );
-    lower(&parsed.program, profile)
-}
-
-/// The instructions of `kind`, as JSON without their source.
-fn ops(lowered: &Lowered, kind: &str) -> Vec<Value> {
-    lowered
-        .document
-        .instructions
-        .iter()
-        .filter_map(|i| {
-            let mut v = serde_json::to_value(i).ok()?;
-            (v["kind"] == kind).then(|| {
-                v.as_object_mut().map(|m| m.remove("source"));
-                v
-            })
-        })
-        .collect()
-}
-
-fn codes(lowered: &Lowered) -> Vec<&'static str> {
-    lowered.diagnostics.iter().map(|d| d.code).collect()
-}
-
-fn errors(lowered: &Lowered) -> Vec<&'static str> {
-    lowered
-        .diagnostics
-        .iter()
-        .filter(|d| d.is_error())
-        .map(|d| d.code)
-        .collect()
-}
+use common::{codes, errors, lower_with, machine as profile, ops};
 
 // ---- seed 000: tool change ----
 

@@ -6,9 +6,11 @@
 
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, Lowered, lower, lower_with};
-use serde_json::{Value, json};
+use serde_json::json;
 
 mod common;
+
+use common::{codes, errors, ops};
 
 const UNDEFINED: &str = "gcodec::lower::undefined_variable";
 const TYPE_MISMATCH: &str = "gcodec::lower::type_mismatch";
@@ -39,35 +41,6 @@ fn run(src: &str) -> Lowered {
 
 fn run_with(src: &str, definitions: &Definitions) -> Lowered {
     lower_with(&parse(src), &default_profile(), definitions)
-}
-
-fn errors(lowered: &Lowered) -> Vec<&'static str> {
-    lowered
-        .diagnostics
-        .iter()
-        .filter(|d| d.is_error())
-        .map(|d| d.code)
-        .collect()
-}
-
-fn codes(lowered: &Lowered) -> Vec<&'static str> {
-    lowered.diagnostics.iter().map(|d| d.code).collect()
-}
-
-/// The instructions of `kind`, as JSON without their source.
-fn ops(lowered: &Lowered, kind: &str) -> Vec<Value> {
-    lowered
-        .document
-        .instructions
-        .iter()
-        .filter_map(|i| {
-            let mut v = serde_json::to_value(i).ok()?;
-            (v["kind"] == kind).then(|| {
-                v.as_object_mut().map(|m| m.remove("source"));
-                v
-            })
-        })
-        .collect()
 }
 
 /// The message of the only error, for checking what it says.

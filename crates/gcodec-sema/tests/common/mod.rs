@@ -13,3 +13,51 @@ pub fn profile(name: &str) -> gcodec_profile::Profile {
     let text = std::fs::read_to_string(repo().join("profiles").join(name)).expect("profile");
     gcodec_profile::load(&text).unwrap_or_else(|d| panic!("{name}: {d:#?}"))
 }
+
+/// A profile of the given TOML sections after a `[machine]` header.
+pub fn machine(sections: &str) -> gcodec_profile::Profile {
+    let text = format!("[machine]\nname = \"test\"\ncontrol = \"840d_sl\"\n{sections}");
+    gcodec_profile::load(&text).unwrap_or_else(|d| panic!("{d:#?}"))
+}
+
+/// Lowers `src` (which must parse cleanly) for `profile`.
+pub fn lower_with(profile: &gcodec_profile::Profile, src: &str) -> gcodec_sema::Lowered {
+    let parsed = gcodec_parser::parse_bytes("test.mpf", src.as_bytes());
+    assert!(
+        parsed.diagnostics.is_empty(),
+        "{src}: {:#?}",
+        parsed.diagnostics
+    );
+    gcodec_sema::lower(&parsed.program, profile)
+}
+
+/// The instructions of `kind`, as JSON without their source.
+pub fn ops(lowered: &gcodec_sema::Lowered, kind: &str) -> Vec<serde_json::Value> {
+    lowered
+        .document
+        .instructions
+        .iter()
+        .filter_map(|i| {
+            let mut v = serde_json::to_value(i).ok()?;
+            (v["kind"] == kind).then(|| {
+                v.as_object_mut().map(|m| m.remove("source"));
+                v
+            })
+        })
+        .collect()
+}
+
+/// The codes of all diagnostics, in order.
+pub fn codes(lowered: &gcodec_sema::Lowered) -> Vec<&'static str> {
+    lowered.diagnostics.iter().map(|d| d.code).collect()
+}
+
+/// The codes of the error diagnostics, in order.
+pub fn errors(lowered: &gcodec_sema::Lowered) -> Vec<&'static str> {
+    lowered
+        .diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| d.code)
+        .collect()
+}

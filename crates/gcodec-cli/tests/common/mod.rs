@@ -1,0 +1,50 @@
+//! Helpers shared by the end-to-end tests of the `gcodec` binary.
+
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// Exit codes documented in `commands.rs`.
+pub const EXIT_CLEAN: i32 = 0;
+pub const EXIT_DIAGNOSTICS: i32 = 1;
+pub const EXIT_USAGE: i32 = 2;
+
+/// Writes `contents` to `name` in a temporary folder of this test run
+/// (one per `test`, so tests running in parallel do not meet).
+pub fn temp_file(test: &str, name: &str, contents: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("gcodec-cli-{test}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join(name);
+    std::fs::write(&path, contents).expect("write");
+    path
+}
+
+/// Runs `gcodec` with `args`, as a pipe (not a terminal), with a backtrace
+/// requested so that any panic would show.
+pub fn gcodec<I, S>(args: I) -> Output
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<std::ffi::OsStr>,
+{
+    Command::new(env!("CARGO_BIN_EXE_gcodec"))
+        .args(args)
+        .env("RUST_BACKTRACE", "1")
+        .env_remove("NO_COLOR")
+        .output()
+        .expect("gcodec runs")
+}
+
+pub fn stdout(out: &Output) -> String {
+    String::from_utf8(out.stdout.clone()).expect("stdout is UTF-8")
+}
+
+pub fn stderr(out: &Output) -> String {
+    String::from_utf8(out.stderr.clone()).expect("stderr is UTF-8")
+}
+
+pub fn code(out: &Output) -> i32 {
+    out.status
+        .code()
+        .expect("gcodec exited normally, not by a signal")
+}
