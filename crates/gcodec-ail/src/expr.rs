@@ -1,6 +1,8 @@
 //! Values and expressions in AIL: a constant where lowering could fold one,
 //! otherwise an expression tree the executor evaluates.
 
+use std::borrow::Cow;
+
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -29,8 +31,9 @@ pub enum Expr {
     /// A variable, with its indices (`R1` is `R` with index 1).
     Var {
         var_kind: VarKind,
-        /// The name in upper case (`R`, `COUNTER`, `$P_UIFR`).
-        name: String,
+        /// The name in upper case (`R`, `COUNTER`, `$P_UIFR`); `R` is
+        /// not allocated for each R parameter.
+        name: Cow<'static, str>,
         indices: Vec<Expr>,
     },
     /// A built-in or user function.

@@ -1,5 +1,7 @@
 //! Syntax-tree expressions and word values as AIL values.
 
+use std::borrow::Cow;
+
 use gcodec_ail::{self as ail, DimensionMode, Value};
 use gcodec_parser::ast::{self, DimensionKind, ExprKind, WordValue};
 
@@ -121,7 +123,10 @@ pub(crate) fn variable(var: &ast::VarRef) -> ail::Expr {
             ast::VarKind::Name => ail::VarKind::User,
             ast::VarKind::System => ail::VarKind::System,
         },
-        name: var.name.to_ascii_uppercase().to_string(),
+        name: match var.kind {
+            ast::VarKind::RParameter => Cow::Borrowed("R"),
+            _ => Cow::Owned(var.name.to_ascii_uppercase().to_string()),
+        },
         indices: var.indices.iter().map(tree).collect(),
     }
 }
