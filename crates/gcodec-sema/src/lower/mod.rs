@@ -132,7 +132,11 @@ pub fn lower_in_parts(
     }
     let mut parts = lowered.into_iter();
     let Some(mut first) = parts.next() else {
-        unreachable!("at least one part")
+        // `parts` is at least 1, so this does not happen.
+        return Lowered {
+            document: Document::new(),
+            diagnostics,
+        };
     };
     for part in parts {
         let mut instructions = part.document.instructions;
@@ -206,16 +210,11 @@ fn stitch(parts: &mut [Lowering<'_>]) -> bool {
     }
     let (mut group1, mut group8) = (first.modal[0], first.group8);
     for part in &mut parts[1..] {
-        if !part.pending_motions.is_empty() {
-            let Some(kind) = group1.map(motion_kind) else {
-                // Unknown before the part: `modal`, as in one run.
-                part.pending_motions.clear();
-                continue_with(part, &mut group1, &mut group8);
-                continue;
-            };
+        // Unknown before the part: the motions stay `modal`, as in one run.
+        if let (false, Some(code)) = (part.pending_motions.is_empty(), group1) {
             // One run would have reported the command or read `F` as
             // the lead change of G34/G35.
-            let Some(kind) = kind.filter(|_| !matches!(group1, Some("G34" | "G35"))) else {
+            let Some(kind) = motion_kind(code).filter(|_| !matches!(code, "G34" | "G35")) else {
                 return false;
             };
             for &i in &part.pending_motions {
