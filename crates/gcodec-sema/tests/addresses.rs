@@ -9,7 +9,7 @@ use serde_json::{Value, json};
 
 mod common;
 
-use common::{codes, lower_with, machine as profile, ops};
+use common::{codes, kinds, lower_with, machine as profile, ops};
 
 /// X Y Z linear, C rotary, spindles 1 and 2.
 fn mill() -> Profile {
@@ -20,20 +20,6 @@ fn mill() -> Profile {
          [[axes]]\nname = \"Z\"\nkind = \"linear\"\ngeometry = true\n\
          [[axes]]\nname = \"C\"\nkind = \"rotary\"\n",
     )
-}
-
-fn kinds(lowered: &Lowered) -> Vec<String> {
-    lowered
-        .document
-        .instructions
-        .iter()
-        .map(|i| {
-            serde_json::to_value(i).unwrap()["kind"]
-                .as_str()
-                .unwrap()
-                .to_owned()
-        })
-        .collect()
 }
 
 fn assert_clean(lowered: &Lowered) {

@@ -7,7 +7,7 @@ use serde_json::{Value, json};
 
 mod common;
 
-use common::{codes, errors, lower_with, machine as profile, ops};
+use common::{codes, errors, kinds, lower_with, machine as profile, ops};
 
 // ---- seed 000: tool change ----
 
@@ -98,17 +98,7 @@ fn seed000_normalized_instruction_shape_and_timing() {
 #[test]
 fn seed000_m6_goes_through_the_m_code_path() {
     let l = lower_with(&profile(""), "T5 M6 D1");
-    let kinds: Vec<String> = l
-        .document
-        .instructions
-        .iter()
-        .map(|i| {
-            serde_json::to_value(i).unwrap()["kind"]
-                .as_str()
-                .unwrap()
-                .to_owned()
-        })
-        .collect();
+    let kinds = kinds(&l);
     assert_eq!(
         kinds,
         [

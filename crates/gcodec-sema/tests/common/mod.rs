@@ -61,3 +61,18 @@ pub fn errors(lowered: &gcodec_sema::Lowered) -> Vec<&'static str> {
         .map(|d| d.code)
         .collect()
 }
+
+/// The kinds of all instructions, in order.
+pub fn kinds(lowered: &gcodec_sema::Lowered) -> Vec<String> {
+    lowered
+        .document
+        .instructions
+        .iter()
+        .map(|i| {
+            serde_json::to_value(i).unwrap()["kind"]
+                .as_str()
+                .unwrap()
+                .to_owned()
+        })
+        .collect()
+}
