@@ -1,1 +1,512 @@
-//! (being written)
+//! Run-time values and the conversions between their types, as the
+//! control does them (reference §7.1, SPEC §10.11 and §11.x "Values,
+//! expressions and variables at run time").
+//!
+//! A value is one of the control's types: `INT` (32 bits), `REAL` (IEEE
+//! double), `BOOL`, `CHAR` (a byte 0…255), `STRING`, `AXIS` (an axis
+//! identifier) and `FRAME`. Numbers, truth values and characters are held
+//! inline, so that evaluating a numeric expression allocates nothing;
+//! strings, axis names and frames are shared (`Arc`), so that copying a
+//! value never copies text.
+//!
+//! Conversions follow the control's table (alarm 14096): REAL, INT, BOOL
+//! and CHAR convert into each other; CHAR and STRING into STRING; STRING
+//! into BOOL (empty is FALSE) and into CHAR (exactly one character); AXIS
+//! and FRAME only into themselves. REAL to INT (and CHAR) rounds half away
+//! from zero (`2.5` → 3, `-2.5` → −3). A conversion that fails is a
+//! [`RunError`] with a stable code (see [`codes`]).
+
+use std::fmt;
+use std::sync::Arc;
+
+/// The stable codes of run-time errors. The executor turns a [`RunError`]
+/// into a diagnostic event with this code.
+pub mod codes {
+    /// `/`, `DIV` or `MOD` by zero.
+    pub const DIVISION_BY_ZERO: &str = "gcodec::run::division_by_zero";
+    /// A function argument outside the function's domain (`SQRT(-1)`,
+    /// `LN(0)`, `ASIN(2)`).
+    pub const DOMAIN: &str = "gcodec::run::domain";
+    /// A value of a type that cannot be converted to the one needed.
+    pub const TYPE_MISMATCH: &str = "gcodec::run::type_mismatch";
+    /// A number outside the range of the target type (INT, CHAR).
+    pub const OVERFLOW: &str = "gcodec::run::overflow";
+    /// A string longer than its variable's `STRING[n]`.
+    pub const STRING_TOO_LONG: &str = "gcodec::run::string_too_long";
+    /// A function neither built in nor provided by the runtime.
+    pub const UNKNOWN_FUNCTION: &str = "gcodec::run::unknown_function";
+    /// Too few or too many arguments, or an omitted one that is needed.
+    pub const ARGUMENT_COUNT: &str = "gcodec::run::argument_count";
+    /// An index outside `0 … dimension−1` (the control's alarm 17020).
+    pub const INDEX_OUT_OF_RANGE: &str = "gcodec::run::index_out_of_range";
+    /// A variable referenced with the wrong number of indices.
+    pub const INDEX_COUNT: &str = "gcodec::run::index_count";
+    /// A name that is no variable (and no axis) when it is read or
+    /// written (alarm 12550).
+    pub const UNDEFINED_VARIABLE: &str = "gcodec::run::undefined_variable";
+    /// A system variable the runtime does not know or has no value for.
+    pub const SYSTEM_VARIABLE: &str = "gcodec::run::system_variable";
+    /// A system variable that cannot be written.
+    pub const READ_ONLY: &str = "gcodec::run::read_only";
+    /// `NUMBER` of a string that is no number.
+    pub const INVALID_NUMBER: &str = "gcodec::run::invalid_number";
+    /// An axis name the machine does not have (`AXNAME("Q")`).
+    pub const UNKNOWN_AXIS: &str = "gcodec::run::unknown_axis";
+    /// A bad `SPRINT` format.
+    pub const FORMAT: &str = "gcodec::run::format";
+    /// A bad declaration (dimension 0, too many dimensions, too large).
+    pub const INVALID_DECLARATION: &str = "gcodec::run::invalid_declaration";
+    /// An expression nested deeper than the evaluator goes.
+    pub const TOO_DEEP: &str = "gcodec::run::expression_too_deep";
+}
+
+/// A run-time error: a stable code ([`codes`]) and a message naming what
+/// failed. Never a panic: the executor reports it as a diagnostic event.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RunError {
+    pub code: &'static str,
+    pub message: String,
+}
+
+impl RunError {
+    pub fn new(code: &'static str, message: impl Into<String>) -> Self {
+        Self {
+            code,
+            message: message.into(),
+        }
+    }
+
+    pub(crate) fn type_mismatch(from: &RtValue, to: &str) -> Self {
+        Self::new(
+            codes::TYPE_MISMATCH,
+            format!("a {} value cannot be converted to {to}", from.type_name()),
+        )
+    }
+}
+
+impl fmt::Display for RunError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.code, self.message)
+    }
+}
+
+impl std::error::Error for RunError {}
+
+/// The longest string a `STRING` variable holds without a length (a
+/// local `STRING[200]`, reference §7.1), and the longest length a
+/// declaration may give.
+pub const MAX_STRING_LEN: u16 = 200;
+
+/// A declared type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DataType {
+    Int,
+    Real,
+    Bool,
+    Char,
+    /// `STRING[max_len]`.
+    String {
+        max_len: u16,
+    },
+    Axis,
+    Frame,
+}
+
+impl DataType {
+    /// A type as AIL writes it: `INT`, `REAL`, `STRING` (length
+    /// [`MAX_STRING_LEN`]) or `STRING[12]`; any case.
+    pub fn parse(text: &str) -> Option<Self> {
+        let text = text.trim();
+        let upper = |s: &str, k: &str| s.eq_ignore_ascii_case(k);
+        Some(match text {
+            t if upper(t, "INT") => Self::Int,
+            t if upper(t, "REAL") => Self::Real,
+            t if upper(t, "BOOL") => Self::Bool,
+            t if upper(t, "CHAR") => Self::Char,
+            t if upper(t, "AXIS") => Self::Axis,
+            t if upper(t, "FRAME") => Self::Frame,
+            t if upper(t, "STRING") => Self::String {
+                max_len: MAX_STRING_LEN,
+            },
+            t if t.len() > 6 && upper(&t[..6], "STRING") => {
+                let len = t[6..]
+                    .trim()
+                    .strip_prefix('[')?
+                    .strip_suffix(']')?
+                    .trim()
+                    .parse::<u16>()
+                    .ok()?;
+                if len == 0 || len > MAX_STRING_LEN {
+                    return None;
+                }
+                Self::String { max_len: len }
+            }
+            _ => return None,
+        })
+    }
+
+    /// The value a variable of this type starts with: 0, 0.0, FALSE,
+    /// CHAR 0, the empty string, no axis (an empty name), the neutral
+    /// frame.
+    pub fn initial_value(self) -> RtValue {
+        match self {
+            Self::Int => RtValue::Int(0),
+            Self::Real => RtValue::Real(0.0),
+            Self::Bool => RtValue::Bool(false),
+            Self::Char => RtValue::Char(0),
+            Self::String { .. } => RtValue::String(Arc::from("")),
+            Self::Axis => RtValue::Axis(Arc::from("")),
+            Self::Frame => RtValue::Frame(Arc::new(FrameValue::default())),
+        }
+    }
+
+    /// The type as messages write it (`STRING[12]`).
+    pub fn describe(self) -> String {
+        match self {
+            Self::String { max_len } => format!("STRING[{max_len}]"),
+            other => other.keyword().to_owned(),
+        }
+    }
+
+    /// The keyword (`STRING` without its length).
+    pub const fn keyword(self) -> &'static str {
+        match self {
+            Self::Int => "INT",
+            Self::Real => "REAL",
+            Self::Bool => "BOOL",
+            Self::Char => "CHAR",
+            Self::String { .. } => "STRING",
+            Self::Axis => "AXIS",
+            Self::Frame => "FRAME",
+        }
+    }
+}
+
+/// A frame (placeholder: the frame work fills in its operations): per
+/// axis a translation, a fine translation, a rotation (degrees), a scale
+/// and a mirroring, as `$P_UIFR[n, axis, TR|FI|RT|SC|MI]` address them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FrameValue {
+    /// The axes with a component other than neutral, in the order first
+    /// set.
+    pub axes: Vec<FrameAxis>,
+}
+
+/// The components of a frame for one axis.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameAxis {
+    /// The axis name, upper case.
+    pub axis: Arc<str>,
+    /// `TR`
+    pub translation: f64,
+    /// `FI`
+    pub fine: f64,
+    /// `RT`, degrees.
+    pub rotation: f64,
+    /// `SC`, 1 when neutral.
+    pub scale: f64,
+    /// `MI`
+    pub mirror: bool,
+}
+
+impl FrameAxis {
+    /// Neutral components for `axis`.
+    pub fn neutral(axis: &str) -> Self {
+        Self {
+            axis: Arc::from(axis),
+            translation: 0.0,
+            fine: 0.0,
+            rotation: 0.0,
+            scale: 1.0,
+            mirror: false,
+        }
+    }
+}
+
+impl FrameValue {
+    /// The components of `axis` (neutral ones when the frame has none).
+    pub fn axis(&self, axis: &str) -> FrameAxis {
+        self.axes
+            .iter()
+            .find(|a| a.axis.eq_ignore_ascii_case(axis))
+            .cloned()
+            .unwrap_or_else(|| FrameAxis::neutral(axis))
+    }
+
+    /// One component by its keyword (`TR`, `FI`, `RT`, `SC`, `MI`, any
+    /// case); `None` for another keyword.
+    pub fn component(&self, axis: &str, component: &str) -> Option<f64> {
+        let a = self.axis(axis);
+        let c = component.to_ascii_uppercase();
+        Some(match c.as_str() {
+            "TR" => a.translation,
+            "FI" => a.fine,
+            "RT" => a.rotation,
+            "SC" => a.scale,
+            "MI" => f64::from(u8::from(a.mirror)),
+            _ => return None,
+        })
+    }
+}
+
+/// A value at run time.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RtValue {
+    Int(i32),
+    Real(f64),
+    Bool(bool),
+    /// An ASCII (or Latin-1) code 0…255.
+    Char(u8),
+    String(Arc<str>),
+    /// An axis identifier, upper case. An empty name is "no axis".
+    Axis(Arc<str>),
+    Frame(Arc<FrameValue>),
+}
+
+impl From<i32> for RtValue {
+    fn from(v: i32) -> Self {
+        Self::Int(v)
+    }
+}
+
+impl From<f64> for RtValue {
+    fn from(v: f64) -> Self {
+        Self::Real(v)
+    }
+}
+
+impl From<bool> for RtValue {
+    fn from(v: bool) -> Self {
+        Self::Bool(v)
+    }
+}
+
+impl From<&str> for RtValue {
+    fn from(v: &str) -> Self {
+        Self::String(Arc::from(v))
+    }
+}
+
+impl RtValue {
+    /// A string value.
+    pub fn string(text: impl AsRef<str>) -> Self {
+        Self::String(Arc::from(text.as_ref()))
+    }
+
+    /// An axis value (the name in upper case).
+    pub fn axis(name: &str) -> Self {
+        Self::Axis(Arc::from(name.to_ascii_uppercase().as_str()))
+    }
+
+    /// The type keyword (`INT`, `REAL`, …).
+    pub fn type_name(&self) -> &'static str {
+        match self {
+            Self::Int(_) => "INT",
+            Self::Real(_) => "REAL",
+            Self::Bool(_) => "BOOL",
+            Self::Char(_) => "CHAR",
+            Self::String(_) => "STRING",
+            Self::Axis(_) => "AXIS",
+            Self::Frame(_) => "FRAME",
+        }
+    }
+
+    /// INT, REAL, BOOL or CHAR.
+    pub fn is_numeric(&self) -> bool {
+        matches!(
+            self,
+            Self::Int(_) | Self::Real(_) | Self::Bool(_) | Self::Char(_)
+        )
+    }
+
+    /// As a REAL: INT and CHAR as their number, BOOL as 1 or 0.
+    pub fn to_real(&self) -> Result<f64, RunError> {
+        match *self {
+            Self::Int(i) => Ok(f64::from(i)),
+            Self::Real(r) => Ok(r),
+            Self::Bool(b) => Ok(if b { 1.0 } else { 0.0 }),
+            Self::Char(c) => Ok(f64::from(c)),
+            _ => Err(RunError::type_mismatch(self, "REAL")),
+        }
+    }
+
+    /// As an INT: a REAL rounded half away from zero (alarm when outside
+    /// the INT range), BOOL 1 or 0, CHAR its code.
+    pub fn to_int(&self) -> Result<i32, RunError> {
+        match *self {
+            Self::Int(i) => Ok(i),
+            Self::Real(r) => real_to_int(r),
+            Self::Bool(b) => Ok(i32::from(b)),
+            Self::Char(c) => Ok(i32::from(c)),
+            _ => Err(RunError::type_mismatch(self, "INT")),
+        }
+    }
+
+    /// As a BOOL: a number is TRUE when not 0; a STRING when not empty.
+    pub fn to_bool(&self) -> Result<bool, RunError> {
+        match self {
+            Self::Int(i) => Ok(*i != 0),
+            Self::Real(r) => Ok(*r != 0.0),
+            Self::Bool(b) => Ok(*b),
+            Self::Char(c) => Ok(*c != 0),
+            Self::String(s) => Ok(!s.is_empty()),
+            _ => Err(RunError::type_mismatch(self, "BOOL")),
+        }
+    }
+
+    /// As a CHAR: a number 0…255 (a REAL rounded), BOOL 1 or 0, a STRING
+    /// of exactly one character.
+    pub fn to_char(&self) -> Result<u8, RunError> {
+        let code = match self {
+            Self::Char(c) => return Ok(*c),
+            Self::Bool(b) => return Ok(u8::from(*b)),
+            Self::Int(_) | Self::Real(_) => self.to_int()?,
+            Self::String(s) => {
+                return match s.as_bytes() {
+                    [c] => Ok(*c),
+                    _ => Err(RunError::new(
+                        codes::TYPE_MISMATCH,
+                        format!(
+                            "the string \"{s}\" has {} characters: a CHAR is one",
+                            s.len()
+                        ),
+                    )),
+                };
+            }
+            _ => return Err(RunError::type_mismatch(self, "CHAR")),
+        };
+        u8::try_from(code).map_err(|_| {
+            RunError::new(
+                codes::OVERFLOW,
+                format!("{code} is outside the range of a CHAR (0…255)"),
+            )
+        })
+    }
+
+    /// As an AXIS: only an AXIS.
+    pub fn to_axis(&self) -> Result<Arc<str>, RunError> {
+        match self {
+            Self::Axis(a) => Ok(a.clone()),
+            _ => Err(RunError::type_mismatch(self, "AXIS")),
+        }
+    }
+
+    /// The value converted for a variable of type `ty` (an assignment):
+    /// the control's table, a string checked against `STRING[n]`.
+    pub fn convert_to(&self, ty: DataType) -> Result<RtValue, RunError> {
+        Ok(match ty {
+            DataType::Int => Self::Int(self.to_int()?),
+            DataType::Real => Self::Real(self.to_real()?),
+            DataType::Bool => Self::Bool(self.to_bool()?),
+            DataType::Char => Self::Char(self.to_char()?),
+            DataType::String { max_len } => {
+                let s: Arc<str> = match self {
+                    Self::String(s) => s.clone(),
+                    Self::Char(c) => Arc::from(char_text(*c).as_str()),
+                    _ => return Err(RunError::type_mismatch(self, "STRING")),
+                };
+                if s.len() > usize::from(max_len) {
+                    return Err(RunError::new(
+                        codes::STRING_TOO_LONG,
+                        format!(
+                            "a string of {} characters does not fit a STRING[{max_len}]",
+                            s.len()
+                        ),
+                    ));
+                }
+                Self::String(s)
+            }
+            DataType::Axis => Self::Axis(self.to_axis()?),
+            DataType::Frame => match self {
+                Self::Frame(f) => Self::Frame(f.clone()),
+                _ => return Err(RunError::type_mismatch(self, "FRAME")),
+            },
+        })
+    }
+
+    /// The text `<<` makes of the value: a string as it is, a CHAR as its
+    /// character, an INT in decimal, a REAL by [`format_real`], a BOOL as
+    /// `1` or `0`, an AXIS as its name. A FRAME has none.
+    pub fn to_text(&self) -> Result<String, RunError> {
+        let mut out = String::new();
+        self.write_text(&mut out)?;
+        Ok(out)
+    }
+
+    /// [`to_text`](Self::to_text) appended to `out`.
+    pub fn write_text(&self, out: &mut String) -> Result<(), RunError> {
+        use std::fmt::Write as _;
+        match self {
+            Self::Int(i) => {
+                let _ = write!(out, "{i}");
+            }
+            Self::Real(r) => format_real(*r, out),
+            Self::Bool(b) => out.push(if *b { '1' } else { '0' }),
+            Self::Char(c) => out.push(char::from(*c)),
+            Self::String(s) | Self::Axis(s) => out.push_str(s),
+            Self::Frame(_) => return Err(RunError::type_mismatch(self, "STRING")),
+        }
+        Ok(())
+    }
+}
+
+/// A REAL rounded half away from zero to an INT; out of range is
+/// [`codes::OVERFLOW`].
+pub fn real_to_int(r: f64) -> Result<i32, RunError> {
+    let rounded = r.round();
+    if rounded.is_nan() || rounded < f64::from(i32::MIN) || rounded > f64::from(i32::MAX) {
+        Err(RunError::new(
+            codes::OVERFLOW,
+            format!("{r} is outside the range of an INT"),
+        ))
+    } else {
+        Ok(rounded as i32)
+    }
+}
+
+/// A character code as text (Latin-1).
+pub(crate) fn char_text(c: u8) -> String {
+    char::from(c).to_string()
+}
+
+/// A REAL as `<<` writes it: fixed point with at most 10 decimal places,
+/// trailing zeros and a trailing point left off (`1.5`, `3`, `0.3333333333`,
+/// `-2`); `-0` is `0`; magnitudes of 1e15 and more, or below 1e-10, in
+/// exponent form (`1e+20`, `1.5e-12`).
+pub fn format_real(r: f64, out: &mut String) {
+    use std::fmt::Write as _;
+    if r == 0.0 {
+        out.push('0');
+        return;
+    }
+    if !r.is_finite() {
+        let _ = write!(out, "{r}");
+        return;
+    }
+    let magnitude = r.abs();
+    if !(1e-10..1e15).contains(&magnitude) {
+        let text = format!("{r:e}");
+        // Rust writes `1e20`, `1.5e-12`: add the sign of the exponent.
+        match text.split_once('e') {
+            Some((m, e)) if !e.starts_with('-') => {
+                let _ = write!(out, "{m}e+{e}");
+            }
+            _ => out.push_str(&text),
+        }
+        return;
+    }
+    let start = out.len();
+    let _ = write!(out, "{r:.10}");
+    if out[start..].contains('.') {
+        while out.ends_with('0') {
+            out.pop();
+        }
+        if out.ends_with('.') {
+            out.pop();
+        }
+    }
+    if &out[start..] == "-0" {
+        out.truncate(start);
+        out.push('0');
+    }
+}

@@ -1,0 +1,1090 @@
+//! Values, expression evaluation and variables of the executor (SPEC
+//! §11.x). Expected values are worked out by hand; where the control's
+//! behaviour is a choice, the test names it.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::borrow::Cow;
+use std::cell::Cell;
+use std::collections::HashMap;
+use std::time::Instant;
+
+use gcodec_ail::{BinaryOp as B, Expr, Op, UnaryOp as U, Value, VarKind};
+use gcodec_exec::eval::{
+    self, Env, NoMachine, RuntimeInterface, assign, assign_list, declare, eval, sprint,
+};
+use gcodec_exec::value::{DataType, RtValue, RunError, codes};
+use gcodec_exec::vars::{DEFAULT_R_PARAMETERS, Init, Scope, Variables};
+use gcodec_profile::Profile;
+
+// ---------------------------------------------------------------------
+// Counting allocations per thread
+
+struct Counting;
+
+thread_local! {
+    static ALLOCATIONS: Cell<u64> = const { Cell::new(0) };
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+fn allocations() -> u64 {
+    ALLOCATIONS.with(Cell::get)
+}
+
+// ---------------------------------------------------------------------
+// Building expressions
+
+fn n(v: f64) -> Expr {
+    Expr::Number { value: v }
+}
+
+fn s(v: &str) -> Expr {
+    Expr::String {
+        value: v.to_owned(),
+    }
+}
+
+fn bool_(v: bool) -> Expr {
+    Expr::Bool { value: v }
+}
+
+fn r(i: f64) -> Expr {
+    Expr::Var {
+        var_kind: VarKind::RParameter,
+        name: Cow::Borrowed("R"),
+        indices: vec![n(i)],
+    }
+}
+
+fn var(name: &str, indices: Vec<Expr>) -> Expr {
+    Expr::Var {
+        var_kind: VarKind::User,
+        name: Cow::Owned(name.to_owned()),
+        indices,
+    }
+}
+
+fn sys(name: &str, indices: Vec<Expr>) -> Expr {
+    Expr::Var {
+        var_kind: VarKind::System,
+        name: Cow::Owned(name.to_owned()),
+        indices,
+    }
+}
+
+fn call(name: &str, args: Vec<Expr>) -> Expr {
+    Expr::Call {
+        name: name.to_owned(),
+        args: args.into_iter().map(Some).collect(),
+    }
+}
+
+fn bin(op: B, a: Expr, b: Expr) -> Expr {
+    Expr::Binary {
+        operator: op,
+        lhs: Box::new(a),
+        rhs: Box::new(b),
+    }
+}
+
+fn un(op: U, a: Expr) -> Expr {
+    Expr::Unary {
+        operator: op,
+        operand: Box::new(a),
+    }
+}
+
+fn builtin() -> Profile {
+    gcodec_profile::builtin().expect("built-in profile")
+}
+
+fn machine(sections: &str) -> Profile {
+    let text = format!("[machine]\nname = \"test\"\ncontrol = \"840d_sl\"\n{sections}");
+    gcodec_profile::load(&text).unwrap_or_else(|d| panic!("{d:#?}"))
+}
+
+/// Evaluates with an empty store on the built-in profile.
+fn ev(e: &Expr) -> Result<RtValue, RunError> {
+    let vars = Variables::default();
+    let profile = builtin();
+    eval(&Env::new(&vars, &profile), e)
+}
+
+fn ok(e: Expr) -> RtValue {
+    ev(&e).unwrap_or_else(|err| panic!("{e:?}: {err}"))
+}
+
+fn real(e: Expr) -> f64 {
+    match ok(e) {
+        RtValue::Real(x) => x,
+        other => panic!("expected a REAL, got {other:?}"),
+    }
+}
+
+fn err(e: Expr) -> RunError {
+    match ev(&e) {
+        Err(err) => err,
+        Ok(v) => panic!("{e:?} gave {v:?}, expected an error"),
+    }
+}
+
+fn text(e: Expr) -> String {
+    match ok(e) {
+        RtValue::String(t) => t.to_string(),
+        other => panic!("expected a STRING, got {other:?}"),
+    }
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-12 * b.abs().max(1.0)
+}
+
+// ---------------------------------------------------------------------
+// Operators (reference §7.5)
+
+#[test]
+fn arithmetic_keeps_int_and_promotes_to_real() {
+    assert_eq!(ok(bin(B::Add, n(2.0), n(3.0))), RtValue::Int(5));
+    assert_eq!(ok(bin(B::Sub, n(2.0), n(3.0))), RtValue::Int(-1));
+    assert_eq!(ok(bin(B::Mul, n(4.0), n(2.5))), RtValue::Real(10.0));
+    // `/` is always REAL: 7/2 = 3.5, not 3.
+    assert_eq!(ok(bin(B::Div, n(7.0), n(2.0))), RtValue::Real(3.5));
+    // An INT result outside the INT range becomes REAL.
+    assert_eq!(
+        ok(bin(B::Mul, n(65536.0), n(65536.0))),
+        RtValue::Real(4_294_967_296.0)
+    );
+    // BOOL and CHAR count as their numbers.
+    assert_eq!(ok(bin(B::Add, bool_(true), n(1.0))), RtValue::Int(2));
+    assert_eq!(ok(un(U::Neg, n(4.0))), RtValue::Int(-4));
+    assert_eq!(ok(un(U::Neg, n(0.5))), RtValue::Real(-0.5));
+}
+
+#[test]
+fn div_truncates_and_mod_takes_the_sign_of_the_dividend() {
+    assert_eq!(ok(bin(B::IntDiv, n(7.0), n(2.0))), RtValue::Int(3));
+    // DIV truncates towards zero: -7 DIV 2 = -3 (not -4).
+    assert_eq!(ok(bin(B::IntDiv, n(-7.0), n(2.0))), RtValue::Int(-3));
+    assert_eq!(ok(bin(B::IntDiv, n(7.5), n(2.0))), RtValue::Int(3));
+    // Choice (reference §7.5 names MOD without a rule for negative
+    // operands): the remainder of the truncating division, as DIV is
+    // truncating, so that a == (a DIV b)*b + a MOD b. -7 MOD 3 = -1.
+    assert_eq!(ok(bin(B::Mod, n(7.0), n(3.0))), RtValue::Int(1));
+    assert_eq!(ok(bin(B::Mod, n(-7.0), n(3.0))), RtValue::Int(-1));
+    assert_eq!(ok(bin(B::Mod, n(7.0), n(-3.0))), RtValue::Int(1));
+    // REAL MOD: 7.5 MOD 2 = 1.5.
+    assert_eq!(ok(bin(B::Mod, n(7.5), n(2.0))), RtValue::Real(1.5));
+}
+
+#[test]
+fn division_by_zero_is_an_error_with_its_code() {
+    for op in [B::Div, B::IntDiv, B::Mod] {
+        let e = err(bin(op, n(1.0), n(0.0)));
+        assert_eq!(e.code, codes::DIVISION_BY_ZERO, "{op:?}");
+        assert_eq!(
+            err(bin(op, n(1.5), n(0.0))).code,
+            codes::DIVISION_BY_ZERO,
+            "{op:?}"
+        );
+    }
+    assert_eq!(codes::DIVISION_BY_ZERO, "gcodec::run::division_by_zero");
+}
+
+#[test]
+fn bitwise_and_logical_operators() {
+    assert_eq!(ok(bin(B::BAnd, n(12.0), n(10.0))), RtValue::Int(8));
+    assert_eq!(ok(bin(B::BOr, n(12.0), n(10.0))), RtValue::Int(14));
+    assert_eq!(ok(bin(B::BXor, n(12.0), n(10.0))), RtValue::Int(6));
+    assert_eq!(ok(un(U::BNot, n(0.0))), RtValue::Int(-1));
+    assert_eq!(ok(un(U::BNot, n(5.0))), RtValue::Int(-6));
+    assert_eq!(
+        ok(bin(B::And, bool_(true), bool_(false))),
+        RtValue::Bool(false)
+    );
+    assert_eq!(
+        ok(bin(B::Or, bool_(true), bool_(false))),
+        RtValue::Bool(true)
+    );
+    assert_eq!(
+        ok(bin(B::Xor, bool_(true), bool_(true))),
+        RtValue::Bool(false)
+    );
+    // Numbers are truth values: not 0 is TRUE.
+    assert_eq!(ok(bin(B::And, n(2.0), n(0.5))), RtValue::Bool(true));
+    assert_eq!(ok(un(U::Not, n(0.0))), RtValue::Bool(true));
+    assert_eq!(err(bin(B::BAnd, s("A"), n(1.0))).code, codes::TYPE_MISMATCH);
+}
+
+#[test]
+fn comparisons_of_reals_are_relative() {
+    assert_eq!(ok(bin(B::Eq, n(3.0), n(3.0))), RtValue::Bool(true));
+    assert_eq!(ok(bin(B::Lt, n(2.0), n(3.0))), RtValue::Bool(true));
+    assert_eq!(ok(bin(B::Ge, n(2.0), n(3.0))), RtValue::Bool(false));
+    assert_eq!(ok(bin(B::Ne, n(2.0), n(3.0))), RtValue::Bool(true));
+    // 0.1 + 0.2 == 0.3 holds on the control (relative 1e-12) though not
+    // in IEEE arithmetic; and 0.1 + 0.2 > 0.3 does not.
+    let sum = bin(B::Add, n(0.1), n(0.2));
+    assert_eq!(ok(bin(B::Eq, sum.clone(), n(0.3))), RtValue::Bool(true));
+    assert_eq!(ok(bin(B::Gt, sum.clone(), n(0.3))), RtValue::Bool(false));
+    assert_eq!(ok(bin(B::Le, sum, n(0.3))), RtValue::Bool(true));
+    // A difference of 1e-9 is a difference.
+    assert_eq!(ok(bin(B::Eq, n(1.000000001), n(1.0))), RtValue::Bool(false));
+    // Strings compare by bytes; a CHAR is a one-character string.
+    assert_eq!(ok(bin(B::Eq, s("AB"), s("AB"))), RtValue::Bool(true));
+    assert_eq!(ok(bin(B::Lt, s("AB"), s("AC"))), RtValue::Bool(true));
+    assert_eq!(err(bin(B::Eq, s("1"), n(1.0))).code, codes::TYPE_MISMATCH);
+}
+
+#[test]
+fn concatenation_formats_numbers_as_the_control_does() {
+    assert_eq!(text(bin(B::Concat, s("N"), n(10.0))), "N10");
+    assert_eq!(text(bin(B::Concat, s("X="), n(1.5))), "X=1.5");
+    assert_eq!(text(bin(B::Concat, s(""), n(-2.25))), "-2.25");
+    // A REAL with at most 10 decimal places, trailing zeros left off.
+    assert_eq!(
+        text(bin(B::Concat, s(""), bin(B::Div, n(1.0), n(3.0)))),
+        "0.3333333333"
+    );
+    assert_eq!(
+        text(bin(B::Concat, s(""), bin(B::Div, n(6.0), n(2.0)))),
+        "3"
+    );
+    // BOOL as 1/0.
+    assert_eq!(text(bin(B::Concat, s("B"), bool_(true))), "B1");
+    assert_eq!(text(un(U::ToString, n(42.0))), "42");
+    assert_eq!(text(bin(B::Concat, n(1.0), n(2.0))), "12");
+}
+
+// ---------------------------------------------------------------------
+// Built-in functions (reference §7.6)
+
+#[test]
+fn trigonometry_is_in_degrees() {
+    assert_eq!(real(call("SIN", vec![n(30.0)])), 0.5);
+    assert_eq!(real(call("COS", vec![n(60.0)])), 0.5);
+    assert_eq!(real(call("COS", vec![n(90.0)])), 0.0);
+    assert_eq!(real(call("SIN", vec![n(-90.0)])), -1.0);
+    assert_eq!(real(call("SIN", vec![n(390.0)])), 0.5);
+    assert!(close(real(call("TAN", vec![n(45.0)])), 1.0));
+    assert!(close(
+        real(call("SIN", vec![n(45.0)])),
+        std::f64::consts::FRAC_1_SQRT_2
+    ));
+    assert_eq!(real(call("ATAN2", vec![n(1.0), n(1.0)])), 45.0);
+    assert_eq!(real(call("ATAN2", vec![n(1.0), n(-1.0)])), 135.0);
+    assert_eq!(real(call("ASIN", vec![n(0.5)])), 30.0);
+    assert_eq!(real(call("ACOS", vec![n(0.5)])), 60.0);
+    assert_eq!(err(call("ASIN", vec![n(2.0)])).code, codes::DOMAIN);
+    assert_eq!(err(call("TAN", vec![n(90.0)])).code, codes::DOMAIN);
+}
+
+#[test]
+fn arithmetic_functions() {
+    assert_eq!(real(call("ABS", vec![n(-3.5)])), 3.5);
+    assert_eq!(real(call("SQRT", vec![n(16.0)])), 4.0);
+    assert_eq!(real(call("POT", vec![n(3.0)])), 9.0);
+    assert_eq!(real(call("TRUNC", vec![n(-3.7)])), -3.0);
+    assert_eq!(real(call("ROUND", vec![n(2.5)])), 3.0);
+    assert_eq!(real(call("ROUND", vec![n(-2.5)])), -3.0);
+    assert_eq!(real(call("ROUNDUP", vec![n(3.1)])), 4.0);
+    assert_eq!(real(call("ROUNDUP", vec![n(-3.1)])), -3.0);
+    assert_eq!(real(call("ROUNDUP", vec![n(3.0)])), 3.0);
+    assert!(close(real(call("LN", vec![n(std::f64::consts::E)])), 1.0));
+    assert_eq!(real(call("EXP", vec![n(0.0)])), 1.0);
+    assert_eq!(real(call("MINVAL", vec![n(3.0), n(-1.0)])), -1.0);
+    assert_eq!(real(call("MAXVAL", vec![n(3.0), n(-1.0)])), 3.0);
+    assert_eq!(real(call("BOUND", vec![n(0.0), n(10.0), n(12.0)])), 10.0);
+    assert_eq!(real(call("BOUND", vec![n(0.0), n(10.0), n(-2.0)])), 0.0);
+    assert_eq!(real(call("BOUND", vec![n(0.0), n(10.0), n(4.0)])), 4.0);
+    let e = err(call("SQRT", vec![n(-1.0)]));
+    assert_eq!(e.code, codes::DOMAIN);
+    assert!(e.message.contains("SQRT"), "{}", e.message);
+    assert_eq!(err(call("LN", vec![n(0.0)])).code, codes::DOMAIN);
+}
+
+#[test]
+fn conversion_functions() {
+    assert_eq!(ok(call("RTOI", vec![n(2.5)])), RtValue::Int(3));
+    assert_eq!(ok(call("RTOI", vec![n(-2.5)])), RtValue::Int(-3));
+    assert_eq!(ok(call("RTOI", vec![n(2.4)])), RtValue::Int(2));
+    assert_eq!(err(call("RTOI", vec![n(1e10)])).code, codes::OVERFLOW);
+    assert_eq!(ok(call("ITOR", vec![n(2.0)])), RtValue::Real(2.0));
+    assert_eq!(ok(call("RTOB", vec![n(0.0)])), RtValue::Bool(false));
+    assert_eq!(ok(call("RTOB", vec![n(0.1)])), RtValue::Bool(true));
+    assert_eq!(ok(call("ITOB", vec![n(-3.0)])), RtValue::Bool(true));
+    assert_eq!(ok(call("BTOI", vec![bool_(true)])), RtValue::Int(1));
+    assert_eq!(ok(call("BTOR", vec![bool_(false)])), RtValue::Real(0.0));
+    assert_eq!(ok(call("NUMBER", vec![s(" -1.5 ")])), RtValue::Real(-1.5));
+    assert_eq!(ok(call("NUMBER", vec![s("2EX3")])), RtValue::Real(2000.0));
+    assert_eq!(
+        err(call("NUMBER", vec![s("1.5MM")])).code,
+        codes::INVALID_NUMBER
+    );
+    assert_eq!(ok(call("ISNUMBER", vec![s("12")])), RtValue::Bool(true));
+    assert_eq!(ok(call("ISNUMBER", vec![s("inf")])), RtValue::Bool(false));
+    assert_eq!(ok(call("ISNUMBER", vec![s("")])), RtValue::Bool(false));
+    assert_eq!(ok(call("AXNAME", vec![s("y")])), RtValue::axis("Y"));
+    assert_eq!(err(call("AXNAME", vec![s("Q")])).code, codes::UNKNOWN_AXIS);
+    // An axis name as a value: `AXSTRING(Z)`.
+    assert_eq!(text(call("AXSTRING", vec![var("Z", vec![])])), "Z");
+    assert_eq!(
+        err(call("AXSTRING", vec![n(1.0)])).code,
+        codes::TYPE_MISMATCH
+    );
+}
+
+#[test]
+fn string_functions() {
+    let t = || s("HELLO WORLD");
+    assert_eq!(ok(call("STRLEN", vec![t()])), RtValue::Int(11));
+    assert_eq!(ok(call("INDEX", vec![t(), s("O")])), RtValue::Int(4));
+    assert_eq!(ok(call("RINDEX", vec![t(), s("O")])), RtValue::Int(7));
+    assert_eq!(ok(call("INDEX", vec![t(), s("Q")])), RtValue::Int(-1));
+    assert_eq!(ok(call("MINDEX", vec![t(), s("WL")])), RtValue::Int(2));
+    assert_eq!(ok(call("MATCH", vec![t(), s("WOR")])), RtValue::Int(6));
+    assert_eq!(ok(call("MATCH", vec![t(), s("XYZ")])), RtValue::Int(-1));
+    assert_eq!(text(call("SUBSTR", vec![t(), n(6.0), n(3.0)])), "WOR");
+    assert_eq!(text(call("SUBSTR", vec![t(), n(6.0)])), "WORLD");
+    // Past the end is cut off.
+    assert_eq!(text(call("SUBSTR", vec![t(), n(9.0), n(10.0)])), "LD");
+    assert_eq!(
+        err(call("SUBSTR", vec![t(), n(-1.0)])).code,
+        codes::INDEX_OUT_OF_RANGE
+    );
+    assert_eq!(text(call("TOLOWER", vec![s("AbC1")])), "abc1");
+    assert_eq!(text(call("TOUPPER", vec![s("AbC1")])), "ABC1");
+    // A CHAR where a one-character string is needed.
+    assert_eq!(
+        err(call("INDEX", vec![t(), s("OR")])).code,
+        codes::TYPE_MISMATCH
+    );
+}
+
+#[test]
+fn sprint_directives() {
+    let v = |x: &[RtValue]| x.to_vec();
+    assert_eq!(
+        sprint("T=%D D=%D", &v(&[RtValue::Int(5), RtValue::Real(2.6)])).unwrap(),
+        "T=5 D=3"
+    );
+    assert_eq!(sprint("%F", &v(&[RtValue::Real(1.5)])).unwrap(), "1.500000");
+    assert_eq!(
+        sprint("%.3F", &v(&[RtValue::Real(2.0 / 3.0)])).unwrap(),
+        "0.667"
+    );
+    assert_eq!(
+        sprint("[%8.2F]", &v(&[RtValue::Real(-12.345)])).unwrap(),
+        "[  -12.35]"
+    );
+    assert_eq!(sprint("[%4D]", &v(&[RtValue::Int(42)])).unwrap(), "[  42]");
+    assert_eq!(
+        sprint("%E", &v(&[RtValue::Real(150.0)])).unwrap(),
+        "1.500000e+02"
+    );
+    assert_eq!(
+        sprint("%G", &v(&[RtValue::Real(0.0001)])).unwrap(),
+        "0.0001"
+    );
+    assert_eq!(
+        sprint("%G", &v(&[RtValue::Real(1234567.0)])).unwrap(),
+        "1.23457e+06"
+    );
+    assert_eq!(
+        sprint(
+            "%S-%C-%B-%X",
+            &v(&[
+                RtValue::from("AB"),
+                RtValue::Char(b'Z'),
+                RtValue::Bool(true),
+                RtValue::Int(255)
+            ])
+        )
+        .unwrap(),
+        "AB-Z-TRUE-FF"
+    );
+    assert_eq!(sprint("100%%", &[]).unwrap(), "100%");
+    assert_eq!(
+        sprint("%Q", &v(&[RtValue::Int(1)])).unwrap_err().code,
+        codes::FORMAT
+    );
+    assert_eq!(
+        sprint("%D %D", &v(&[RtValue::Int(1)])).unwrap_err().code,
+        codes::ARGUMENT_COUNT
+    );
+    // Through the evaluator.
+    assert_eq!(text(call("SPRINT", vec![s("R=%.1F"), n(2.25)])), "R=2.2");
+}
+
+#[test]
+fn function_errors_have_codes() {
+    let e = err(call("NOSUCH", vec![n(1.0)]));
+    assert_eq!(e.code, "gcodec::run::unknown_function");
+    assert!(e.message.contains("NOSUCH"));
+    assert_eq!(err(call("SIN", vec![])).code, codes::ARGUMENT_COUNT);
+    assert_eq!(
+        err(call("SIN", vec![n(1.0), n(2.0)])).code,
+        codes::ARGUMENT_COUNT
+    );
+    assert_eq!(err(call("SIN", vec![s("A")])).code, codes::TYPE_MISMATCH);
+    let omitted = Expr::Call {
+        name: "ATAN2".into(),
+        args: vec![Some(n(1.0)), None],
+    };
+    assert_eq!(err(omitted).code, codes::ARGUMENT_COUNT);
+}
+
+/// A runtime that adds one function: the executor's hook for frame and
+/// tool-management functions.
+struct WithTwice;
+
+impl RuntimeInterface for WithTwice {
+    fn function(&self, name: &str, args: &[Option<RtValue>]) -> Option<Result<RtValue, RunError>> {
+        (name == "TWICE").then(|| {
+            let x = args[0].as_ref().unwrap().to_real()?;
+            Ok(RtValue::Real(2.0 * x))
+        })
+    }
+}
+
+#[test]
+fn the_runtime_provides_further_functions() {
+    let vars = Variables::default();
+    let e = call("TWICE", vec![n(4.0)]);
+    assert_eq!(
+        eval(&Env::new(&vars, &WithTwice), &e),
+        Ok(RtValue::Real(8.0))
+    );
+    assert_eq!(
+        eval(&Env::new(&vars, &NoMachine), &e).unwrap_err().code,
+        codes::UNKNOWN_FUNCTION
+    );
+}
+
+// ---------------------------------------------------------------------
+// Conversions (reference §7.1, SPEC §10.11 table)
+
+#[test]
+fn conversions_follow_the_control_table() {
+    let int = DataType::Int;
+    assert_eq!(RtValue::Real(2.5).convert_to(int), Ok(RtValue::Int(3)));
+    assert_eq!(RtValue::Real(-2.5).convert_to(int), Ok(RtValue::Int(-3)));
+    assert_eq!(RtValue::Real(2.49).convert_to(int), Ok(RtValue::Int(2)));
+    assert_eq!(
+        RtValue::Real(3e9).convert_to(int).unwrap_err().code,
+        codes::OVERFLOW
+    );
+    assert_eq!(
+        RtValue::Int(3).convert_to(DataType::Real),
+        Ok(RtValue::Real(3.0))
+    );
+    assert_eq!(
+        RtValue::Real(0.2).convert_to(DataType::Bool),
+        Ok(RtValue::Bool(true))
+    );
+    assert_eq!(
+        RtValue::Int(0).convert_to(DataType::Bool),
+        Ok(RtValue::Bool(false))
+    );
+    assert_eq!(
+        RtValue::Bool(true).convert_to(DataType::Real),
+        Ok(RtValue::Real(1.0))
+    );
+    assert_eq!(
+        RtValue::Int(65).convert_to(DataType::Char),
+        Ok(RtValue::Char(b'A'))
+    );
+    assert_eq!(
+        RtValue::Int(256)
+            .convert_to(DataType::Char)
+            .unwrap_err()
+            .code,
+        codes::OVERFLOW
+    );
+    let string = DataType::String { max_len: 5 };
+    assert_eq!(
+        RtValue::Char(b'A').convert_to(string),
+        Ok(RtValue::from("A"))
+    );
+    assert_eq!(
+        RtValue::from("ABCDEF").convert_to(string).unwrap_err().code,
+        codes::STRING_TOO_LONG
+    );
+    // Nothing numeric into STRING, AXIS or FRAME.
+    assert_eq!(
+        RtValue::Int(1).convert_to(string).unwrap_err().code,
+        codes::TYPE_MISMATCH
+    );
+    assert_eq!(
+        RtValue::Int(1).convert_to(DataType::Axis).unwrap_err().code,
+        codes::TYPE_MISMATCH
+    );
+    assert_eq!(
+        RtValue::Int(1)
+            .convert_to(DataType::Frame)
+            .unwrap_err()
+            .code,
+        codes::TYPE_MISMATCH
+    );
+    // STRING into BOOL (empty is FALSE) and CHAR (one character).
+    assert_eq!(
+        RtValue::from("").convert_to(DataType::Bool),
+        Ok(RtValue::Bool(false))
+    );
+    assert_eq!(
+        RtValue::from("X").convert_to(DataType::Bool),
+        Ok(RtValue::Bool(true))
+    );
+    assert_eq!(
+        RtValue::from("X").convert_to(DataType::Char),
+        Ok(RtValue::Char(b'X'))
+    );
+    assert_eq!(
+        RtValue::from("XY")
+            .convert_to(DataType::Char)
+            .unwrap_err()
+            .code,
+        codes::TYPE_MISMATCH
+    );
+    assert_eq!(
+        RtValue::from("1").convert_to(int).unwrap_err().code,
+        codes::TYPE_MISMATCH
+    );
+    assert_eq!(
+        DataType::parse("STRING[12]"),
+        Some(DataType::String { max_len: 12 })
+    );
+    assert_eq!(
+        DataType::parse("string"),
+        Some(DataType::String { max_len: 200 })
+    );
+    assert_eq!(DataType::parse("STRING[0]"), None);
+    assert_eq!(DataType::parse("DOUBLE"), None);
+}
+
+// ---------------------------------------------------------------------
+// System variables from the profile
+
+#[test]
+fn system_variables_from_the_profile() {
+    let profile = machine(
+        r#"
+[work_offsets]
+supported_group8_offsets = ["G500", "G54-G57"]
+[work_offsets.values.G54]
+X = -412.5
+Z = 10.0
+[[tools]]
+number = 7
+edges = [{ d = 1, length = 120.5, radius = 5.0 }]
+"#,
+    );
+    let vars = Variables::default();
+    let env = Env::new(&vars, &profile);
+    let get = |e: Expr| eval(&env, &e);
+    let comp = |n_: f64, axis: &str, c: &str| {
+        sys("$P_UIFR", vec![n(n_), var(axis, vec![]), var(c, vec![])])
+    };
+    assert_eq!(get(comp(1.0, "X", "TR")), Ok(RtValue::Real(-412.5)));
+    assert_eq!(get(comp(1.0, "Y", "TR")), Ok(RtValue::Real(0.0)));
+    assert_eq!(get(comp(1.0, "X", "SC")), Ok(RtValue::Real(1.0)));
+    assert_eq!(
+        get(comp(7.0, "X", "TR")).unwrap_err().code,
+        codes::INDEX_OUT_OF_RANGE
+    );
+    assert!(matches!(
+        get(sys("$P_UIFR", vec![n(1.0)])),
+        Ok(RtValue::Frame(_))
+    ));
+    assert_eq!(
+        get(sys("$TC_DP3", vec![n(7.0), n(1.0)])),
+        Ok(RtValue::Real(120.5))
+    );
+    assert_eq!(
+        get(sys("$TC_DP6", vec![n(7.0), n(1.0)])),
+        Ok(RtValue::Real(5.0))
+    );
+    assert_eq!(
+        get(sys("$TC_DP12", vec![n(7.0), n(1.0)])),
+        Ok(RtValue::Real(0.0))
+    );
+    assert_eq!(
+        get(sys("$TC_DP3", vec![n(8.0), n(1.0)])).unwrap_err().code,
+        codes::INDEX_OUT_OF_RANGE
+    );
+    assert_eq!(get(sys("$P_TOOLNO", vec![])), Ok(RtValue::Int(0)));
+    assert_eq!(get(sys("$P_AXN3", vec![])), Ok(RtValue::axis("Z")));
+    assert_eq!(
+        get(sys("$MC_TOOL_CHANGE_MODE", vec![])),
+        Ok(RtValue::Int(1))
+    );
+    assert_eq!(
+        get(sys("$PI", vec![])),
+        Ok(RtValue::Real(std::f64::consts::PI))
+    );
+    let e = get(sys("$AA_IM", vec![var("X", vec![])])).unwrap_err();
+    assert_eq!(e.code, codes::SYSTEM_VARIABLE);
+    assert!(e.message.contains("$AA_IM"), "{}", e.message);
+    // `$R` are the R parameters.
+    let mut vars = Variables::default();
+    vars.set_r(4, 2.5).unwrap();
+    let env = Env::new(&vars, &profile);
+    assert_eq!(eval(&env, &sys("$R4", vec![])), Ok(RtValue::Real(2.5)));
+    assert_eq!(eval(&env, &sys("$R", vec![n(4.0)])), Ok(RtValue::Real(2.5)));
+    assert_eq!(
+        eval(&env, &sys("$MC_MM_NUM_R_PARAM", vec![])),
+        Ok(RtValue::Int(DEFAULT_R_PARAMETERS as i32))
+    );
+    // Without a machine only $PI.
+    let env = Env::new(&vars, &NoMachine);
+    assert_eq!(
+        eval(&env, &sys("$P_TOOLNO", vec![])).unwrap_err().code,
+        codes::SYSTEM_VARIABLE
+    );
+}
+
+// ---------------------------------------------------------------------
+// Variables
+
+#[test]
+fn r_parameters_have_the_default_count() {
+    let profile = builtin();
+    let mut vars = Variables::for_profile(&profile);
+    assert_eq!(vars.r_count(), 100);
+    let target = r(99.0);
+    assign(&mut vars, &mut builtin(), &target, &Value::Const(1.25)).unwrap();
+    assert_eq!(vars.r(99), Ok(1.25));
+    let e = assign(&mut vars, &mut builtin(), &r(100.0), &Value::Const(1.0)).unwrap_err();
+    assert_eq!(e.code, codes::INDEX_OUT_OF_RANGE);
+    assert!(e.message.contains("R100"), "{}", e.message);
+    // R[R1+2]: a computed index.
+    vars.set_r(1, 3.0).unwrap();
+    vars.set_r(5, 7.0).unwrap();
+    let idx = Expr::Var {
+        var_kind: VarKind::RParameter,
+        name: "R".into(),
+        indices: vec![bin(B::Add, r(1.0), n(2.0))],
+    };
+    assert_eq!(
+        eval(&Env::new(&vars, &profile), &idx),
+        Ok(RtValue::Real(7.0))
+    );
+    // An R parameter is REAL: a string cannot be stored.
+    let e = assign(
+        &mut vars,
+        &mut builtin(),
+        &r(1.0),
+        &Value::Expr(Box::new(s("A"))),
+    )
+    .unwrap_err();
+    assert_eq!(e.code, codes::TYPE_MISMATCH);
+}
+
+#[test]
+fn locals_are_per_level_and_globals_are_shared() {
+    let profile = builtin();
+    let mut vars = Variables::default();
+    vars.declare(Scope::Global, "GCOUNT", DataType::Int, &[], Init::None)
+        .unwrap();
+    vars.declare(
+        Scope::Local,
+        "LOC",
+        DataType::Real,
+        &[],
+        Init::List(&[Some(RtValue::Real(1.5))]),
+    )
+    .unwrap();
+    let read = |vars: &Variables, name: &str| eval(&Env::new(vars, &profile), &var(name, vec![]));
+    assert_eq!(read(&vars, "LOC"), Ok(RtValue::Real(1.5)));
+    vars.push_level();
+    assert_eq!(vars.level(), 2);
+    // The caller's local is not seen from the subprogram…
+    assert_eq!(
+        read(&vars, "LOC").unwrap_err().code,
+        codes::UNDEFINED_VARIABLE
+    );
+    // …the global is, and a write there is seen after the return.
+    assign(
+        &mut vars,
+        &mut builtin(),
+        &var("GCOUNT", vec![]),
+        &Value::Const(4.0),
+    )
+    .unwrap();
+    // A local of the same name in the subprogram hides nothing of the caller.
+    vars.declare(
+        Scope::Local,
+        "LOC",
+        DataType::Int,
+        &[],
+        Init::List(&[Some(RtValue::Int(9))]),
+    )
+    .unwrap();
+    assert_eq!(read(&vars, "LOC"), Ok(RtValue::Int(9)));
+    assert!(vars.pop_level());
+    assert_eq!(read(&vars, "LOC"), Ok(RtValue::Real(1.5)));
+    assert_eq!(read(&vars, "GCOUNT"), Ok(RtValue::Int(4)));
+    assert!(!vars.pop_level(), "the main program's level stays");
+    // With MD11120 the main program's variables are seen from below.
+    vars.set_lud_extended_scope(true);
+    vars.push_level();
+    assert_eq!(read(&vars, "LOC"), Ok(RtValue::Real(1.5)));
+    // Undefined names are errors naming them; an axis is a value.
+    let e = read(&vars, "NOPE").unwrap_err();
+    assert_eq!(e.code, codes::UNDEFINED_VARIABLE);
+    assert!(e.message.contains("NOPE"));
+    assert_eq!(read(&vars, "X"), Ok(RtValue::axis("X")));
+}
+
+#[test]
+fn assignment_converts_to_the_declared_type() {
+    let mut vars = Variables::default();
+    let rt = &mut builtin();
+    vars.declare(Scope::Local, "I", DataType::Int, &[], Init::None)
+        .unwrap();
+    vars.declare(Scope::Local, "FLAG", DataType::Bool, &[], Init::None)
+        .unwrap();
+    assign(&mut vars, rt, &var("I", vec![]), &Value::Const(2.5)).unwrap();
+    assign(&mut vars, rt, &var("FLAG", vec![]), &Value::Const(3.0)).unwrap();
+    assert_eq!(vars.read(VarKind::User, "I", &[]), Ok(RtValue::Int(3)));
+    assert_eq!(
+        vars.read(VarKind::User, "FLAG", &[]),
+        Ok(RtValue::Bool(true))
+    );
+    let e = assign(
+        &mut vars,
+        rt,
+        &var("I", vec![]),
+        &Value::Expr(Box::new(s("A"))),
+    )
+    .unwrap_err();
+    assert_eq!(e.code, codes::TYPE_MISMATCH);
+    // Nothing was written.
+    assert_eq!(vars.read(VarKind::User, "I", &[]), Ok(RtValue::Int(3)));
+}
+
+#[test]
+fn strings_have_their_length_and_characters() {
+    let mut vars = Variables::default();
+    let rt = &mut builtin();
+    vars.declare(
+        Scope::Local,
+        "TXT",
+        DataType::String { max_len: 5 },
+        &[],
+        Init::List(&[Some(RtValue::from("ABC"))]),
+    )
+    .unwrap();
+    // TXT[1] is the CHAR 'B'.
+    let env_read = |vars: &Variables, e: Expr| eval(&Env::new(vars, &NoMachine), &e);
+    assert_eq!(
+        env_read(&vars, var("TXT", vec![n(1.0)])),
+        Ok(RtValue::Char(b'B'))
+    );
+    assert_eq!(
+        env_read(&vars, var("TXT", vec![n(3.0)])).unwrap_err().code,
+        codes::INDEX_OUT_OF_RANGE
+    );
+    assign(
+        &mut vars,
+        rt,
+        &var("TXT", vec![n(1.0)]),
+        &Value::Expr(Box::new(s("X"))),
+    )
+    .unwrap();
+    assert_eq!(
+        vars.read(VarKind::User, "TXT", &[]),
+        Ok(RtValue::from("AXC"))
+    );
+    let long = Value::Expr(Box::new(s("ABCDEF")));
+    assert_eq!(
+        assign(&mut vars, rt, &var("TXT", vec![]), &long)
+            .unwrap_err()
+            .code,
+        codes::STRING_TOO_LONG
+    );
+    // A CHAR assigned to a STRING.
+    assign(
+        &mut vars,
+        rt,
+        &var("TXT", vec![]),
+        &Value::Expr(Box::new(var("TXT", vec![n(2.0)]))),
+    )
+    .unwrap();
+    assert_eq!(vars.read(VarKind::User, "TXT", &[]), Ok(RtValue::from("C")));
+    // Concatenation builds the value written.
+    let cat = bin(B::Concat, var("TXT", vec![]), n(12.0));
+    assign(
+        &mut vars,
+        rt,
+        &var("TXT", vec![]),
+        &Value::Expr(Box::new(cat)),
+    )
+    .unwrap();
+    assert_eq!(
+        vars.read(VarKind::User, "TXT", &[]),
+        Ok(RtValue::from("C12"))
+    );
+}
+
+// ---------------------------------------------------------------------
+// Lowered programs: declarations, arrays, lists, REP
+
+/// Runs the variable instructions and jumps of a lowered program; the
+/// other instructions are skipped.
+fn run(src: &str) -> Variables {
+    let profile = builtin();
+    let parsed = gcodec_parser::parse_bytes("test.mpf", src.as_bytes());
+    assert!(parsed.diagnostics.is_empty(), "{:#?}", parsed.diagnostics);
+    let lowered = gcodec_sema::lower(&parsed.program, &profile);
+    assert!(!lowered.has_errors(), "{:#?}", lowered.diagnostics);
+    run_document(&lowered.document, &profile)
+}
+
+fn run_document(doc: &gcodec_ail::Document, profile: &Profile) -> Variables {
+    let mut rt = profile.clone();
+    let mut vars = Variables::for_profile(profile);
+    let labels: HashMap<&str, usize> = doc
+        .instructions
+        .iter()
+        .enumerate()
+        .filter_map(|(i, ins)| match &ins.op {
+            Op::Label { name } => Some((name.as_str(), i)),
+            _ => None,
+        })
+        .collect();
+    let mut pc = 0;
+    let mut steps = 0u64;
+    while let Some(ins) = doc.instructions.get(pc) {
+        pc += 1;
+        steps += 1;
+        assert!(steps < 20_000_000, "the program does not end");
+        match &ins.op {
+            Op::Declare(d) => declare(&mut vars, &rt, d, Scope::Local).unwrap(),
+            Op::Assign { target, value } => assign(&mut vars, &mut rt, target, value).unwrap(),
+            Op::AssignList(list) => assign_list(&mut vars, &rt, list).unwrap(),
+            Op::Jump { target, condition } => {
+                let jump = match condition {
+                    None => true,
+                    Some(c) => eval::eval_bool(&Env::new(&vars, &rt), c).unwrap(),
+                };
+                if jump {
+                    pc = labels[target.as_str()];
+                }
+            }
+            _ => {}
+        }
+    }
+    vars
+}
+
+fn user(vars: &Variables, name: &str, indices: &[i32]) -> RtValue {
+    vars.read(VarKind::User, name, indices).unwrap()
+}
+
+#[test]
+fn declarations_with_lists_and_rep() {
+    let vars = run("DEF INT MAT[2,3]=SET(1,2,3,4,5,6)\n\
+         DEF REAL VEC[5]=REP(7,2)\n\
+         DEF REAL ALL[3]=REP(1.5)\n\
+         DEF INT GAP[4]=(1,,3)\n\
+         DEF STRING[10] TXT=\"AB\"\n\
+         M30\n");
+    // Storage order: the last index runs fastest.
+    assert_eq!(user(&vars, "MAT", &[0, 2]), RtValue::Int(3));
+    assert_eq!(user(&vars, "MAT", &[1, 0]), RtValue::Int(4));
+    assert_eq!(user(&vars, "MAT", &[1, 2]), RtValue::Int(6));
+    assert_eq!(user(&vars, "VEC", &[1]), RtValue::Real(7.0));
+    assert_eq!(user(&vars, "VEC", &[2]), RtValue::Real(0.0));
+    assert_eq!(user(&vars, "ALL", &[2]), RtValue::Real(1.5));
+    assert_eq!(user(&vars, "GAP", &[1]), RtValue::Int(0));
+    assert_eq!(user(&vars, "GAP", &[2]), RtValue::Int(3));
+    assert_eq!(user(&vars, "GAP", &[3]), RtValue::Int(0));
+    assert_eq!(user(&vars, "TXT", &[]), RtValue::from("AB"));
+    let e = vars.read(VarKind::User, "MAT", &[2, 0]).unwrap_err();
+    assert_eq!(e.code, codes::INDEX_OUT_OF_RANGE);
+    assert_eq!(
+        vars.read(VarKind::User, "MAT", &[1]).unwrap_err().code,
+        codes::INDEX_COUNT
+    );
+}
+
+#[test]
+fn list_assignments_and_rep_from_an_element_on() {
+    let vars = run("DEF INT MAT[2,3]\n\
+         DEF REAL VEC[6]=REP(1)\n\
+         MAT[0,1]=SET(7,8,9)\n\
+         VEC[2]=REP(5,3)\n\
+         VEC[0]=(10,,12)\n\
+         R10=SET(1,2,3)\n\
+         M30\n");
+    assert_eq!(user(&vars, "MAT", &[0, 0]), RtValue::Int(0));
+    assert_eq!(user(&vars, "MAT", &[0, 1]), RtValue::Int(7));
+    assert_eq!(user(&vars, "MAT", &[0, 2]), RtValue::Int(8));
+    assert_eq!(user(&vars, "MAT", &[1, 0]), RtValue::Int(9));
+    assert_eq!(user(&vars, "MAT", &[1, 1]), RtValue::Int(0));
+    let vec: Vec<f64> = (0..6)
+        .map(|i| user(&vars, "VEC", &[i]).to_real().unwrap())
+        .collect();
+    // (10,,12) leaves element 1 as REP(1) set it.
+    assert_eq!(vec, [10.0, 1.0, 12.0, 5.0, 5.0, 1.0]);
+    assert_eq!(vars.r(10), Ok(1.0));
+    assert_eq!(vars.r(12), Ok(3.0));
+}
+
+#[test]
+fn list_past_the_end_is_an_error_and_writes_nothing() {
+    let mut vars = Variables::default();
+    vars.declare(Scope::Local, "V", DataType::Int, &[3], Init::None)
+        .unwrap();
+    let values = [
+        Some(RtValue::Int(1)),
+        Some(RtValue::Int(2)),
+        Some(RtValue::Int(3)),
+    ];
+    let e = vars
+        .write_list(VarKind::User, "V", &[1], &values)
+        .unwrap_err();
+    assert_eq!(e.code, codes::INDEX_OUT_OF_RANGE);
+    assert_eq!(vars.read(VarKind::User, "V", &[1]), Ok(RtValue::Int(0)));
+    let e = vars
+        .fill(VarKind::User, "V", &[2], &RtValue::Int(1), Some(2))
+        .unwrap_err();
+    assert_eq!(e.code, codes::INDEX_OUT_OF_RANGE);
+    assert_eq!(
+        vars.declare(Scope::Local, "W", DataType::Int, &[2, 2, 2, 2], Init::None)
+            .unwrap_err()
+            .code,
+        codes::INVALID_DECLARATION
+    );
+}
+
+#[test]
+fn a_lowered_loop_computes() {
+    let vars = run("DEF INT CNT\n\
+         DEF REAL SUM\n\
+         WHILE CNT < 100\n\
+         CNT = CNT + 1\n\
+         SUM = SUM + CNT * 0.5\n\
+         ENDWHILE\n\
+         R1 = CNT MOD 7\n\
+         M30\n");
+    assert_eq!(user(&vars, "CNT", &[]), RtValue::Int(100));
+    // 0.5 * (1 + … + 100) = 2525.
+    assert_eq!(user(&vars, "SUM", &[]), RtValue::Real(2525.0));
+    assert_eq!(vars.r(1), Ok(2.0));
+}
+
+#[test]
+fn a_million_iterations_run_fast() {
+    // WHILE R1 < 1000000: R1 = R1 + 1, R2 = R2 + R1 * 0.5 - SIN(30).
+    // Debug builds are slow; the 0.5 s bound is for optimised builds.
+    let profile = builtin();
+    let src = "WHILE R1 < 1000000\nR1 = R1 + 1\nR2 = R2 + R1 * 0.5 - SIN(30)\nENDWHILE\nM30\n";
+    let parsed = gcodec_parser::parse_bytes("loop.mpf", src.as_bytes());
+    let lowered = gcodec_sema::lower(&parsed.program, &profile);
+    assert!(!lowered.has_errors());
+    let start = Instant::now();
+    let vars = run_document(&lowered.document, &profile);
+    let elapsed = start.elapsed();
+    assert_eq!(vars.r(1), Ok(1_000_000.0));
+    // Σ (k/2 − 1/2) for k = 1 … 10⁶ = (10⁶·(10⁶+1)/2 − 10⁶)/2.
+    assert_eq!(vars.r(2), Ok(249_999_750_000.0));
+    let bound = if cfg!(debug_assertions) { 10.0 } else { 0.5 };
+    assert!(
+        elapsed.as_secs_f64() < bound,
+        "{elapsed:?} for 1,000,000 iterations"
+    );
+}
+
+#[test]
+fn deep_expressions_are_bounded_not_a_crash() {
+    // 1000 nested additions (the parser's operator limit) evaluate…
+    let mut e = n(0.0);
+    for _ in 0..1000 {
+        e = bin(B::Add, e, n(1.0));
+    }
+    let result = std::thread::Builder::new()
+        .stack_size(2 << 20)
+        .spawn(move || {
+            let ok = ev(&e);
+            // …and far deeper ones are an error, not a stack overflow.
+            let mut deep = e;
+            for _ in 0..2000 {
+                deep = un(U::Neg, deep);
+            }
+            let too_deep = ev(&deep);
+            std::mem::forget(deep); // dropping 3000 nested boxes recursively is not under test
+            (ok, too_deep)
+        })
+        .unwrap()
+        .join()
+        .unwrap();
+    assert_eq!(result.0, Ok(RtValue::Int(1000)));
+    assert_eq!(result.1.unwrap_err().code, codes::TOO_DEEP);
+}
+
+#[test]
+fn numeric_evaluation_and_assignment_do_not_allocate() {
+    let mut rt = builtin();
+    let mut vars = Variables::default();
+    vars.declare(Scope::Local, "CNT", DataType::Int, &[], Init::None)
+        .unwrap();
+    vars.declare(Scope::Local, "TAB", DataType::Real, &[10], Init::None)
+        .unwrap();
+    vars.push_level();
+    vars.declare(Scope::Global, "GSUM", DataType::Real, &[], Init::None)
+        .unwrap();
+    vars.declare(Scope::Local, "CNT", DataType::Int, &[], Init::None)
+        .unwrap();
+    vars.declare(Scope::Local, "TAB", DataType::Real, &[10], Init::None)
+        .unwrap();
+    let cnt = var("CNT", vec![]);
+    let step = Value::Expr(Box::new(bin(B::Add, cnt.clone(), n(1.0))));
+    let tab = var("TAB", vec![bin(B::Mod, cnt.clone(), n(10.0))]);
+    let sum = Value::Expr(Box::new(bin(
+        B::Sub,
+        bin(
+            B::Add,
+            var("GSUM", vec![]),
+            bin(B::Mul, tab.clone(), n(0.5)),
+        ),
+        call("SIN", vec![r(1.0)]),
+    )));
+    let cond = bin(
+        B::And,
+        bin(B::Lt, cnt.clone(), n(1e6)),
+        un(U::Not, bool_(false)),
+    );
+    let (gsum, r1) = (var("GSUM", vec![]), r(1.0));
+    let before = allocations();
+    for _ in 0..1000 {
+        assign(&mut vars, &mut rt, &cnt, &step).unwrap();
+        assign(&mut vars, &mut rt, &tab, &Value::Const(2.0)).unwrap();
+        assign(&mut vars, &mut rt, &gsum, &sum).unwrap();
+        assign(&mut vars, &mut rt, &r1, &step).unwrap();
+        assert!(eval::eval_bool(&Env::new(&vars, &rt), &cond).unwrap());
+    }
+    assert_eq!(allocations() - before, 0, "allocations in 1000 iterations");
+    assert_eq!(vars.read(VarKind::User, "CNT", &[]), Ok(RtValue::Int(1000)));
+    // Calls and returns reuse the levels' tables.
+    let before = allocations();
+    for _ in 0..100 {
+        vars.push_level();
+        vars.pop_level();
+    }
+    assert_eq!(allocations() - before, 0, "allocations in 100 calls");
+}

@@ -1,0 +1,668 @@
+//! Runtime events: the checked-in schema is current, every kind reads and
+//! writes with the contract's field names (seeds 000, 001, 003), and the
+//! sinks and the CSV writer write what SPEC §11.x says.
+
+use std::borrow::Cow;
+use std::sync::Arc;
+
+use gcodec_exec::event::*;
+use serde_json::{Value as Json, json};
+
+const SCHEMA_PATH: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../docs/schema/events.schema.json"
+);
+
+/// Fails when `docs/schema/events.schema.json` is stale. To regenerate:
+/// `GCODEC_UPDATE_SCHEMA=1 cargo test -p gcodec-exec --test events`.
+#[test]
+fn the_checked_in_schema_is_current() {
+    let generated = events_json_schema();
+    if std::env::var_os("GCODEC_UPDATE_SCHEMA").is_some() {
+        std::fs::write(SCHEMA_PATH, &generated).expect("write the schema");
+    }
+    let checked_in = std::fs::read_to_string(SCHEMA_PATH).unwrap_or_default();
+    assert!(
+        checked_in == generated,
+        "docs/schema/events.schema.json is stale: run \
+         `GCODEC_UPDATE_SCHEMA=1 cargo test -p gcodec-exec --test events` and commit it"
+    );
+}
+
+fn source(line: u32, level: u32) -> EventSource {
+    EventSource {
+        file: Arc::from("part.mpf"),
+        line,
+        col: 1,
+        level,
+    }
+}
+
+fn event(line: u32, kind: EventKind) -> Event {
+    Event {
+        kind,
+        source: source(line, 0),
+    }
+}
+
+/// Serialises one event, checks it reads back equal, returns the JSON.
+fn round_trip(event: &Event) -> Json {
+    let value = serde_json::to_value(event).expect("serialises");
+    let back: Event = serde_json::from_value(value.clone()).expect("reads back");
+    assert_eq!(&back, event);
+    let text = serde_json::to_string(event).expect("serialises");
+    let back: Event = serde_json::from_str(&text).expect("reads back from text");
+    assert_eq!(&back, event);
+    value
+}
+
+fn linear_motion() -> MotionEvent {
+    MotionEvent {
+        motion: MotionKind::Linear,
+        from: AxisMap::from([("X", 0.0), ("Y", 0.0), ("Z", 5.0)]),
+        to: AxisMap::from([("X", 10.0), ("Y", 5.5), ("Z", 5.0)]),
+        to_machine: AxisMap::from([("X", 110.0), ("Y", 55.5), ("Z", -195.0)]),
+        centre: None,
+        radius: None,
+        turns: 0,
+        feed: Some(200.0),
+        feed_mode: Cow::Borrowed("G94"),
+        plane: Plane::G17,
+        work_offset: WorkOffsetContext::new(WorkOffsetCode::G54, None),
+    }
+}
+
+fn arc_motion() -> MotionEvent {
+    MotionEvent {
+        motion: MotionKind::ArcCw,
+        from: AxisMap::from([("X", 10.0), ("Y", 5.5), ("Z", 5.0)]),
+        to: AxisMap::from([("X", 20.0), ("Y", 15.5), ("Z", 5.0)]),
+        to_machine: AxisMap::from([("X", 20.0), ("Y", 15.5), ("Z", 5.0)]),
+        centre: Some(AxisMap::from([("X", 20.0), ("Y", 5.5)])),
+        radius: Some(10.0),
+        turns: 0,
+        feed: Some(150.0 / 7.0),
+        feed_mode: Cow::Borrowed("G94"),
+        plane: Plane::G17,
+        work_offset: WorkOffsetContext::new(WorkOffsetCode::G54, Some(Suppression::G53)),
+    }
+}
+
+/// One event of every kind, in the order a run might produce them.
+fn every_kind() -> Vec<Event> {
+    vec![
+        event(
+            3,
+            EventKind::ModalChange(ModalChangeEvent {
+                group: 8,
+                code: "G54".into(),
+                previous: Some("G500".into()),
+            }),
+        ),
+        event(
+            4,
+            EventKind::ToolSelect(ToolSelectEvent {
+                selector_kind: SelectorKind::Number,
+                selector_value: "7".into(),
+                selected_tool: Some("T7".into()),
+                spindle_extension: None,
+                timing: ToolTiming::DeferredUntilM6,
+            }),
+        ),
+        event(
+            5,
+            EventKind::MFunction(MFunctionEvent {
+                m_value: 6,
+                address_extension: None,
+                class: MClass::Tool,
+                phase: MTiming::InBlock,
+                action: MAction::ToolChange,
+            }),
+        ),
+        event(
+            5,
+            EventKind::ToolChange(ToolChangeEvent {
+                previous_tool: Some("T12".into()),
+                new_tool: Some("T7".into()),
+                selection_source: SelectionSource::PendingThenM6,
+                substituted: false,
+                trigger: ToolChangeTrigger::M6,
+            }),
+        ),
+        event(
+            6,
+            EventKind::Spindle(SpindleEvent {
+                spindle: 1,
+                state: SpindleState::Cw,
+                speed: 1200.0,
+                position: None,
+            }),
+        ),
+        event(
+            6,
+            EventKind::HFunction(HFunctionEvent {
+                h_value: 2.5,
+                address_extension: Some(2),
+                quick: false,
+                phase: MTiming::InBlock,
+            }),
+        ),
+        event(7, EventKind::Motion(linear_motion())),
+        event(8, EventKind::Motion(arc_motion())),
+        event(
+            9,
+            EventKind::Dwell(DwellEvent {
+                seconds: Some(1.5),
+                revolutions: None,
+            }),
+        ),
+        event(
+            10,
+            EventKind::Message(MessageEvent {
+                text: "roughing \"pass\" 1".into(),
+            }),
+        ),
+        event(
+            11,
+            EventKind::Call(CallEvent {
+                target: "L123".into(),
+                call_kind: CallKind::Program,
+                pass: 1,
+                passes: 2,
+                section: None,
+            }),
+        ),
+        Event {
+            kind: EventKind::Return(ReturnEvent {
+                target: "L123".into(),
+            }),
+            source: EventSource {
+                file: Arc::from("L123.SPF"),
+                line: 4,
+                col: 1,
+                level: 1,
+            },
+        },
+        event(
+            12,
+            EventKind::Stop(StopEvent {
+                reason: StopReason::PreprocessingStop,
+                detail: Some("STOPRE".into()),
+            }),
+        ),
+        event(
+            13,
+            EventKind::Diagnostic(DiagnosticEvent {
+                code: "gcodec::exec::missing_jump_target".into(),
+                severity: EventSeverity::Error,
+                message: "jump target `END` not found".into(),
+                alarm: Some(14080),
+                help: None,
+            }),
+        ),
+        event(
+            14,
+            EventKind::MFunction(MFunctionEvent {
+                m_value: 30,
+                address_extension: None,
+                class: MClass::ProgramFlow,
+                phase: MTiming::PostMotion,
+                action: MAction::ProgramEnd,
+            }),
+        ),
+        event(
+            14,
+            EventKind::ProgramEnd(ProgramEndEvent {
+                reason: ProgramEndReason::M30,
+                blocks: 14,
+            }),
+        ),
+    ]
+}
+
+#[test]
+fn every_kind_round_trips_and_names_itself() {
+    let events = every_kind();
+    let mut kinds: Vec<&str> = Vec::new();
+    for event in &events {
+        let value = round_trip(event);
+        assert_eq!(value["event"], event.kind_name());
+        assert_eq!(value["source"]["file"], *event.source.file);
+        assert_eq!(value["source"]["line"], event.source.line);
+        assert_eq!(value["source"]["col"], 1);
+        assert_eq!(value["source"]["level"], event.source.level);
+        if !kinds.contains(&event.kind_name()) {
+            kinds.push(event.kind_name());
+        }
+    }
+    // Every kind the schema knows is covered.
+    kinds.sort_unstable();
+    let mut all = EVENT_KINDS.to_vec();
+    all.sort_unstable();
+    assert_eq!(kinds, all);
+}
+
+#[test]
+fn tool_change_has_the_seed_000_fields() {
+    let value = round_trip(&every_kind()[3]);
+    assert_eq!(
+        value,
+        json!({
+            "event": "tool_change",
+            "previous_tool": "T12",
+            "new_tool": "T7",
+            "selection_source": "pending_then_m6",
+            "substituted": false,
+            "trigger": "m6",
+            "source": {"file": "part.mpf", "line": 5, "col": 1, "level": 0}
+        })
+    );
+}
+
+#[test]
+fn tool_select_has_the_seed_000_selector() {
+    let value = round_trip(&every_kind()[1]);
+    assert_eq!(value["event"], "tool_select");
+    assert_eq!(value["selector_kind"], "number");
+    assert_eq!(value["selector_value"], "7");
+    assert_eq!(value["selected_tool"], "T7");
+    assert_eq!(value["timing"], "deferred_until_m6");
+    assert_eq!(value["spindle_extension"], Json::Null);
+}
+
+#[test]
+fn m_function_has_the_seed_001_fields() {
+    let value = round_trip(&every_kind()[14]);
+    assert_eq!(
+        value,
+        json!({
+            "event": "m_function",
+            "m_value": 30,
+            "address_extension": null,
+            "class": "program_flow",
+            "phase": "post_motion",
+            "action": "program_end",
+            "source": {"file": "part.mpf", "line": 14, "col": 1, "level": 0}
+        })
+    );
+}
+
+#[test]
+fn motion_has_the_seed_003_work_offset_context() {
+    let value = round_trip(&event(8, EventKind::Motion(arc_motion())));
+    assert_eq!(value["event"], "motion");
+    assert_eq!(value["motion"], "arc_cw");
+    assert_eq!(value["effective_work_offset_selected"], "g54");
+    assert_eq!(value["effective_work_offset_enabled"], false);
+    assert_eq!(
+        value["effective_suppression_mask"],
+        "suppress_settable_and_programmable"
+    );
+    assert_eq!(value["centre"], json!({"X": 20.0, "Y": 5.5}));
+    assert_eq!(value["radius"], 10.0);
+    assert_eq!(value["plane"], "G17");
+    assert_eq!(value["feed_mode"], "G94");
+}
+
+#[test]
+fn a_linear_motion_is_compact_and_keeps_the_axis_order() {
+    let motion = event(7, EventKind::Motion(linear_motion()));
+    let value = round_trip(&motion);
+    assert_eq!(
+        value,
+        json!({
+            "event": "motion",
+            "motion": "linear",
+            "from": {"X": 0.0, "Y": 0.0, "Z": 5.0},
+            "to": {"X": 10.0, "Y": 5.5, "Z": 5.0},
+            "to_machine": {"X": 110.0, "Y": 55.5, "Z": -195.0},
+            "feed": 200.0,
+            "feed_mode": "G94",
+            "plane": "G17",
+            "effective_work_offset_selected": "g54",
+            "effective_work_offset_enabled": true,
+            "effective_suppression_mask": "none",
+            "source": {"file": "part.mpf", "line": 7, "col": 1, "level": 0}
+        })
+    );
+    // serde_json's map sorts keys; the text keeps the program's order.
+    let mut reversed = linear_motion();
+    reversed.to = AxisMap::from([("Z", 1.0), ("A", 2.0), ("X", 3.0)]);
+    let text = serde_json::to_string(&event(7, EventKind::Motion(reversed))).expect("serialises");
+    assert!(text.contains(r#""to":{"Z":1.0,"A":2.0,"X":3.0}"#), "{text}");
+    let back: Event = serde_json::from_str(&text).expect("reads back");
+    let EventKind::Motion(back) = back.kind else {
+        panic!("not a motion")
+    };
+    let order: Vec<&str> = back.to.iter().map(|(axis, _)| axis).collect();
+    assert_eq!(order, ["Z", "A", "X"]);
+}
+
+#[test]
+fn work_offset_context_follows_seed_003() {
+    let plain = WorkOffsetContext::new(WorkOffsetCode(505), None);
+    assert!(plain.effective_work_offset_enabled);
+    assert_eq!(plain.effective_suppression_mask, SuppressionMask::None);
+    // G500 deactivates the settable offset; suppression keeps the
+    // selection.
+    assert!(!WorkOffsetContext::new(WorkOffsetCode::G500, None).effective_work_offset_enabled);
+    let supa = WorkOffsetContext::new(WorkOffsetCode::G54, Some(Suppression::Supa));
+    assert_eq!(supa.effective_work_offset_selected, WorkOffsetCode::G54);
+    assert!(!supa.effective_work_offset_enabled);
+    let names: Vec<Json> = [
+        None,
+        Some(Suppression::G53),
+        Some(Suppression::G153),
+        Some(Suppression::Supa),
+    ]
+    .into_iter()
+    .map(|s| serde_json::to_value(SuppressionMask::from(s)).expect("serialises"))
+    .collect();
+    assert_eq!(
+        names,
+        [
+            "none",
+            "suppress_settable_and_programmable",
+            "suppress_settable_programmable_and_basic",
+            "suppress_settable_programmable_basic_and_external",
+        ]
+    );
+    assert_eq!(WorkOffsetCode::parse("G505"), Some(WorkOffsetCode(505)));
+    assert_eq!(WorkOffsetCode::parse("g54"), Some(WorkOffsetCode::G54));
+    assert_eq!(WorkOffsetCode::parse("G"), None);
+    assert_eq!(WorkOffsetCode::parse("G+5"), None);
+    assert_eq!(WorkOffsetCode::parse("SUPA"), None);
+    assert!(serde_json::from_value::<WorkOffsetCode>(json!("g5x")).is_err());
+}
+
+#[test]
+fn optional_fields_are_left_out_when_absent() {
+    let value = round_trip(&event(7, EventKind::Motion(linear_motion())));
+    for field in ["centre", "radius", "turns"] {
+        assert!(value.get(field).is_none(), "{field} present: {value}");
+    }
+    let rapid = MotionEvent {
+        motion: MotionKind::Rapid,
+        feed: None,
+        ..linear_motion()
+    };
+    let value = round_trip(&event(7, EventKind::Motion(rapid)));
+    assert_eq!(value["feed"], Json::Null);
+    let value = round_trip(&every_kind()[13]);
+    assert_eq!(value["alarm"], 14080);
+    assert!(value.get("help").is_none());
+}
+
+#[test]
+fn axis_maps_update_in_place() {
+    let mut map = AxisMap::from([("X", 1.0), ("Y", 2.0)]);
+    assert!(map.update("Y", 3.0));
+    assert!(!map.update("Z", 4.0));
+    map.insert(Cow::Owned("C1".to_owned()), 90.0);
+    map.insert(Cow::Borrowed("X"), 5.0);
+    assert_eq!(map.get("X"), Some(5.0));
+    assert_eq!(map.get("Y"), Some(3.0));
+    assert_eq!(map.get("C1"), Some(90.0));
+    assert_eq!(map.len(), 3);
+    let mut copy = AxisMap::from([("A", 0.0)]);
+    copy.copy_from(&map);
+    assert_eq!(copy, map);
+    for value in copy.values_mut() {
+        *value = 0.0;
+    }
+    assert_eq!(copy.get("C1"), Some(0.0));
+    copy.clear();
+    assert!(copy.is_empty());
+}
+
+#[test]
+fn jsonl_writes_one_object_a_line() {
+    let events = every_kind();
+    let mut sink = JsonlSink::new(Vec::new());
+    for event in &events {
+        sink.event(event).expect("writes");
+    }
+    sink.finish().expect("flushes");
+    let bytes = sink.into_inner().expect("flushes");
+    let text = String::from_utf8(bytes).expect("UTF-8");
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), events.len());
+    assert!(text.ends_with('\n'));
+    for (line, event) in lines.iter().zip(&events) {
+        let back: Event = serde_json::from_str(line).expect("each line is an event");
+        assert_eq!(&back, event);
+    }
+    insta::assert_snapshot!("jsonl", text);
+}
+
+#[test]
+fn the_text_trace_is_stable() {
+    let mut sink = TextSink::new(Vec::new());
+    for event in &every_kind() {
+        sink.event(event).expect("writes");
+    }
+    let text = String::from_utf8(sink.into_inner().expect("flushes")).expect("UTF-8");
+    assert_eq!(text.lines().count(), every_kind().len());
+    insta::assert_snapshot!("text_trace", text);
+}
+
+#[test]
+fn the_text_trace_rounds_numbers_for_reading() {
+    let mut motion = linear_motion();
+    motion.to = AxisMap::from([("X", 1.0 / 3.0), ("Y", -0.00001), ("Z", -2.5)]);
+    motion.feed = Some(1e20);
+    let mut line = String::new();
+    write_trace_line(&mut line, &event(7, EventKind::Motion(motion))).expect("writes");
+    assert!(
+        line.starts_with("7:1 [0] motion linear X0.3333 Y0 Z-2.5 F1e20 G94"),
+        "{line}"
+    );
+}
+
+#[test]
+fn sinks_compose_and_count() {
+    let events = every_kind();
+    let mut counting = CountingSink::new();
+    let mut kept = VecSink::new();
+    {
+        let mut sinks: Vec<Box<dyn EventSink>> = vec![Box::new(&mut counting), Box::new(&mut kept)];
+        for event in &events {
+            for sink in &mut sinks {
+                sink.event(event).expect("counts");
+            }
+        }
+        for sink in &mut sinks {
+            sink.finish().expect("finishes");
+        }
+    }
+    assert_eq!(counting.total(), events.len() as u64);
+    assert_eq!(counting.count("motion"), 2);
+    assert_eq!(counting.count("m_function"), 2);
+    assert_eq!(counting.count("no_such_kind"), 0);
+    assert_eq!(kept.events, events);
+}
+
+fn row() -> BlockRow {
+    let mut row = BlockRow {
+        block_number: Some(20),
+        file: Arc::from("part.mpf"),
+        line: 7,
+        level: 0,
+        positions: AxisMap::from([("X", 10.0), ("Y", 5.5), ("Z", 0.1)]),
+        tool: Some("T7".into()),
+        edge: 1,
+        feed: 200.0,
+        spindle_speed: 1200.0,
+        spindle: SpindleState::Cw,
+        ..BlockRow::default()
+    };
+    for (group, code) in [
+        (1, "G1"),
+        (6, "G17"),
+        (7, "G40"),
+        (8, "G54"),
+        (10, "G64"),
+        (13, "G71"),
+        (14, "G90"),
+        (15, "G94"),
+    ] {
+        assert!(row.set_modal(group, Cow::Borrowed(code)));
+    }
+    assert!(!row.set_modal(2, Cow::Borrowed("G4")));
+    row
+}
+
+#[test]
+fn csv_has_a_header_and_one_row_per_block() {
+    let axes = ["X", "Y", "Z", "A"].map(Cow::Borrowed);
+    let mut csv = CsvWriter::new(Vec::new(), axes).expect("header");
+    csv.row(&row()).expect("row");
+    let mut unnumbered = row();
+    unnumbered.block_number = None;
+    unnumbered.tool = Some("DRILL,10 \"long\"".into());
+    unnumbered.edge = 0;
+    unnumbered.spindle = SpindleState::Stopped;
+    unnumbered.line = 8;
+    csv.row(&unnumbered).expect("row");
+    csv.finish().expect("flushes");
+    let text = String::from_utf8(csv.into_inner().expect("flushes")).expect("UTF-8");
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines,
+        [
+            "block,file,line,level,X,Y,Z,A,tool,edge,feed,spindle_speed,spindle,\
+             motion,plane,radius_compensation,work_offset,path_mode,units,dimensions,feed_mode",
+            "20,part.mpf,7,0,10,5.5,0.1,,T7,1,200,1200,cw,G1,G17,G40,G54,G64,G71,G90,G94",
+            ",part.mpf,8,0,10,5.5,0.1,,\"DRILL,10 \"\"long\"\"\",0,200,1200,stopped,\
+             G1,G17,G40,G54,G64,G71,G90,G94",
+        ]
+    );
+}
+
+#[test]
+fn diagnostics_take_the_severity_of_source_diagnostics() {
+    assert_eq!(
+        EventSeverity::from(gcodec_source::Severity::Warning),
+        EventSeverity::Warning
+    );
+    assert_eq!(
+        serde_json::to_value(EventSeverity::Advice).expect("serialises"),
+        "advice"
+    );
+}
+
+#[test]
+fn a_motion_event_stays_small() {
+    // Events are built on the stack for every block; the commonest must
+    // not be boxed, and the rest must not make it bigger.
+    assert!(
+        std::mem::size_of::<Event>() <= 208,
+        "{}",
+        std::mem::size_of::<Event>()
+    );
+}
+
+/// The values the hand-written motion JSON must write exactly as serde
+/// does: whole, with few and many decimals, tiny, huge, negative, signed
+/// zero, not finite, and a spread of pseudo-random ones.
+fn awkward_numbers() -> Vec<f64> {
+    let mut values = vec![
+        0.0,
+        -0.0,
+        1.0,
+        -1.0,
+        0.1,
+        0.0001,
+        0.00015,
+        0.00001,
+        1e-7,
+        123.4567,
+        -123.4567,
+        999_999_999.999_9,
+        1e9,
+        1e9 + 0.5,
+        123_456_789_012.5,
+        1e15,
+        1e16,
+        1e17,
+        1e300,
+        5e-324,
+        f64::MAX,
+        1.0 / 3.0,
+        2.0 / 3.0,
+        0.3,
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    for _ in 0..20_000 {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        let digits = (state >> 33) as i64 % 2_000_000_000 - 1_000_000_000;
+        let decimals = (state >> 20) % 7;
+        values.push(digits as f64 / 10f64.powi(decimals as i32));
+        values.push(f64::from_bits(state >> 2));
+    }
+    values
+}
+
+#[test]
+fn hand_written_motion_json_is_what_serde_writes() {
+    let mut sink = JsonlSink::new(Vec::new());
+    let mut expected = String::new();
+    let numbers = awkward_numbers();
+    for (index, chunk) in numbers.chunks(3).enumerate() {
+        let value = |i: usize| chunk.get(i).copied().unwrap_or(0.0);
+        let mut motion = arc_motion();
+        motion.to = AxisMap::from([("X", value(0)), ("Y", value(1)), ("Z", value(2))]);
+        motion.radius = Some(value(1));
+        motion.feed = (index % 2 == 0).then(|| value(2));
+        motion.turns = (index % 3) as u32;
+        motion.centre = (index % 4 != 0).then(|| AxisMap::from([("X", value(2))]));
+        motion.from.insert(Cow::Owned("C\"1".into()), value(0));
+        let source = EventSource {
+            file: Arc::from(if index % 5 == 0 {
+                "dir\\odd \"name\".mpf"
+            } else {
+                "part.mpf"
+            }),
+            line: index as u32,
+            col: u32::MAX,
+            level: 3,
+        };
+        let event = Event {
+            kind: EventKind::Motion(motion),
+            source,
+        };
+        expected.push_str(&serde_json::to_string(&event).expect("serialises"));
+        expected.push('\n');
+        sink.event(&event).expect("writes");
+    }
+    let written = String::from_utf8(sink.into_inner().expect("flushes")).expect("UTF-8");
+    for (line, (got, want)) in written.lines().zip(expected.lines()).enumerate() {
+        assert_eq!(got, want, "line {line}");
+    }
+    assert_eq!(written, expected);
+}
+
+#[test]
+fn csv_numbers_are_written_exactly() {
+    let numbers = awkward_numbers();
+    let mut csv = CsvWriter::new(Vec::new(), [Cow::Borrowed("X")]).expect("header");
+    let mut row = row();
+    for value in &numbers {
+        row.positions = AxisMap::from([("X", *value)]);
+        csv.row(&row).expect("row");
+    }
+    let text = String::from_utf8(csv.into_inner().expect("flushes")).expect("UTF-8");
+    for (line, value) in text.lines().skip(1).zip(&numbers) {
+        let cell = line.split(',').nth(4).unwrap_or("?");
+        assert_eq!(cell, value.to_string(), "{line}");
+        if value.is_finite() {
+            assert_eq!(cell.parse::<f64>().ok(), Some(*value));
+        }
+    }
+    assert_eq!(text.lines().count(), numbers.len() + 1);
+}
