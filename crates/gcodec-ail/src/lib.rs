@@ -243,6 +243,8 @@ pub struct MFunction {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Declare {
     pub name: String,
+    /// `INT`, `REAL`, `BOOL`, `CHAR`, `STRING[n]` (`STRING` where the
+    /// length is not a constant), `AXIS`, `FRAME`.
     pub data_type: String,
     pub dims: Vec<Value>,
     /// One value per element in storage order (the last index runs
@@ -797,7 +799,8 @@ pub struct Procedure {
 pub struct Parameter {
     /// In upper case.
     pub name: String,
-    /// `INT`, `REAL`, `BOOL`, `CHAR`, `STRING`, `AXIS`, `FRAME`.
+    /// `INT`, `REAL`, `BOOL`, `CHAR`, `STRING[n]` (`STRING` where the
+    /// length is not a constant), `AXIS`, `FRAME`.
     pub data_type: String,
     /// `VAR`: the caller's variable itself, not a copy.
     pub by_reference: bool,
@@ -819,6 +822,7 @@ pub struct External {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ExternalParameter {
+    /// As in [`Parameter::data_type`].
     pub data_type: String,
     pub by_reference: bool,
     /// One entry per array dimension; empty ones (`REAL[,]`) are `null`.

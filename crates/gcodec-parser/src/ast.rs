@@ -564,20 +564,6 @@ pub enum TypeKind {
 }
 
 impl TypeKind {
-    /// The type's keyword as the control spells it (`STRING` without its
-    /// length).
-    pub const fn keyword(&self) -> &'static str {
-        match self {
-            TypeKind::Int => "INT",
-            TypeKind::Real => "REAL",
-            TypeKind::Bool => "BOOL",
-            TypeKind::Char => "CHAR",
-            TypeKind::String { .. } => "STRING",
-            TypeKind::Axis => "AXIS",
-            TypeKind::Frame => "FRAME",
-        }
-    }
-
     /// The type named `name` (case-insensitive), without a string length.
     pub fn from_name(name: &str) -> Option<Self> {
         const NAMES: [&str; 7] = ["INT", "REAL", "BOOL", "CHAR", "STRING", "AXIS", "FRAME"];

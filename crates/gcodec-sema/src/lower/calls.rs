@@ -281,7 +281,7 @@ impl Lowering<'_> {
                 }
                 gcodec_ail::Parameter {
                     name: p.name.to_ascii_uppercase().to_string(),
-                    data_type: p.ty.kind.keyword().to_owned(),
+                    data_type: crate::types::DataType::from_ast(&p.ty.kind).describe(),
                     by_reference: p.by_reference,
                     dims: p.dims.iter().map(values::value).collect(),
                     default: p.default.as_ref().map(values::value),
@@ -309,7 +309,7 @@ impl Lowering<'_> {
             .params
             .iter()
             .map(|p| gcodec_ail::ExternalParameter {
-                data_type: p.ty.kind.keyword().to_owned(),
+                data_type: crate::types::DataType::from_ast(&p.ty.kind).describe(),
                 by_reference: p.by_reference,
                 dims: p
                     .dims
