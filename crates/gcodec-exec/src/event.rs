@@ -1028,30 +1028,41 @@ fn write_f64_json(out: &mut Vec<u8>, value: f64) {
     use serde_json::ser::Formatter;
     if !value.is_finite() {
         out.extend_from_slice(b"null");
-        return;
+    } else if !write_fixed_point(out, value, true) {
+        // Writing into a vector does not fail.
+        let _ = serde_json::ser::CompactFormatter.write_f64(out, value);
     }
-    // Positions and feeds mostly have at most 4 decimals. When
-    // `n / 10^4` reads back as `value` (IEEE division rounds correctly,
-    // so this is exactly the round-trip test), that decimal is the
-    // shortest text: below 1e9 an f64's spacing is far under 1e-4, so no
-    // other multiple of 1e-4 reads back as the same value.
+}
+
+/// Writes `value` with at most 4 decimals when that is its shortest text,
+/// a whole number as `1.0` if `point_zero` (JSON) or `1` (Rust's `{}`);
+/// false, writing nothing, when it is no such number.
+///
+/// Positions and feeds mostly have at most 4 decimals. When `n / 10^4`
+/// reads back as `value` (IEEE division rounds correctly, so this is
+/// exactly the round-trip test), that decimal is the shortest text: below
+/// 1e9 an f64's spacing is far under 1e-4, so no other multiple of 1e-4
+/// reads back as the same value.
+fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> bool {
     let scaled = (value * 1e4).round();
-    if value != 0.0 && value.abs() < 1e9 && scaled / 1e4 == value {
-        if value < 0.0 {
-            out.push(b'-');
-        }
-        // |scaled| < 1e13: exact in u64.
-        let scaled = scaled.abs() as u64;
-        write_u64(out, scaled / 10_000);
-        out.push(b'.');
-        match fraction_digits(scaled % 10_000, &mut [0; 4]) {
-            "" => out.push(b'0'),
-            fraction => out.extend_from_slice(fraction.as_bytes()),
-        }
-        return;
+    if !(value != 0.0 && value.abs() < 1e9 && scaled / 1e4 == value) {
+        return false;
     }
-    // Writing into a vector does not fail.
-    let _ = serde_json::ser::CompactFormatter.write_f64(out, value);
+    if value < 0.0 {
+        out.push(b'-');
+    }
+    // |scaled| < 1e13: exact in u64.
+    let scaled = scaled.abs() as u64;
+    write_u64(out, scaled / 10_000);
+    match fraction_digits(scaled % 10_000, &mut [0; 4]) {
+        "" if point_zero => out.extend_from_slice(b".0"),
+        "" => {}
+        fraction => {
+            out.push(b'.');
+            out.extend_from_slice(fraction.as_bytes());
+        }
+    }
+    true
 }
 
 /// `fraction` (0…9999) as 4 decimals without trailing zeros; empty for
@@ -1608,32 +1619,15 @@ impl<W: Write> CsvWriter<W> {
 /// exponent, no `.0`), through the fixed-point path of
 /// [`write_f64_json`] where it applies.
 fn write_f64_csv(out: &mut Vec<u8>, value: f64) {
-    let scaled = (value * 1e4).round();
-    if value != 0.0 && value.abs() < 1e9 && scaled / 1e4 == value {
-        if value < 0.0 {
-            out.push(b'-');
-        }
-        let scaled = scaled.abs() as u64;
-        write_u64(out, scaled / 10_000);
-        let mut fraction_buffer = [0; 4];
-        let fraction = fraction_digits(scaled % 10_000, &mut fraction_buffer);
-        if !fraction.is_empty() {
-            out.push(b'.');
-            out.extend_from_slice(fraction.as_bytes());
-        }
-        return;
+    if !write_fixed_point(out, value, false) {
+        // Writing into a vector does not fail.
+        let _ = write!(out, "{value}");
     }
-    // Writing into a vector does not fail.
-    let _ = write!(out, "{value}");
 }
 
 fn write_csv_field(out: &mut Vec<u8>, field: &str) {
-    if field.contains([',', '"', '\n', '\r']) {
-        // Writing into a vector does not fail.
-        let _ = write!(out, "{}", CsvField(field));
-    } else {
-        out.extend_from_slice(field.as_bytes());
-    }
+    // Writing into a vector does not fail.
+    let _ = write!(out, "{}", CsvField(field));
 }
 
 /// A CSV field, quoted when it must be.

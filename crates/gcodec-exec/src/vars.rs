@@ -21,8 +21,6 @@
 //! levels are kept for reuse, and assignments overwrite in place, so that
 //! the store does not grow with the number of assignments or calls.
 
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
 use std::sync::Arc;
 
 use gcodec_ail::VarKind;
@@ -277,35 +275,9 @@ pub enum Init<'a> {
     Repeat(&'a RtValue, Option<usize>),
 }
 
-/// FxHash (the rustc hasher): names are short and not chosen by an
-/// attacker, and lookups are on the hot path of every loop.
-#[derive(Default, Clone, Copy)]
-struct FxHasher(u64);
-
-impl Hasher for FxHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        const K: u64 = 0x51_7c_c1_b7_27_22_0a_95;
-        let mut chunks = bytes.chunks_exact(8);
-        for chunk in &mut chunks {
-            let mut word = [0u8; 8];
-            word.copy_from_slice(chunk);
-            self.0 = (self.0.rotate_left(5) ^ u64::from_le_bytes(word)).wrapping_mul(K);
-        }
-        for &b in chunks.remainder() {
-            self.0 = (self.0.rotate_left(5) ^ u64::from(b)).wrapping_mul(K);
-        }
-    }
-
-    fn write_u8(&mut self, i: u8) {
-        self.0 = (self.0.rotate_left(5) ^ u64::from(i)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
-type FxMap<V> = HashMap<Box<str>, V, BuildHasherDefault<FxHasher>>;
+/// Names are short and not chosen by an attacker, and lookups are on
+/// the hot path of every loop: FxHash.
+type FxMap<V> = rustc_hash::FxHashMap<Box<str>, V>;
 
 /// The variables of one program level, or the global ones.
 #[derive(Clone, Debug, Default)]

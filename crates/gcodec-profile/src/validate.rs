@@ -64,15 +64,7 @@ fn check_g_codes(g: &GCodes, out: &mut Vec<Diagnostic>) {
     let mut groups = BTreeSet::new();
     for group in &g.unsupported_groups {
         if !(1..=64).contains(group.get_ref()) {
-            out.push(
-                error(
-                    OUT_OF_RANGE,
-                    group,
-                    format!("`{}` is not a G group", group.get_ref()),
-                    "here",
-                )
-                .with_help("G groups are numbered 1 to 64"),
-            );
+            out.push(not_a_group(group, ""));
         }
         if !groups.insert(*group.get_ref()) {
             out.push(error(
@@ -92,6 +84,17 @@ fn error<T>(
     label: &'static str,
 ) -> Diagnostic {
     Diagnostic::error(code, message).with_label(span(at.span()), label)
+}
+
+/// A G group number outside 1…64; `example` ends the help.
+fn not_a_group<T: std::fmt::Display>(group: &Spanned<T>, example: &str) -> Diagnostic {
+    error(
+        OUT_OF_RANGE,
+        group,
+        format!("`{}` is not a G group", group.get_ref()),
+        "here",
+    )
+    .with_help(format!("G groups are numbered 1 to 64{example}"))
 }
 
 fn check_spindles(spindles: &[Spanned<u32>], out: &mut Vec<Diagnostic>) {
@@ -185,15 +188,7 @@ fn check_modal_defaults(profile: &Profile, out: &mut Vec<Diagnostic>) {
             .parse::<u8>()
             .is_ok_and(|g| (1..=64).contains(&g))
         {
-            out.push(
-                error(
-                    OUT_OF_RANGE,
-                    group,
-                    format!("`{}` is not a G group", group.get_ref()),
-                    "here",
-                )
-                .with_help("G groups are numbered 1 to 64, e.g. `8 = \"G54\"`"),
-            );
+            out.push(not_a_group(group, ", e.g. `8 = \"G54\"`"));
         }
         if code.get_ref().trim().is_empty() {
             out.push(error(OUT_OF_RANGE, code, "empty G code".into(), "here"));

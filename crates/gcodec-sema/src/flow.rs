@@ -18,9 +18,11 @@
 
 use std::collections::HashMap;
 
+use rustc_hash::FxHashMap;
+
 use gcodec_ail::JumpSearch;
 use gcodec_parser::ast::{
-    Block, BlockNumber, CaseArm, GotoKind, Jump, JumpTarget, Program, RepeatSection, StatementKind,
+    BlockNumber, CaseArm, GotoKind, Jump, JumpTarget, Program, RepeatSection, StatementKind,
     StructureKind,
 };
 
@@ -34,17 +36,25 @@ pub(crate) enum Role {
 
 /// The control-flow facts of a program, computed before lowering.
 pub(crate) struct Flow {
-    /// Per block: the structures it opens, splits or closes.
-    roles: HashMap<usize, Vec<(usize, Role)>>,
-    /// Per block: the names of the resolved jump targets it carries.
-    targets: HashMap<usize, Vec<String>>,
+    /// The blocks control flow touches (most blocks are not among them),
+    /// looked up once per block.
+    blocks: FxHashMap<usize, BlockFlow>,
     /// Blocks by label (upper case) and by block number, in order.
     labels: HashMap<String, Vec<usize>>,
     numbers: HashMap<u64, Vec<usize>>,
     /// Per `REPEAT` block: its section, or the target that is missing.
     sections: HashMap<usize, Result<Section, String>>,
-    /// Per block: the section-end labels after its last instruction.
-    section_ends: HashMap<usize, Vec<String>>,
+}
+
+/// What control flow says about one block.
+#[derive(Default)]
+pub(crate) struct BlockFlow {
+    /// The structures it opens, splits or closes.
+    pub(crate) roles: Vec<(usize, Role)>,
+    /// The names of the resolved jump targets it carries.
+    pub(crate) targets: Vec<String>,
+    /// The labels of the `REPEAT` sections that end with it.
+    pub(crate) section_ends: Vec<String>,
 }
 
 /// Where a jump target is searched from the jump's block.
@@ -97,43 +107,50 @@ pub(crate) enum Resolved {
 
 impl Flow {
     pub(crate) fn new(program: &Program) -> Self {
-        let mut roles: HashMap<usize, Vec<(usize, Role)>> = HashMap::new();
+        let mut blocks: FxHashMap<usize, BlockFlow> = FxHashMap::default();
         for (i, s) in program.structures.iter().enumerate() {
-            roles
-                .entry(s.open as usize)
-                .or_default()
-                .push((i, Role::Open));
-            if let Some(m) = s.middle {
-                roles.entry(m as usize).or_default().push((i, Role::Middle));
-            }
-            if let Some(c) = s.close {
-                roles.entry(c as usize).or_default().push((i, Role::Close));
+            let parts = [
+                (Some(s.open), Role::Open),
+                (s.middle, Role::Middle),
+                (s.close, Role::Close),
+            ];
+            for (block, role) in parts {
+                if let Some(block) = block {
+                    blocks
+                        .entry(block as usize)
+                        .or_default()
+                        .roles
+                        .push((i, role));
+                }
             }
         }
         // One walk over the statements finds every jump and section.
-        let jumps: Vec<(usize, Search, &JumpTarget)> = program
-            .blocks
-            .iter()
-            .enumerate()
-            .flat_map(|(i, block)| jumps(block).map(move |(kind, target)| (i, kind, target)))
-            .collect();
+        let mut jumps: Vec<(usize, Search, &JumpTarget)> = Vec::new();
+        let mut repeats: Vec<(usize, &RepeatSection)> = Vec::new();
+        for (i, block) in program.blocks.iter().enumerate() {
+            for statement in block.statements.iter() {
+                let (single, arms, default): (Option<&Jump>, &[CaseArm], Option<&Jump>) =
+                    match &statement.kind {
+                        StatementKind::Goto(j) => (Some(j.as_ref()), &[], None),
+                        StatementKind::IfGoto(g) => (Some(&g.jump), &[], None),
+                        StatementKind::Case(c) => (None, &c.arms, c.default.as_ref()),
+                        StatementKind::RepeatSection(r) => {
+                            repeats.push((i, r.as_ref()));
+                            continue;
+                        }
+                        _ => continue,
+                    };
+                let all = single.into_iter().chain(arms.iter().map(|arm| &arm.jump));
+                for jump in all.chain(default) {
+                    if let Some(target) = &jump.target {
+                        jumps.push((i, Search::of(jump.goto), target));
+                    }
+                }
+            }
+        }
         let computed_jumps = jumps
             .iter()
             .any(|(_, _, target)| matches!(target, JumpTarget::Expr(_)));
-        let repeats: Vec<(usize, &RepeatSection)> = program
-            .blocks
-            .iter()
-            .enumerate()
-            .flat_map(|(i, block)| {
-                block
-                    .statements
-                    .iter()
-                    .filter_map(move |st| match &st.kind {
-                        StatementKind::RepeatSection(r) => Some((i, r.as_ref())),
-                        _ => None,
-                    })
-            })
-            .collect();
         // Only the block numbers some jump or section names are indexed:
         // most blocks of a program have a number, few are jumped to.
         let named = jumps.iter().map(|(_, _, t)| *t).chain(
@@ -164,12 +181,10 @@ impl Flow {
             }
         }
         let mut flow = Self {
-            roles,
-            targets: HashMap::new(),
+            blocks,
             labels,
             numbers,
             sections: HashMap::new(),
-            section_ends: HashMap::new(),
         };
         // Every jump's target block carries its label.
         for (i, kind, target) in jumps {
@@ -179,16 +194,17 @@ impl Flow {
         }
         for (i, repeat) in repeats {
             let section = flow.section(i, repeat);
-            if let Ok((start, end, _)) = &section {
+            if let Ok((start, end)) = &section {
                 flow.add_target(*start, label_name(&repeat.start, *start));
-                flow.section_ends
+                flow.blocks
                     .entry(*end)
                     .or_default()
+                    .section_ends
                     .push(section_end_label(i));
             }
             flow.sections.insert(
                 i,
-                section.map(|(start, _, _)| Section {
+                section.map(|(start, _)| Section {
                     start: label_name(&repeat.start, start),
                     end: section_end_label(i),
                 }),
@@ -210,7 +226,7 @@ impl Flow {
     }
 
     fn add_target(&mut self, block: usize, name: String) {
-        let names = self.targets.entry(block).or_default();
+        let names = &mut self.blocks.entry(block).or_default().targets;
         if !names.contains(&name) {
             names.push(name);
         }
@@ -221,9 +237,8 @@ impl Flow {
     /// reading, SPEC §10.7): `REPEATB L` the block labelled `L`, searched
     /// backward first; `REPEAT A B` from `A` (backward first) to the next
     /// `B` from there; `REPEAT L` from `L` (backward) to the first
-    /// `ENDLABEL` after it, or to the block before the `REPEAT`. The
-    /// third value tells whether a missing target is the end.
-    fn section(&self, at: usize, repeat: &RepeatSection) -> Result<(usize, usize, bool), String> {
+    /// `ENDLABEL` after it, or to the block before the `REPEAT`.
+    fn section(&self, at: usize, repeat: &RepeatSection) -> Result<(usize, usize), String> {
         let start_search = if repeat.single_block || repeat.end.is_some() {
             Search::BackwardThenForward
         } else {
@@ -233,7 +248,7 @@ impl Flow {
             .search(at, start_search, &repeat.start)
             .ok_or_else(|| target_text(&repeat.start))?;
         if repeat.single_block {
-            return Ok((start, start, false));
+            return Ok((start, start));
         }
         if let Some(end) = &repeat.end {
             // The end may be the start block itself.
@@ -241,14 +256,14 @@ impl Flow {
                 .search(start.wrapping_sub(1), Search::Forward, end)
                 .filter(|&e| e >= start)
                 .ok_or_else(|| target_text(end))?;
-            return Ok((start, end, true));
+            return Ok((start, end));
         }
         let end = self
             .labels
             .get("ENDLABEL")
             .and_then(|blocks| blocks.iter().copied().find(|&b| b > start && b < at))
             .unwrap_or(at.saturating_sub(1).max(start));
-        Ok((start, end, false))
+        Ok((start, end))
     }
 
     /// The section of the `REPEAT` in block `at`, or the name of its
@@ -257,19 +272,15 @@ impl Flow {
         self.sections.get(&at)
     }
 
-    /// The labels of the `REPEAT` sections that end with block `index`.
-    pub(crate) fn section_ends(&self, index: usize) -> &[String] {
-        self.section_ends.get(&index).map_or(&[], Vec::as_slice)
+    /// What control flow says about block `index`; `None` for most
+    /// blocks.
+    pub(crate) fn block(&self, index: usize) -> Option<&BlockFlow> {
+        self.blocks.get(&index)
     }
 
     /// The structures block `index` opens, splits or closes.
     pub(crate) fn roles(&self, index: usize) -> &[(usize, Role)] {
-        self.roles.get(&index).map_or(&[], Vec::as_slice)
-    }
-
-    /// The jump labels block `index` carries.
-    pub(crate) fn targets(&self, index: usize) -> &[String] {
-        self.targets.get(&index).map_or(&[], Vec::as_slice)
+        self.block(index).map_or(&[], |b| b.roles.as_slice())
     }
 
     /// The labels defined more than once, with their blocks.
@@ -341,21 +352,4 @@ fn target_text(target: &JumpTarget) -> String {
 /// block `at`.
 fn section_end_label(at: usize) -> String {
     format!("SECTION@{}.end", at + 1)
-}
-
-/// The jumps of a block: `GOTO…`, `IF … GOTO…` and the arms of `CASE`.
-fn jumps(block: &Block) -> impl Iterator<Item = (Search, &JumpTarget)> {
-    block.statements.iter().flat_map(|st| {
-        let (single, arms, default): (Option<&Jump>, &[CaseArm], Option<&Jump>) = match &st.kind {
-            StatementKind::Goto(j) => (Some(j.as_ref()), &[], None),
-            StatementKind::IfGoto(g) => (Some(&g.jump), &[], None),
-            StatementKind::Case(c) => (None, &c.arms, c.default.as_ref()),
-            _ => (None, &[], None),
-        };
-        single
-            .into_iter()
-            .chain(arms.iter().map(|arm| &arm.jump))
-            .chain(default)
-            .filter_map(|jump| Some((Search::of(jump.goto), jump.target.as_ref()?)))
-    })
 }

@@ -685,6 +685,12 @@ pub fn group(number: u8) -> Option<&'static GGroup> {
     G_GROUPS.get(usize::from(number).checked_sub(1)?)
 }
 
+/// Whether group `number` keeps its command after its block (false for
+/// non-modal groups and numbers outside 1…64).
+pub fn is_modal(number: u8) -> bool {
+    group(number).is_some_and(|g| g.effect == Effect::Modal)
+}
+
 /// The command a group is reset to, per the Siemens 840D standard MD20150
 /// values; `None` for non-modal and unassigned groups and for numbers
 /// outside 1…64.

@@ -18,13 +18,13 @@
 //! call is active).
 
 use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 use std::collections::hash_map::Entry;
-use std::collections::{BinaryHeap, HashMap};
 use std::fmt;
-use std::hash::{BuildHasherDefault, Hasher};
 
 use gcodec_ail::{Document, Instruction, MClass, Op, RepeatSection, Value};
 use gcodec_profile::Profile;
+use rustc_hash::FxHashMap;
 
 use crate::ggroups;
 
@@ -46,9 +46,7 @@ pub fn reset_defaults(profile: &Profile) -> [Option<&'static str>; GROUP_COUNT] 
         if let (Ok(g), Some((found, index))) = (group.get_ref().parse::<u8>(), lookup) {
             // A profile `check_profile` rejects (a code of another group,
             // a non-modal group) changes nothing.
-            let modal_group =
-                ggroups::group(g).is_some_and(|gr| gr.effect == ggroups::Effect::Modal);
-            if g == found && modal_group {
+            if g == found && ggroups::is_modal(g) {
                 modal[usize::from(g) - 1] = ggroups::member(g, index);
             }
         }
@@ -463,58 +461,6 @@ impl Collector {
     }
 }
 
-/// FxHash (rustc's hasher): states and keys here are small and trusted, so
-/// a multiply-rotate hash beats SipHash by far.
-#[derive(Default)]
-struct FxHasher {
-    hash: u64,
-}
-
-const FX_SEED: u64 = 0x51_7c_c1_b7_27_22_0a_95;
-
-impl FxHasher {
-    fn add(&mut self, word: u64) {
-        self.hash = (self.hash.rotate_left(5) ^ word).wrapping_mul(FX_SEED);
-    }
-}
-
-impl Hasher for FxHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        let mut chunks = bytes.chunks_exact(8);
-        for chunk in &mut chunks {
-            let mut word = [0; 8];
-            word.copy_from_slice(chunk);
-            self.add(u64::from_le_bytes(word));
-        }
-        let rest = chunks.remainder();
-        if !rest.is_empty() {
-            let mut word = [0; 8];
-            word[..rest.len()].copy_from_slice(rest);
-            self.add(u64::from_le_bytes(word));
-        }
-    }
-
-    fn write_u8(&mut self, i: u8) {
-        self.add(u64::from(i));
-    }
-
-    fn write_u32(&mut self, i: u32) {
-        self.add(u64::from(i));
-    }
-
-    fn write_u64(&mut self, i: u64) {
-        self.add(i);
-    }
-
-    fn write_usize(&mut self, i: usize) {
-        self.add(i as u64);
-    }
-
-    fn finish(&self) -> u64 {
-        self.hash
-    }
-}
-
 /// Line-start pseudo event: the line of the instruction is in `line`.
 const LINE: u32 = 0;
 // State-changing events, `kind << 16 | group << 8 | index`.
@@ -555,7 +501,7 @@ fn apply(state: &mut ModalState, code: u32) -> bool {
 /// time an event or a join leads to it.
 struct StateTable {
     states: Vec<ModalState>,
-    ids: HashMap<ModalState, u32, BuildHasherDefault<FxHasher>>,
+    ids: FxHashMap<ModalState, u32>,
     /// Direct-mapped cache of `(id << 32 | event code) → id`; key
     /// `u64::MAX` is empty (no event code is `u32::MAX`).
     steps: Box<[(u64, u32)]>,
@@ -571,7 +517,7 @@ impl StateTable {
     fn new(motions_matter: bool) -> Self {
         Self {
             states: Vec::new(),
-            ids: HashMap::default(),
+            ids: FxHashMap::default(),
             steps: vec![(u64::MAX, 0); 1 << STEP_BITS].into_boxed_slice(),
             motions_matter,
         }
@@ -653,11 +599,6 @@ enum Control<'d> {
     Repeat(&'d RepeatSection),
 }
 
-/// Whether `group` (1…64) keeps its command after its block.
-fn is_modal_group(group: u8) -> bool {
-    ggroups::group(group).is_some_and(|g| g.effect == ggroups::Effect::Modal)
-}
-
 /// The registry index of `code` if it is a member of `group`, else 0.
 fn member_index(group: u8, code: &str) -> u8 {
     match ggroups::lookup(code) {
@@ -676,9 +617,11 @@ struct Lookups {
     slots: Box<[(u64, u8, u8, u8); LOOKUP_SLOTS]>,
     /// (address, length, group, index); length `usize::MAX` is empty.
     by_address: Box<[(usize, usize, u8, u8); LOOKUP_SLOTS]>,
-    /// Whether a group is modal, by group number; `None` not yet asked.
-    modal: [Option<bool>; 256],
 }
+
+/// The multiplier of FxHash: it spreads the keys of the direct-mapped
+/// caches over their slots.
+const FX_SEED: u64 = 0x51_7c_c1_b7_27_22_0a_95;
 
 const LOOKUP_SLOTS: usize = 256;
 
@@ -687,12 +630,7 @@ impl Lookups {
         Self {
             slots: Box::new([(0, u8::MAX, 0, 0); LOOKUP_SLOTS]),
             by_address: Box::new([(0, usize::MAX, 0, 0); LOOKUP_SLOTS]),
-            modal: [None; 256],
         }
-    }
-
-    fn is_modal_group(&mut self, group: u8) -> bool {
-        *self.modal[usize::from(group)].get_or_insert_with(|| is_modal_group(group))
     }
 
     fn member_index(&mut self, group: u8, code: &str) -> u8 {
@@ -760,7 +698,7 @@ struct Graph<'d> {
     /// (`u32::MAX`: none).
     label_next: Vec<u32>,
     /// The first and last label (index into `labels`) of each name.
-    label_names: HashMap<&'d str, (u32, u32), BuildHasherDefault<FxHasher>>,
+    label_names: FxHashMap<&'d str, (u32, u32)>,
     /// (end label, block ending in the `repeat_section`, the section),
     /// sorted by the end label.
     repeats: Vec<(&'d str, u32, &'d RepeatSection)>,
@@ -815,7 +753,7 @@ impl<'d> Graph<'d> {
             let mut event = None;
             match op {
                 Op::ModalChange { group, code: name } => {
-                    if lookups.is_modal_group(*group) {
+                    if ggroups::is_modal(*group) {
                         event = Some(code(SET, *group, lookups.member_index(*group, name)));
                     }
                 }
@@ -831,7 +769,7 @@ impl<'d> Graph<'d> {
                         }
                         _ => 0,
                     };
-                    if lookups.is_modal_group(*group) {
+                    if ggroups::is_modal(*group) {
                         event = Some(code(SET, *group, index));
                     }
                 }
@@ -935,8 +873,8 @@ impl<'d> Graph<'d> {
             }
         }
         let mut label_next = vec![u32::MAX; label_list.len()];
-        let mut label_names: HashMap<&'d str, (u32, u32), BuildHasherDefault<FxHasher>> =
-            HashMap::with_capacity_and_hasher(label_list.len(), Default::default());
+        let mut label_names: FxHashMap<&'d str, (u32, u32)> =
+            FxHashMap::with_capacity_and_hasher(label_list.len(), Default::default());
         for (at, name) in label_list.into_iter().enumerate() {
             let at = at as u32;
             match label_names.entry(name) {

@@ -6,11 +6,9 @@
 //! upper-cased into a stack buffer for each lookup, so a lookup allocates
 //! nothing.
 
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
-
 use gcodec_parser::ast;
 use gcodec_source::{Diagnostic, Span};
+use rustc_hash::FxHashMap;
 
 use crate::sysvars::{self, IndexShape};
 
@@ -346,42 +344,16 @@ pub(crate) fn with_upper<R>(name: &str, f: impl FnOnce(&str) -> R) -> R {
     }
 }
 
-/// A fast hash for short names (the FxHash mixing step).
-#[derive(Default, Clone, Copy)]
-pub(crate) struct FxHasher(u64);
-
-impl Hasher for FxHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        const K: u64 = 0x51_7c_c1_b7_27_22_0a_95;
-        let mut chunks = bytes.chunks_exact(8);
-        for chunk in &mut chunks {
-            let word = u64::from_le_bytes(chunk.try_into().unwrap_or_default());
-            self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(K);
-        }
-        for &b in chunks.remainder() {
-            self.0 = (self.0.rotate_left(5) ^ u64::from(b)).wrapping_mul(K);
-        }
-    }
-
-    fn write_u8(&mut self, b: u8) {
-        self.0 = (self.0.rotate_left(5) ^ u64::from(b)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
 /// A map from names to values, case-insensitive.
 #[derive(Clone, Debug)]
 pub(crate) struct NameMap<V> {
-    map: HashMap<Box<str>, V, BuildHasherDefault<FxHasher>>,
+    map: FxHashMap<Box<str>, V>,
 }
 
 impl<V> Default for NameMap<V> {
     fn default() -> Self {
         Self {
-            map: HashMap::default(),
+            map: FxHashMap::default(),
         }
     }
 }

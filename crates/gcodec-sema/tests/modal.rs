@@ -563,10 +563,6 @@ mod reference {
 
     pub type State = ([u8; 64], u8);
 
-    fn modal_group(group: u8) -> bool {
-        ggroups::group(group).is_some_and(|g| g.effect == ggroups::Effect::Modal)
-    }
-
     fn member_index(group: u8, code: &str) -> u8 {
         match ggroups::lookup(code) {
             Some((found, index)) if found == group => index,
@@ -582,10 +578,10 @@ mod reference {
 
     fn transfer(state: &mut State, op: &Op) {
         match op {
-            Op::ModalChange { group, code } if modal_group(*group) => {
+            Op::ModalChange { group, code } if ggroups::is_modal(*group) => {
                 set(state, *group, member_index(*group, code));
             }
-            Op::ModalChangeIndirect { group, index } if modal_group(*group) => {
+            Op::ModalChangeIndirect { group, index } if ggroups::is_modal(*group) => {
                 let index = match index {
                     Value::Const(v) if v.fract() == 0.0 && (1.0..=255.0).contains(v) => {
                         let v = *v as u8;

@@ -197,7 +197,7 @@ impl Lowering<'_> {
         }
     }
 
-    fn axis_kind(&self, name: &str) -> Option<AxisKind> {
+    pub(super) fn axis_kind(&self, name: &str) -> Option<AxisKind> {
         self.profile
             .axes
             .iter()
@@ -622,12 +622,10 @@ impl Lowering<'_> {
     /// else.
     pub(super) fn address_assignment(
         &mut self,
-        statement: &ast::Statement,
+        assign: &ast::Assign,
+        span: Span,
         plan: &mut BlockPlan,
     ) -> bool {
-        let StatementKind::Assign(assign) = &statement.kind else {
-            return false;
-        };
         let target = &assign.target;
         if target.kind != ast::VarKind::Name || !target.indices.is_empty() {
             return false;
@@ -638,7 +636,7 @@ impl Lowering<'_> {
         // `XV=10`: an axis whose name is longer than a letter and a number
         // reads as an assignment too.
         if let Some(axis) = self.axis_kind(&target.name) {
-            self.axis_assignment(axis, target, expr, statement.span, plan);
+            self.axis_assignment(axis, target, expr, span, plan);
             return true;
         }
         let upper = target.name.to_ascii_uppercase();
@@ -658,7 +656,6 @@ impl Lowering<'_> {
         let Some(role) = role(address) else {
             return false;
         };
-        let span = statement.span;
         self.check_variables(expr);
         // `SPOS2=DC(90)`: the modifier is a call in an assignment.
         let (value, mode) = match &expr.kind {

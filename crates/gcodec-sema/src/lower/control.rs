@@ -6,7 +6,7 @@ use gcodec_ail::{Op, Value};
 use gcodec_parser::ast::{self, Block, GotoKind, StatementKind, StructureKind};
 use gcodec_source::{Diagnostic, Span};
 
-use crate::flow::{self, Resolved, Role, Search};
+use crate::flow::{self, BlockFlow, Resolved, Role, Search};
 use crate::values;
 
 use super::{BlockPlan, INVALID_VALUE, Lowering, MISSING_JUMP_TARGET, direction};
@@ -18,12 +18,17 @@ const SKIPPED_STRUCTURE_BLOCK: &str = "gcodec::lower::skipped_structure_block";
 impl<'a> Lowering<'a> {
     /// The labels and jumps a block carries as a jump target and as a
     /// part of structures; the conditions are added by [`Self::statement`].
-    pub(super) fn structure_parts(&mut self, index: usize, block: &Block, plan: &mut BlockPlan) {
+    pub(super) fn structure_parts(
+        &mut self,
+        facts: &BlockFlow,
+        block: &Block,
+        plan: &mut BlockPlan,
+    ) {
         let at = block.span;
-        for name in self.flow.targets(index) {
+        for name in &facts.targets {
             plan.head.push((Op::Label { name: name.clone() }, at));
         }
-        for &(structure, role) in self.flow.roles(index) {
+        for &(structure, role) in &facts.roles {
             let s = &self.program.structures[structure];
             let line = s.open as usize + 1;
             let label = |part: &str| flow::structure_label(s.kind, line, part);
@@ -69,8 +74,8 @@ impl<'a> Lowering<'a> {
     /// A block with a control-structure element carries no label and no
     /// skip mark (language reference §8.2, §1.7: the control does not allow
     /// them there).
-    pub(super) fn check_structure_block(&mut self, index: usize, block: &Block) {
-        if self.flow.roles(index).is_empty() {
+    pub(super) fn check_structure_block(&mut self, facts: &BlockFlow, block: &Block) {
+        if facts.roles.is_empty() {
             return;
         }
         let element = block.statements.first().map_or(block.span, |s| s.span);

@@ -87,8 +87,22 @@ pub fn lower_in_parts(
     let ranges: Vec<std::ops::Range<usize>> = (0..parts)
         .map(|k| blocks * k / parts..blocks * (k + 1) / parts)
         .collect();
+    // About one instruction per statement, plus labels, jumps and modal
+    // changes: reserving avoids copying a large vector. The first part
+    // reserves for all, since the others are appended to it.
+    let statements: Vec<usize> = ranges
+        .iter()
+        .map(|r| {
+            program.blocks[r.clone()]
+                .iter()
+                .map(|b| b.statements.len())
+                .sum()
+        })
+        .collect();
+    let total: usize = statements.iter().sum();
     let lower_part = |k: usize, range: std::ops::Range<usize>| {
-        let mut lowering = Lowering::new(&context, program, profile, range.clone(), k > 0);
+        let reserve = if k == 0 { total } else { statements[k] };
+        let mut lowering = Lowering::new(&context, program, profile, reserve, k > 0);
         if k == 0 && subprogram {
             // A subprogram starts in its caller's state.
             lowering.forget_modal_state();
@@ -548,13 +562,14 @@ impl BlockPlan {
 }
 
 impl<'a> Lowering<'a> {
-    /// The lowering of the blocks `range`; `inherits` for a part after
-    /// the first, which starts in the state the part before it ends in.
+    /// The lowering of a part of `program` with room for the instructions
+    /// of about `statements` statements; `inherits` for a part after the
+    /// first, which starts in the state the part before it ends in.
     fn new(
         context: &'a Context<'a>,
         program: &'a Program,
         profile: &'a Profile,
-        range: std::ops::Range<usize>,
+        statements: usize,
         inherits: bool,
     ) -> Self {
         let mut modal = crate::modal::reset_defaults(profile);
@@ -564,23 +579,12 @@ impl<'a> Lowering<'a> {
             modal[0] = None;
             group8 = None;
         }
-        // About one instruction per statement, plus labels, jumps and
-        // modal changes: reserving avoids copying a large vector. The first
-        // part reserves for all, since the others are appended to it.
-        let statements = |r: std::ops::Range<usize>| -> usize {
-            program.blocks[r].iter().map(|b| b.statements.len()).sum()
-        };
-        let reserve = if inherits {
-            statements(range)
-        } else {
-            statements(0..program.blocks.len())
-        };
         Self {
             program,
             profile,
             file: Arc::from(program.file.as_str()),
             document: Document {
-                instructions: Vec::with_capacity(reserve * 5 / 4 + 16),
+                instructions: Vec::with_capacity(statements * 5 / 4 + 16),
                 ..Document::new()
             },
             diagnostics: Vec::new(),
@@ -620,12 +624,9 @@ impl<'a> Lowering<'a> {
             Op::Call(call) if call.modal => self.modal_call = true,
             Op::Call(_) => self.forget_modal_state(),
             Op::CancelModalCall => self.modal_call = false,
-            Op::Motion { .. } if self.modal_call => {
-                // The modal call runs after the motion.
-                let source = self.source_at(block, span);
-                self.document.instructions.push(Instruction { op, source });
-                return self.forget_modal_state();
-            }
+            // The modal call runs after the motion (which is already
+            // lowered): what follows may be in another state.
+            Op::Motion { .. } if self.modal_call => self.forget_modal_state(),
             _ => {}
         }
         let source = self.source_at(block, span);
@@ -657,17 +658,19 @@ impl<'a> Lowering<'a> {
                 .with_help("split the block; the limit is `max_block_length` in the profile"),
             );
         }
-        self.check_structure_block(index, block);
         let mut plan = BlockPlan::default();
-        self.structure_parts(index, block, &mut plan);
+        // Most blocks play no part in control flow: one lookup says so.
+        let flow: &'a Flow = self.flow;
+        let facts = flow.block(index);
+        if let Some(facts) = facts {
+            self.check_structure_block(facts, block);
+            self.structure_parts(facts, block, &mut plan);
+        }
         for statement in &block.statements {
-            // `FAD=5`, `SPOS2=90`: named addresses read as assignments.
-            if !self.address_assignment(statement, &mut plan) {
-                self.statement(index, statement, &mut plan);
-            }
+            self.statement(index, statement, &mut plan);
         }
         // The end of a `REPEAT` section comes after all of its last block.
-        for name in self.flow.section_ends(index) {
+        for name in facts.iter().flat_map(|f| &f.section_ends) {
             plan.tail
                 .push((Op::Label { name: name.clone() }, block.span));
         }
@@ -725,7 +728,7 @@ impl<'a> Lowering<'a> {
             if group == 8 || dwell.is_some() && code == "G4" {
                 continue;
             }
-            let modal = ggroups::group(group).is_some_and(|g| g.effect == ggroups::Effect::Modal);
+            let modal = ggroups::is_modal(group);
             if modal {
                 self.modal[usize::from(group) - 1] = Some(code);
                 if group == 1 {
@@ -799,11 +802,14 @@ impl<'a> Lowering<'a> {
         mfunc::check_count(&plan.m_functions, self.profile, &mut self.diagnostics);
         let deferred =
             self.profile.tool_change.tool_change_mode == gcodec_profile::ToolChangeMode::DeferredM6;
-        let (after, before): (Vec<_>, Vec<_>) = std::mem::take(&mut plan.m_functions)
-            .into_iter()
-            .partition(|m| has_motion && m.value.is_some_and(mfunc::acts_after_motion));
-        for m in before {
-            self.emit_m(index, m, MTiming::InBlock, deferred);
+        // Only blocks with motion and M0/M1/M2/M17/M30 allocate here.
+        let mut after = Vec::new();
+        for m in std::mem::take(&mut plan.m_functions) {
+            if has_motion && m.value.is_some_and(mfunc::acts_after_motion) {
+                after.push(m);
+            } else {
+                self.emit_m(index, m, MTiming::InBlock, deferred);
+            }
         }
         for (op, span) in std::mem::take(&mut plan.h_functions) {
             self.emit(index, span, op);

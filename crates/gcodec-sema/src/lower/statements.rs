@@ -45,7 +45,13 @@ impl Lowering<'_> {
                 plan.tail.push((Op::Return { values }, span));
             }
             StatementKind::Word(word) => self.word(word, span, plan),
-            StatementKind::Assign(assign) => self.assign(assign, span, plan),
+            StatementKind::Assign(assign) => {
+                // `FAD=5`, `SPOS2=90`, `XV=10`: addresses the parser reads
+                // as assignments.
+                if !self.address_assignment(assign, span, plan) {
+                    self.assign(assign, span, plan);
+                }
+            }
             StatementKind::Redef(redef) => self.redefine(redef, span),
             StatementKind::Define(define) => self.define_macro(define, span),
             StatementKind::Call(call) => self.call(call, span, plan),

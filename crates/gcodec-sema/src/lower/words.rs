@@ -204,10 +204,7 @@ impl Lowering<'_> {
     }
 
     pub(super) fn is_axis(&self, name: &str) -> bool {
-        self.profile
-            .axes
-            .iter()
-            .any(|a| a.name.get_ref().eq_ignore_ascii_case(name))
+        self.axis_kind(name).is_some()
     }
 
     /// A G command at its registry position (`group`, 1-based `index`).
