@@ -10,5 +10,6 @@
 pub mod eval;
 pub mod event;
 pub mod geometry;
+pub mod program;
 pub mod value;
 pub mod vars;

@@ -1,0 +1,101 @@
+//! A program as the channel runs it: its lowered instructions, where they
+//! come from, and the index of its jump targets.
+
+use std::sync::Arc;
+
+use gcodec_ail::{Document, Instruction, JumpSearch, Op};
+use rustc_hash::FxHashMap;
+
+/// One program (main program, subprogram or cycle), lowered and ready to
+/// run. Shared (`Arc`) between the program levels that run it.
+#[derive(Debug)]
+pub struct Program {
+    /// The name callers use, upper case, without extension (`CYCLE81`,
+    /// `L100`, the main program's file stem).
+    pub name: String,
+    /// The file as given to gcodec or as found on the search path.
+    pub file: Arc<str>,
+    /// The source text, when the program was read from a file: the CSV
+    /// trace takes block numbers from it.
+    pub text: Option<Arc<[u8]>>,
+    pub document: Document,
+    /// Label name → index of the `label` instruction (the first of that
+    /// name: lowering names labels uniquely, `<name>@<line>`).
+    labels: FxHashMap<String, usize>,
+    /// Every label in order: (name before `@`, upper case; instruction
+    /// index), for computed jumps and `CALL … BLOCK`.
+    label_list: Vec<(String, usize)>,
+}
+
+impl Program {
+    /// Indexes the labels of `document`.
+    pub fn new(name: impl Into<String>, file: Arc<str>, document: Document) -> Self {
+        let mut labels = FxHashMap::default();
+        let mut label_list = Vec::new();
+        for (index, instruction) in document.instructions.iter().enumerate() {
+            if let Op::Label { name } = &instruction.op {
+                labels.entry(name.clone()).or_insert(index);
+                let base = name.split_once('@').map_or(name.as_str(), |(b, _)| b);
+                label_list.push((base.to_ascii_uppercase(), index));
+            }
+        }
+        Self {
+            name: name.into(),
+            file,
+            text: None,
+            document,
+            labels,
+            label_list,
+        }
+    }
+
+    /// With the source text.
+    pub fn with_text(mut self, text: Arc<[u8]>) -> Self {
+        self.text = Some(text);
+        self
+    }
+
+    pub fn instructions(&self) -> &[Instruction] {
+        &self.document.instructions
+    }
+
+    /// The instruction index of the label `name` (as lowering named it).
+    pub fn label(&self, name: &str) -> Option<usize> {
+        self.labels.get(name).copied()
+    }
+
+    /// Searches a label or block number written in the program (`LBL`,
+    /// `N100`; any case) from the instruction `from` the way `search`
+    /// says, nearest first (reference §8.1): forward from the instruction
+    /// after `from`'s block, backward from `from`'s block.
+    pub fn search_label(&self, target: &str, from: usize, search: JumpSearch) -> Option<usize> {
+        let target = target.trim();
+        let line = self
+            .document
+            .instructions
+            .get(from)
+            .map_or(0, |i| i.source.line);
+        let line_of = |index: usize| self.document.instructions[index].source.line;
+        let matches = |(name, _): &&(String, usize)| name.eq_ignore_ascii_case(target);
+        let forward = || {
+            self.label_list
+                .iter()
+                .filter(|(_, i)| line_of(*i) > line)
+                .find(matches)
+                .map(|(_, i)| *i)
+        };
+        let backward = || {
+            self.label_list
+                .iter()
+                .rev()
+                .filter(|(_, i)| line_of(*i) <= line)
+                .find(matches)
+                .map(|(_, i)| *i)
+        };
+        match search {
+            JumpSearch::Forward => forward(),
+            JumpSearch::Backward => backward(),
+            JumpSearch::ForwardThenBackward => forward().or_else(backward),
+        }
+    }
+}
