@@ -170,6 +170,19 @@ pub enum Op {
         target: String,
         condition: Option<Box<Expr>>,
     },
+    /// `/`, `/0`…`/9` before a block: when skip level `level` is on (the
+    /// operator's switch or the profile's `skip_levels`), the block does not
+    /// run: continue at the label `end`, right after the block's
+    /// instructions. It follows the labels the block starts with (a jump to
+    /// the block lands before the test, as on the control).
+    SkipBlock {
+        /// The skip level, 0…9 (`/` alone is 0).
+        #[schemars(range(max = 9))]
+        level: u8,
+        /// The label right after the block's last instruction
+        /// (`SKIP@<line>.end`).
+        end: String,
+    },
     /// A call of a subprogram or cycle.
     Call(Box<Call>),
     /// `MCALL` alone: the modal call ends.

@@ -212,3 +212,31 @@ fn an_instruction_stays_small() {
     // program holds millions.
     assert!(std::mem::size_of::<Instruction>() <= 88);
 }
+
+#[test]
+fn skip_block_names_its_level_and_end_label() {
+    let value = round_trip(Op::SkipBlock {
+        level: 3,
+        end: "SKIP@120.end".into(),
+    });
+    assert_eq!(
+        value,
+        json!({
+            "kind": "skip_block",
+            "level": 3,
+            "end": "SKIP@120.end",
+            "source": {"file": "part.mpf", "line": 120, "col": 1, "span": {"start": 0, "end": 2}}
+        })
+    );
+    // The schema allows the control's levels only.
+    let schema: serde_json::Value = serde_json::from_str(&json_schema()).unwrap();
+    let skip = schema["$defs"]["Instruction"]["oneOf"]
+        .as_array()
+        .and_then(|kinds| {
+            kinds
+                .iter()
+                .find(|k| k["properties"]["kind"]["const"] == "skip_block")
+        })
+        .expect("skip_block in the schema");
+    assert_eq!(skip["properties"]["level"]["maximum"], 9);
+}

@@ -51,6 +51,9 @@ enum Command {
         #[command(flatten)]
         diagnostics: DiagnosticOptions,
     },
+    /// Run a program on the machine a profile describes and stream its
+    /// events: motions, modal changes, M functions, tool changes, calls…
+    Run(crate::run::RunArgs),
     /// Check or show machine profiles.
     #[command(subcommand)]
     Profile(ProfileCommand),
@@ -87,7 +90,7 @@ enum ProfileFormat {
 
 /// How diagnostics are shown.
 #[derive(Clone, Copy, Debug, clap::Args)]
-struct DiagnosticOptions {
+pub struct DiagnosticOptions {
     /// Show at most N diagnostics per file, then count the rest (0: all).
     /// The exit code counts them all.
     #[arg(long, value_name = "N", default_value_t = 100)]
@@ -123,6 +126,7 @@ pub fn run(cli: Cli) -> u8 {
             format,
             diagnostics,
         } => lower(&file, profile.as_deref(), &definitions, format, diagnostics),
+        Command::Run(args) => crate::run::run(args),
         Command::Profile(ProfileCommand::Check { file, diagnostics }) => {
             match load_profile(Some(&file), diagnostics) {
                 Ok(_) => EXIT_CLEAN,
@@ -145,7 +149,7 @@ pub fn run(cli: Cli) -> u8 {
 /// registry ([`gcodec_sema::check_profile`]), reporting the diagnostics of
 /// both against the profile's text; a bad or unreadable profile is exit
 /// code 2.
-fn load_profile(
+pub fn load_profile(
     path: Option<&Path>,
     options: DiagnosticOptions,
 ) -> Result<gcodec_profile::Profile, u8> {
@@ -194,7 +198,7 @@ fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 
     }
 }
 
-fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: DiagnosticOptions) {
+pub fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: DiagnosticOptions) {
     if diagnostics.is_empty() {
         return;
     }
@@ -203,7 +207,7 @@ fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: Diagno
 }
 
 /// Reads a file; an unreadable one is reported and is exit code 2.
-fn read(path: &Path, options: DiagnosticOptions) -> Result<SourceFile, u8> {
+pub fn read(path: &Path, options: DiagnosticOptions) -> Result<SourceFile, u8> {
     SourceFile::read(path).map_err(|e| {
         let d = Diagnostic::error(
             "gcodec::io::read",
@@ -257,7 +261,7 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
 
 /// Reads the definition files in order; an unreadable file or one with
 /// errors is reported and is exit code 2.
-fn load_definitions(
+pub fn load_definitions(
     paths: &[PathBuf],
     options: DiagnosticOptions,
 ) -> Result<gcodec_sema::Definitions, u8> {

@@ -628,9 +628,12 @@ pub enum ProgramEndReason {
     /// An alarm (a `diagnostic` of severity `error` just before) aborted
     /// the program.
     Alarm,
-    /// A limit of the run (blocks, time) was reached: the simulator's guard
-    /// against endless loops.
+    /// A limit of the run (blocks, time) was reached, or the run was
+    /// interrupted: the simulator's guard against endless loops.
     Limit,
+    /// `M0` (or `M1` with optional stop selected) stopped the program; the
+    /// simulation does not wait for NC start (`--no-stop` goes on).
+    Stopped,
 }
 
 /// A problem found while running.

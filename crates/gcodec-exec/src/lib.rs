@@ -7,9 +7,12 @@
 //! channel itself (modal state, positions, frames, control flow, calls)
 //! and `gcodec run`.
 
+pub mod channel;
 pub mod eval;
 pub mod event;
+pub mod frames;
 pub mod geometry;
+pub mod loader;
 pub mod program;
 pub mod value;
 pub mod vars;

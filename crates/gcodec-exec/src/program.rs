@@ -18,6 +18,8 @@ pub struct Program {
     /// The source text, when the program was read from a file: the CSV
     /// trace takes block numbers from it.
     pub text: Option<Arc<[u8]>>,
+    /// The byte offset of each line of `text`.
+    line_starts: Vec<u32>,
     pub document: Document,
     /// Label name → index of the `label` instruction (the first of that
     /// name: lowering names labels uniquely, `<name>@<line>`).
@@ -43,6 +45,7 @@ impl Program {
             name: name.into(),
             file,
             text: None,
+            line_starts: Vec::new(),
             document,
             labels,
             label_list,
@@ -51,8 +54,56 @@ impl Program {
 
     /// With the source text.
     pub fn with_text(mut self, text: Arc<[u8]>) -> Self {
+        self.line_starts = std::iter::once(0)
+            .chain(
+                text.iter()
+                    .enumerate()
+                    .filter(|(_, b)| **b == b'\n')
+                    .map(|(i, _)| i as u32 + 1),
+            )
+            .collect();
         self.text = Some(text);
         self
+    }
+
+    /// The text of the 1-based `line` (without its line end), if the
+    /// program has its text.
+    pub fn line_text(&self, line: u32) -> Option<&[u8]> {
+        let text = self.text.as_deref()?;
+        let index = usize::try_from(line).ok()?.checked_sub(1)?;
+        let start = *self.line_starts.get(index)? as usize;
+        let end = self
+            .line_starts
+            .get(index + 1)
+            .map_or(text.len(), |&e| e as usize);
+        let line = text.get(start..end)?;
+        Some(line.strip_suffix(b"\n").unwrap_or(line))
+    }
+
+    /// The block number (`N20`, `:20`) the `line` starts with, after a
+    /// skip mark.
+    pub fn block_number(&self, line: u32) -> Option<u32> {
+        let rest = self.line_text(line)?;
+        let mut i = 0;
+        let blanks = |i: &mut usize| {
+            while *i < rest.len() && (rest[*i] == b' ' || rest[*i] == b'\t') {
+                *i += 1;
+            }
+        };
+        blanks(&mut i);
+        if rest.get(i) == Some(&b'/') {
+            i += 1;
+            while rest.get(i).is_some_and(u8::is_ascii_digit) {
+                i += 1;
+            }
+            blanks(&mut i);
+        }
+        if !matches!(rest.get(i), Some(b'N' | b'n' | b':')) {
+            return None;
+        }
+        let digits = &rest[i + 1..];
+        let len = digits.iter().take_while(|b| b.is_ascii_digit()).count();
+        std::str::from_utf8(&digits[..len]).ok()?.parse().ok()
     }
 
     pub fn instructions(&self) -> &[Instruction] {

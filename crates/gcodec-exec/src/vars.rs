@@ -384,6 +384,17 @@ impl Variables {
         true
     }
 
+    /// Runs `f` with the level below the current one as the current level
+    /// (a subprogram's caller): `VAR` parameters are read from and written
+    /// back to it. In the main program's level, that level itself.
+    pub fn with_caller_level<R>(&mut self, f: impl FnOnce(&mut Self) -> R) -> R {
+        let depth = self.depth;
+        self.depth = (depth - 1).max(1);
+        let result = f(self);
+        self.depth = depth;
+        result
+    }
+
     /// Drops every level's variables and sets the R parameters to 0
     /// (a reset); global data stay.
     pub fn reset_program(&mut self) {

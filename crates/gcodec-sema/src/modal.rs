@@ -5,12 +5,13 @@
 //!
 //! The analysis is a forward dataflow over the control flow of a lowered
 //! AIL [`Document`]: instructions run in order, `label`s are join points,
-//! `jump`, `computed_jump`, `goto_start` and `repeat_section` add edges and
-//! `return`, `end` and `M2 M17 M30` end a path. At a join, a group keeps
-//! its command only if every path agrees. Each group's value can only rise
-//! from "not reached" to a command to "unknown", so the fixed point is
-//! reached after at most 66 changes per join point; straight-line code is
-//! walked once. See [`ModalStates::analyse`] for the rules.
+//! `jump`, `skip_block`, `computed_jump`, `goto_start` and
+//! `repeat_section` add edges and `return`, `end` and `M2 M17 M30` end a
+//! path. At a join, a group keeps its command only if every path agrees.
+//! Each group's value can only rise from "not reached" to a command to
+//! "unknown", so the fixed point is reached after at most 66 changes per
+//! join point; straight-line code is walked once. See
+//! [`ModalStates::analyse`] for the rules.
 //!
 //! Memory: the state of a line is an id into a table of the distinct
 //! states (straight-line code has few), 8 bytes per line with instructions;
@@ -268,6 +269,8 @@ impl ModalStates {
     /// - `jump` goes to every label of its target name; with a
     ///   `condition` it may also go on. A target that does not exist
     ///   (`X@missing`) is alarm 14080 when the jump runs: that path ends.
+    /// - `skip_block` may go to its `end` label (the skip level is on) and
+    ///   may go on: a conditional jump.
     /// - `computed_jump` may go to any label; it goes on when it has a
     ///   condition or `continue_if_missing`.
     /// - `goto_start` may go back to the first instruction (the PLC
@@ -817,6 +820,13 @@ impl<'d> Graph<'d> {
                     control = Control::Jump {
                         target,
                         conditional: condition.is_some(),
+                    };
+                }
+                // A skipped block continues at its end label.
+                Op::SkipBlock { end, .. } => {
+                    control = Control::Jump {
+                        target: end,
+                        conditional: true,
                     };
                 }
                 Op::ComputedJump(jump) => {

@@ -166,6 +166,26 @@ fn goto_skips_blocks_and_joins_at_its_target() {
 }
 
 #[test]
+fn a_skipped_block_joins_both_paths_after_itself() {
+    // The block may run or not: what it sets is unknown after it.
+    let states = main_program("G0 X0\n/G1 G18 X1\nX2\n");
+    assert_eq!(group_at(&states, 2, 1), Some("G0"));
+    assert_eq!(group_at(&states, 3, 1), None);
+    assert_eq!(group_at(&states, 3, 6), None);
+    // What it does not change stays known.
+    let states = main_program("G0 X0\n/3 G0 X1 M8\nX2\n");
+    assert_eq!(group_at(&states, 3, 1), Some("G0"));
+    assert_eq!(group_at(&states, 3, 6), Some("G17"));
+    // A jump to a skipped block lands before its test.
+    let states = main_program("G0 X0\n/LBL: G1 X1\nG0 X2\nIF R1<3 GOTOB LBL\nX3\n");
+    assert_eq!(group_at(&states, 2, 1), Some("G0"));
+    assert_eq!(group_at(&states, 5, 1), Some("G0"));
+    // A skipped `MCALL` may leave the modal call in force.
+    let states = main_program("MCALL CYCLE81(1,2,3)\n/MCALL\nG17\n");
+    assert_eq!(at(&states, 3).modal_call_active(), None);
+}
+
+#[test]
 fn program_end_and_return_end_the_path() {
     let states = main_program("G0 X0\nM30\nG1 X1\n");
     assert_eq!(states.line_state(3), LineState::Unreachable);
@@ -444,6 +464,10 @@ fn random_documents_terminate() {
                     modal(group, code)
                 }
                 2 => label(&name),
+                3 if next(4) == 0 => Op::SkipBlock {
+                    level: 0,
+                    end: name,
+                },
                 3 => Op::Jump {
                     target: name,
                     condition,
@@ -665,6 +689,10 @@ mod reference {
                             flows.push((i + 1, state));
                         }
                     }
+                    Op::SkipBlock { end, .. } => {
+                        flows.extend(labels(end).into_iter().map(|l| (l, state)));
+                        flows.push((i + 1, state));
+                    }
                     Op::ComputedJump(jump) => {
                         flows.extend(all_labels.iter().map(|&l| (l, state)));
                         if jump.condition.is_some() || jump.continue_if_missing {
@@ -816,6 +844,8 @@ fn the_analysis_agrees_with_a_reference_on_programs() {
         "G55 X0\nIF R1==1 GOTOF MARK\nG56\nMARK: G53 X0\nX1\nG57\nX2\n",
         "G0 X0\nIF R2==1 GOTOF \"MA\"<<R1\nG1 X1\nMA1: X2\nG18\nMA2: X3\n",
         "G0 X0\nG2 X1 CR=5\nGOTOS\nX2\nM30\nX3\n",
+        "G0 X0\n/G1 X1\n/3 LBL: G2 X2 CR=5\nX3\nIF R1<2 GOTOB LBL\nM30\n",
+        "G0 X0\nSTART: X1\n/G1 X2\nREPEAT START P=2\nX3\n",
     ] {
         check_against_reference(&lower_with(src, &profile), &profile, src);
     }
@@ -855,6 +885,10 @@ fn the_analysis_agrees_with_a_reference_on_random_documents() {
                 }
                 3 => modal(1, "G17"),
                 4 | 5 => label(&name),
+                6 if next(4) == 0 => Op::SkipBlock {
+                    level: next(10) as u8,
+                    end: name,
+                },
                 6 => Op::Jump {
                     target: if next(8) == 0 {
                         "NOWHERE@missing".into()

@@ -42,6 +42,10 @@ fn state_across_part_boundaries_is_settled() {
     let src = "G55 G0 X0\nX1\nG53 X2\nG1 X3 F100\nMCALL CYCLE81(1,2,3)\nX4\nX5\nMCALL\n\
                G34 Z-10 K2 F0.1\nZ-20 K2 F0.1\nIF R1>0\nG2 X1 Y1 CR=5\nENDIF\nX6\nG53 X7\nM30\n";
     assert_parts_agree("boundaries.mpf", src.as_bytes(), &profile);
+    // Skipped blocks: each a join after itself, across boundaries.
+    let src = "G55 G0 X0\n/G1 X1\nX2\n/3 G56\nG53 X3\n/M8\nX4\nMCALL CYCLE81(1,2,3)\n\
+               /MCALL\nG1 X5\nX6\nMCALL\nX7\nM30\n";
+    assert_parts_agree("skips.mpf", src.as_bytes(), &profile);
     let subprogram = "X1\nG54\nX2\nG53 X3\nM17\n";
     assert_parts_agree("SUB.SPF", subprogram.as_bytes(), &profile);
 }

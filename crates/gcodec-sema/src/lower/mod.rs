@@ -509,6 +509,24 @@ type SpindleWord = (Option<u32>, Option<Box<gcodec_ail::Expr>>, Value, Span);
 /// A named address as written: address, axis, spindle.
 type AddressKey = (String, Option<String>, Option<u32>);
 
+/// A `skip_block` emitted before a block's instructions, waiting for its
+/// end label.
+struct OpenSkip {
+    /// The index of the `skip_block` instruction.
+    at: usize,
+    /// The skip mark.
+    span: Span,
+    /// Whether a modal call was in force before the block.
+    modal_call: bool,
+}
+
+/// The label after the instructions of the skipped block `index`:
+/// `SKIP@<line>.end`, like the other labels lowering makes up (`@` and `.`
+/// keep it apart from the program's own labels, `SKIP@12` for `SKIP:`).
+fn skip_label(index: usize) -> String {
+    format!("SKIP@{}.end", index + 1)
+}
+
 /// What one block says, collected before instructions are emitted.
 #[derive(Default)]
 struct BlockPlan {
@@ -669,12 +687,66 @@ impl<'a> Lowering<'a> {
         for statement in &block.statements {
             self.statement(index, statement, &mut plan);
         }
-        // The end of a `REPEAT` section comes after all of its last block.
-        for name in facts.iter().flat_map(|f| &f.section_ends) {
-            plan.tail
-                .push((Op::Label { name: name.clone() }, block.span));
+        // Jump targets and structure labels come first: a jump to a skipped
+        // block lands before its skip test.
+        for (op, span) in std::mem::take(&mut plan.head) {
+            self.emit(index, span, op);
         }
+        // A structure block cannot be skipped (`check_structure_block`
+        // says so): its mark is ignored.
+        let skip = block
+            .skip
+            .as_deref()
+            .filter(|_| facts.is_none_or(|f| f.roles.is_empty()))
+            .map(|skip| self.begin_skip(index, skip));
         self.emit_block(index, block, plan);
+        if let Some(skip) = skip {
+            self.end_skip(index, skip);
+        }
+        // The end of a `REPEAT` section comes after all of its last block,
+        // also when that block is skipped.
+        for name in facts.iter().flat_map(|f| &f.section_ends) {
+            self.emit(index, block.span, Op::Label { name: name.clone() });
+        }
+    }
+
+    /// `/`, `/0`…`/9`: the skip test before the block's instructions.
+    fn begin_skip(&mut self, index: usize, skip: &ast::SkipLevel) -> OpenSkip {
+        let at = self.document.instructions.len();
+        self.emit(
+            index,
+            skip.span,
+            Op::SkipBlock {
+                level: skip.level,
+                end: skip_label(index),
+            },
+        );
+        OpenSkip {
+            at,
+            span: skip.span,
+            modal_call: self.modal_call,
+        }
+    }
+
+    /// The label a skipped block continues at, after its instructions. A
+    /// block with no instruction of its own (a label only, or words that
+    /// lowered to nothing) has nothing to skip: its test is taken back.
+    fn end_skip(&mut self, index: usize, skip: OpenSkip) {
+        if self.document.instructions.len() == skip.at + 1 {
+            self.document.instructions.pop();
+            return;
+        }
+        // Two paths meet: the label forgets what the block set (the motion
+        // command, the Group 8 selection); a modal call is in force after
+        // it if it is on either path.
+        self.emit(
+            index,
+            skip.span,
+            Op::Label {
+                name: skip_label(index),
+            },
+        );
+        self.modal_call |= skip.modal_call;
     }
 
     fn not_lowered(&mut self, span: Span, what: &str) {
@@ -682,9 +754,6 @@ impl<'a> Lowering<'a> {
     }
 
     fn emit_block(&mut self, index: usize, block: &Block, mut plan: BlockPlan) {
-        for (op, span) in std::mem::take(&mut plan.head) {
-            self.emit(index, span, op);
-        }
         let tail = std::mem::take(&mut plan.tail);
         // Work offset: the Group 8 selection and the block's suppression.
         let group8 = plan.g_codes.iter().find(|(g, _, _)| *g == 8);

@@ -1,0 +1,272 @@
+//! `gcodec run`: runs a program on the machine a profile describes and
+//! streams its events (jsonl, a text trace, or one CSV row per block).
+
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use clap::ValueEnum;
+use gcodec_exec::channel::{BlockObserver, Channel, RunOptions};
+use gcodec_exec::event::{
+    BlockRow, CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
+};
+use gcodec_exec::loader::{FileLoader, SearchPath};
+use gcodec_exec::program::Program;
+use gcodec_source::Diagnostic;
+
+use crate::commands::{
+    DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
+    read, report,
+};
+
+/// How events are written.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum RunFormat {
+    /// One JSON object per event, one a line.
+    Jsonl,
+    /// A readable trace, one line per event.
+    Text,
+    /// One row per executed block: positions, tool, feed, spindle, the
+    /// main modal groups.
+    Csv,
+}
+
+/// The options of `gcodec run`.
+#[derive(Debug, clap::Args)]
+pub struct RunArgs {
+    /// The main program (`.mpf`).
+    pub file: PathBuf,
+    /// The machine profile (TOML); the built-in one if omitted.
+    #[arg(long)]
+    pub profile: Option<PathBuf>,
+    /// A definition file (`MGUD.DEF`, `SMAC.DEF`). Repeat for several.
+    #[arg(long = "definitions", value_name = "FILE.DEF")]
+    pub definitions: Vec<PathBuf>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = RunFormat::Jsonl)]
+    pub format: RunFormat,
+    /// A directory searched for subprograms and cycles, after the calling
+    /// program's directory and the profile's `subprogram_paths`. Repeat
+    /// for several.
+    #[arg(long = "subprogram-path", value_name = "DIR")]
+    pub subprogram_paths: Vec<PathBuf>,
+    /// The skip levels switched on, e.g. `0,3`; `none` for none. Replaces
+    /// the profile's `skip_levels`.
+    #[arg(long, value_name = "LEVELS", value_parser = parse_skip_levels)]
+    pub skip_levels: Option<SkipLevels>,
+    /// Stop after this many blocks (a guard against endless loops).
+    #[arg(long, value_name = "N", default_value_t = 10_000_000)]
+    pub max_steps: u64,
+    /// Go on after `M0` (and `M1`) instead of ending the run there.
+    #[arg(long)]
+    pub no_stop: bool,
+    /// The operator's optional-stop switch: `M1` stops like `M0`.
+    #[arg(long)]
+    pub optional_stop: bool,
+    #[command(flatten)]
+    pub diagnostics: DiagnosticOptions,
+}
+
+/// Skip levels from the command line.
+#[derive(Clone, Copy, Debug)]
+pub struct SkipLevels([bool; 10]);
+
+fn parse_skip_levels(text: &str) -> Result<SkipLevels, String> {
+    let mut levels = [false; 10];
+    if text.trim().eq_ignore_ascii_case("none") {
+        return Ok(SkipLevels(levels));
+    }
+    for part in text.split(',') {
+        let part = part.trim();
+        let level: usize = part
+            .parse()
+            .ok()
+            .filter(|l| *l <= 9)
+            .ok_or_else(|| format!("`{part}` is not a skip level 0…9"))?;
+        levels[level] = true;
+    }
+    Ok(SkipLevels(levels))
+}
+
+/// Writes runtime diagnostics to stderr as they happen (besides the
+/// event stream, so a CI job sees them whatever the format), and hands
+/// every event on.
+struct Diagnostics<S> {
+    inner: S,
+}
+
+impl<S: EventSink> EventSink for Diagnostics<S> {
+    fn event(&mut self, event: &Event) -> io::Result<()> {
+        if let EventKind::Diagnostic(d) = &event.kind {
+            let s = &event.source;
+            let mut line = format!(
+                "{}:{}:{}: {}[{}]: {}",
+                s.file,
+                s.line,
+                s.col,
+                d.severity.name(),
+                d.code,
+                d.message
+            );
+            if let Some(alarm) = d.alarm {
+                line.push_str(&format!(" (alarm {alarm})"));
+            }
+            if let Some(help) = &d.help {
+                line.push_str(&format!("\n  help: {help}"));
+            }
+            let _ = writeln!(io::stderr().lock(), "{line}");
+        }
+        self.inner.event(event)
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        self.inner.finish()
+    }
+}
+
+/// Events go nowhere (the CSV format writes rows, not events).
+struct Discard;
+
+impl EventSink for Discard {
+    fn event(&mut self, _: &Event) -> io::Result<()> {
+        Ok(())
+    }
+}
+
+struct CsvRows<W: Write>(CsvWriter<W>);
+
+impl<W: Write> BlockObserver for CsvRows<W> {
+    fn block(&mut self, row: &BlockRow) -> io::Result<()> {
+        self.0.row(row)
+    }
+}
+
+pub fn run(args: RunArgs) -> u8 {
+    let options = args.diagnostics;
+    let profile_path = args.profile.as_deref();
+    let profile = match load_profile(profile_path, options) {
+        Ok(p) => Arc::new(p),
+        Err(code) => return code,
+    };
+    let definitions = match load_definitions(&args.definitions, options) {
+        Ok(d) => Arc::new(d),
+        Err(code) => return code,
+    };
+    let file = match read(&args.file, options) {
+        Ok(f) => f,
+        Err(code) => return code,
+    };
+    let parsed = gcodec_parser::parse(&file);
+    let lowered = gcodec_sema::lower_with(&parsed.program, &profile, &definitions);
+    // The tree is not needed any more; freeing it block by block would
+    // only cost time.
+    std::mem::forget(parsed.program);
+    let mut diagnostics = parsed.diagnostics;
+    diagnostics.extend(lowered.diagnostics);
+    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    report(&diagnostics, Some(&file), options);
+    if diagnostics.iter().any(Diagnostic::is_error) {
+        eprintln!("gcodec: `{}` has errors; it is not run", args.file.display());
+        return EXIT_DIAGNOSTICS;
+    }
+    let main = Program::new(program_name(&args.file), Arc::from(file.name()), lowered.document)
+        .with_text(Arc::from(file.bytes()));
+    let main = Arc::new(main);
+    let search = SearchPath::new()
+        .with_profile(&profile, profile_path)
+        .with_dirs(args.subprogram_paths.iter().cloned());
+    let mut loader = FileLoader::new(search, Arc::clone(&profile), definitions);
+    let mut run_options = RunOptions::for_profile(&profile);
+    if let Some(SkipLevels(levels)) = args.skip_levels {
+        run_options.skip_levels = levels;
+    }
+    run_options.max_steps = args.max_steps;
+    run_options.stop_at_m0 = !args.no_stop;
+    run_options.optional_stop = args.optional_stop;
+    let interrupt = Arc::new(AtomicBool::new(false));
+    {
+        let flag = Arc::clone(&interrupt);
+        // A second Ctrl-C while the first is handled ends the process as
+        // usual; failing to install the handler only loses the clean stop.
+        let _ = ctrlc::set_handler(move || {
+            if flag.swap(true, Ordering::Relaxed) {
+                std::process::exit(130);
+            }
+        });
+    }
+    run_options.interrupt = Some(interrupt);
+    let stdout = io::stdout();
+    let out = stdout.lock();
+    let outcome = match args.format {
+        RunFormat::Jsonl => {
+            let mut sink = Diagnostics {
+                inner: JsonlSink::new(out),
+            };
+            Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink).run(main)
+        }
+        RunFormat::Text => {
+            let mut sink = Diagnostics {
+                inner: TextSink::new(out),
+            };
+            Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink).run(main)
+        }
+        RunFormat::Csv => {
+            let axes = profile
+                .axes
+                .iter()
+                .map(|a| std::borrow::Cow::Owned(a.name.get_ref().to_ascii_uppercase()));
+            let writer = match CsvWriter::new(out, axes) {
+                Ok(w) => w,
+                Err(e) => return output_error(&e),
+            };
+            let mut rows = CsvRows(writer);
+            let mut sink = Diagnostics { inner: Discard };
+            let result = Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
+                .with_observer(&mut rows)
+                .run(main);
+            match (result, rows.0.finish()) {
+                (Ok(outcome), Ok(())) => Ok(outcome),
+                (Err(e), _) | (_, Err(e)) => Err(e),
+            }
+        }
+    };
+    let outcome = match outcome {
+        Ok(outcome) => outcome,
+        Err(e) => return output_error(&e),
+    };
+    let summary = outcome.summary.to_string();
+    match args.format {
+        RunFormat::Text => {
+            let mut out = io::stdout().lock();
+            let _ = writeln!(out, "\n{summary}");
+        }
+        _ => eprint!("{summary}"),
+    }
+    if outcome.errors > 0 || outcome.reason == ProgramEndReason::Alarm {
+        EXIT_DIAGNOSTICS
+    } else {
+        EXIT_CLEAN
+    }
+}
+
+/// The program's name: its file stem in upper case (`_N_PART_MPF` → `PART`).
+fn program_name(path: &Path) -> String {
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_ascii_uppercase())
+        .unwrap_or_default();
+    stem.strip_prefix("_N_")
+        .and_then(|s| s.strip_suffix("_MPF").or_else(|| s.strip_suffix("_SPF")))
+        .map_or(stem.clone(), str::to_owned)
+}
+
+fn output_error(e: &io::Error) -> u8 {
+    if e.kind() == io::ErrorKind::BrokenPipe {
+        return EXIT_CLEAN;
+    }
+    let d = Diagnostic::error("gcodec::io::write", format!("cannot write the events: {e}"));
+    let text = gcodec_source::render_diagnostics(&[d], None, Default::default());
+    let _ = io::stderr().write_all(text.as_bytes());
+    EXIT_USAGE
+}

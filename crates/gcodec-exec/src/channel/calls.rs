@@ -1,0 +1,651 @@
+//! Calls: subprograms and cycles with their parameters, pass counts,
+//! program sections, `MCALL`, `REPEAT` sections, and the returns.
+//!
+//! `VAR` parameters are passed by copy-in/copy-out: the called program
+//! works on a local copy that is written back to the caller's variable when
+//! it returns. This is the control's reference semantics except where the
+//! subprogram reaches the same variable by another name too (an R
+//! parameter or GUD passed by `VAR` and also used directly) — SPEC §11.
+
+use std::sync::Arc;
+
+use gcodec_ail::{Call, Declare, Expr, Instruction, Op, Parameter, RepeatSection, Value, VarKind};
+
+use super::{Channel, Flow, Level, LevelKind, codes};
+use crate::eval;
+use crate::event::{CallEvent, CallKind, EventKind, EventSeverity, ProgramEndReason, ReturnEvent, SectionEvent};
+use crate::loader::LoadRequest;
+use crate::program::Program;
+use crate::value::{RtValue, RunError};
+use crate::vars::Scope;
+
+/// A call in progress.
+pub(super) struct ActiveCall {
+    pub target: String,
+    pub kind: CallKind,
+    pub pass: u32,
+    pub passes: u32,
+    /// The arguments, ready to bind again for the next pass.
+    bindings: Vec<Binding>,
+    /// Where each pass starts.
+    start: usize,
+    /// `CALL … BLOCK … TO …`: the last line of the section.
+    pub section_end_line: Option<u32>,
+    section: Option<SectionEvent>,
+    /// Whether the call opened a program level (a section of the calling
+    /// program itself does not).
+    own_level: bool,
+}
+
+/// One parameter's argument.
+#[derive(Clone)]
+enum Binding {
+    /// By value, or the default, or the type's initial value (`None`).
+    Value { param: Parameter, value: Option<RtValue> },
+    /// `VAR`: the caller's variable, copied in and written back.
+    Reference { param: Parameter, target: VarRef },
+}
+
+/// A caller's variable, its indices evaluated at the call.
+#[derive(Clone)]
+pub(super) struct VarRef {
+    kind: VarKind,
+    name: String,
+    indices: Vec<i32>,
+}
+
+/// `MCALL NAME(…)`: called after every traversing block.
+#[derive(Clone)]
+pub(super) struct ModalCall {
+    target: String,
+    /// `None`: a cycle not on the search path (reported, not run).
+    program: Option<Arc<Program>>,
+    bindings: Vec<Binding>,
+}
+
+/// Names of Siemens standard cycles and ShopMill/ShopTurn steps: when one
+/// is not on the search path, the call is reported and the run goes on.
+pub fn is_standard_cycle(name: &str) -> bool {
+    let upper = name.to_ascii_uppercase();
+    ["CYCLE", "POCKET", "SLOT", "LONGHOLE", "HOLES", "E_", "F_", "CUST_", "PROBE"]
+        .iter()
+        .any(|prefix| upper.starts_with(prefix))
+}
+
+impl Channel<'_> {
+    pub(super) fn call(
+        &mut self,
+        program: &Arc<Program>,
+        pc: usize,
+        instruction: &Instruction,
+        call: &Call,
+    ) -> Result<Flow, RunError> {
+        let target = match &call.target_expr {
+            Some(expr) => eval::eval(&self.env(), expr)?.to_text()?.trim().to_ascii_uppercase(),
+            None => call.target.clone(),
+        };
+        if call.modal {
+            let modal = self.prepare_modal_call(program, instruction, &target, call)?;
+            self.state.modal_call_active = true;
+            self.modal_call = Some(modal);
+            return Ok(Flow::Next);
+        }
+        let passes = match &call.passes {
+            None => 1,
+            Some(p) => {
+                let n = eval::eval_value(&self.env(), p)?.to_int()?;
+                u32::try_from(n).ok().filter(|&n| n >= 1).ok_or_else(|| {
+                    RunError::new(crate::value::codes::INDEX_OUT_OF_RANGE, format!("`P{n}`: a call runs at least once"))
+                })?
+            }
+        };
+        // `CALL BLOCK A TO B` without a program: a section of this one.
+        let (callee, own_level) = if target.is_empty() && call.section.is_some() {
+            (Arc::clone(program), false)
+        } else {
+            match self.load(program, instruction, &target, call.by_path)? {
+                Some(callee) => (callee, true),
+                None => {
+                    self.not_simulated_call(program, instruction, &target, CallKind::Program, passes);
+                    return Ok(Flow::Next);
+                }
+            }
+        };
+        let (start, section_end_line, section) = match &call.section {
+            None => (0, None, None),
+            Some(section) => {
+                let from = eval::eval_value(&self.env(), &section.from)?.to_text()?;
+                let to = eval::eval_value(&self.env(), &section.to)?.to_text()?;
+                let search = gcodec_ail::JumpSearch::ForwardThenBackward;
+                let missing = |label: &str| {
+                    RunError::new(codes::JUMP_TARGET, format!("the section label `{label}` is not in `{}` (alarm 14080)", callee.name))
+                };
+                let start = callee.search_label(&from, 0, search).ok_or_else(|| missing(&from))?;
+                let end = callee.search_label(&to, start, search).ok_or_else(|| missing(&to))?;
+                let end_line = callee.instructions()[end].source.line;
+                (start, Some(end_line), Some(SectionEvent { from, to }))
+            }
+        };
+        let bindings = if own_level {
+            self.bindings(&callee, call)?
+        } else {
+            Vec::new()
+        };
+        let active = ActiveCall {
+            target: if target.is_empty() { callee.name.clone() } else { target },
+            kind: CallKind::Program,
+            pass: 1,
+            passes,
+            bindings,
+            start,
+            section_end_line,
+            section,
+            own_level,
+        };
+        self.enter(program, instruction, pc + 1, callee, active)
+    }
+
+    /// Loads `target`; `None` for a standard cycle that is not on the
+    /// search path (reported as a warning).
+    fn load(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        target: &str,
+        by_path: bool,
+    ) -> Result<Option<Arc<Program>>, RunError> {
+        let request = LoadRequest {
+            name: target,
+            by_path,
+            caller_file: &program.file,
+        };
+        match self.loader.load(&request) {
+            Ok(loaded) => {
+                let level = self.program_level() + 1;
+                for mut event in loaded.diagnostics {
+                    event.source.level = level;
+                    if let EventKind::Diagnostic(d) = &event.kind {
+                        match d.severity {
+                            EventSeverity::Error => self.errors += 1,
+                            EventSeverity::Warning => self.warnings += 1,
+                            EventSeverity::Advice => {}
+                        }
+                    }
+                    self.emit(&event);
+                }
+                if loaded.has_errors {
+                    return Err(RunError::new(
+                        codes::PROGRAM_ERRORS,
+                        format!("`{target}` ({}) has errors: the control does not run it", loaded.program.file),
+                    ));
+                }
+                Ok(Some(loaded.program))
+            }
+            Err(error) if is_standard_cycle(target) => {
+                let message = format!("{}; the call is reported, not simulated", error.message);
+                self.diagnostic_at(
+                    program,
+                    instruction,
+                    codes::CYCLE_NOT_SIMULATED,
+                    EventSeverity::Warning,
+                    message,
+                    Some("pass the directory holding the cycle's source with --subprogram-path to simulate it"),
+                );
+                Ok(None)
+            }
+            Err(error) => {
+                let mut message = error.message;
+                if let Some(help) = error.help {
+                    message.push_str("; ");
+                    message.push_str(&help);
+                }
+                Err(RunError::new(codes::PROGRAM_NOT_FOUND, message))
+            }
+        }
+    }
+
+    /// A call that is reported but not run: `call` and `return` events.
+    fn not_simulated_call(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        target: &str,
+        kind: CallKind,
+        passes: u32,
+    ) {
+        for pass in 1..=passes.min(1) {
+            let call = EventKind::Call(CallEvent {
+                target: target.to_owned(),
+                call_kind: kind,
+                pass,
+                passes,
+                section: None,
+            });
+            self.emit_at(program, instruction, call);
+            let ret = EventKind::Return(ReturnEvent {
+                target: target.to_owned(),
+            });
+            self.emit_at(program, instruction, ret);
+        }
+    }
+
+    fn prepare_modal_call(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        target: &str,
+        call: &Call,
+    ) -> Result<ModalCall, RunError> {
+        let callee = self.load(program, instruction, target, call.by_path)?;
+        let bindings = match &callee {
+            Some(callee) => self.bindings(callee, call)?,
+            None => Vec::new(),
+        };
+        Ok(ModalCall {
+            target: target.to_owned(),
+            program: callee,
+            bindings,
+        })
+    }
+
+    /// The modal call after a traversing block; the caller goes on at `pc`.
+    pub(super) fn run_modal_call(&mut self, program: &Arc<Program>, pc: usize) -> Flow {
+        let Some(modal) = self.modal_call.clone() else {
+            return Flow::Next;
+        };
+        let instruction = match program.instructions().get(pc.saturating_sub(1)).or(program.instructions().get(pc)) {
+            Some(i) => i.clone(),
+            None => return Flow::Next,
+        };
+        let Some(callee) = modal.program else {
+            self.not_simulated_call(program, &instruction, &modal.target, CallKind::Modal, 1);
+            return Flow::Next;
+        };
+        let active = ActiveCall {
+            target: modal.target,
+            kind: CallKind::Modal,
+            pass: 1,
+            passes: 1,
+            bindings: modal.bindings,
+            start: 0,
+            section_end_line: None,
+            section: None,
+            own_level: true,
+        };
+        match self.enter(program, &instruction, pc, callee, active) {
+            Ok(flow) => flow,
+            Err(error) => {
+                self.alarm(program, &instruction, error);
+                Flow::End(ProgramEndReason::Alarm)
+            }
+        }
+    }
+
+    /// Pushes the level of a call and binds its parameters.
+    fn enter(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        resume: usize,
+        callee: Arc<Program>,
+        active: ActiveCall,
+    ) -> Result<Flow, RunError> {
+        let levels = self.program_level() as usize + 1;
+        if active.own_level && levels >= self.options.max_levels {
+            return Err(RunError::new(
+                codes::CALL_DEPTH,
+                format!(
+                    "calling `{}` would open program level {}: the control has {} (the main program is level 0)",
+                    active.target,
+                    levels,
+                    self.options.max_levels
+                ),
+            ));
+        }
+        if let Some(top) = self.stack.last_mut() {
+            top.pc = resume;
+        }
+        let event = EventKind::Call(CallEvent {
+            target: active.target.clone(),
+            call_kind: active.kind,
+            pass: 1,
+            passes: active.passes,
+            section: active.section.clone(),
+        });
+        self.emit_at(program, instruction, event);
+        let program_level = self.program_level() + u32::from(active.own_level);
+        if active.own_level {
+            self.vars.push_level();
+            self.bind(&active.bindings)?;
+        }
+        self.stack.push(Level {
+            program: callee,
+            pc: active.start,
+            program_level,
+            kind: LevelKind::Call(Box::new(active)),
+        });
+        Ok(Flow::Switch)
+    }
+
+    /// Evaluates the arguments of `call` in the caller's context against
+    /// the callee's `PROC` parameters.
+    fn bindings(&self, callee: &Program, call: &Call) -> Result<Vec<Binding>, RunError> {
+        let procedure = callee
+            .instructions()
+            .iter()
+            .find(|i| !matches!(i.op, Op::Label { .. }))
+            .and_then(|i| match &i.op {
+                Op::Procedure(p) => Some(p),
+                _ => None,
+            });
+        let params: &[Parameter] = procedure.map_or(&[], |p| &p.params);
+        if call.args.len() > params.len() && call.args.iter().skip(params.len()).any(Option::is_some) {
+            return Err(RunError::new(
+                crate::value::codes::ARGUMENT_COUNT,
+                format!(
+                    "`{}` takes {} parameters, the call passes {} (alarm 12340)",
+                    callee.name,
+                    params.len(),
+                    call.args.len()
+                ),
+            ));
+        }
+        let env = self.env();
+        let mut bindings = Vec::with_capacity(params.len());
+        for (i, param) in params.iter().enumerate() {
+            let arg = call.args.get(i).and_then(Option::as_ref);
+            let binding = match (param.by_reference, arg) {
+                (true, Some(Value::Expr(expr))) if matches!(**expr, Expr::Var { .. }) => {
+                    let Expr::Var { var_kind, name, indices } = &**expr else {
+                        unreachable!("matched above")
+                    };
+                    let mut evaluated = Vec::with_capacity(indices.len());
+                    for index in indices {
+                        evaluated.push(eval::eval(&env, index)?.to_int()?);
+                    }
+                    Binding::Reference {
+                        param: param.clone(),
+                        target: VarRef {
+                            kind: *var_kind,
+                            name: name.to_string(),
+                            indices: evaluated,
+                        },
+                    }
+                }
+                (true, Some(_)) => {
+                    return Err(RunError::new(
+                        crate::value::codes::TYPE_MISMATCH,
+                        format!("the `VAR` parameter `{}` needs a variable, not a value", param.name),
+                    ));
+                }
+                (_, Some(value)) => Binding::Value {
+                    param: param.clone(),
+                    value: Some(eval::eval_value(&env, value)?),
+                },
+                (_, None) => Binding::Value {
+                    param: param.clone(),
+                    value: None,
+                },
+            };
+            bindings.push(binding);
+        }
+        Ok(bindings)
+    }
+
+    /// Declares the parameters in the new level and gives them their
+    /// values (`VAR`: a copy of the caller's variable, read from the level
+    /// below).
+    fn bind(&mut self, bindings: &[Binding]) -> Result<(), RunError> {
+        for binding in bindings {
+            let param = match binding {
+                Binding::Value { param, .. } | Binding::Reference { param, .. } => param,
+            };
+            let declare = Declare {
+                name: param.name.clone(),
+                data_type: param.data_type.clone(),
+                dims: param.dims.clone(),
+                init: Vec::new(),
+                init_repeat: None,
+            };
+            match binding {
+                Binding::Value { value, .. } => {
+                    eval::declare(&mut self.vars, &self.state, &declare, Scope::Local)?;
+                    let value = match (value, &param.default) {
+                        (Some(v), _) => Some(v.clone()),
+                        (None, Some(default)) => Some(eval::eval_value(&self.env(), default)?),
+                        (None, None) => None,
+                    };
+                    if let Some(value) = value {
+                        self.vars.write(VarKind::User, &param.name, &[], &value)?;
+                    }
+                }
+                Binding::Reference { target, .. } => {
+                    let values = self.read_caller(target)?;
+                    let mut declare = declare;
+                    if declare.dims.is_empty() && values.len() > 1 {
+                        // `VAR REAL A[]`: the caller's array decides.
+                        declare.dims = vec![Value::Const(values.len() as f64)];
+                    }
+                    eval::declare(&mut self.vars, &self.state, &declare, Scope::Local)?;
+                    if values.len() == 1 {
+                        self.vars.write(VarKind::User, &param.name, &[], &values[0])?;
+                    } else {
+                        let list: Vec<Option<RtValue>> = values.into_iter().map(Some).collect();
+                        self.vars.write_list(VarKind::User, &param.name, &[], &list)?;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The value of a caller's variable (all elements of an array named
+    /// without indices), read from the level below the current one.
+    fn read_caller(&mut self, target: &VarRef) -> Result<Vec<RtValue>, RunError> {
+        self.vars.with_caller_level(|vars| {
+            if target.indices.is_empty()
+                && target.kind == VarKind::User
+                && let Some(var) = vars.get(&target.name)
+                && !var.dims().is_empty()
+            {
+                return Ok(var.elements().to_vec());
+            }
+            Ok(vec![vars.read(target.kind, &target.name, &target.indices)?])
+        })
+    }
+
+    /// Writes the `VAR` parameters back to the caller's variables; the
+    /// current level is the called program's.
+    fn write_back(&mut self, bindings: &[Binding]) -> Result<(), RunError> {
+        for binding in bindings {
+            let Binding::Reference { param, target } = binding else {
+                continue;
+            };
+            let Some(local) = self.vars.get(&param.name) else {
+                continue;
+            };
+            let values: Vec<Option<RtValue>> = local.elements().iter().cloned().map(Some).collect();
+            self.vars.with_caller_level(|vars| {
+                if values.len() == 1 {
+                    vars.write(target.kind, &target.name, &target.indices, values[0].as_ref().expect("some"))
+                } else {
+                    vars.write_list(target.kind, &target.name, &target.indices, &values)
+                }
+            })?;
+        }
+        Ok(())
+    }
+
+    /// `REPEAT`: runs the section, then goes on after the instruction.
+    pub(super) fn repeat_section(
+        &mut self,
+        program: &Arc<Program>,
+        pc: usize,
+        instruction: &Instruction,
+        section: &RepeatSection,
+    ) -> Result<Flow, RunError> {
+        let missing = |label: &str| {
+            let name = label.split_once('@').map_or(label, |(n, _)| n);
+            RunError::new(codes::JUMP_TARGET, format!("the section label `{name}` is not in the program (alarm 14080)"))
+        };
+        let start = program.label(&section.start).ok_or_else(|| missing(&section.start))?;
+        let end = program.label(&section.end).ok_or_else(|| missing(&section.end))?;
+        let passes = eval::eval_value(&self.env(), &section.passes)?.to_int()?;
+        let passes = u32::try_from(passes).ok().filter(|&p| p >= 1).ok_or_else(|| {
+            RunError::new(crate::value::codes::INDEX_OUT_OF_RANGE, format!("`P={passes}`: a section runs at least once"))
+        })?;
+        let target = section.start.split_once('@').map_or(section.start.as_str(), |(n, _)| n).to_owned();
+        if let Some(top) = self.stack.last_mut() {
+            top.pc = pc + 1;
+        }
+        let event = EventKind::Call(CallEvent {
+            target: target.clone(),
+            call_kind: CallKind::Repeat,
+            pass: 1,
+            passes,
+            section: Some(SectionEvent {
+                from: target.clone(),
+                to: section.end.split_once('@').map_or(section.end.as_str(), |(n, _)| n).to_owned(),
+            }),
+        });
+        self.emit_at(program, instruction, event);
+        let program_level = self.program_level();
+        self.stack.push(Level {
+            program: Arc::clone(program),
+            pc: start,
+            program_level,
+            kind: LevelKind::Repeat {
+                target,
+                start,
+                end,
+                pass: 1,
+                passes,
+            },
+        });
+        Ok(Flow::Switch)
+    }
+
+    /// The end label of the top `REPEAT` section is reached: the next pass,
+    /// or back after the `REPEAT`.
+    pub(super) fn repeat_pass_done(&mut self) -> Option<ProgramEndReason> {
+        let top = self.stack.last_mut()?;
+        let program = Arc::clone(&top.program);
+        let LevelKind::Repeat {
+            target,
+            start,
+            end,
+            pass,
+            passes,
+        } = &mut top.kind
+        else {
+            return None;
+        };
+        let instruction = program.instructions().get(*end).or(program.instructions().last())?.clone();
+        if *pass < *passes {
+            *pass += 1;
+            top.pc = *start;
+            let event = EventKind::Call(CallEvent {
+                target: target.clone(),
+                call_kind: CallKind::Repeat,
+                pass: *pass,
+                passes: *passes,
+                section: None,
+            });
+            self.emit_at(&program, &instruction, event);
+            return None;
+        }
+        let event = EventKind::Return(ReturnEvent { target: target.clone() });
+        self.stack.pop();
+        self.emit_at(&program, &instruction, event);
+        None
+    }
+
+    /// `RET`, `M17` (`M2`, `M30` in a subprogram), the end of a section or
+    /// of the text: back to the caller, or the next pass. In the main
+    /// program the program ends.
+    pub(super) fn return_from_call(&mut self, program: &Arc<Program>, pc: usize, section_end: bool) -> Flow {
+        let instruction = match program.instructions().get(pc).or(program.instructions().last()) {
+            Some(i) => i.clone(),
+            None => return Flow::End(ProgramEndReason::EndOfText),
+        };
+        // A return inside a `REPEAT` section leaves the section too.
+        while matches!(self.stack.last().map(|l| &l.kind), Some(LevelKind::Repeat { .. })) {
+            self.stack.pop();
+        }
+        let Some(top) = self.stack.last_mut() else {
+            return Flow::End(ProgramEndReason::EndOfText);
+        };
+        let LevelKind::Call(call) = &mut top.kind else {
+            let reason = if section_end || matches!(instruction.op, Op::End) {
+                ProgramEndReason::EndOfText
+            } else {
+                ProgramEndReason::M17
+            };
+            return Flow::End(reason);
+        };
+        let bindings = std::mem::take(&mut call.bindings);
+        let own_level = call.own_level;
+        let result = if own_level {
+            let written = self.write_back(&bindings);
+            self.vars.pop_level();
+            written
+        } else {
+            Ok(())
+        };
+        if let Err(error) = result {
+            self.alarm(program, &instruction, error);
+            return Flow::End(ProgramEndReason::Alarm);
+        }
+        let Some(top) = self.stack.last_mut() else {
+            return Flow::End(ProgramEndReason::EndOfText);
+        };
+        let LevelKind::Call(call) = &mut top.kind else {
+            return Flow::End(ProgramEndReason::EndOfText);
+        };
+        call.bindings = bindings;
+        let event = EventKind::Return(ReturnEvent {
+            target: call.target.clone(),
+        });
+        self.emit_at(program, &instruction, event);
+        let Some(top) = self.stack.last_mut() else {
+            return Flow::End(ProgramEndReason::EndOfText);
+        };
+        let LevelKind::Call(call) = &mut top.kind else {
+            return Flow::End(ProgramEndReason::EndOfText);
+        };
+        if call.pass < call.passes {
+            call.pass += 1;
+            top.pc = call.start;
+            let event = EventKind::Call(CallEvent {
+                target: call.target.clone(),
+                call_kind: call.kind,
+                pass: call.pass,
+                passes: call.passes,
+                section: call.section.clone(),
+            });
+            let bindings = call.bindings.clone();
+            let own_level = call.own_level;
+            // The next pass is reported at the caller's level.
+            let caller_level = top.program_level.saturating_sub(u32::from(own_level));
+            let mut source = self.source(program, &instruction);
+            source.level = caller_level;
+            self.emit(&crate::event::Event { kind: event, source });
+            if own_level {
+                self.vars.push_level();
+                if let Err(error) = self.bind(&bindings) {
+                    self.alarm(program, &instruction, error);
+                    return Flow::End(ProgramEndReason::Alarm);
+                }
+            }
+            return Flow::Switch;
+        }
+        self.stack.pop();
+        Flow::Switch
+    }
+
+    /// The end of a program's text: a subprogram returns, the main program
+    /// ends.
+    pub(super) fn end_of_text(&mut self, program: &Arc<Program>, pc: usize) -> Flow {
+        self.return_from_call(program, pc, false)
+    }
+}

@@ -1,0 +1,541 @@
+//! The auxiliary and preparatory functions of a block: M and H functions
+//! (seed 001), tool selection and change (seed 000), cutting edges,
+//! spindles, dwell, named addresses and programmable frames.
+
+use std::sync::Arc;
+
+use gcodec_ail::{
+    Address, Frame as FrameInstruction, HFunction, Instruction, MClass, MFunction, MTiming,
+    SelectorKind, ToolChangeTrigger, ToolSelect, ToolTiming, Value,
+};
+use gcodec_profile::{Policy, Tool, ToolState, UnresolvedToolPolicy};
+
+use super::state::ToolRef;
+use super::{Channel, Flow, codes};
+use crate::eval;
+use crate::event::{
+    DwellEvent, EventKind, EventSeverity, HFunctionEvent, MAction, MFunctionEvent,
+    ProgramEndReason, SelectionSource, SpindleEvent, SpindleState, StopEvent, StopReason,
+    ToolChangeEvent, ToolSelectEvent,
+};
+use crate::frames::FrameOp;
+use crate::program::Program;
+use crate::value::{RtValue, RunError, codes as value_codes};
+
+impl Channel<'_> {
+    pub(super) fn m_function(
+        &mut self,
+        program: &Arc<Program>,
+        pc: usize,
+        instruction: &Instruction,
+        m: &MFunction,
+    ) -> Result<Flow, RunError> {
+        let env = self.env();
+        let value = match (&m.m_value, &m.m_expr) {
+            (Some(v), _) => *v,
+            (None, Some(expr)) => {
+                let n = eval::eval(&env, expr)?.to_int()?;
+                u32::try_from(n).map_err(|_| {
+                    RunError::new(value_codes::OVERFLOW, format!("`M={n}`: an M function is 0 or more"))
+                })?
+            }
+            (None, None) => 0,
+        };
+        let extension = match (&m.address_extension, &m.address_extension_expr) {
+            (Some(e), _) => Some(*e),
+            (None, Some(expr)) => Some(eval::eval(&env, expr)?.to_int()?.max(0) as u32),
+            (None, None) => None,
+        };
+        // A computed value is classified now, as lowering classifies
+        // constants.
+        let class = if m.m_value.is_none() {
+            self.classify_m(value)
+        } else {
+            m.class
+        };
+        let change_m = *self.state.profile.tool_change.change_m_code.get_ref();
+        let action = match (class, value) {
+            (MClass::ProgramFlow, 0) => MAction::ProgramStop,
+            (MClass::ProgramFlow, 1) => MAction::OptionalStop,
+            (MClass::ProgramFlow, 2 | 30) => MAction::ProgramEnd,
+            (MClass::ProgramFlow, 17) => MAction::SubprogramEnd,
+            (MClass::Spindle, 3) => MAction::SpindleCw,
+            (MClass::Spindle, 4) => MAction::SpindleCcw,
+            (MClass::Spindle, 5) => MAction::SpindleStop,
+            (MClass::Spindle, 19) => MAction::SpindlePosition,
+            (MClass::Spindle, 70) => MAction::SpindleAxisMode,
+            (MClass::Tool, v) if v == change_m => MAction::ToolChange,
+            (MClass::Gearbox, 40) => MAction::GearStageAuto,
+            (MClass::Gearbox, 41..=45) => MAction::GearStage,
+            _ => MAction::Output,
+        };
+        if m.m_value.is_none() && action == MAction::Output && class == MClass::Custom && !self.m_known(value) {
+            match self.state.profile.m_functions.unknown_mcode_policy {
+                Policy::Error => {
+                    return Err(RunError::new(
+                        codes::UNKNOWN_M,
+                        format!("`M{value}` is not an M function of this machine"),
+                    ));
+                }
+                Policy::Warning => self.diagnostic_at(
+                    program,
+                    instruction,
+                    codes::UNKNOWN_M,
+                    EventSeverity::Warning,
+                    format!("`M{value}` is not an M function of this machine; it is output to the PLC"),
+                    Some("list it in the profile's `mcode_class_overrides` if the machine has it"),
+                ),
+                Policy::Ignore => {}
+            }
+        }
+        let event = EventKind::MFunction(MFunctionEvent {
+            m_value: value,
+            address_extension: extension,
+            class,
+            phase: m.timing,
+            action,
+        });
+        self.emit_at(program, instruction, event);
+        let spindle = |state| (extension, state);
+        let change = match action {
+            MAction::SpindleCw => Some(spindle(SpindleState::Cw)),
+            MAction::SpindleCcw => Some(spindle(SpindleState::Ccw)),
+            MAction::SpindleStop => Some(spindle(SpindleState::Stopped)),
+            MAction::SpindlePosition => Some(spindle(SpindleState::Positioned)),
+            MAction::SpindleAxisMode => Some(spindle(SpindleState::Axis)),
+            _ => None,
+        };
+        if let Some((number, state)) = change {
+            let s = self.state.spindle(number);
+            s.state = state;
+            self.spindle_event(program, instruction, number);
+        }
+        match action {
+            MAction::GearStageAuto => self.state.spindle(extension).gear = 0,
+            MAction::GearStage => self.state.spindle(extension).gear = value - 40,
+            MAction::ProgramStop | MAction::OptionalStop => {
+                let stops = action == MAction::ProgramStop || self.options.optional_stop;
+                if stops {
+                    let reason = if action == MAction::ProgramStop {
+                        StopReason::ProgramStop
+                    } else {
+                        StopReason::OptionalStop
+                    };
+                    let event = EventKind::Stop(StopEvent { reason, detail: None });
+                    self.emit_at(program, instruction, event);
+                    if self.options.stop_at_m0 {
+                        return Ok(Flow::End(ProgramEndReason::Stopped));
+                    }
+                }
+            }
+            MAction::ProgramEnd | MAction::SubprogramEnd => {
+                if self.program_level() == 0 && !self.in_call() {
+                    return Ok(Flow::End(match value {
+                        2 => ProgramEndReason::M2,
+                        30 => ProgramEndReason::M30,
+                        _ => ProgramEndReason::M17,
+                    }));
+                }
+                // `M2`/`M30` in a subprogram end it like `M17`.
+                return Ok(self.return_from_call(program, pc, false));
+            }
+            _ => {}
+        }
+        let _ = MTiming::InBlock;
+        Ok(Flow::Next)
+    }
+
+    /// Whether a call level is on the stack (a section of the main program
+    /// runs at level 0).
+    fn in_call(&self) -> bool {
+        self.stack.iter().any(|l| matches!(l.kind, super::LevelKind::Call(_)))
+    }
+
+    /// The class of a computed M value (seed 001), as lowering classifies
+    /// constants: the profile's overrides first.
+    fn classify_m(&self, value: u32) -> MClass {
+        let profile = &self.state.profile;
+        if let Some((_, class)) = profile
+            .m_functions
+            .mcode_class_overrides
+            .iter()
+            .find(|(k, _)| k.get_ref().trim().parse::<u32>() == Ok(value))
+        {
+            return *class;
+        }
+        match value {
+            0 | 1 | 2 | 17 | 30 => MClass::ProgramFlow,
+            3 | 4 | 5 | 19 | 70 => MClass::Spindle,
+            40..=45 => MClass::Gearbox,
+            v if v == *profile.tool_change.change_m_code.get_ref() => MClass::Tool,
+            _ => MClass::Custom,
+        }
+    }
+
+    /// Whether the machine knows `value` (predefined, or in the overrides).
+    fn m_known(&self, value: u32) -> bool {
+        self.state
+            .profile
+            .m_functions
+            .mcode_class_overrides
+            .keys()
+            .any(|k| k.get_ref().trim().parse::<u32>() == Ok(value))
+    }
+
+    fn spindle_event(&mut self, program: &Arc<Program>, instruction: &Instruction, number: Option<u32>) {
+        let s = self.state.spindle(number).clone();
+        let event = EventKind::Spindle(SpindleEvent {
+            spindle: s.number,
+            state: s.state,
+            speed: s.speed,
+            position: s.position.filter(|_| s.state == SpindleState::Positioned),
+        });
+        self.emit_at(program, instruction, event);
+    }
+
+    pub(super) fn spindle_speed(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        spindle: Option<u32>,
+        speed: &Value,
+        spindle_expr: Option<&gcodec_ail::Expr>,
+    ) -> Result<(), RunError> {
+        let env = self.env();
+        let number = match (spindle, spindle_expr) {
+            (Some(n), _) => Some(n),
+            (None, Some(expr)) => Some(eval::eval(&env, expr)?.to_int()?.max(0) as u32),
+            (None, None) => None,
+        };
+        let speed = eval::eval_real(&env, speed)?;
+        self.state.spindle(number).speed = speed;
+        self.spindle_event(program, instruction, number);
+        Ok(())
+    }
+
+    pub(super) fn dwell(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        seconds: Option<&Value>,
+        revolutions: Option<&Value>,
+    ) -> Result<(), RunError> {
+        let env = self.env();
+        let seconds = seconds.map(|v| eval::eval_real(&env, v)).transpose()?;
+        let revolutions = revolutions.map(|v| eval::eval_real(&env, v)).transpose()?;
+        let speed = self.state.master_spindle().map_or(0.0, |s| s.speed);
+        let time = seconds.unwrap_or(0.0)
+            + revolutions.map_or(0.0, |r| if speed > 0.0 { r / speed * 60.0 } else { 0.0 });
+        let tool = self.state.active_tool.as_ref().map(|t| t.label.clone());
+        self.summary.tool(tool.as_deref()).feed_time += time.max(0.0);
+        let event = EventKind::Dwell(DwellEvent { seconds, revolutions });
+        self.emit_at(program, instruction, event);
+        Ok(())
+    }
+
+    pub(super) fn h_function(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        h: &HFunction,
+    ) -> Result<(), RunError> {
+        let env = self.env();
+        let value = match (&h.h_value, &h.h_expr) {
+            (Some(v), _) => *v,
+            (None, Some(expr)) => eval::eval(&env, expr)?.to_real()?,
+            (None, None) => 0.0,
+        };
+        let extension = match (&h.address_extension, &h.address_extension_expr) {
+            (Some(e), _) => Some(*e),
+            (None, Some(expr)) => Some(eval::eval(&env, expr)?.to_int()?.max(0) as u32),
+            (None, None) => None,
+        };
+        let event = EventKind::HFunction(HFunctionEvent {
+            h_value: value,
+            address_extension: extension,
+            quick: h.quick,
+            phase: h.timing,
+        });
+        self.emit_at(program, instruction, event);
+        Ok(())
+    }
+
+    /// `SPOS`/`SPOSA` position a spindle; the other named addresses do not
+    /// change what the simulation shows and are reported once.
+    pub(super) fn address(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        address: &Address,
+    ) -> Result<(), RunError> {
+        let env = self.env();
+        let value = eval::eval_real(&env, &address.value)?;
+        match address.address.as_str() {
+            "SPOS" | "SPOSA" => {
+                let number = match (&address.extension, &address.extension_expr) {
+                    (Some(n), _) => Some(*n),
+                    (None, Some(expr)) => Some(eval::eval(&env, expr)?.to_int()?.max(0) as u32),
+                    (None, None) => None,
+                };
+                let s = self.state.spindle(number);
+                s.state = SpindleState::Positioned;
+                s.position = Some(value);
+                self.spindle_event(program, instruction, number);
+            }
+            other => {
+                let key = format!("address {other}");
+                let message = format!("`{other}=` has no effect in the simulation");
+                self.report_once(program, instruction, &key, codes::NOT_SIMULATED, message);
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn frame(&mut self, frame: &FrameInstruction) -> Result<(), RunError> {
+        let op = FrameOp::parse(&frame.op).ok_or_else(|| {
+            RunError::new(codes::NOT_SIMULATED, format!("`{}` is not simulated", frame.op))
+        })?;
+        let inch = self.state.inch();
+        let mut values = Vec::with_capacity(frame.values.len());
+        let mut rpl = None;
+        let env = self.env();
+        for v in &frame.values {
+            let value = eval::eval_real(&env, &v.value)?;
+            if v.axis == "RPL" {
+                rpl = Some(value);
+                continue;
+            }
+            let axis = self.state.axis_index(&v.axis).ok_or_else(|| {
+                RunError::new(value_codes::UNKNOWN_AXIS, format!("the machine has no axis `{}`", v.axis))
+            })?;
+            let is_length = matches!(op, FrameOp::Trans | FrameOp::ATrans) && !self.state.axes[axis].rotary;
+            values.push((axis, if is_length && inch { value * 25.4 } else { value }));
+        }
+        for v in &frame.indirect_values {
+            let name = match eval::eval(&env, &v.axis)? {
+                RtValue::Axis(a) | RtValue::String(a) => a,
+                other => return Err(RunError::type_mismatch(&other, "AXIS")),
+            };
+            let axis = self.state.axis_index(&name).ok_or_else(|| {
+                RunError::new(value_codes::UNKNOWN_AXIS, format!("the machine has no axis `{name}`"))
+            })?;
+            let value = eval::eval_real(&env, &v.value)?;
+            let is_length = matches!(op, FrameOp::Trans | FrameOp::ATrans) && !self.state.axes[axis].rotary;
+            values.push((axis, if is_length && inch { value * 25.4 } else { value }));
+        }
+        let plane = self.state.plane();
+        let axes = self.state.frame_axes.clone();
+        self.state
+            .programmable
+            .apply(&axes, op, &values, rpl, frame_plane(plane))
+    }
+
+    pub(super) fn tool_select(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        select: &ToolSelect,
+    ) -> Result<(), RunError> {
+        let (kind, value) = match &select.selector_expr {
+            Some(expr) => {
+                let v = eval::eval(&self.env(), expr)?;
+                let management = self.state.profile.tool_change.tool_management_enabled;
+                match v {
+                    RtValue::String(s) => (SelectorKind::Name, s.to_string()),
+                    other => {
+                        let n = other.to_int()?;
+                        let kind = if management {
+                            SelectorKind::Location
+                        } else {
+                            SelectorKind::Number
+                        };
+                        (kind, n.to_string())
+                    }
+                }
+            }
+            None => (select.selector_kind, select.selector_value.clone()),
+        };
+        let resolved = self.resolve_tool(program, instruction, kind, &value)?;
+        let event = EventKind::ToolSelect(ToolSelectEvent {
+            selector_kind: kind,
+            selector_value: value,
+            selected_tool: resolved.as_ref().map(|(t, _)| t.label.clone()),
+            spindle_extension: select.spindle_extension,
+            timing: select.timing,
+        });
+        self.emit_at(program, instruction, event);
+        self.pending_substituted = resolved.as_ref().is_some_and(|(_, s)| *s);
+        // `T0` selects "no tool": pending as `None`.
+        self.state.pending_tool = resolved.map(|(t, _)| t);
+        self.pending_selected = true;
+        let _ = ToolTiming::Immediate;
+        Ok(())
+    }
+
+    /// Resolves a selection against the tool table (`None`: `T0`, no tool),
+    /// with whether a sister tool was substituted.
+    fn resolve_tool(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        kind: SelectorKind,
+        value: &str,
+    ) -> Result<Option<(ToolRef, bool)>, RunError> {
+        if value == "0" && kind != SelectorKind::Name {
+            return Ok(None);
+        }
+        let profile = Arc::clone(&self.state.profile);
+        let management = profile.tool_change.tool_management_enabled;
+        let literal = || match kind {
+            SelectorKind::Name => ToolRef { label: value.to_owned(), number: 0 },
+            _ => ToolRef {
+                label: format!("T{value}"),
+                number: value.parse().unwrap_or(0),
+            },
+        };
+        if profile.tools.is_empty() {
+            return Ok(Some((literal(), false)));
+        }
+        let label = |tool: &Tool| match (&tool.name, management) {
+            (Some(name), true) => name.get_ref().clone(),
+            _ => format!("T{}", tool.number.get_ref()),
+        };
+        let candidates: Vec<&Tool> = match kind {
+            SelectorKind::Number => profile.tools.iter().filter(|t| t.number.get_ref().to_string() == value).collect(),
+            SelectorKind::Location => profile.tools.iter().filter(|t| t.location.is_some_and(|l| l.to_string() == value)).collect(),
+            _ => {
+                let mut sisters: Vec<&Tool> = profile
+                    .tools
+                    .iter()
+                    .filter(|t| t.name.as_ref().is_some_and(|n| n.get_ref().eq_ignore_ascii_case(value)))
+                    .collect();
+                sisters.sort_by_key(|t| t.duplo);
+                sisters
+            }
+        };
+        let usable = candidates.iter().position(|t| t.state == ToolState::Enabled);
+        let chosen = match usable {
+            Some(0) => Some((candidates[0], false)),
+            Some(i) if profile.tool_change.allow_substitution => Some((candidates[i], true)),
+            _ => None,
+        };
+        if let Some((tool, substituted)) = chosen {
+            return Ok(Some((
+                ToolRef {
+                    label: label(tool),
+                    number: *tool.number.get_ref(),
+                },
+                substituted,
+            )));
+        }
+        let why = if candidates.is_empty() {
+            format!("no tool `{value}` in the machine's tool table")
+        } else {
+            format!("the tool `{value}` is disabled or locked and no sister tool may replace it")
+        };
+        match profile.tool_change.on_unresolved_tool {
+            UnresolvedToolPolicy::Error => Err(RunError::new(codes::UNRESOLVED_TOOL, why)),
+            UnresolvedToolPolicy::Warning => {
+                self.diagnostic_at(program, instruction, codes::UNRESOLVED_TOOL, EventSeverity::Warning, why, None);
+                Ok(Some((literal(), false)))
+            }
+            UnresolvedToolPolicy::Fallback => Ok(Some((literal(), false))),
+        }
+    }
+
+    pub(super) fn tool_change(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        trigger: ToolChangeTrigger,
+    ) -> Result<(), RunError> {
+        let previous = self.state.active_tool.as_ref().map(|t| t.label.clone());
+        let (new, source, substituted) = if self.pending_selected {
+            let new = self.state.pending_tool.take();
+            self.pending_selected = false;
+            let source = match trigger {
+                ToolChangeTrigger::M6 => SelectionSource::PendingThenM6,
+                ToolChangeTrigger::TWord => SelectionSource::DirectTWord,
+            };
+            (new, source, std::mem::take(&mut self.pending_substituted))
+        } else {
+            match self.state.profile.tool_change.m6_without_pending_policy {
+                Policy::Error => {
+                    return Err(RunError::new(
+                        codes::M6_WITHOUT_PENDING,
+                        "the tool change has no tool selected before it (T…)",
+                    ));
+                }
+                Policy::Warning => self.diagnostic_at(
+                    program,
+                    instruction,
+                    codes::M6_WITHOUT_PENDING,
+                    EventSeverity::Warning,
+                    "the tool change has no tool selected before it (T…); the tool stays".into(),
+                    Some("select the tool with T before the change"),
+                ),
+                Policy::Ignore => {}
+            }
+            (self.state.active_tool.clone(), SelectionSource::M6WithoutPending, false)
+        };
+        let event = EventKind::ToolChange(ToolChangeEvent {
+            previous_tool: previous,
+            new_tool: new.as_ref().map(|t| t.label.clone()),
+            selection_source: source,
+            substituted,
+            trigger,
+        });
+        self.state.active_tool = new;
+        self.emit_at(program, instruction, event);
+        // The new tool's first edge is active (MD20270 = 1), D0 without a
+        // tool.
+        let edge = if self.state.active_tool.is_some() { 1 } else { 0 };
+        self.set_edge(program, instruction, edge, false);
+        Ok(())
+    }
+
+    pub(super) fn cutting_edge(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        edge: &Value,
+    ) -> Result<(), RunError> {
+        let d = eval::eval_value(&self.env(), edge)?.to_int()?;
+        let d = u32::try_from(d).map_err(|_| RunError::new(value_codes::OVERFLOW, format!("`D{d}`: an edge is 0 or more")))?;
+        self.set_edge(program, instruction, d, true);
+        Ok(())
+    }
+
+    /// Activates edge `d` of the active tool and its length offset.
+    fn set_edge(&mut self, program: &Arc<Program>, instruction: &Instruction, d: u32, programmed: bool) {
+        self.state.edge = d;
+        self.state.tool_length = 0.0;
+        if d == 0 {
+            return;
+        }
+        let Some(tool) = &self.state.active_tool else {
+            return;
+        };
+        let profile = Arc::clone(&self.state.profile);
+        let entry = profile.tools.iter().find(|t| *t.number.get_ref() == tool.number);
+        let Some(entry) = entry else {
+            return;
+        };
+        match entry.edges.iter().find(|e| *e.d.get_ref() == d) {
+            Some(e) => self.state.tool_length = e.length,
+            None if programmed => {
+                let message = format!("tool {} has no cutting edge D{d} in the tool table; no length offset", tool.label);
+                self.diagnostic_at(program, instruction, codes::UNKNOWN_EDGE, EventSeverity::Warning, message, None);
+            }
+            None => {}
+        }
+    }
+}
+
+fn frame_plane(plane: crate::event::Plane) -> crate::geometry::Plane {
+    match plane {
+        crate::event::Plane::G17 => crate::geometry::Plane::G17,
+        crate::event::Plane::G18 => crate::geometry::Plane::G18,
+        crate::event::Plane::G19 => crate::geometry::Plane::G19,
+    }
+}

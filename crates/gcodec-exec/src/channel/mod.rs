@@ -1,0 +1,800 @@
+//! The channel: runs lowered programs the way a SINUMERIK channel does and
+//! hands every event to an [`EventSink`] as it happens (SPEC §11).
+//!
+//! [`Channel::run`] walks the main program's instructions with a program
+//! counter. Subprograms, cycles, modal calls and `REPEAT` sections push a
+//! [`Level`] on a stack (at most [`RunOptions::max_levels`] program
+//! levels); jumps go to the instruction index of their label. A block is
+//! the run of instructions of one source line; at its end the modal call
+//! runs (after a traversing block), and the CSV row is written. Nothing
+//! per block or per loop pass is kept, so memory does not grow with the
+//! run: events go out, the summary adds up.
+//!
+//! Module map: `state` (modal groups, positions, frames, tool, spindles,
+//! and the system variables a program reads), `motion` (traversing blocks
+//! and arcs), `calls` (subprograms, parameters, sections), `functions`
+//! (M and H functions, tool selection and change, spindle, dwell),
+//! `summary` (the figures after the run).
+
+mod calls;
+mod functions;
+mod motion;
+pub mod state;
+mod summary;
+
+use std::borrow::Cow;
+use std::io;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use gcodec_ail::{Instruction, Op};
+use gcodec_profile::Profile;
+use gcodec_sema::ggroups;
+use rustc_hash::FxHashSet;
+
+pub use state::MachineState;
+pub use summary::{RunSummary, ToolSummary};
+
+use crate::eval::{self, Env};
+use crate::event::{
+    BlockRow, CallKind, DiagnosticEvent, Event, EventKind, EventSeverity, EventSink, EventSource,
+    MessageEvent, ModalChangeEvent, ProgramEndEvent, ProgramEndReason, StopEvent, StopReason,
+    WorkOffsetCode,
+};
+use crate::geometry::CircleTolerance;
+use crate::loader::ProgramLoader;
+use crate::program::Program;
+use crate::value::RunError;
+use crate::vars::{Scope, Variables};
+
+/// The stable codes of the channel's own diagnostics (expression errors
+/// keep theirs, [`crate::value::codes`]).
+pub mod codes {
+    /// A jump whose target is not in the program (alarm 14080).
+    pub const JUMP_TARGET: &str = "gcodec::run::jump_target_not_found";
+    /// A called program that is on no search path (alarm 14011).
+    pub const PROGRAM_NOT_FOUND: &str = "gcodec::run::program_not_found";
+    /// A standard cycle or predefined procedure that is not on the search
+    /// path: the call is reported, not run.
+    pub const CYCLE_NOT_SIMULATED: &str = "gcodec::run::cycle_not_simulated";
+    /// A called program with errors.
+    pub const PROGRAM_ERRORS: &str = "gcodec::run::program_has_errors";
+    /// More program levels than the control has.
+    pub const CALL_DEPTH: &str = "gcodec::run::call_depth";
+    /// The run stopped after `--max-steps` blocks.
+    pub const STEP_LIMIT: &str = "gcodec::run::step_limit";
+    /// Ctrl-C.
+    pub const INTERRUPTED: &str = "gcodec::run::interrupted";
+    /// A construct the simulation does not model; it has no effect.
+    pub const NOT_SIMULATED: &str = "gcodec::run::not_simulated";
+    /// A tool the tool table does not have (`on_unresolved_tool`).
+    pub const UNRESOLVED_TOOL: &str = "gcodec::run::unresolved_tool";
+    /// The change M without a pending selection
+    /// (`m6_without_pending_policy`).
+    pub const M6_WITHOUT_PENDING: &str = "gcodec::run::m6_without_pending";
+    /// An M function outside the known set (`unknown_mcode_policy`).
+    pub const UNKNOWN_M: &str = "gcodec::run::unknown_m_function";
+    /// A cutting edge the active tool does not have.
+    pub const UNKNOWN_EDGE: &str = "gcodec::run::unknown_edge";
+    /// Writing the events failed.
+    pub const OUTPUT: &str = "gcodec::run::output";
+}
+
+/// How a run goes.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Skip levels switched on (`/0`…`/9`).
+    pub skip_levels: [bool; 10],
+    /// Stop after this many blocks ([`ProgramEndReason::Limit`]).
+    pub max_steps: u64,
+    /// Program levels, the main program's included (16 on the control).
+    pub max_levels: usize,
+    /// `M0` (and `M1` with `optional_stop`) ends the run with a `stop`
+    /// event: the simulation cannot wait for NC start. `false` (`--no-stop`)
+    /// goes on.
+    pub stop_at_m0: bool,
+    /// The operator's optional-stop switch: `M1` stops.
+    pub optional_stop: bool,
+    /// Set from another thread (Ctrl-C) to stop the run cleanly.
+    pub interrupt: Option<Arc<AtomicBool>>,
+    pub circle_tolerance: CircleTolerance,
+}
+
+impl RunOptions {
+    /// The defaults for a machine: its skip levels, 10 million blocks,
+    /// 16 levels, M0 stops, M1 does not.
+    pub fn for_profile(profile: &Profile) -> Self {
+        let mut skip_levels = [false; 10];
+        for level in &profile.program.skip_levels {
+            if let Some(slot) = skip_levels.get_mut(usize::from(*level.get_ref())) {
+                *slot = true;
+            }
+        }
+        Self {
+            skip_levels,
+            max_steps: 10_000_000,
+            max_levels: 16,
+            stop_at_m0: true,
+            optional_stop: false,
+            interrupt: None,
+            circle_tolerance: CircleTolerance::DEFAULT,
+        }
+    }
+}
+
+/// What a run ended with.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunOutcome {
+    pub reason: ProgramEndReason,
+    pub summary: RunSummary,
+    /// The number of diagnostic events of severity `error` (alarms).
+    pub errors: u64,
+    pub warnings: u64,
+}
+
+/// Receives the state after each executed block (`--format csv`).
+pub trait BlockObserver {
+    fn block(&mut self, row: &BlockRow) -> io::Result<()>;
+}
+
+/// One level of the stack: a program (or a section of one) running.
+struct Level {
+    program: Arc<Program>,
+    /// Where this level goes on (while a deeper level runs: the
+    /// instruction after the call).
+    pc: usize,
+    /// The program level of events (0: main program); a `REPEAT` section
+    /// runs at its program's level.
+    program_level: u32,
+    kind: LevelKind,
+}
+
+enum LevelKind {
+    Main,
+    /// A called program (or a section of one), `pass` of `passes`.
+    Call(Box<calls::ActiveCall>),
+    /// `REPEAT`: from `start` to the label `end`.
+    Repeat {
+        target: String,
+        start: usize,
+        end: usize,
+        pass: u32,
+        passes: u32,
+    },
+}
+
+/// What an instruction does to the program counter.
+enum Flow {
+    Next,
+    Jump(usize),
+    /// A level was pushed (a call) or popped (a return): continue with the
+    /// top of the stack.
+    Switch,
+    End(ProgramEndReason),
+}
+
+/// The block being executed.
+#[derive(Default)]
+struct BlockState {
+    open: bool,
+    /// A jump, call or return happened: the next instruction starts a
+    /// block even on the same line.
+    transferred: bool,
+    line: u32,
+    had_motion: bool,
+    /// Where the block came from (for the CSV row).
+    file: Option<Arc<str>>,
+    level: u32,
+    number: Option<u32>,
+}
+
+/// A running channel.
+pub struct Channel<'r> {
+    pub state: MachineState,
+    pub vars: Variables,
+    options: RunOptions,
+    loader: &'r mut dyn ProgramLoader,
+    sink: &'r mut dyn EventSink,
+    observer: Option<&'r mut dyn BlockObserver>,
+    stack: Vec<Level>,
+    summary: RunSummary,
+    block: BlockState,
+    /// `MCALL NAME(…)`: the call made after every traversing block.
+    modal_call: Option<calls::ModalCall>,
+    /// Things reported once per run (not-simulated addresses).
+    reported: FxHashSet<String>,
+    motion: motion::MotionScratch,
+    row: BlockRow,
+    errors: u64,
+    warnings: u64,
+    output_error: Option<io::Error>,
+    /// A `T` selection waits for the change (seed 000); `T0` is a pending
+    /// selection of no tool.
+    pending_selected: bool,
+    /// Whether the pending selection is a substitute (a sister tool).
+    pending_substituted: bool,
+}
+
+impl<'r> Channel<'r> {
+    pub fn new(
+        profile: Arc<Profile>,
+        options: RunOptions,
+        loader: &'r mut dyn ProgramLoader,
+        sink: &'r mut dyn EventSink,
+    ) -> Self {
+        let vars = Variables::for_profile(&profile);
+        let state = MachineState::new(profile);
+        let motion = motion::MotionScratch::new(&state);
+        Self {
+            state,
+            vars,
+            options,
+            loader,
+            sink,
+            observer: None,
+            stack: Vec::new(),
+            summary: RunSummary::default(),
+            block: BlockState::default(),
+            modal_call: None,
+            reported: FxHashSet::default(),
+            motion,
+            row: BlockRow::default(),
+            errors: 0,
+            warnings: 0,
+            output_error: None,
+            pending_selected: false,
+            pending_substituted: false,
+        }
+    }
+
+    /// Also hands the state after each block to `observer`.
+    pub fn with_observer(mut self, observer: &'r mut dyn BlockObserver) -> Self {
+        self.observer = Some(observer);
+        self
+    }
+
+    /// Runs `main` to its end and writes the final `program_end` event.
+    /// An error writing events ends the run and is returned.
+    pub fn run(mut self, main: Arc<Program>) -> io::Result<RunOutcome> {
+        self.stack.push(Level {
+            program: main,
+            pc: 0,
+            program_level: 0,
+            kind: LevelKind::Main,
+        });
+        let reason = self.run_levels();
+        self.end_block();
+        let end = Event {
+            kind: EventKind::ProgramEnd(ProgramEndEvent {
+                reason,
+                blocks: self.summary.blocks,
+            }),
+            source: self.last_source(),
+        };
+        self.emit(&end);
+        if let Some(error) = self.output_error.take() {
+            return Err(error);
+        }
+        self.sink.finish()?;
+        Ok(RunOutcome {
+            reason,
+            summary: self.summary,
+            errors: self.errors,
+            warnings: self.warnings,
+        })
+    }
+
+    fn run_levels(&mut self) -> ProgramEndReason {
+        loop {
+            let Some(top) = self.stack.last() else {
+                return ProgramEndReason::EndOfText;
+            };
+            let program = Arc::clone(&top.program);
+            let mut pc = top.pc;
+            let repeat_end = match &top.kind {
+                LevelKind::Repeat { end, .. } => Some(*end),
+                _ => None,
+            };
+            let section_end = match &top.kind {
+                LevelKind::Call(call) => call.section_end_line,
+                _ => None,
+            };
+            loop {
+                if repeat_end == Some(pc) {
+                    match self.repeat_pass_done() {
+                        Some(reason) => return reason,
+                        None => break,
+                    }
+                }
+                let Some(instruction) = program.instructions().get(pc) else {
+                    // Past the last instruction (lowering always ends with
+                    // `end`; a hand-made document may not).
+                    match self.end_of_text(&program, pc.saturating_sub(1)) {
+                        Flow::End(reason) => return reason,
+                        _ => break,
+                    }
+                };
+                let line = instruction.source.line;
+                if section_end.is_some_and(|end| line > end) {
+                    match self.return_from_call(&program, pc, true) {
+                        Flow::End(reason) => return reason,
+                        _ => break,
+                    }
+                }
+                if !self.block.open || self.block.transferred || line != self.block.line {
+                    if self.block.open {
+                        self.end_block();
+                        if self.modal_call_due() {
+                            if let Some(top) = self.stack.last_mut() {
+                                top.pc = pc;
+                            }
+                            match self.run_modal_call(&program, pc) {
+                                Flow::End(reason) => return reason,
+                                _ => break,
+                            }
+                        }
+                    }
+                    if let Some(reason) = self.start_block(&program, instruction) {
+                        return reason;
+                    }
+                }
+                if let Some(top) = self.stack.last_mut() {
+                    top.pc = pc;
+                }
+                match self.execute(&program, pc, instruction) {
+                    Flow::Next => pc += 1,
+                    Flow::Jump(target) => {
+                        pc = target;
+                        self.block.transferred = true;
+                    }
+                    Flow::Switch => {
+                        self.block.transferred = true;
+                        break;
+                    }
+                    Flow::End(reason) => return reason,
+                }
+                if self.output_error.is_some() {
+                    return ProgramEndReason::Alarm;
+                }
+            }
+        }
+    }
+
+    /// The start of a block: counts it, checks the limits.
+    fn start_block(&mut self, program: &Arc<Program>, instruction: &Instruction) -> Option<ProgramEndReason> {
+        let level = self.program_level();
+        self.block = BlockState {
+            open: true,
+            transferred: false,
+            line: instruction.source.line,
+            had_motion: false,
+            file: self.observer.is_some().then(|| program.file.clone()),
+            level,
+            number: None,
+        };
+        if self.observer.is_some() {
+            self.block.number = program.block_number(instruction.source.line);
+        }
+        self.summary.blocks += 1;
+        let tool = self.state.active_tool.as_ref().map(|t| t.label.as_str());
+        self.summary.tool(tool).blocks += 1;
+        if self.summary.blocks > self.options.max_steps {
+            let message = format!(
+                "the run stopped after {} blocks (--max-steps): an endless loop, or a longer program than expected",
+                self.options.max_steps
+            );
+            self.diagnostic_at(
+                program,
+                instruction,
+                codes::STEP_LIMIT,
+                EventSeverity::Error,
+                message,
+                Some("raise the limit with --max-steps N if the program is meant to run this long"),
+            );
+            return Some(ProgramEndReason::Limit);
+        }
+        if self
+            .options
+            .interrupt
+            .as_ref()
+            .is_some_and(|flag| flag.load(Ordering::Relaxed))
+        {
+            self.diagnostic_at(
+                program,
+                instruction,
+                codes::INTERRUPTED,
+                EventSeverity::Error,
+                "the run was interrupted (Ctrl-C)".into(),
+                None,
+            );
+            return Some(ProgramEndReason::Limit);
+        }
+        None
+    }
+
+    /// The end of a block: the block-scope suppression ends, the CSV row.
+    fn end_block(&mut self) {
+        if !self.block.open {
+            return;
+        }
+        self.block.open = false;
+        self.state.suppression = None;
+        if self.observer.is_some() {
+            self.fill_row();
+            if let Some(observer) = self.observer.as_mut()
+                && let Err(error) = observer.block(&self.row)
+            {
+                self.output_error.get_or_insert(error);
+            }
+        }
+    }
+
+    fn fill_row(&mut self) {
+        let state = &self.state;
+        let row = &mut self.row;
+        row.block_number = self.block.number;
+        if let Some(file) = &self.block.file {
+            row.file = file.clone();
+        }
+        row.line = self.block.line;
+        row.level = self.block.level;
+        self.motion.workpiece_position(state);
+        row.positions.clear();
+        for (i, axis) in state.axes.iter().enumerate() {
+            row.positions
+                .insert(axis.name.clone(), state.as_programmed(i, self.motion.wcs[i]));
+        }
+        row.tool = state.active_tool.as_ref().map(|t| t.label.clone());
+        row.edge = state.edge;
+        row.feed = state.feed;
+        let master = state.master_spindle();
+        row.spindle_speed = master.map_or(0.0, |s| s.speed);
+        row.spindle = master.map(|s| s.state).unwrap_or_default();
+        for (slot, column) in row.modal.iter_mut().zip(crate::event::MAIN_MODAL_GROUPS) {
+            *slot = Cow::Borrowed(state.modal(column.group).unwrap_or(""));
+        }
+    }
+
+    fn program_level(&self) -> u32 {
+        self.stack.last().map_or(0, |l| l.program_level)
+    }
+
+    /// Runs one instruction.
+    fn execute(&mut self, program: &Arc<Program>, pc: usize, instruction: &Instruction) -> Flow {
+        let result = match &instruction.op {
+            Op::Label { .. } | Op::External(_) | Op::Procedure(_) => Ok(Flow::Next),
+            Op::SkipBlock { level, end } => {
+                let on = self.options.skip_levels.get(usize::from(*level)).copied().unwrap_or(false);
+                if on {
+                    self.jump_to_label(program, pc, instruction, end)
+                } else {
+                    Ok(Flow::Next)
+                }
+            }
+            Op::Jump { target, condition } => {
+                let jump = match condition {
+                    None => Ok(true),
+                    Some(c) => eval::eval_bool(&self.env(), c),
+                };
+                match jump {
+                    Ok(true) => self.jump_to_label(program, pc, instruction, target),
+                    Ok(false) => Ok(Flow::Next),
+                    Err(e) => Err(e),
+                }
+            }
+            Op::ComputedJump(jump) => self.computed_jump(program, pc, instruction, jump),
+            // The PLC never asks for the restart in the simulation.
+            Op::GotoStart { condition } => match condition {
+                Some(c) => eval::eval_bool(&self.env(), c).map(|_| Flow::Next),
+                None => Ok(Flow::Next),
+            },
+            Op::ModalChange { group, code } => {
+                self.modal_change(program, instruction, *group, code);
+                Ok(Flow::Next)
+            }
+            Op::ModalChangeIndirect { group, index } => {
+                self.modal_change_indirect(program, instruction, *group, index)
+            }
+            Op::WorkOffset {
+                group8_selected,
+                suppression,
+                ..
+            } => {
+                if let Some(code) = group8_selected.as_deref().and_then(WorkOffsetCode::parse) {
+                    self.select_work_offset(program, instruction, code);
+                }
+                self.state.suppression = *suppression;
+                Ok(Flow::Next)
+            }
+            Op::Motion { .. } => self.motion(program, instruction).map(|()| Flow::Next),
+            Op::Frame(frame) => self.frame(frame).map(|()| Flow::Next),
+            Op::Feed { value } => eval::eval_real(&self.env(), value).map(|f| {
+                self.state.feed = f;
+                Flow::Next
+            }),
+            Op::SpindleSpeed {
+                spindle,
+                speed,
+                spindle_expr,
+            } => self
+                .spindle_speed(program, instruction, *spindle, speed, spindle_expr.as_deref())
+                .map(|()| Flow::Next),
+            Op::Dwell {
+                seconds,
+                revolutions,
+            } => self
+                .dwell(program, instruction, seconds.as_ref(), revolutions.as_ref())
+                .map(|()| Flow::Next),
+            Op::Address(address) => self.address(program, instruction, address).map(|()| Flow::Next),
+            Op::HFunction(h) => self.h_function(program, instruction, h).map(|()| Flow::Next),
+            Op::MFunction(m) => self.m_function(program, pc, instruction, m),
+            Op::ToolSelect(select) => self.tool_select(program, instruction, select).map(|()| Flow::Next),
+            Op::ToolChange { trigger } => self.tool_change(program, instruction, *trigger).map(|()| Flow::Next),
+            Op::CuttingEdge { edge } => self.cutting_edge(program, instruction, edge).map(|()| Flow::Next),
+            Op::Declare(declare) => {
+                eval::declare(&mut self.vars, &self.state, declare, Scope::Local).map(|()| Flow::Next)
+            }
+            Op::Assign { target, value } => {
+                eval::assign(&mut self.vars, &mut self.state, target, value).map(|()| Flow::Next)
+            }
+            Op::AssignList(list) => eval::assign_list(&mut self.vars, &self.state, list).map(|()| Flow::Next),
+            Op::Message { text } => eval::eval_value(&self.env(), text).and_then(|v| {
+                let text = v.to_text()?;
+                let event = EventKind::Message(MessageEvent { text });
+                self.emit_at(program, instruction, event);
+                Ok(Flow::Next)
+            }),
+            Op::Stop { reason } => {
+                let event = EventKind::Stop(StopEvent {
+                    reason: StopReason::PreprocessingStop,
+                    detail: Some(reason.clone()),
+                });
+                self.emit_at(program, instruction, event);
+                Ok(Flow::Next)
+            }
+            Op::Call(call) => self.call(program, pc, instruction, call),
+            Op::CancelModalCall => {
+                self.modal_call = None;
+                self.state.modal_call_active = false;
+                Ok(Flow::Next)
+            }
+            Op::RepeatSection(section) => self.repeat_section(program, pc, instruction, section),
+            Op::Return { .. } => Ok(self.return_from_call(program, pc, false)),
+            Op::End => Ok(self.end_of_text(program, pc)),
+        };
+        match result {
+            Ok(flow) => flow,
+            Err(error) => {
+                self.alarm(program, instruction, error);
+                Flow::End(ProgramEndReason::Alarm)
+            }
+        }
+    }
+
+    fn env(&self) -> Env<'_> {
+        Env::new(&self.vars, &self.state)
+    }
+
+    fn jump_to_label(
+        &mut self,
+        program: &Arc<Program>,
+        _pc: usize,
+        _instruction: &Instruction,
+        target: &str,
+    ) -> Result<Flow, RunError> {
+        match program.label(target) {
+            Some(index) => Ok(Flow::Jump(index)),
+            None => {
+                let name = target.split_once('@').map_or(target, |(name, _)| name);
+                Err(RunError::new(
+                    codes::JUMP_TARGET,
+                    format!("the jump target `{name}` is not in the program (alarm 14080)"),
+                ))
+            }
+        }
+    }
+
+    fn computed_jump(
+        &mut self,
+        program: &Arc<Program>,
+        pc: usize,
+        _instruction: &Instruction,
+        jump: &gcodec_ail::ComputedJump,
+    ) -> Result<Flow, RunError> {
+        if let Some(c) = &jump.condition
+            && !eval::eval_bool(&self.env(), c)?
+        {
+            return Ok(Flow::Next);
+        }
+        let target = eval::eval(&self.env(), &jump.target)?.to_text()?;
+        match program.search_label(&target, pc, jump.search) {
+            Some(index) => Ok(Flow::Jump(index)),
+            None if jump.continue_if_missing => Ok(Flow::Next),
+            None => Err(RunError::new(
+                codes::JUMP_TARGET,
+                format!("the jump target `{target}` is not in the program (alarm 14080)"),
+            )),
+        }
+    }
+
+    fn modal_change(&mut self, program: &Arc<Program>, instruction: &Instruction, group: u8, code: &str) {
+        if !ggroups::is_modal(group) {
+            return;
+        }
+        // The registry's spelling, as a static string.
+        let Some(code) = ggroups::lookup(code).and_then(|(g, i)| ggroups::member(g, i)) else {
+            return;
+        };
+        self.set_modal(program, instruction, group, code);
+    }
+
+    fn set_modal(&mut self, program: &Arc<Program>, instruction: &Instruction, group: u8, code: &'static str) {
+        let slot = &mut self.state.modal[usize::from(group) - 1];
+        let previous = *slot;
+        if previous == Some(code) {
+            return;
+        }
+        *slot = Some(code);
+        let event = EventKind::ModalChange(ModalChangeEvent {
+            group,
+            code: Cow::Borrowed(code),
+            previous: previous.map(Cow::Borrowed),
+        });
+        self.emit_at(program, instruction, event);
+    }
+
+    fn modal_change_indirect(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        group: u8,
+        index: &gcodec_ail::Value,
+    ) -> Result<Flow, RunError> {
+        let n = eval::eval_value(&self.env(), index)?.to_int()?;
+        let code = u8::try_from(n).ok().and_then(|n| ggroups::member(group, n));
+        let Some(code) = code else {
+            return Err(RunError::new(
+                crate::value::codes::INDEX_OUT_OF_RANGE,
+                format!("`G[{group}]={n}`: group {group} has no command at index {n}"),
+            ));
+        };
+        if group == 8 {
+            if let Some(selected) = WorkOffsetCode::parse(code) {
+                self.select_work_offset(program, instruction, selected);
+            }
+        } else if ggroups::is_modal(group) {
+            self.set_modal(program, instruction, group, code);
+        }
+        Ok(Flow::Next)
+    }
+
+    fn select_work_offset(&mut self, program: &Arc<Program>, instruction: &Instruction, code: WorkOffsetCode) {
+        self.state.group8 = code;
+        if let Some(name) = ggroups::lookup(&format!("G{}", code.0)).and_then(|(g, i)| ggroups::member(g, i)) {
+            self.set_modal(program, instruction, 8, name);
+        }
+    }
+
+    /// Reports `error` as an alarm: a diagnostic event of severity error.
+    fn alarm(&mut self, program: &Arc<Program>, instruction: &Instruction, error: RunError) {
+        let code = error.code;
+        self.diagnostic_at(program, instruction, code, EventSeverity::Error, error.message, None);
+    }
+
+    fn diagnostic_at(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        code: &'static str,
+        severity: EventSeverity,
+        message: String,
+        help: Option<&'static str>,
+    ) {
+        match severity {
+            EventSeverity::Error => self.errors += 1,
+            EventSeverity::Warning => self.warnings += 1,
+            EventSeverity::Advice => {}
+        }
+        let alarm = alarm_number(code);
+        let event = EventKind::Diagnostic(DiagnosticEvent {
+            code: Cow::Borrowed(code),
+            severity,
+            message: Cow::Owned(message),
+            alarm,
+            help: help.map(Cow::Borrowed),
+        });
+        self.emit_at(program, instruction, event);
+    }
+
+    /// A warning or advice reported once per run for `key`.
+    fn report_once(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        key: &str,
+        code: &'static str,
+        message: String,
+    ) {
+        if self.reported.insert(key.to_owned()) {
+            self.diagnostic_at(program, instruction, code, EventSeverity::Advice, message, None);
+        }
+    }
+
+    fn source(&self, program: &Program, instruction: &Instruction) -> EventSource {
+        EventSource {
+            file: program.file.clone(),
+            line: instruction.source.line,
+            col: instruction.source.col,
+            level: self.program_level(),
+        }
+    }
+
+    fn last_source(&self) -> EventSource {
+        let level = self.stack.last();
+        let file = level.map_or_else(|| Arc::from(""), |l| l.program.file.clone());
+        let line = level
+            .and_then(|l| {
+                let instructions = l.program.instructions();
+                instructions
+                    .get(l.pc)
+                    .or_else(|| instructions.last())
+                    .map(|i| (i.source.line, i.source.col))
+            })
+            .unwrap_or((1, 1));
+        EventSource {
+            file,
+            line: line.0,
+            col: line.1,
+            level: self.program_level(),
+        }
+    }
+
+    fn emit_at(&mut self, program: &Program, instruction: &Instruction, kind: EventKind) {
+        let event = Event {
+            kind,
+            source: self.source(program, instruction),
+        };
+        self.emit(&event);
+    }
+
+    fn emit(&mut self, event: &Event) {
+        send(&mut *self.sink, &mut self.output_error, event);
+    }
+
+    /// Whether the block just ended calls the modal call: it traversed, a
+    /// modal call is active, and no modal call is running already (the
+    /// called program's own motions do not call it again).
+    fn modal_call_due(&self) -> bool {
+        self.block.had_motion
+            && self.modal_call.is_some()
+            && !self.stack.iter().any(|l| match &l.kind {
+                LevelKind::Call(call) => call.kind == CallKind::Modal,
+                _ => false,
+            })
+    }
+}
+
+/// Hands `event` to the sink unless writing failed before; keeps the
+/// first error.
+fn send(sink: &mut dyn EventSink, error: &mut Option<io::Error>, event: &Event) {
+    if error.is_some() {
+        return;
+    }
+    if let Err(e) = sink.event(event) {
+        *error = Some(e);
+    }
+}
+
+/// The alarm number the control shows for a code, where there is one.
+fn alarm_number(code: &str) -> Option<u32> {
+    match code {
+        codes::JUMP_TARGET => Some(14080),
+        codes::PROGRAM_NOT_FOUND => Some(14011),
+        crate::value::codes::UNDEFINED_VARIABLE => Some(12550),
+        crate::value::codes::INDEX_OUT_OF_RANGE => Some(17020),
+        crate::value::codes::TYPE_MISMATCH => Some(14096),
+        "gcodec::run::circle_end_point" => Some(14040),
+        _ => None,
+    }
+}
+

@@ -1,0 +1,488 @@
+//! Traversing blocks: end points from the programmed values (G90/G91,
+//! `AC`/`IC`, units, diameter programming), arcs and helices, frames, the
+//! tool length offset, the motion event and the figures of the summary.
+
+use std::borrow::Cow;
+use std::sync::Arc;
+
+use gcodec_ail::{AxisValue, Circle, DimensionMode, Instruction, MotionKind, Op};
+
+use super::Channel;
+use crate::eval;
+use crate::event::{AxisMap, Event, EventKind, MotionEvent, Plane, WorkOffsetContext};
+use crate::geometry::{self, ArcForm, BoundingBox, Direction, Point3};
+use crate::program::Program;
+use crate::value::{RtValue, RunError, codes};
+
+use super::state::MachineState;
+
+/// Buffers reused by every motion, so that a traversing block allocates
+/// nothing.
+pub(super) struct MotionScratch {
+    /// The start point in workpiece coordinates (mm, radius).
+    pub wcs: Vec<f64>,
+    target: Vec<f64>,
+    machine: Vec<f64>,
+    event: Event,
+    /// The end tangent of the last path element (for `CT`).
+    last_tangent: Option<Point3>,
+}
+
+impl MotionScratch {
+    pub fn new(state: &MachineState) -> Self {
+        let n = state.axes.len();
+        let map = || AxisMap::with_capacity(n);
+        Self {
+            wcs: vec![0.0; n],
+            target: vec![0.0; n],
+            machine: vec![0.0; n],
+            event: Event {
+                kind: EventKind::Motion(MotionEvent {
+                    motion: MotionKind::Linear,
+                    from: map(),
+                    to: map(),
+                    to_machine: map(),
+                    centre: None,
+                    radius: None,
+                    turns: 0,
+                    feed: None,
+                    feed_mode: Cow::Borrowed("G94"),
+                    plane: Plane::G17,
+                    work_offset: WorkOffsetContext::default(),
+                }),
+                source: crate::event::EventSource {
+                    file: Arc::from(""),
+                    line: 0,
+                    col: 0,
+                    level: 0,
+                },
+            },
+            last_tangent: None,
+        }
+    }
+
+    /// Fills `wcs` with the current position in workpiece coordinates.
+    pub fn workpiece_position(&mut self, state: &MachineState) {
+        state.to_workpiece(&state.total_frame(), &state.machine, &mut self.wcs);
+    }
+}
+
+/// The motion command of group 1.
+fn motion_kind(code: Option<&str>) -> Option<MotionKind> {
+    Some(match code? {
+        "G0" => MotionKind::Rapid,
+        "G1" => MotionKind::Linear,
+        "G2" => MotionKind::ArcCw,
+        "G3" => MotionKind::ArcCcw,
+        "CIP" => MotionKind::ArcThroughPoint,
+        "CT" => MotionKind::ArcTangential,
+        "ASPLINE" => MotionKind::Aspline,
+        "BSPLINE" => MotionKind::Bspline,
+        "CSPLINE" => MotionKind::Cspline,
+        "POLY" => MotionKind::Poly,
+        "G33" => MotionKind::Thread,
+        "G34" => MotionKind::ThreadIncreasingLead,
+        "G35" => MotionKind::ThreadDecreasingLead,
+        "G331" => MotionKind::Tapping,
+        "G332" => MotionKind::TappingRetract,
+        "G335" => MotionKind::ThreadConvexCw,
+        "G336" => MotionKind::ThreadConvexCcw,
+        "INVCW" => MotionKind::InvoluteCw,
+        "INVCCW" => MotionKind::InvoluteCcw,
+        _ => return None,
+    })
+}
+
+fn geometry_plane(plane: Plane) -> geometry::Plane {
+    match plane {
+        Plane::G17 => geometry::Plane::G17,
+        Plane::G18 => geometry::Plane::G18,
+        Plane::G19 => geometry::Plane::G19,
+    }
+}
+
+/// The geometry axes of `values` as a point (0 for a geometry axis the
+/// machine lacks).
+fn point(state: &MachineState, values: &[f64]) -> Point3 {
+    let mut p = [0.0; 3];
+    for (info, v) in state.axes.iter().zip(values) {
+        if let Some(g) = info.geometry {
+            p[g] = *v;
+        }
+    }
+    p
+}
+
+impl Channel<'_> {
+    pub(super) fn motion(&mut self, program: &Arc<Program>, instruction: &Instruction) -> Result<(), RunError> {
+        let Op::Motion {
+            motion,
+            targets,
+            circle,
+            details,
+        } = &instruction.op
+        else {
+            return Ok(());
+        };
+        let kind = motion_kind(self.state.modal(1)).unwrap_or(*motion);
+        let frame = self.state.total_frame();
+        {
+            let scratch = &mut self.motion;
+            self.state.to_workpiece(&frame, &self.state.machine, &mut scratch.wcs);
+            scratch.target.copy_from_slice(&scratch.wcs);
+        }
+        for target in targets {
+            let axis = self.axis(&target.axis)?;
+            self.set_target(axis, target)?;
+        }
+        if let Some(details) = details {
+            for target in &details.indirect_targets {
+                let name = eval::eval(&self.env(), &target.axis)?;
+                let name = match name {
+                    RtValue::Axis(a) | RtValue::String(a) => a,
+                    v => return Err(RunError::new(codes::TYPE_MISMATCH, format!("a {} value names no axis", v.type_name()))),
+                };
+                let axis = self.axis(&name)?;
+                let value = AxisValue {
+                    axis: Cow::Owned(name.to_string()),
+                    value: target.value.clone(),
+                    mode: target.mode,
+                };
+                self.set_target(axis, &value)?;
+            }
+            if details.spline.is_some() || details.transition.is_some() {
+                self.report_once(
+                    program,
+                    instruction,
+                    "motion-details",
+                    super::codes::NOT_SIMULATED,
+                    "spline weights, chamfers and roundings (`PW`, `PL`, `CHF`, `CHR`, `RND`) are not simulated: the path is the programmed straight or circular element".into(),
+                );
+            }
+        }
+        let plane = self.state.plane();
+        let start = point(&self.state, &self.motion.wcs);
+        let mut end = point(&self.state, &self.motion.target);
+        let is_arc = matches!(
+            kind,
+            MotionKind::ArcCw | MotionKind::ArcCcw | MotionKind::ArcThroughPoint | MotionKind::ArcTangential
+        );
+        let mut arc = None;
+        if is_arc {
+            let resolved = self.arc(kind, plane, start, end, circle.as_deref())?;
+            // `AR=` with a centre computes the end point in the plane.
+            end = resolved.end;
+            for (i, info) in self.state.axes.iter().enumerate() {
+                if let Some(g) = info.geometry {
+                    self.motion.target[i] = end[g];
+                }
+            }
+            arc = Some(resolved);
+        } else if !matches!(kind, MotionKind::Rapid | MotionKind::Linear) {
+            self.report_once(
+                program,
+                instruction,
+                kind_key(kind),
+                super::codes::NOT_SIMULATED,
+                format!(
+                    "`{}` motions are simulated as straight lines to their end points",
+                    self.state.modal(1).unwrap_or("this")
+                ),
+            );
+        }
+        {
+            let scratch = &mut self.motion;
+            self.state.to_machine(&frame, &scratch.target, &mut scratch.machine);
+        }
+        // Figures.
+        let length = match &arc {
+            Some(a) => a.length,
+            None => distance(start, end),
+        };
+        let time = self.motion_time(kind, length);
+        let tool = self.state.active_tool.as_ref().map(|t| t.label.clone());
+        let figures = self.summary.tool(tool.as_deref());
+        let bbox = match &arc {
+            Some(a) => a.bounding_box(),
+            None => {
+                let mut b = BoundingBox::point(start);
+                b.include(end);
+                b
+            }
+        };
+        figures.bounding_box = Some(match figures.bounding_box {
+            Some(b) => b.union(&bbox),
+            None => bbox,
+        });
+        if kind == MotionKind::Rapid {
+            figures.rapid_length += length;
+            figures.rapid_time += time;
+        } else {
+            figures.feed_length += length;
+            figures.feed_time += time;
+        }
+        self.motion.last_tangent = match &arc {
+            Some(a) => {
+                let p = a.point_at(1.0);
+                let q = a.point_at(1.0 - 1e-6);
+                Some([p[0] - q[0], p[1] - q[1], p[2] - q[2]])
+            }
+            None if length > 0.0 => Some([end[0] - start[0], end[1] - start[1], end[2] - start[2]]),
+            None => self.motion.last_tangent,
+        };
+        // The event.
+        let source = self.source(program, instruction);
+        let state = &self.state;
+        let scratch = &mut self.motion;
+        if let EventKind::Motion(event) = &mut scratch.event.kind {
+            event.motion = kind;
+            fill_map(&mut event.from, state, &scratch.wcs, true);
+            fill_map(&mut event.to, state, &scratch.target, true);
+            fill_map(&mut event.to_machine, state, &scratch.machine, false);
+            match &arc {
+                Some(a) => {
+                    let mut centre = event.centre.take().unwrap_or_default();
+                    centre.clear();
+                    let (h, v, _) = geometry_plane(state.plane()).axes();
+                    for (i, info) in state.axes.iter().enumerate() {
+                        if let Some(g) = info.geometry
+                            && (g == h || g == v)
+                        {
+                            centre.insert(info.name.clone(), state.as_programmed(i, a.centre[g]));
+                        }
+                    }
+                    event.centre = Some(centre);
+                    event.radius = Some(if state.inch() { a.radius / 25.4 } else { a.radius });
+                    event.turns = circle
+                        .as_ref()
+                        .and_then(|c| c.turns.as_ref())
+                        .map_or(0, |_| (a.sweep.abs() / std::f64::consts::TAU).floor() as u32);
+                }
+                None => {
+                    event.centre = None;
+                    event.radius = None;
+                    event.turns = 0;
+                }
+            }
+            event.feed = (kind != MotionKind::Rapid).then_some(state.feed);
+            event.feed_mode = Cow::Borrowed(state.modal(15).unwrap_or("G94"));
+            event.plane = state.plane();
+            event.work_offset = WorkOffsetContext::new(state.group8, state.suppression);
+        }
+        scratch.event.source = source;
+        self.state.machine.copy_from_slice(&self.motion.machine);
+        self.block.had_motion = true;
+        super::send(&mut *self.sink, &mut self.output_error, &self.motion.event);
+        Ok(())
+    }
+
+    fn axis(&self, name: &str) -> Result<usize, RunError> {
+        self.state.axis_index(name).ok_or_else(|| {
+            RunError::new(
+                codes::UNKNOWN_AXIS,
+                format!("the machine has no axis `{name}`"),
+            )
+        })
+    }
+
+    /// Converts a programmed value to mm (radius) in workpiece
+    /// coordinates: units, diameter programming, absolute or incremental.
+    fn set_target(&mut self, axis: usize, target: &AxisValue) -> Result<(), RunError> {
+        let value = eval::eval_real(&self.env(), &target.value)?;
+        let start = self.motion.wcs[axis];
+        self.motion.target[axis] = self.dimension(axis, value, target.mode, start);
+        Ok(())
+    }
+
+    /// `value` on `axis` as an absolute workpiece coordinate (mm, radius).
+    fn dimension(&self, axis: usize, value: f64, mode: Option<DimensionMode>, start: f64) -> f64 {
+        use DimensionMode as M;
+        let info = &self.state.axes[axis];
+        let mut v = value;
+        if !info.rotary && self.state.inch() {
+            v *= 25.4;
+        }
+        let incremental = match mode {
+            Some(M::Ic | M::Cic | M::Dic | M::Ric) => true,
+            Some(_) => false,
+            None => self.state.incremental(),
+        };
+        if info.diameter {
+            let (absolute_diameter, incremental_diameter) = self.state.diameter_mode();
+            let diameter = match mode {
+                Some(M::Dac | M::Dic) => true,
+                Some(M::Rac | M::Ric) => false,
+                _ if incremental => incremental_diameter,
+                _ => absolute_diameter,
+            };
+            if diameter {
+                v /= 2.0;
+            }
+        }
+        if incremental {
+            return start + v;
+        }
+        if info.rotary {
+            let delta = (v - start).rem_euclid(360.0);
+            return match mode {
+                Some(M::Dc | M::Cdc) => start + if delta > 180.0 { delta - 360.0 } else { delta },
+                Some(M::Acp | M::Cacp) => start + delta,
+                Some(M::Acn | M::Cacn) => start + if delta == 0.0 { 0.0 } else { delta - 360.0 },
+                _ => v,
+            };
+        }
+        v
+    }
+
+    /// Resolves the arc of a block.
+    fn arc(
+        &self,
+        kind: MotionKind,
+        plane: Plane,
+        start: Point3,
+        end: Point3,
+        circle: Option<&Circle>,
+    ) -> Result<geometry::Arc, RunError> {
+        let empty = Circle::default();
+        let circle = circle.unwrap_or(&empty);
+        let direction = if kind == MotionKind::ArcCw {
+            Direction::Cw
+        } else {
+            Direction::Ccw
+        };
+        let env = self.env();
+        let real = |v: &gcodec_ail::Value| eval::eval_real(&env, v);
+        let length = |v: f64| if self.state.inch() { v * 25.4 } else { v };
+        // `I J K` (and `I1 J1 K1`) to a point of the geometry axes.
+        let offsets = |values: &[AxisValue], relative_default: bool| -> Result<Option<Point3>, RunError> {
+            if values.is_empty() {
+                return Ok(None);
+            }
+            let mut p = start;
+            let mut given = [false; 3];
+            for value in values {
+                let g = match value.axis.as_ref() {
+                    "I" | "I1" => 0,
+                    "J" | "J1" => 1,
+                    "K" | "K1" => 2,
+                    _ => continue,
+                };
+                let v = length(real(&value.value)?);
+                let relative = match value.mode {
+                    Some(DimensionMode::Ac) => false,
+                    Some(DimensionMode::Ic) => true,
+                    _ => relative_default,
+                };
+                p[g] = if relative { start[g] + v } else { v };
+                given[g] = true;
+            }
+            let _ = given;
+            Ok(Some(p))
+        };
+        let form = if kind == MotionKind::ArcThroughPoint {
+            let point = offsets(&circle.intermediate, self.state.incremental())?.ok_or_else(|| {
+                RunError::new("gcodec::run::circle_intermediate", "`CIP` needs an intermediate point (`I1= J1= K1=`)")
+            })?;
+            ArcForm::Intermediate { point }
+        } else if kind == MotionKind::ArcTangential {
+            let tangent = self.motion.last_tangent.unwrap_or([0.0; 3]);
+            ArcForm::Tangent { tangent }
+        } else {
+            let centre = offsets(&circle.centre, true)?;
+            let radius = circle.radius.as_ref().map(real).transpose()?.map(length);
+            let angle = circle.opening_angle.as_ref().map(real).transpose()?;
+            match (centre, radius, angle) {
+                (Some(centre), _, Some(angle)) => ArcForm::AngleFromCentre { direction, centre, angle },
+                (Some(centre), _, None) => ArcForm::Centre { direction, centre },
+                (None, Some(radius), _) => ArcForm::Radius { direction, radius },
+                (None, None, Some(angle)) => ArcForm::AngleToEnd { direction, angle },
+                (None, None, None) => {
+                    return Err(RunError::new(
+                        "gcodec::run::circle_data",
+                        "the circle has neither a centre (`I J K`), a radius (`CR=`) nor an opening angle (`AR=`)",
+                    ));
+                }
+            }
+        };
+        let turns = circle.turns.as_ref().map(real).transpose()?.unwrap_or(0.0);
+        geometry::resolve_arc(
+            geometry_plane(plane),
+            start,
+            end,
+            &form,
+            turns,
+            &self.options.circle_tolerance,
+        )
+        .map_err(|e| RunError::new(e.code(), e.to_string()))
+    }
+
+    /// The time of a motion of `length` mm, seconds.
+    fn motion_time(&self, kind: MotionKind, length: f64) -> f64 {
+        let scratch = &self.motion;
+        if kind == MotionKind::Rapid {
+            let mut minutes: f64 = 0.0;
+            for (i, info) in self.state.axes.iter().enumerate() {
+                let delta = (scratch.machine[i] - self.state.machine[i]).abs();
+                if info.rapid > 0.0 {
+                    minutes = minutes.max(delta / info.rapid);
+                }
+            }
+            return minutes * 60.0;
+        }
+        let feed = self.state.feed;
+        if feed <= 0.0 || !feed.is_finite() {
+            return 0.0;
+        }
+        // Rotary axes alone: the feed is in degrees per minute.
+        let travel = if length > 0.0 {
+            length
+        } else {
+            scratch
+                .machine
+                .iter()
+                .zip(&self.state.machine)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max)
+        };
+        let minutes = match self.state.modal(15) {
+            Some("G93") => 1.0 / feed,
+            Some("G95" | "G96" | "G961" | "G97" | "G971" | "G942" | "G952" | "G962" | "G972" | "G973") => {
+                let speed = self.state.master_spindle().map_or(0.0, |s| s.speed);
+                if speed <= 0.0 {
+                    return 0.0;
+                }
+                travel / (feed * speed)
+            }
+            _ => travel / feed,
+        };
+        minutes * 60.0
+    }
+}
+
+fn kind_key(kind: MotionKind) -> &'static str {
+    match kind {
+        MotionKind::Aspline | MotionKind::Bspline | MotionKind::Cspline | MotionKind::Poly => "motion-spline",
+        MotionKind::InvoluteCw | MotionKind::InvoluteCcw => "motion-involute",
+        _ => "motion-thread",
+    }
+}
+
+fn distance(a: Point3, b: Point3) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// Refills an axis map with every axis of the channel: as programmed
+/// (`programmed`: inches, diameters) or in mm.
+fn fill_map(map: &mut AxisMap, state: &MachineState, values: &[f64], programmed: bool) {
+    if map.len() != state.axes.len() {
+        map.clear();
+        for (i, info) in state.axes.iter().enumerate() {
+            let v = if programmed { state.as_programmed(i, values[i]) } else { values[i] };
+            map.insert(info.name.clone(), v);
+        }
+        return;
+    }
+    for (i, slot) in map.values_mut().enumerate() {
+        *slot = if programmed { state.as_programmed(i, values[i]) } else { values[i] };
+    }
+}

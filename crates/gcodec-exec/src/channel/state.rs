@@ -1,0 +1,502 @@
+//! The channel's machine state apart from the variables: modal G groups,
+//! axis positions, frames and offsets, tool, feed and spindles. It answers
+//! the system variables a program reads ([`RuntimeInterface`]).
+
+use std::borrow::Cow;
+use std::sync::Arc;
+
+use gcodec_profile::{AxisKind, Profile};
+use gcodec_sema::ggroups;
+use gcodec_sema::modal::{GROUP_COUNT, reset_defaults};
+
+use crate::eval::{RuntimeInterface, profile_system_variable};
+use gcodec_ail::Suppression;
+
+use crate::event::{AxisName, Plane, SpindleState, WorkOffsetCode};
+use crate::frames::{Frame, FrameAxes, chain_values, frame_function};
+use crate::value::{FrameValue, RtValue, RunError, codes};
+
+/// One channel axis.
+#[derive(Clone, Debug)]
+pub struct AxisInfo {
+    /// Upper case, as AIL names it.
+    pub name: AxisName,
+    pub rotary: bool,
+    /// The geometry axis number 0…2, if it is one.
+    pub geometry: Option<usize>,
+    /// The lathe's diameter axis (DIAMON).
+    pub diameter: bool,
+    /// Rapid rate, mm/min or deg/min.
+    pub rapid: f64,
+}
+
+/// A spindle.
+#[derive(Clone, Debug, Default)]
+pub struct Spindle {
+    pub number: u32,
+    pub state: SpindleState,
+    pub speed: f64,
+    pub position: Option<f64>,
+    /// M40…M45: 0 automatic, 1…5.
+    pub gear: u32,
+}
+
+/// The active tool: its identity as events name it, and its number.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ToolRef {
+    /// `T7`, or the tool's name with tool management.
+    pub label: String,
+    /// The T number (0 when unknown: a name not in the tool table).
+    pub number: u32,
+}
+
+/// The machine state of the channel.
+pub struct MachineState {
+    pub profile: Arc<Profile>,
+    pub axes: Vec<AxisInfo>,
+    pub frame_axes: FrameAxes,
+    /// Per G group (index group − 1) the command in force; `None` for
+    /// non-modal groups.
+    pub modal: [Option<&'static str>; GROUP_COUNT],
+    /// The tool reference point in machine coordinates, mm (the diameter
+    /// axis as a radius), per axis.
+    pub machine: Vec<f64>,
+    /// The programmed end points in workpiece coordinates as the frames
+    /// in force when they were reached saw them (for `$P_EP`).
+    pub settable: Vec<Frame>,
+    /// The programmable frame (`TRANS`, `ROT`, …: `$P_PFRAME`).
+    pub programmable: Frame,
+    /// The Group 8 selection.
+    pub group8: WorkOffsetCode,
+    /// This block's suppression.
+    pub suppression: Option<Suppression>,
+    pub active_tool: Option<ToolRef>,
+    pub pending_tool: Option<ToolRef>,
+    /// The active cutting edge (D); 0: none.
+    pub edge: u32,
+    /// The active edge's length, mm.
+    pub tool_length: f64,
+    /// The programmed F, in the unit of group 15.
+    pub feed: f64,
+    pub spindles: Vec<Spindle>,
+    /// `MCALL`: the modal call in force.
+    pub modal_call_active: bool,
+}
+
+impl MachineState {
+    pub fn new(profile: Arc<Profile>) -> Self {
+        let mut geometry = 0;
+        let axes: Vec<AxisInfo> = profile
+            .axes
+            .iter()
+            .map(|a| {
+                let g = (a.geometry && geometry < 3).then(|| {
+                    geometry += 1;
+                    geometry - 1
+                });
+                AxisInfo {
+                    name: Cow::Owned(a.name.get_ref().to_ascii_uppercase()),
+                    rotary: a.kind == AxisKind::Rotary,
+                    geometry: g,
+                    diameter: a.diameter,
+                    rapid: *a.rapid.get_ref(),
+                }
+            })
+            .collect();
+        let frame_axes = FrameAxes::new(axes.iter().map(|a| (a.name.as_ref(), a.geometry.is_some())));
+        let settable = (0..100)
+            .map(|index| settable_frame(&profile, &frame_axes, &axes, index))
+            .collect();
+        let modal = reset_defaults(&profile);
+        let group8 = modal[7]
+            .and_then(WorkOffsetCode::parse)
+            .unwrap_or(WorkOffsetCode::G500);
+        let spindles = profile
+            .machine
+            .spindles
+            .iter()
+            .map(|n| Spindle {
+                number: *n.get_ref(),
+                ..Spindle::default()
+            })
+            .collect();
+        Self {
+            machine: vec![0.0; axes.len()],
+            programmable: Frame::neutral(&frame_axes),
+            frame_axes,
+            settable,
+            axes,
+            modal,
+            group8,
+            suppression: None,
+            active_tool: None,
+            pending_tool: None,
+            edge: 0,
+            tool_length: 0.0,
+            feed: 0.0,
+            spindles,
+            modal_call_active: false,
+            profile,
+        }
+    }
+
+    /// The axis named `name` (any case).
+    pub fn axis_index(&self, name: &str) -> Option<usize> {
+        self.axes
+            .iter()
+            .position(|a| a.name.eq_ignore_ascii_case(name))
+            .or_else(|| machine_axis_number(name, self.axes.len()))
+    }
+
+    /// The command in force of group `group`.
+    pub fn modal(&self, group: u8) -> Option<&'static str> {
+        self.modal
+            .get(usize::from(group).wrapping_sub(1))
+            .copied()
+            .flatten()
+    }
+
+    pub fn plane(&self) -> Plane {
+        match self.modal(6) {
+            Some("G18") => Plane::G18,
+            Some("G19") => Plane::G19,
+            _ => Plane::G17,
+        }
+    }
+
+    /// G70/G700: programmed lengths are inches.
+    pub fn inch(&self) -> bool {
+        matches!(self.modal(13), Some("G70" | "G700"))
+    }
+
+    /// G91: incremental unless a value says otherwise.
+    pub fn incremental(&self) -> bool {
+        self.modal(14) == Some("G91")
+    }
+
+    /// How the diameter axis reads values: (absolute values are diameters,
+    /// incremental values are diameters).
+    pub fn diameter_mode(&self) -> (bool, bool) {
+        let mode = self
+            .modal
+            .iter()
+            .flatten()
+            .find(|c| matches!(**c, "DIAMON" | "DIAMOF" | "DIAM90" | "DIAMCYCOF"));
+        match mode.copied() {
+            Some("DIAMON") => (true, true),
+            Some("DIAM90") => (true, false),
+            _ => (false, false),
+        }
+    }
+
+    /// The infeed axis of the plane (where the tool length acts).
+    pub fn infeed_axis(&self) -> Option<usize> {
+        let geometry = match self.plane() {
+            Plane::G17 => 2,
+            Plane::G18 => 1,
+            Plane::G19 => 0,
+        };
+        self.axes.iter().position(|a| a.geometry == Some(geometry))
+    }
+
+    /// The frame from workpiece to machine coordinates in force for this
+    /// block: the settable offset (unless G500 or suppressed) chained with
+    /// the programmable frame (unless suppressed).
+    pub fn total_frame(&self) -> Frame {
+        if self.suppression.is_some() {
+            return Frame::neutral(&self.frame_axes);
+        }
+        let settable = self.settable.get(usize::from(self.group8_index()));
+        match settable {
+            Some(s) if self.group8 != WorkOffsetCode::G500 => s.chain(&self.programmable),
+            _ => self.programmable.clone(),
+        }
+    }
+
+    /// `$P_UIFRNUM`: the index of the Group 8 selection.
+    pub fn group8_index(&self) -> u8 {
+        gcodec_profile::group8_index(&format!("G{}", self.group8.0)).unwrap_or(0)
+    }
+
+    /// The tool length offset vector in machine coordinates.
+    pub fn tool_offset(&self, out: &mut [f64]) {
+        out.fill(0.0);
+        if let Some(axis) = self.infeed_axis() {
+            out[axis] = self.tool_length;
+        }
+    }
+
+    /// Workpiece coordinates (mm, radius) of the machine position `machine`
+    /// under `frame`.
+    pub fn to_workpiece(&self, frame: &Frame, machine: &[f64], out: &mut [f64]) {
+        let mut shifted = machine.to_vec();
+        if let Some(axis) = self.infeed_axis() {
+            shifted[axis] -= self.tool_length;
+        }
+        frame.to_inner(&shifted, out);
+    }
+
+    /// Machine coordinates of the workpiece point `wcs`.
+    pub fn to_machine(&self, frame: &Frame, wcs: &[f64], out: &mut [f64]) {
+        frame.to_outer(wcs, out);
+        if let Some(axis) = self.infeed_axis() {
+            out[axis] += self.tool_length;
+        }
+    }
+
+    /// A position (mm, radius) as the program writes it: inches under
+    /// G70/G700, the diameter axis as a diameter under DIAMON/DIAM90.
+    pub fn as_programmed(&self, axis: usize, value: f64) -> f64 {
+        let info = &self.axes[axis];
+        let mut v = value;
+        if info.diameter && self.diameter_mode().0 {
+            v *= 2.0;
+        }
+        if !info.rotary && self.inch() {
+            v /= 25.4;
+        }
+        v
+    }
+
+    pub fn spindle(&mut self, number: Option<u32>) -> &mut Spindle {
+        let number = number.unwrap_or_else(|| self.spindles.first().map_or(1, |s| s.number));
+        match self.spindles.iter().position(|s| s.number == number) {
+            Some(i) => &mut self.spindles[i],
+            None => {
+                self.spindles.push(Spindle {
+                    number,
+                    ..Spindle::default()
+                });
+                self.spindles.last_mut().expect("just pushed")
+            }
+        }
+    }
+
+    pub fn master_spindle(&self) -> Option<&Spindle> {
+        self.spindles.first()
+    }
+}
+
+/// `AX1`, `AX2`, …: machine axes by number.
+fn machine_axis_number(name: &str, count: usize) -> Option<usize> {
+    let bytes = name.as_bytes();
+    if bytes.len() > 2 && bytes[..2].eq_ignore_ascii_case(b"AX") {
+        let n: usize = name[2..].parse().ok()?;
+        return (1..=count).contains(&n).then(|| n - 1);
+    }
+    None
+}
+
+/// The settable frame `$P_UIFR[index]` as the profile's
+/// `work_offsets.values` give it (translations).
+fn settable_frame(profile: &Profile, frame_axes: &FrameAxes, axes: &[AxisInfo], index: usize) -> Frame {
+    let values = profile
+        .work_offsets
+        .values
+        .iter()
+        .find(|(code, _)| gcodec_profile::group8_index(code.get_ref()) == Some(index as u8))
+        .map(|(_, values)| {
+            values
+                .iter()
+                .filter_map(|(axis, v)| {
+                    let i = axes
+                        .iter()
+                        .position(|a| a.name.eq_ignore_ascii_case(axis.get_ref()))?;
+                    Some((i, *v))
+                })
+                .collect::<Vec<_>>()
+        })
+        .unwrap_or_default();
+    Frame::translation(frame_axes, &values).unwrap_or_else(|_| Frame::neutral(frame_axes))
+}
+
+impl MachineState {
+    fn axis_argument(&self, name: &str, value: &RtValue) -> Result<usize, RunError> {
+        let axis = match value {
+            RtValue::Axis(a) | RtValue::String(a) => a.clone(),
+            v => return Err(RunError::type_mismatch(v, "AXIS")),
+        };
+        self.axis_index(&axis).ok_or_else(|| {
+            RunError::new(
+                codes::UNKNOWN_AXIS,
+                format!("`{name}[{axis}]`: the machine has no axis `{axis}`"),
+            )
+        })
+    }
+
+    fn frame_value(&self, frame: &Frame) -> RtValue {
+        RtValue::Frame(Arc::new(frame.to_value(&self.frame_axes)))
+    }
+}
+
+impl RuntimeInterface for MachineState {
+    fn profile(&self) -> Option<&Profile> {
+        Some(&self.profile)
+    }
+
+    /// The channel's own state first; the profile's defaults for the rest
+    /// ([`profile_system_variable`]).
+    fn system_variable(&self, name: &str, indices: &[RtValue]) -> Result<RtValue, RunError> {
+        let one_axis = |what: &str| -> Result<usize, RunError> {
+            match indices {
+                [axis] => self.axis_argument(name, axis),
+                _ => Err(RunError::new(
+                    codes::INDEX_COUNT,
+                    format!("`{name}` takes one axis index ({what})"),
+                )),
+            }
+        };
+        match (name, indices) {
+            ("$P_TOOLNO", []) => Ok(RtValue::Int(
+                self.active_tool.as_ref().map_or(0, |t| t.number as i32),
+            )),
+            ("$P_TOOLP", []) => Ok(RtValue::Int(
+                self.pending_tool.as_ref().map_or(0, |t| t.number as i32),
+            )),
+            ("$P_TOOL", []) => Ok(RtValue::Int(self.edge as i32)),
+            ("$P_F", []) => Ok(RtValue::Real(self.feed)),
+            ("$P_S", []) => Ok(RtValue::Real(self.master_spindle().map_or(0.0, |s| s.speed))),
+            ("$P_MC", []) => Ok(RtValue::Bool(self.modal_call_active)),
+            ("$P_UIFRNUM", []) => Ok(RtValue::Int(i32::from(self.group8_index()))),
+            ("$P_PFRAME", []) => Ok(self.frame_value(&self.programmable)),
+            ("$P_IFRAME", []) => Ok(self.frame_value(
+                self.settable
+                    .get(usize::from(self.group8_index()))
+                    .filter(|_| self.group8 != WorkOffsetCode::G500)
+                    .unwrap_or(&Frame::neutral(&self.frame_axes)),
+            )),
+            ("$P_ACTFRAME", []) => Ok(self.frame_value(&self.total_frame())),
+            ("$P_UIFR", [n]) => {
+                let n = n.to_int()?;
+                let frame = usize::try_from(n)
+                    .ok()
+                    .and_then(|i| self.settable.get(i))
+                    .filter(|_| self.profile.work_offsets.supported_group8()[n.clamp(0, 99) as usize])
+                    .ok_or_else(|| {
+                        RunError::new(
+                            codes::INDEX_OUT_OF_RANGE,
+                            format!("`$P_UIFR[{n}]`: the machine has no settable offset {n}"),
+                        )
+                    })?;
+                Ok(self.frame_value(frame))
+            }
+            ("$P_GG", [n]) => {
+                let n = n.to_int()?;
+                let group = u8::try_from(n).ok().filter(|g| (1..=64).contains(g));
+                let Some(group) = group else {
+                    return Err(RunError::new(
+                        codes::INDEX_OUT_OF_RANGE,
+                        format!("`$P_GG[{n}]`: there is no G group {n}"),
+                    ));
+                };
+                let index = self
+                    .modal(group)
+                    .and_then(ggroups::lookup)
+                    .map_or(0, |(_, i)| i32::from(i));
+                Ok(RtValue::Int(index))
+            }
+            ("$AA_IM" | "$VA_IM", _) => {
+                let axis = one_axis("the machine position")?;
+                Ok(RtValue::Real(self.machine[axis]))
+            }
+            ("$AA_IW" | "$P_EP" | "$AA_IEN" | "$P_AXN", _) if indices.len() == 1 => {
+                let axis = one_axis("the workpiece position")?;
+                let mut wcs = vec![0.0; self.axes.len()];
+                self.to_workpiece(&self.total_frame(), &self.machine, &mut wcs);
+                Ok(RtValue::Real(self.as_programmed(axis, wcs[axis])))
+            }
+            _ => profile_system_variable(Some(&self.profile), name, indices),
+        }
+    }
+
+    fn set_system_variable(
+        &mut self,
+        name: &str,
+        indices: &[RtValue],
+        value: &RtValue,
+    ) -> Result<(), RunError> {
+        match (name, indices) {
+            ("$P_PFRAME", []) => {
+                let RtValue::Frame(f) = value else {
+                    return Err(RunError::type_mismatch(value, "FRAME"));
+                };
+                self.programmable = Frame::from_value(&self.frame_axes, f)?;
+                Ok(())
+            }
+            ("$P_UIFR", [n]) => {
+                let n = n.to_int()?;
+                let RtValue::Frame(f) = value else {
+                    return Err(RunError::type_mismatch(value, "FRAME"));
+                };
+                let frame = Frame::from_value(&self.frame_axes, f)?;
+                match usize::try_from(n).ok().and_then(|i| self.settable.get_mut(i)) {
+                    Some(slot) => {
+                        *slot = frame;
+                        Ok(())
+                    }
+                    None => Err(RunError::new(
+                        codes::INDEX_OUT_OF_RANGE,
+                        format!("`$P_UIFR[{n}]`: the machine has no settable offset {n}"),
+                    )),
+                }
+            }
+            ("$P_UIFR", [n, axis, component]) => {
+                let n = n.to_int()?;
+                let Some(slot) = usize::try_from(n).ok().filter(|&i| i < self.settable.len()) else {
+                    return Err(RunError::new(
+                        codes::INDEX_OUT_OF_RANGE,
+                        format!("`$P_UIFR[{n}]`: the machine has no settable offset {n}"),
+                    ));
+                };
+                let axis_index = self.axis_argument(name, axis)?;
+                let mut frame_value = self.settable[slot].to_value(&self.frame_axes);
+                let axis_name = self.axes[axis_index].name.to_string();
+                let component = match component {
+                    RtValue::Axis(c) | RtValue::String(c) => c.to_ascii_uppercase(),
+                    v => return Err(RunError::type_mismatch(v, "a frame component")),
+                };
+                set_component(&mut frame_value, &axis_name, &component, value.to_real()?)?;
+                self.settable[slot] = Frame::from_value(&self.frame_axes, &frame_value)?;
+                Ok(())
+            }
+            _ => Err(RunError::new(
+                codes::READ_ONLY,
+                format!("the system variable `{name}` cannot be written in the simulation"),
+            )),
+        }
+    }
+
+    fn function(&self, name: &str, args: &[Option<RtValue>]) -> Option<Result<RtValue, RunError>> {
+        frame_function(&self.frame_axes, name, args)
+    }
+
+    fn chain_frames(&self, lhs: &FrameValue, rhs: &FrameValue) -> Result<FrameValue, RunError> {
+        chain_values(&self.frame_axes, lhs, rhs)
+    }
+}
+
+/// Writes one component (`TR`, `FI`, `RT`, `SC`, `MI`) of `axis`.
+fn set_component(frame: &mut FrameValue, axis: &str, component: &str, value: f64) -> Result<(), RunError> {
+    let at = match frame.axes.iter().position(|a| a.axis.eq_ignore_ascii_case(axis)) {
+        Some(at) => at,
+        None => {
+            frame.axes.push(crate::value::FrameAxis::neutral(axis));
+            frame.axes.len() - 1
+        }
+    };
+    let slot = &mut frame.axes[at];
+    match component {
+        "TR" => slot.translation = value,
+        "FI" => slot.fine = value,
+        "RT" => slot.rotation = value,
+        "SC" => slot.scale = value,
+        "MI" => slot.mirror = value != 0.0,
+        _ => {
+            return Err(RunError::new(
+                codes::TYPE_MISMATCH,
+                format!("`{component}` is not a frame component (TR, FI, RT, SC, MI)"),
+            ));
+        }
+    }
+    Ok(())
+}
