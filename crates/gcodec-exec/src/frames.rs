@@ -770,9 +770,11 @@ impl Frame {
                 format!("`{what}`: the rotation is not finite"),
             ));
         }
+        // A missing geometry axis may only stay where it is (or turn
+        // half-way round onto itself).
         for missing in (0..3).filter(|&s| self.slots[s].is_none()) {
-            for present in (0..3).filter(|&s| self.slots[s].is_some()) {
-                if m[missing][present].abs() > 1e-12 || m[present][missing].abs() > 1e-12 {
+            for other in (0..3).filter(|&s| s != missing) {
+                if m[missing][other].abs() > 1e-12 || m[other][missing].abs() > 1e-12 {
                     return Err(RunError::new(
                         FRAME,
                         format!(

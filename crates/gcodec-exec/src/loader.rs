@@ -41,8 +41,9 @@
 //! A requested name may carry the control's decorations (reference §1.1):
 //! `_N_SUB_SPF`, `SUB_SPF` and `SUB.SPF` ask for the SPF `SUB` only,
 //! `_N_SUB_MPF`, `SUB_MPF` and `SUB.MPF` for the MPF, `_N_SUB` and `SUB`
-//! for either. A name with a type suffix but no `_N_` that is not found
-//! that way is also looked for as written (`MY_SPF` finds `MY_SPF.SPF`).
+//! for either. In a directory with no program `MY` of that type, a name
+//! with a type suffix but no `_N_` also matches the program named as
+//! written, of either type (`MY_SPF` finds `MY_SPF.SPF`).
 //!
 //! A path (`PCALL /_N_WKS_DIR/_N_W_WPD/_N_SUB_SPF`, `CALL
 //! "/_N_SPF_DIR/_N_SUB_SPF"`, any name with a `/`) is looked up by its last
@@ -223,9 +224,9 @@ pub struct LoadRequest<'a> {
 pub struct Loaded {
     pub program: Arc<Program>,
     /// The diagnostics of reading, parsing and lowering it, as diagnostic
-    /// events in source order with `file`, `line` and `col` set (`level`
-    /// 0: the channel sets it). Only the first time the program is
-    /// loaded; empty afterwards.
+    /// events in source order with `file`, `line` and `col` set (line 1,
+    /// column 1 for one without a place; `level` 0: the channel sets it).
+    /// Only the first time the program is loaded; empty afterwards.
     pub diagnostics: Vec<Event>,
     /// Whether any diagnostic of the program is an error; the same on
     /// every load.
@@ -638,16 +639,14 @@ impl DirIndex {
         }
     }
 
-    /// The file holding `wanted` here, and its type.
-    fn find(&self, wanted: &Wanted) -> Option<(&DirFile, Kind)> {
+    /// The file holding `wanted` here (an SPF before an MPF when the
+    /// request names no type).
+    fn find(&self, wanted: &Wanted) -> Option<&DirFile> {
         let pick = |name: &str, kind: Option<Kind>| {
             let files = self.programs.get(name)?;
             match kind {
-                Some(kind) => files[kind.index()].as_ref().map(|f| (f, kind)),
-                None => files[0]
-                    .as_ref()
-                    .map(|f| (f, Kind::Spf))
-                    .or_else(|| files[1].as_ref().map(|f| (f, Kind::Mpf))),
+                Some(kind) => files[kind.index()].as_ref(),
+                None => files[0].as_ref().or(files[1].as_ref()),
             }
         };
         pick(&wanted.name, wanted.kind)
@@ -751,7 +750,7 @@ impl FileLoader {
         let mut searched = Vec::new();
         for dir in dirs {
             searched.push(dir.shown.clone());
-            let Some((found, _kind)) = dir.index.find(wanted) else {
+            let Some(found) = dir.index.find(wanted) else {
                 continue;
             };
             let path = dir.shown.join(&found.file_name);
@@ -804,8 +803,8 @@ impl FileLoader {
     }
 }
 
-/// The program's name: the requested one, or the file's when found by
-/// the literal name.
+/// The program's name, upper case: the one its file's name gives
+/// (`_N_SUB_SPF`: `SUB`).
 fn program_name(wanted: &Wanted, file_name: &str) -> String {
     match classify(file_name) {
         Some((name, _)) => name,

@@ -37,8 +37,14 @@ impl Program {
         for (index, instruction) in document.instructions.iter().enumerate() {
             if let Op::Label { name } = &instruction.op {
                 labels.entry(name.clone()).or_insert(index);
-                let base = name.split_once('@').map_or(name.as_str(), |(b, _)| b);
-                label_list.push((base.to_ascii_uppercase(), index));
+                // `<name>@<line>` is a label or block number of the text;
+                // lowering's own labels (`WHILE@7.end`, `SKIP@3.end`) have
+                // a part after the line and are no jump targets.
+                if let Some((base, line)) = name.split_once('@')
+                    && line.bytes().all(|b| b.is_ascii_digit())
+                {
+                    label_list.push((base.to_ascii_uppercase(), index));
+                }
             }
         }
         Self {

@@ -503,10 +503,9 @@ impl Channel<'_> {
             call_kind: CallKind::Repeat,
             pass: 1,
             passes,
-            section: Some(SectionEvent {
-                from: target.clone(),
-                to: section.end.split_once('@').map_or(section.end.as_str(), |(n, _)| n).to_owned(),
-            }),
+            // The end is a label lowering made; the target names the
+            // section.
+            section: None,
         });
         self.emit_at(program, instruction, event);
         let program_level = self.program_level();

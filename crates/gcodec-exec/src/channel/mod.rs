@@ -76,6 +76,8 @@ pub mod codes {
     pub const UNKNOWN_M: &str = "gcodec::run::unknown_m_function";
     /// A cutting edge the active tool does not have.
     pub const UNKNOWN_EDGE: &str = "gcodec::run::unknown_edge";
+    /// A feed motion without a feed (alarm 10860 on the control).
+    pub const NO_FEED: &str = "gcodec::run::no_feed";
     /// Writing the events failed.
     pub const OUTPUT: &str = "gcodec::run::output";
 }
@@ -717,6 +719,20 @@ impl<'r> Channel<'r> {
     ) {
         if self.reported.insert(key.to_owned()) {
             self.diagnostic_at(program, instruction, code, EventSeverity::Advice, message, None);
+        }
+    }
+
+    /// A warning reported once per run for `key`.
+    fn warn_once(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        key: &str,
+        code: &'static str,
+        message: String,
+    ) {
+        if self.reported.insert(key.to_owned()) {
+            self.diagnostic_at(program, instruction, code, EventSeverity::Warning, message, None);
         }
     }
 

@@ -160,6 +160,15 @@ impl Channel<'_> {
                 );
             }
         }
+        if kind != MotionKind::Rapid && self.state.feed <= 0.0 {
+            self.warn_once(
+                program,
+                instruction,
+                "no-feed",
+                super::codes::NO_FEED,
+                "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into(),
+            );
+        }
         let plane = self.state.plane();
         let start = point(&self.state, &self.motion.wcs);
         let mut end = point(&self.state, &self.motion.target);
@@ -204,11 +213,10 @@ impl Channel<'_> {
         let figures = self.summary.tool(tool.as_deref());
         let bbox = match &arc {
             Some(a) => a.bounding_box(),
-            None => {
-                let mut b = BoundingBox::point(start);
-                b.include(end);
-                b
-            }
+            // The end point only: a start point is the previous end, or a
+            // position from before a frame or offset change, which is no
+            // point of the part in this frame.
+            None => BoundingBox::point(end),
         };
         figures.bounding_box = Some(match figures.bounding_box {
             Some(b) => b.union(&bbox),

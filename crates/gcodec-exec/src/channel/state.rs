@@ -85,25 +85,21 @@ pub struct MachineState {
 
 impl MachineState {
     pub fn new(profile: Arc<Profile>) -> Self {
-        let mut geometry = 0;
+        let frame_axes = FrameAxes::from_profile(&profile);
         let axes: Vec<AxisInfo> = profile
             .axes
             .iter()
-            .map(|a| {
-                let g = (a.geometry && geometry < 3).then(|| {
-                    geometry += 1;
-                    geometry - 1
-                });
-                AxisInfo {
-                    name: Cow::Owned(a.name.get_ref().to_ascii_uppercase()),
-                    rotary: a.kind == AxisKind::Rotary,
-                    geometry: g,
-                    diameter: a.diameter,
-                    rapid: *a.rapid.get_ref(),
-                }
+            .enumerate()
+            .map(|(i, a)| AxisInfo {
+                name: Cow::Owned(a.name.get_ref().to_ascii_uppercase()),
+                rotary: a.kind == AxisKind::Rotary,
+                // X, Y, Z keep their slots (a lathe's X and Z are the
+                // first and third geometry axes).
+                geometry: frame_axes.geometry_slot(i),
+                diameter: a.diameter,
+                rapid: *a.rapid.get_ref(),
             })
             .collect();
-        let frame_axes = FrameAxes::new(axes.iter().map(|a| (a.name.as_ref(), a.geometry.is_some())));
         let settable = (0..100)
             .map(|index| settable_frame(&profile, &frame_axes, &axes, index))
             .collect();
@@ -379,6 +375,25 @@ impl RuntimeInterface for MachineState {
                         )
                     })?;
                 Ok(self.frame_value(frame))
+            }
+            ("$P_UIFR", [n, axis, component]) => {
+                let RtValue::Frame(frame) = self.system_variable(name, std::slice::from_ref(n))? else {
+                    return Err(RunError::type_mismatch(n, "FRAME"));
+                };
+                let axis = self.axis_argument(name, axis)?;
+                let component = match component {
+                    RtValue::Axis(c) | RtValue::String(c) => c.clone(),
+                    v => return Err(RunError::type_mismatch(v, "a frame component")),
+                };
+                frame
+                    .component(&self.axes[axis].name, &component)
+                    .map(RtValue::Real)
+                    .ok_or_else(|| {
+                        RunError::new(
+                            codes::TYPE_MISMATCH,
+                            format!("`{component}` is not a frame component (TR, FI, RT, SC, MI)"),
+                        )
+                    })
             }
             ("$P_GG", [n]) => {
                 let n = n.to_int()?;

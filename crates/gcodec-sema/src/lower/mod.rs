@@ -7,7 +7,9 @@
 //! feed, spindle speed, tool selection and cutting edge (then `DL`), M
 //! functions acting before the motion, `H` functions, declarations and
 //! assignments, named addresses (`address`), the dwell, the motion, then
-//! `M0 M1 M2 M17 M30` after it (seed 001).
+//! `M0 M1 M2 M17 M30` after it (seed 001). A skipped block (`/`, `/0`…`/9`)
+//! has its `skip_block` test after its labels and its `SKIP@<line>.end`
+//! label after all of it, before the end of a `REPEAT` section it closes.
 
 use std::borrow::Cow;
 use std::collections::HashMap;

@@ -1,0 +1,167 @@
+//! Golden event streams: every program of `tests/fixtures/run/` runs with
+//! the profile and options its first lines name
+//! (`; run: profile=mill.toml no-stop skip=1 max-steps=20`), and its text
+//! trace with the run's summary is an insta snapshot. Subprograms are
+//! found next to the fixture. The numbers were checked by hand when the
+//! snapshots were accepted (see the fixtures' comments).
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use gcodec_exec::channel::{BlockObserver, Channel, RunOptions};
+use gcodec_exec::event::{BlockRow, CsvWriter, JsonlSink, TextSink};
+use gcodec_exec::loader::{FileLoader, SearchPath, compile};
+use gcodec_sema::Definitions;
+use gcodec_source::SourceFile;
+
+const FIXTURES: &str = "tests/fixtures/run";
+
+struct Setup {
+    profile: Arc<gcodec_profile::Profile>,
+    options: RunOptions,
+}
+
+fn setup(path: &Path, text: &str) -> Setup {
+    let header = text
+        .lines()
+        .find_map(|l| l.strip_prefix("; run:"))
+        .unwrap_or_else(|| panic!("{} has no `; run:` line", path.display()));
+    let mut profile_file = None;
+    let mut words = Vec::new();
+    for word in header.split_whitespace() {
+        match word.split_once('=') {
+            Some(("profile", file)) => profile_file = Some(Path::new(FIXTURES).join(file)),
+            _ => words.push(word.to_owned()),
+        }
+    }
+    let profile = match profile_file {
+        Some(file) => {
+            let text = std::fs::read_to_string(&file).expect("profile");
+            gcodec_profile::load(&text).expect("a valid profile")
+        }
+        None => gcodec_profile::builtin().expect("built-in profile"),
+    };
+    let mut options = RunOptions::for_profile(&profile);
+    // A fixture that loops by mistake must not write a huge snapshot.
+    options.max_steps = 10_000;
+    for word in words {
+        match word.split_once('=') {
+            None if word == "no-stop" => options.stop_at_m0 = false,
+            None if word == "optional-stop" => options.optional_stop = true,
+            Some(("skip", levels)) => {
+                for level in levels.split(',') {
+                    options.skip_levels[level.parse::<usize>().expect("level")] = true;
+                }
+            }
+            Some(("max-steps", n)) => options.max_steps = n.parse().expect("number"),
+            _ => panic!("unknown run option `{word}`"),
+        }
+    }
+    Setup {
+        profile: Arc::new(profile),
+        options,
+    }
+}
+
+enum Output {
+    Text,
+    Jsonl,
+    Csv,
+}
+
+struct Rows<'a>(&'a mut CsvWriter<Vec<u8>>);
+
+impl BlockObserver for Rows<'_> {
+    fn block(&mut self, row: &BlockRow) -> std::io::Result<()> {
+        self.0.row(row)
+    }
+}
+
+/// Runs a fixture; the lowering diagnostics, the events and the summary.
+fn run(path: &Path, output: Output) -> String {
+    let text = std::fs::read_to_string(path).expect("fixture");
+    let Setup { profile, options } = setup(path, &text);
+    let file = SourceFile::new(path.to_string_lossy().replace('\\', "/"), text.as_bytes());
+    let definitions = Arc::new(Definitions::new());
+    let stem = path.file_stem().unwrap().to_string_lossy().to_ascii_uppercase();
+    let main = compile(stem, &file, &profile, &definitions, false);
+    assert!(
+        !main.has_errors,
+        "{} has lowering errors: {:#?}",
+        path.display(),
+        main.diagnostics
+    );
+    let mut out = String::new();
+    for d in &main.diagnostics {
+        if let gcodec_exec::event::EventKind::Diagnostic(d) = &d.kind {
+            out.push_str(&format!("lowering: {} {}: {}\n", d.severity.name(), d.code, d.message));
+        }
+    }
+    let mut loader = FileLoader::new(SearchPath::new(), Arc::clone(&profile), definitions);
+    let mut buffer = Vec::new();
+    let outcome = match output {
+        Output::Text => {
+            let mut sink = TextSink::new(&mut buffer);
+            Channel::new(profile, options, &mut loader, &mut sink).run(main.program)
+        }
+        Output::Jsonl => {
+            let mut sink = JsonlSink::new(&mut buffer);
+            Channel::new(profile, options, &mut loader, &mut sink).run(main.program)
+        }
+        Output::Csv => {
+            let axes = profile
+                .axes
+                .iter()
+                .map(|a| std::borrow::Cow::Owned(a.name.get_ref().to_ascii_uppercase()));
+            let mut csv = CsvWriter::new(Vec::new(), axes).expect("header");
+            let mut sink = gcodec_exec::event::CountingSink::default();
+            let outcome = Channel::new(profile, options, &mut loader, &mut sink)
+                .with_observer(&mut Rows(&mut csv))
+                .run(main.program);
+            buffer = csv.into_inner().expect("rows");
+            outcome
+        }
+    }
+    .expect("the run writes to memory");
+    out.push_str(&String::from_utf8(buffer).expect("UTF-8 events"));
+    out.push('\n');
+    out.push_str(&outcome.summary.to_string());
+    out
+}
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(FIXTURES).join(name)
+}
+
+macro_rules! golden {
+    ($($test:ident => $file:literal),* $(,)?) => {$(
+        #[test]
+        fn $test() {
+            insta::assert_snapshot!(stringify!($test), run(&fixture($file), Output::Text));
+        }
+    )*};
+}
+
+golden! {
+    motion => "motion.mpf",
+    arcs => "arcs.mpf",
+    offsets => "offsets.mpf",
+    control => "control.mpf",
+    calls => "calls.mpf",
+    tools => "tools.mpf",
+    stop => "stop.mpf",
+    skip => "skip.mpf",
+    limits => "limits.mpf",
+    variables => "variables.mpf",
+    lathe => "lathe.mpf",
+}
+
+#[test]
+fn motion_jsonl() {
+    insta::assert_snapshot!(run(&fixture("motion.mpf"), Output::Jsonl));
+}
+
+#[test]
+fn motion_csv() {
+    insta::assert_snapshot!(run(&fixture("motion.mpf"), Output::Csv));
+}
