@@ -167,16 +167,23 @@ pub fn run(args: RunArgs) -> u8 {
     diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
     report(&diagnostics, Some(&file), options);
     if diagnostics.iter().any(Diagnostic::is_error) {
-        eprintln!("gcodec: `{}` has errors; it is not run", args.file.display());
+        eprintln!(
+            "gcodec: `{}` has errors; it is not run",
+            args.file.display()
+        );
         return EXIT_DIAGNOSTICS;
     }
-    let main = Program::new(program_name(&args.file), Arc::from(file.name()), lowered.document)
-        .with_text(Arc::from(file.bytes()));
+    let main = Program::new(
+        program_name(&args.file),
+        Arc::from(file.name()),
+        lowered.document,
+    )
+    .with_text(Arc::from(file.bytes()));
     let main = Arc::new(main);
     let search = SearchPath::new()
         .with_profile(&profile, profile_path)
         .with_dirs(args.subprogram_paths.iter().cloned());
-    let mut loader = FileLoader::new(search, Arc::clone(&profile), definitions);
+    let mut loader = FileLoader::new(search, Arc::clone(&profile), Arc::clone(&definitions));
     let mut run_options = RunOptions::for_profile(&profile);
     if let Some(SkipLevels(levels)) = args.skip_levels {
         run_options.skip_levels = levels;
@@ -203,13 +210,17 @@ pub fn run(args: RunArgs) -> u8 {
             let mut sink = Diagnostics {
                 inner: JsonlSink::new(out),
             };
-            Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink).run(main)
+            Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
+                .with_globals(&definitions)
+                .run(main)
         }
         RunFormat::Text => {
             let mut sink = Diagnostics {
                 inner: TextSink::new(out),
             };
-            Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink).run(main)
+            Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
+                .with_globals(&definitions)
+                .run(main)
         }
         RunFormat::Csv => {
             let axes = profile
@@ -223,6 +234,7 @@ pub fn run(args: RunArgs) -> u8 {
             let mut rows = CsvRows(writer);
             let mut sink = Diagnostics { inner: Discard };
             let result = Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
+                .with_globals(&definitions)
                 .with_observer(&mut rows)
                 .run(main);
             match (result, rows.0.finish()) {

@@ -16,9 +16,15 @@ fn main() {
     for d in &loaded.diagnostics {
         eprintln!("{d:?}");
     }
-    let mut loader = FileLoader::new(SearchPath::new(), Arc::clone(&profile), Arc::new(Definitions::new()));
+    let mut loader = FileLoader::new(
+        SearchPath::new(),
+        Arc::clone(&profile),
+        Arc::new(Definitions::new()),
+    );
     let mut sink = TextSink::new(std::io::stdout());
     let options = RunOptions::for_profile(&profile);
-    let outcome = Channel::new(profile, options, &mut loader, &mut sink).run(loaded.program).expect("io");
+    let outcome = Channel::new(profile, options, &mut loader, &mut sink)
+        .run(loaded.program)
+        .expect("io");
     eprintln!("{}", outcome.summary);
 }

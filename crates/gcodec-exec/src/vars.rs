@@ -630,6 +630,6 @@ fn r_index_count(given: usize) -> RunError {
 pub(crate) fn undefined(name: &str) -> RunError {
     RunError::new(
         codes::UNDEFINED_VARIABLE,
-        format!("`{name}` is not defined here (alarm 12550)"),
+        format!("`{name}` is not defined here"),
     )
 }

@@ -83,7 +83,11 @@ fn run(path: &Path, output: Output) -> String {
     let Setup { profile, options } = setup(path, &text);
     let file = SourceFile::new(path.to_string_lossy().replace('\\', "/"), text.as_bytes());
     let definitions = Arc::new(Definitions::new());
-    let stem = path.file_stem().unwrap().to_string_lossy().to_ascii_uppercase();
+    let stem = path
+        .file_stem()
+        .unwrap()
+        .to_string_lossy()
+        .to_ascii_uppercase();
     let main = compile(stem, &file, &profile, &definitions, false);
     assert!(
         !main.has_errors,
@@ -94,7 +98,12 @@ fn run(path: &Path, output: Output) -> String {
     let mut out = String::new();
     for d in &main.diagnostics {
         if let gcodec_exec::event::EventKind::Diagnostic(d) = &d.kind {
-            out.push_str(&format!("lowering: {} {}: {}\n", d.severity.name(), d.code, d.message));
+            out.push_str(&format!(
+                "lowering: {} {}: {}\n",
+                d.severity.name(),
+                d.code,
+                d.message
+            ));
         }
     }
     let mut loader = FileLoader::new(SearchPath::new(), Arc::clone(&profile), definitions);

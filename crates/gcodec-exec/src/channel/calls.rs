@@ -13,7 +13,9 @@ use gcodec_ail::{Call, Declare, Expr, Instruction, Op, Parameter, RepeatSection,
 
 use super::{Channel, Flow, Level, LevelKind, codes};
 use crate::eval;
-use crate::event::{CallEvent, CallKind, EventKind, EventSeverity, ProgramEndReason, ReturnEvent, SectionEvent};
+use crate::event::{
+    CallEvent, CallKind, EventKind, EventSeverity, ProgramEndReason, ReturnEvent, SectionEvent,
+};
 use crate::loader::LoadRequest;
 use crate::program::Program;
 use crate::value::{RtValue, RunError};
@@ -41,7 +43,10 @@ pub(super) struct ActiveCall {
 #[derive(Clone)]
 enum Binding {
     /// By value, or the default, or the type's initial value (`None`).
-    Value { param: Parameter, value: Option<RtValue> },
+    Value {
+        param: Parameter,
+        value: Option<RtValue>,
+    },
     /// `VAR`: the caller's variable, copied in and written back.
     Reference { param: Parameter, target: VarRef },
 }
@@ -67,12 +72,124 @@ pub(super) struct ModalCall {
 /// is not on the search path, the call is reported and the run goes on.
 pub fn is_standard_cycle(name: &str) -> bool {
     let upper = name.to_ascii_uppercase();
-    ["CYCLE", "POCKET", "SLOT", "LONGHOLE", "HOLES", "E_", "F_", "CUST_", "PROBE"]
-        .iter()
-        .any(|prefix| upper.starts_with(prefix))
+    [
+        "CYCLE", "POCKET", "SLOT", "LONGHOLE", "HOLES", "E_", "F_", "CUST_", "PROBE",
+    ]
+    .iter()
+    .any(|prefix| upper.starts_with(prefix))
 }
 
+/// Predefined procedures of the control (reference §7.6 "Procedures"):
+/// they are no subprograms, are never looked up on the search path, and
+/// (but `SETAL`) do not change what the simulation shows: each is
+/// reported once as advice.
+const PREDEFINED_PROCEDURES: &[&str] = &[
+    "ACTIVATE",
+    "CANCEL",
+    "CLEARM",
+    "CONTDCON",
+    "CONTPRON",
+    "CORROF",
+    "COUPDEL",
+    "COUPOF",
+    "COUPON",
+    "CPROT",
+    "CPROTDEF",
+    "CTABDEF",
+    "CTABEND",
+    "DELDTG",
+    "DELETE",
+    "EGOFC",
+    "EGOFS",
+    "EGON",
+    "EXECSTRING",
+    "EXECTAB",
+    "FGREF",
+    "FGROUP",
+    "GET",
+    "GETD",
+    "LEADOF",
+    "LEADON",
+    "NEWCONF",
+    "NPROT",
+    "NPROTDEF",
+    "PRESETON",
+    "PRESETONS",
+    "PROTA",
+    "PROTD",
+    "PUTFTOC",
+    "PUTFTOCF",
+    "READ",
+    "RELEASE",
+    "SETM",
+    "SETMS",
+    "SETPIECE",
+    "SPCOF",
+    "SPCON",
+    "STARTFIFO",
+    "STOPFIFO",
+    "TANGOF",
+    "TANGON",
+    "TOFFOF",
+    "TOFFON",
+    "TRAANG",
+    "TRACYL",
+    "TRAFOOF",
+    "TRANSMIT",
+    "TRAORI",
+    "WAITC",
+    "WAITE",
+    "WAITM",
+    "WAITMC",
+    "WAITP",
+    "WAITS",
+    "WRITE",
+];
+
 impl Channel<'_> {
+    /// `SETAL(n)` raises alarm `n` (the run ends); the other predefined
+    /// procedures are reported once. `None` when `target` is none.
+    fn predefined(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        target: &str,
+        call: &Call,
+    ) -> Option<Result<Flow, RunError>> {
+        if target == "SETAL" {
+            let env = self.env();
+            let number = call
+                .args
+                .first()
+                .and_then(Option::as_ref)
+                .map(|a| eval::eval_value(&env, a));
+            let number = match number
+                .transpose()
+                .and_then(|n| n.map(|n| n.to_int()).transpose())
+            {
+                Ok(n) => n.unwrap_or(0),
+                Err(e) => return Some(Err(e)),
+            };
+            self.errors += 1;
+            let event = EventKind::Diagnostic(crate::event::DiagnosticEvent {
+                code: codes::CYCLE_ALARM.into(),
+                severity: EventSeverity::Error,
+                message: format!("the program raised alarm {number} (`SETAL`)").into(),
+                alarm: u32::try_from(number).ok(),
+                help: None,
+            });
+            self.emit_at(program, instruction, event);
+            return Some(Ok(Flow::End(ProgramEndReason::Alarm)));
+        }
+        if !PREDEFINED_PROCEDURES.contains(&target) {
+            return None;
+        }
+        let message =
+            format!("the predefined procedure `{target}` has no effect in the simulation");
+        self.report_once(program, instruction, target, codes::NOT_SIMULATED, message);
+        Some(Ok(Flow::Next))
+    }
+
     pub(super) fn call(
         &mut self,
         program: &Arc<Program>,
@@ -81,9 +198,18 @@ impl Channel<'_> {
         call: &Call,
     ) -> Result<Flow, RunError> {
         let target = match &call.target_expr {
-            Some(expr) => eval::eval(&self.env(), expr)?.to_text()?.trim().to_ascii_uppercase(),
+            Some(expr) => eval::eval(&self.env(), expr)?
+                .to_text()?
+                .trim()
+                .to_ascii_uppercase(),
             None => call.target.clone(),
         };
+        if !call.modal
+            && call.section.is_none()
+            && let Some(result) = self.predefined(program, instruction, &target, call)
+        {
+            return result;
+        }
         if call.modal {
             let modal = self.prepare_modal_call(program, instruction, &target, call)?;
             self.state.modal_call_active = true;
@@ -95,7 +221,10 @@ impl Channel<'_> {
             Some(p) => {
                 let n = eval::eval_value(&self.env(), p)?.to_int()?;
                 u32::try_from(n).ok().filter(|&n| n >= 1).ok_or_else(|| {
-                    RunError::new(crate::value::codes::INDEX_OUT_OF_RANGE, format!("`P{n}`: a call runs at least once"))
+                    RunError::new(
+                        crate::value::codes::INDEX_OUT_OF_RANGE,
+                        format!("`P{n}`: a call runs at least once"),
+                    )
                 })?
             }
         };
@@ -106,7 +235,13 @@ impl Channel<'_> {
             match self.load(program, instruction, &target, call.by_path)? {
                 Some(callee) => (callee, true),
                 None => {
-                    self.not_simulated_call(program, instruction, &target, CallKind::Program, passes);
+                    self.not_simulated_call(
+                        program,
+                        instruction,
+                        &target,
+                        CallKind::Program,
+                        passes,
+                    );
                     return Ok(Flow::Next);
                 }
             }
@@ -118,10 +253,17 @@ impl Channel<'_> {
                 let to = eval::eval_value(&self.env(), &section.to)?.to_text()?;
                 let search = gcodec_ail::JumpSearch::ForwardThenBackward;
                 let missing = |label: &str| {
-                    RunError::new(codes::JUMP_TARGET, format!("the section label `{label}` is not in `{}` (alarm 14080)", callee.name))
+                    RunError::new(
+                        codes::JUMP_TARGET,
+                        format!("the section label `{label}` is not in `{}`", callee.name),
+                    )
                 };
-                let start = callee.search_label(&from, 0, search).ok_or_else(|| missing(&from))?;
-                let end = callee.search_label(&to, start, search).ok_or_else(|| missing(&to))?;
+                let start = callee
+                    .search_label(&from, 0, search)
+                    .ok_or_else(|| missing(&from))?;
+                let end = callee
+                    .search_label(&to, start, search)
+                    .ok_or_else(|| missing(&to))?;
                 let end_line = callee.instructions()[end].source.line;
                 (start, Some(end_line), Some(SectionEvent { from, to }))
             }
@@ -132,7 +274,11 @@ impl Channel<'_> {
             Vec::new()
         };
         let active = ActiveCall {
-            target: if target.is_empty() { callee.name.clone() } else { target },
+            target: if target.is_empty() {
+                callee.name.clone()
+            } else {
+                target
+            },
             kind: CallKind::Program,
             pass: 1,
             passes,
@@ -176,7 +322,10 @@ impl Channel<'_> {
                 if loaded.has_errors {
                     return Err(RunError::new(
                         codes::PROGRAM_ERRORS,
-                        format!("`{target}` ({}) has errors: the control does not run it", loaded.program.file),
+                        format!(
+                            "`{target}` ({}) has errors: the control does not run it",
+                            loaded.program.file
+                        ),
                     ));
                 }
                 Ok(Some(loaded.program))
@@ -253,7 +402,11 @@ impl Channel<'_> {
         let Some(modal) = self.modal_call.clone() else {
             return Flow::Next;
         };
-        let instruction = match program.instructions().get(pc.saturating_sub(1)).or(program.instructions().get(pc)) {
+        let instruction = match program
+            .instructions()
+            .get(pc.saturating_sub(1))
+            .or(program.instructions().get(pc))
+        {
             Some(i) => i.clone(),
             None => return Flow::Next,
         };
@@ -296,9 +449,7 @@ impl Channel<'_> {
                 codes::CALL_DEPTH,
                 format!(
                     "calling `{}` would open program level {}: the control has {} (the main program is level 0)",
-                    active.target,
-                    levels,
-                    self.options.max_levels
+                    active.target, levels, self.options.max_levels
                 ),
             ));
         }
@@ -327,6 +478,22 @@ impl Channel<'_> {
         Ok(Flow::Switch)
     }
 
+    /// The main program's `PROC` parameters, when it has any: declared
+    /// with their defaults (nobody passes arguments to a main program).
+    pub(super) fn bind_main(&mut self, main: &Program) -> Result<(), RunError> {
+        let call = Call {
+            target: main.name.clone(),
+            target_expr: None,
+            section: None,
+            by_path: false,
+            args: Vec::new(),
+            passes: None,
+            modal: false,
+        };
+        let bindings = self.bindings(main, &call)?;
+        self.bind(&bindings)
+    }
+
     /// Evaluates the arguments of `call` in the caller's context against
     /// the callee's `PROC` parameters.
     fn bindings(&self, callee: &Program, call: &Call) -> Result<Vec<Binding>, RunError> {
@@ -339,11 +506,13 @@ impl Channel<'_> {
                 _ => None,
             });
         let params: &[Parameter] = procedure.map_or(&[], |p| &p.params);
-        if call.args.len() > params.len() && call.args.iter().skip(params.len()).any(Option::is_some) {
+        if call.args.len() > params.len()
+            && call.args.iter().skip(params.len()).any(Option::is_some)
+        {
             return Err(RunError::new(
                 crate::value::codes::ARGUMENT_COUNT,
                 format!(
-                    "`{}` takes {} parameters, the call passes {} (alarm 12340)",
+                    "`{}` takes {} parameters, the call passes {}",
                     callee.name,
                     params.len(),
                     call.args.len()
@@ -356,7 +525,12 @@ impl Channel<'_> {
             let arg = call.args.get(i).and_then(Option::as_ref);
             let binding = match (param.by_reference, arg) {
                 (true, Some(Value::Expr(expr))) if matches!(**expr, Expr::Var { .. }) => {
-                    let Expr::Var { var_kind, name, indices } = &**expr else {
+                    let Expr::Var {
+                        var_kind,
+                        name,
+                        indices,
+                    } = &**expr
+                    else {
                         unreachable!("matched above")
                     };
                     let mut evaluated = Vec::with_capacity(indices.len());
@@ -375,7 +549,10 @@ impl Channel<'_> {
                 (true, Some(_)) => {
                     return Err(RunError::new(
                         crate::value::codes::TYPE_MISMATCH,
-                        format!("the `VAR` parameter `{}` needs a variable, not a value", param.name),
+                        format!(
+                            "the `VAR` parameter `{}` needs a variable, not a value",
+                            param.name
+                        ),
                     ));
                 }
                 (_, Some(value)) => Binding::Value {
@@ -428,10 +605,12 @@ impl Channel<'_> {
                     }
                     eval::declare(&mut self.vars, &self.state, &declare, Scope::Local)?;
                     if values.len() == 1 {
-                        self.vars.write(VarKind::User, &param.name, &[], &values[0])?;
+                        self.vars
+                            .write(VarKind::User, &param.name, &[], &values[0])?;
                     } else {
                         let list: Vec<Option<RtValue>> = values.into_iter().map(Some).collect();
-                        self.vars.write_list(VarKind::User, &param.name, &[], &list)?;
+                        self.vars
+                            .write_list(VarKind::User, &param.name, &[], &list)?;
                     }
                 }
             }
@@ -450,7 +629,11 @@ impl Channel<'_> {
             {
                 return Ok(var.elements().to_vec());
             }
-            Ok(vec![vars.read(target.kind, &target.name, &target.indices)?])
+            Ok(vec![vars.read(
+                target.kind,
+                &target.name,
+                &target.indices,
+            )?])
         })
     }
 
@@ -467,7 +650,12 @@ impl Channel<'_> {
             let values: Vec<Option<RtValue>> = local.elements().iter().cloned().map(Some).collect();
             self.vars.with_caller_level(|vars| {
                 if values.len() == 1 {
-                    vars.write(target.kind, &target.name, &target.indices, values[0].as_ref().expect("some"))
+                    vars.write(
+                        target.kind,
+                        &target.name,
+                        &target.indices,
+                        values[0].as_ref().expect("some"),
+                    )
                 } else {
                     vars.write_list(target.kind, &target.name, &target.indices, &values)
                 }
@@ -486,15 +674,32 @@ impl Channel<'_> {
     ) -> Result<Flow, RunError> {
         let missing = |label: &str| {
             let name = label.split_once('@').map_or(label, |(n, _)| n);
-            RunError::new(codes::JUMP_TARGET, format!("the section label `{name}` is not in the program (alarm 14080)"))
+            RunError::new(
+                codes::JUMP_TARGET,
+                format!("the section label `{name}` is not in the program"),
+            )
         };
-        let start = program.label(&section.start).ok_or_else(|| missing(&section.start))?;
-        let end = program.label(&section.end).ok_or_else(|| missing(&section.end))?;
+        let start = program
+            .label(&section.start)
+            .ok_or_else(|| missing(&section.start))?;
+        let end = program
+            .label(&section.end)
+            .ok_or_else(|| missing(&section.end))?;
         let passes = eval::eval_value(&self.env(), &section.passes)?.to_int()?;
-        let passes = u32::try_from(passes).ok().filter(|&p| p >= 1).ok_or_else(|| {
-            RunError::new(crate::value::codes::INDEX_OUT_OF_RANGE, format!("`P={passes}`: a section runs at least once"))
-        })?;
-        let target = section.start.split_once('@').map_or(section.start.as_str(), |(n, _)| n).to_owned();
+        let passes = u32::try_from(passes)
+            .ok()
+            .filter(|&p| p >= 1)
+            .ok_or_else(|| {
+                RunError::new(
+                    crate::value::codes::INDEX_OUT_OF_RANGE,
+                    format!("`P={passes}`: a section runs at least once"),
+                )
+            })?;
+        let target = section
+            .start
+            .split_once('@')
+            .map_or(section.start.as_str(), |(n, _)| n)
+            .to_owned();
         if let Some(top) = self.stack.last_mut() {
             top.pc = pc + 1;
         }
@@ -539,7 +744,11 @@ impl Channel<'_> {
         else {
             return None;
         };
-        let instruction = program.instructions().get(*end).or(program.instructions().last())?.clone();
+        let instruction = program
+            .instructions()
+            .get(*end)
+            .or(program.instructions().last())?
+            .clone();
         if *pass < *passes {
             *pass += 1;
             top.pc = *start;
@@ -553,7 +762,9 @@ impl Channel<'_> {
             self.emit_at(&program, &instruction, event);
             return None;
         }
-        let event = EventKind::Return(ReturnEvent { target: target.clone() });
+        let event = EventKind::Return(ReturnEvent {
+            target: target.clone(),
+        });
         self.stack.pop();
         self.emit_at(&program, &instruction, event);
         None
@@ -562,13 +773,25 @@ impl Channel<'_> {
     /// `RET`, `M17` (`M2`, `M30` in a subprogram), the end of a section or
     /// of the text: back to the caller, or the next pass. In the main
     /// program the program ends.
-    pub(super) fn return_from_call(&mut self, program: &Arc<Program>, pc: usize, section_end: bool) -> Flow {
-        let instruction = match program.instructions().get(pc).or(program.instructions().last()) {
+    pub(super) fn return_from_call(
+        &mut self,
+        program: &Arc<Program>,
+        pc: usize,
+        section_end: bool,
+    ) -> Flow {
+        let instruction = match program
+            .instructions()
+            .get(pc)
+            .or(program.instructions().last())
+        {
             Some(i) => i.clone(),
             None => return Flow::End(ProgramEndReason::EndOfText),
         };
         // A return inside a `REPEAT` section leaves the section too.
-        while matches!(self.stack.last().map(|l| &l.kind), Some(LevelKind::Repeat { .. })) {
+        while matches!(
+            self.stack.last().map(|l| &l.kind),
+            Some(LevelKind::Repeat { .. })
+        ) {
             self.stack.pop();
         }
         let Some(top) = self.stack.last_mut() else {
@@ -628,7 +851,10 @@ impl Channel<'_> {
             let caller_level = top.program_level.saturating_sub(u32::from(own_level));
             let mut source = self.source(program, &instruction);
             source.level = caller_level;
-            self.emit(&crate::event::Event { kind: event, source });
+            self.emit(&crate::event::Event {
+                kind: event,
+                source,
+            });
             if own_level {
                 self.vars.push_level();
                 if let Err(error) = self.bind(&bindings) {

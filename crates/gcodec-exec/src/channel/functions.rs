@@ -36,7 +36,10 @@ impl Channel<'_> {
             (None, Some(expr)) => {
                 let n = eval::eval(&env, expr)?.to_int()?;
                 u32::try_from(n).map_err(|_| {
-                    RunError::new(value_codes::OVERFLOW, format!("`M={n}`: an M function is 0 or more"))
+                    RunError::new(
+                        value_codes::OVERFLOW,
+                        format!("`M={n}`: an M function is 0 or more"),
+                    )
                 })?
             }
             (None, None) => 0,
@@ -69,7 +72,11 @@ impl Channel<'_> {
             (MClass::Gearbox, 41..=45) => MAction::GearStage,
             _ => MAction::Output,
         };
-        if m.m_value.is_none() && action == MAction::Output && class == MClass::Custom && !self.m_known(value) {
+        if m.m_value.is_none()
+            && action == MAction::Output
+            && class == MClass::Custom
+            && !self.m_known(value)
+        {
             match self.state.profile.m_functions.unknown_mcode_policy {
                 Policy::Error => {
                     return Err(RunError::new(
@@ -82,7 +89,9 @@ impl Channel<'_> {
                     instruction,
                     codes::UNKNOWN_M,
                     EventSeverity::Warning,
-                    format!("`M{value}` is not an M function of this machine; it is output to the PLC"),
+                    format!(
+                        "`M{value}` is not an M function of this machine; it is output to the PLC"
+                    ),
                     Some("list it in the profile's `mcode_class_overrides` if the machine has it"),
                 ),
                 Policy::Ignore => {}
@@ -121,7 +130,10 @@ impl Channel<'_> {
                     } else {
                         StopReason::OptionalStop
                     };
-                    let event = EventKind::Stop(StopEvent { reason, detail: None });
+                    let event = EventKind::Stop(StopEvent {
+                        reason,
+                        detail: None,
+                    });
                     self.emit_at(program, instruction, event);
                     if self.options.stop_at_m0 {
                         return Ok(Flow::End(ProgramEndReason::Stopped));
@@ -148,7 +160,9 @@ impl Channel<'_> {
     /// Whether a call level is on the stack (a section of the main program
     /// runs at level 0).
     fn in_call(&self) -> bool {
-        self.stack.iter().any(|l| matches!(l.kind, super::LevelKind::Call(_)))
+        self.stack
+            .iter()
+            .any(|l| matches!(l.kind, super::LevelKind::Call(_)))
     }
 
     /// The class of a computed M value (seed 001), as lowering classifies
@@ -182,7 +196,12 @@ impl Channel<'_> {
             .any(|k| k.get_ref().trim().parse::<u32>() == Ok(value))
     }
 
-    fn spindle_event(&mut self, program: &Arc<Program>, instruction: &Instruction, number: Option<u32>) {
+    fn spindle_event(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        number: Option<u32>,
+    ) {
         let s = self.state.spindle(number).clone();
         let event = EventKind::Spindle(SpindleEvent {
             spindle: s.number,
@@ -228,7 +247,10 @@ impl Channel<'_> {
             + revolutions.map_or(0.0, |r| if speed > 0.0 { r / speed * 60.0 } else { 0.0 });
         let tool = self.state.active_tool.as_ref().map(|t| t.label.clone());
         self.summary.tool(tool.as_deref()).feed_time += time.max(0.0);
-        let event = EventKind::Dwell(DwellEvent { seconds, revolutions });
+        let event = EventKind::Dwell(DwellEvent {
+            seconds,
+            revolutions,
+        });
         self.emit_at(program, instruction, event);
         Ok(())
     }
@@ -293,7 +315,10 @@ impl Channel<'_> {
 
     pub(super) fn frame(&mut self, frame: &FrameInstruction) -> Result<(), RunError> {
         let op = FrameOp::parse(&frame.op).ok_or_else(|| {
-            RunError::new(codes::NOT_SIMULATED, format!("`{}` is not simulated", frame.op))
+            RunError::new(
+                codes::NOT_SIMULATED,
+                format!("`{}` is not simulated", frame.op),
+            )
         })?;
         let inch = self.state.inch();
         let mut values = Vec::with_capacity(frame.values.len());
@@ -306,10 +331,21 @@ impl Channel<'_> {
                 continue;
             }
             let axis = self.state.axis_index(&v.axis).ok_or_else(|| {
-                RunError::new(value_codes::UNKNOWN_AXIS, format!("the machine has no axis `{}`", v.axis))
+                RunError::new(
+                    value_codes::UNKNOWN_AXIS,
+                    format!("the machine has no axis `{}`", v.axis),
+                )
             })?;
-            let is_length = matches!(op, FrameOp::Trans | FrameOp::ATrans) && !self.state.axes[axis].rotary;
-            values.push((axis, if is_length && inch { value * 25.4 } else { value }));
+            let is_length =
+                matches!(op, FrameOp::Trans | FrameOp::ATrans) && !self.state.axes[axis].rotary;
+            values.push((
+                axis,
+                if is_length && inch {
+                    value * 25.4
+                } else {
+                    value
+                },
+            ));
         }
         for v in &frame.indirect_values {
             let name = match eval::eval(&env, &v.axis)? {
@@ -317,11 +353,22 @@ impl Channel<'_> {
                 other => return Err(RunError::type_mismatch(&other, "AXIS")),
             };
             let axis = self.state.axis_index(&name).ok_or_else(|| {
-                RunError::new(value_codes::UNKNOWN_AXIS, format!("the machine has no axis `{name}`"))
+                RunError::new(
+                    value_codes::UNKNOWN_AXIS,
+                    format!("the machine has no axis `{name}`"),
+                )
             })?;
             let value = eval::eval_real(&env, &v.value)?;
-            let is_length = matches!(op, FrameOp::Trans | FrameOp::ATrans) && !self.state.axes[axis].rotary;
-            values.push((axis, if is_length && inch { value * 25.4 } else { value }));
+            let is_length =
+                matches!(op, FrameOp::Trans | FrameOp::ATrans) && !self.state.axes[axis].rotary;
+            values.push((
+                axis,
+                if is_length && inch {
+                    value * 25.4
+                } else {
+                    value
+                },
+            ));
         }
         let plane = self.state.plane();
         let axes = self.state.frame_axes.clone();
@@ -387,7 +434,10 @@ impl Channel<'_> {
         let profile = Arc::clone(&self.state.profile);
         let management = profile.tool_change.tool_management_enabled;
         let literal = || match kind {
-            SelectorKind::Name => ToolRef { label: value.to_owned(), number: 0 },
+            SelectorKind::Name => ToolRef {
+                label: value.to_owned(),
+                number: 0,
+            },
             _ => ToolRef {
                 label: format!("T{value}"),
                 number: value.parse().unwrap_or(0),
@@ -401,19 +451,33 @@ impl Channel<'_> {
             _ => format!("T{}", tool.number.get_ref()),
         };
         let candidates: Vec<&Tool> = match kind {
-            SelectorKind::Number => profile.tools.iter().filter(|t| t.number.get_ref().to_string() == value).collect(),
-            SelectorKind::Location => profile.tools.iter().filter(|t| t.location.is_some_and(|l| l.to_string() == value)).collect(),
+            SelectorKind::Number => profile
+                .tools
+                .iter()
+                .filter(|t| t.number.get_ref().to_string() == value)
+                .collect(),
+            SelectorKind::Location => profile
+                .tools
+                .iter()
+                .filter(|t| t.location.is_some_and(|l| l.to_string() == value))
+                .collect(),
             _ => {
                 let mut sisters: Vec<&Tool> = profile
                     .tools
                     .iter()
-                    .filter(|t| t.name.as_ref().is_some_and(|n| n.get_ref().eq_ignore_ascii_case(value)))
+                    .filter(|t| {
+                        t.name
+                            .as_ref()
+                            .is_some_and(|n| n.get_ref().eq_ignore_ascii_case(value))
+                    })
                     .collect();
                 sisters.sort_by_key(|t| t.duplo);
                 sisters
             }
         };
-        let usable = candidates.iter().position(|t| t.state == ToolState::Enabled);
+        let usable = candidates
+            .iter()
+            .position(|t| t.state == ToolState::Enabled);
         let chosen = match usable {
             Some(0) => Some((candidates[0], false)),
             Some(i) if profile.tool_change.allow_substitution => Some((candidates[i], true)),
@@ -436,7 +500,14 @@ impl Channel<'_> {
         match profile.tool_change.on_unresolved_tool {
             UnresolvedToolPolicy::Error => Err(RunError::new(codes::UNRESOLVED_TOOL, why)),
             UnresolvedToolPolicy::Warning => {
-                self.diagnostic_at(program, instruction, codes::UNRESOLVED_TOOL, EventSeverity::Warning, why, None);
+                self.diagnostic_at(
+                    program,
+                    instruction,
+                    codes::UNRESOLVED_TOOL,
+                    EventSeverity::Warning,
+                    why,
+                    None,
+                );
                 Ok(Some((literal(), false)))
             }
             UnresolvedToolPolicy::Fallback => Ok(Some((literal(), false))),
@@ -476,7 +547,11 @@ impl Channel<'_> {
                 ),
                 Policy::Ignore => {}
             }
-            (self.state.active_tool.clone(), SelectionSource::M6WithoutPending, false)
+            (
+                self.state.active_tool.clone(),
+                SelectionSource::M6WithoutPending,
+                false,
+            )
         };
         let event = EventKind::ToolChange(ToolChangeEvent {
             previous_tool: previous,
@@ -489,7 +564,11 @@ impl Channel<'_> {
         self.emit_at(program, instruction, event);
         // The new tool's first edge is active (MD20270 = 1), D0 without a
         // tool.
-        let edge = if self.state.active_tool.is_some() { 1 } else { 0 };
+        let edge = if self.state.active_tool.is_some() {
+            1
+        } else {
+            0
+        };
         self.set_edge(program, instruction, edge, false);
         Ok(())
     }
@@ -501,13 +580,24 @@ impl Channel<'_> {
         edge: &Value,
     ) -> Result<(), RunError> {
         let d = eval::eval_value(&self.env(), edge)?.to_int()?;
-        let d = u32::try_from(d).map_err(|_| RunError::new(value_codes::OVERFLOW, format!("`D{d}`: an edge is 0 or more")))?;
+        let d = u32::try_from(d).map_err(|_| {
+            RunError::new(
+                value_codes::OVERFLOW,
+                format!("`D{d}`: an edge is 0 or more"),
+            )
+        })?;
         self.set_edge(program, instruction, d, true);
         Ok(())
     }
 
     /// Activates edge `d` of the active tool and its length offset.
-    fn set_edge(&mut self, program: &Arc<Program>, instruction: &Instruction, d: u32, programmed: bool) {
+    fn set_edge(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        d: u32,
+        programmed: bool,
+    ) {
         self.state.edge = d;
         self.state.tool_length = 0.0;
         if d == 0 {
@@ -517,15 +607,28 @@ impl Channel<'_> {
             return;
         };
         let profile = Arc::clone(&self.state.profile);
-        let entry = profile.tools.iter().find(|t| *t.number.get_ref() == tool.number);
+        let entry = profile
+            .tools
+            .iter()
+            .find(|t| *t.number.get_ref() == tool.number);
         let Some(entry) = entry else {
             return;
         };
         match entry.edges.iter().find(|e| *e.d.get_ref() == d) {
             Some(e) => self.state.tool_length = e.length,
             None if programmed => {
-                let message = format!("tool {} has no cutting edge D{d} in the tool table; no length offset", tool.label);
-                self.diagnostic_at(program, instruction, codes::UNKNOWN_EDGE, EventSeverity::Warning, message, None);
+                let message = format!(
+                    "tool {} has no cutting edge D{d} in the tool table; no length offset",
+                    tool.label
+                );
+                self.diagnostic_at(
+                    program,
+                    instruction,
+                    codes::UNKNOWN_EDGE,
+                    EventSeverity::Warning,
+                    message,
+                    None,
+                );
             }
             None => {}
         }

@@ -78,6 +78,8 @@ pub mod codes {
     pub const UNKNOWN_EDGE: &str = "gcodec::run::unknown_edge";
     /// A feed motion without a feed (alarm 10860 on the control).
     pub const NO_FEED: &str = "gcodec::run::no_feed";
+    /// `SETAL(n)`: the program raised a cycle alarm.
+    pub const CYCLE_ALARM: &str = "gcodec::run::cycle_alarm";
     /// Writing the events failed.
     pub const OUTPUT: &str = "gcodec::run::output";
 }
@@ -255,6 +257,32 @@ impl<'r> Channel<'r> {
         self
     }
 
+    /// Declares the global user data of definition files (GUD), each with
+    /// its type's initial value. A dimension that is not a constant is
+    /// left out (the variable is not declared; reading it is an error
+    /// naming it).
+    pub fn with_globals(mut self, definitions: &gcodec_sema::Definitions) -> Self {
+        for variable in definitions.variables() {
+            let Some(ty) = crate::value::DataType::parse(&variable.data_type.describe()) else {
+                continue;
+            };
+            let dims: Option<Vec<usize>> = variable
+                .dims
+                .iter()
+                .map(|d| d.map(|d| d as usize))
+                .collect();
+            let Some(dims) = dims else {
+                continue;
+            };
+            let name = variable.name.to_ascii_uppercase();
+            // A declaration the store rejects (too large) stays undeclared.
+            let _ = self
+                .vars
+                .declare(Scope::Global, &name, ty, &dims, crate::vars::Init::None);
+        }
+        self
+    }
+
     /// Runs `main` to its end and writes the final `program_end` event.
     /// An error writing events ends the run and is returned.
     pub fn run(mut self, main: Arc<Program>) -> io::Result<RunOutcome> {
@@ -264,7 +292,17 @@ impl<'r> Channel<'r> {
             program_level: 0,
             kind: LevelKind::Main,
         });
-        let reason = self.run_levels();
+        let main = Arc::clone(&self.stack[0].program);
+        let reason = match self.bind_main(&main) {
+            Ok(()) => self.run_levels(),
+            Err(error) => {
+                let first = main.instructions().first().cloned();
+                if let Some(first) = first {
+                    self.alarm(&main, &first, error);
+                }
+                ProgramEndReason::Alarm
+            }
+        };
         self.end_block();
         let end = Event {
             kind: EventKind::ProgramEnd(ProgramEndEvent {
@@ -363,7 +401,11 @@ impl<'r> Channel<'r> {
     }
 
     /// The start of a block: counts it, checks the limits.
-    fn start_block(&mut self, program: &Arc<Program>, instruction: &Instruction) -> Option<ProgramEndReason> {
+    fn start_block(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+    ) -> Option<ProgramEndReason> {
         let level = self.program_level();
         self.block = BlockState {
             open: true,
@@ -443,8 +485,10 @@ impl<'r> Channel<'r> {
         self.motion.workpiece_position(state);
         row.positions.clear();
         for (i, axis) in state.axes.iter().enumerate() {
-            row.positions
-                .insert(axis.name.clone(), state.as_programmed(i, self.motion.wcs[i]));
+            row.positions.insert(
+                axis.name.clone(),
+                state.as_programmed(i, self.motion.wcs[i]),
+            );
         }
         row.tool = state.active_tool.as_ref().map(|t| t.label.clone());
         row.edge = state.edge;
@@ -466,7 +510,12 @@ impl<'r> Channel<'r> {
         let result = match &instruction.op {
             Op::Label { .. } | Op::External(_) | Op::Procedure(_) => Ok(Flow::Next),
             Op::SkipBlock { level, end } => {
-                let on = self.options.skip_levels.get(usize::from(*level)).copied().unwrap_or(false);
+                let on = self
+                    .options
+                    .skip_levels
+                    .get(usize::from(*level))
+                    .copied()
+                    .unwrap_or(false);
                 if on {
                     self.jump_to_label(program, pc, instruction, end)
                 } else {
@@ -519,7 +568,13 @@ impl<'r> Channel<'r> {
                 speed,
                 spindle_expr,
             } => self
-                .spindle_speed(program, instruction, *spindle, speed, spindle_expr.as_deref())
+                .spindle_speed(
+                    program,
+                    instruction,
+                    *spindle,
+                    speed,
+                    spindle_expr.as_deref(),
+                )
                 .map(|()| Flow::Next),
             Op::Dwell {
                 seconds,
@@ -527,19 +582,32 @@ impl<'r> Channel<'r> {
             } => self
                 .dwell(program, instruction, seconds.as_ref(), revolutions.as_ref())
                 .map(|()| Flow::Next),
-            Op::Address(address) => self.address(program, instruction, address).map(|()| Flow::Next),
-            Op::HFunction(h) => self.h_function(program, instruction, h).map(|()| Flow::Next),
+            Op::Address(address) => self
+                .address(program, instruction, address)
+                .map(|()| Flow::Next),
+            Op::HFunction(h) => self
+                .h_function(program, instruction, h)
+                .map(|()| Flow::Next),
             Op::MFunction(m) => self.m_function(program, pc, instruction, m),
-            Op::ToolSelect(select) => self.tool_select(program, instruction, select).map(|()| Flow::Next),
-            Op::ToolChange { trigger } => self.tool_change(program, instruction, *trigger).map(|()| Flow::Next),
-            Op::CuttingEdge { edge } => self.cutting_edge(program, instruction, edge).map(|()| Flow::Next),
+            Op::ToolSelect(select) => self
+                .tool_select(program, instruction, select)
+                .map(|()| Flow::Next),
+            Op::ToolChange { trigger } => self
+                .tool_change(program, instruction, *trigger)
+                .map(|()| Flow::Next),
+            Op::CuttingEdge { edge } => self
+                .cutting_edge(program, instruction, edge)
+                .map(|()| Flow::Next),
             Op::Declare(declare) => {
-                eval::declare(&mut self.vars, &self.state, declare, Scope::Local).map(|()| Flow::Next)
+                eval::declare(&mut self.vars, &self.state, declare, Scope::Local)
+                    .map(|()| Flow::Next)
             }
             Op::Assign { target, value } => {
                 eval::assign(&mut self.vars, &mut self.state, target, value).map(|()| Flow::Next)
             }
-            Op::AssignList(list) => eval::assign_list(&mut self.vars, &self.state, list).map(|()| Flow::Next),
+            Op::AssignList(list) => {
+                eval::assign_list(&mut self.vars, &self.state, list).map(|()| Flow::Next)
+            }
             Op::Message { text } => eval::eval_value(&self.env(), text).and_then(|v| {
                 let text = v.to_text()?;
                 let event = EventKind::Message(MessageEvent { text });
@@ -590,7 +658,7 @@ impl<'r> Channel<'r> {
                 let name = target.split_once('@').map_or(target, |(name, _)| name);
                 Err(RunError::new(
                     codes::JUMP_TARGET,
-                    format!("the jump target `{name}` is not in the program (alarm 14080)"),
+                    format!("the jump target `{name}` is not in the program"),
                 ))
             }
         }
@@ -608,18 +676,29 @@ impl<'r> Channel<'r> {
         {
             return Ok(Flow::Next);
         }
-        let target = eval::eval(&self.env(), &jump.target)?.to_text()?;
+        let target = match eval::eval(&self.env(), &jump.target)? {
+            // `GOTOF 90`: a number names the block number `N90` (as the
+            // CEAD interpreter reads it; the manuals write `N90`).
+            value if value.is_numeric() => format!("N{}", value.to_int()?),
+            value => value.to_text()?,
+        };
         match program.search_label(&target, pc, jump.search) {
             Some(index) => Ok(Flow::Jump(index)),
             None if jump.continue_if_missing => Ok(Flow::Next),
             None => Err(RunError::new(
                 codes::JUMP_TARGET,
-                format!("the jump target `{target}` is not in the program (alarm 14080)"),
+                format!("the jump target `{target}` is not in the program"),
             )),
         }
     }
 
-    fn modal_change(&mut self, program: &Arc<Program>, instruction: &Instruction, group: u8, code: &str) {
+    fn modal_change(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        group: u8,
+        code: &str,
+    ) {
         if !ggroups::is_modal(group) {
             return;
         }
@@ -630,7 +709,13 @@ impl<'r> Channel<'r> {
         self.set_modal(program, instruction, group, code);
     }
 
-    fn set_modal(&mut self, program: &Arc<Program>, instruction: &Instruction, group: u8, code: &'static str) {
+    fn set_modal(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        group: u8,
+        code: &'static str,
+    ) {
         let slot = &mut self.state.modal[usize::from(group) - 1];
         let previous = *slot;
         if previous == Some(code) {
@@ -670,9 +755,16 @@ impl<'r> Channel<'r> {
         Ok(Flow::Next)
     }
 
-    fn select_work_offset(&mut self, program: &Arc<Program>, instruction: &Instruction, code: WorkOffsetCode) {
+    fn select_work_offset(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        code: WorkOffsetCode,
+    ) {
         self.state.group8 = code;
-        if let Some(name) = ggroups::lookup(&format!("G{}", code.0)).and_then(|(g, i)| ggroups::member(g, i)) {
+        if let Some(name) =
+            ggroups::lookup(&format!("G{}", code.0)).and_then(|(g, i)| ggroups::member(g, i))
+        {
             self.set_modal(program, instruction, 8, name);
         }
     }
@@ -680,7 +772,14 @@ impl<'r> Channel<'r> {
     /// Reports `error` as an alarm: a diagnostic event of severity error.
     fn alarm(&mut self, program: &Arc<Program>, instruction: &Instruction, error: RunError) {
         let code = error.code;
-        self.diagnostic_at(program, instruction, code, EventSeverity::Error, error.message, None);
+        self.diagnostic_at(
+            program,
+            instruction,
+            code,
+            EventSeverity::Error,
+            error.message,
+            None,
+        );
     }
 
     fn diagnostic_at(
@@ -718,7 +817,14 @@ impl<'r> Channel<'r> {
         message: String,
     ) {
         if self.reported.insert(key.to_owned()) {
-            self.diagnostic_at(program, instruction, code, EventSeverity::Advice, message, None);
+            self.diagnostic_at(
+                program,
+                instruction,
+                code,
+                EventSeverity::Advice,
+                message,
+                None,
+            );
         }
     }
 
@@ -732,7 +838,14 @@ impl<'r> Channel<'r> {
         message: String,
     ) {
         if self.reported.insert(key.to_owned()) {
-            self.diagnostic_at(program, instruction, code, EventSeverity::Warning, message, None);
+            self.diagnostic_at(
+                program,
+                instruction,
+                code,
+                EventSeverity::Warning,
+                message,
+                None,
+            );
         }
     }
 
@@ -809,8 +922,8 @@ fn alarm_number(code: &str) -> Option<u32> {
         crate::value::codes::UNDEFINED_VARIABLE => Some(12550),
         crate::value::codes::INDEX_OUT_OF_RANGE => Some(17020),
         crate::value::codes::TYPE_MISMATCH => Some(14096),
+        crate::value::codes::ARGUMENT_COUNT => Some(12340),
         "gcodec::run::circle_end_point" => Some(14040),
         _ => None,
     }
 }
-

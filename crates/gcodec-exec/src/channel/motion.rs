@@ -114,7 +114,11 @@ fn point(state: &MachineState, values: &[f64]) -> Point3 {
 }
 
 impl Channel<'_> {
-    pub(super) fn motion(&mut self, program: &Arc<Program>, instruction: &Instruction) -> Result<(), RunError> {
+    pub(super) fn motion(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+    ) -> Result<(), RunError> {
         let Op::Motion {
             motion,
             targets,
@@ -128,7 +132,8 @@ impl Channel<'_> {
         let frame = self.state.total_frame();
         {
             let scratch = &mut self.motion;
-            self.state.to_workpiece(&frame, &self.state.machine, &mut scratch.wcs);
+            self.state
+                .to_workpiece(&frame, &self.state.machine, &mut scratch.wcs);
             scratch.target.copy_from_slice(&scratch.wcs);
         }
         for target in targets {
@@ -140,7 +145,12 @@ impl Channel<'_> {
                 let name = eval::eval(&self.env(), &target.axis)?;
                 let name = match name {
                     RtValue::Axis(a) | RtValue::String(a) => a,
-                    v => return Err(RunError::new(codes::TYPE_MISMATCH, format!("a {} value names no axis", v.type_name()))),
+                    v => {
+                        return Err(RunError::new(
+                            codes::TYPE_MISMATCH,
+                            format!("a {} value names no axis", v.type_name()),
+                        ));
+                    }
                 };
                 let axis = self.axis(&name)?;
                 let value = AxisValue {
@@ -174,7 +184,10 @@ impl Channel<'_> {
         let mut end = point(&self.state, &self.motion.target);
         let is_arc = matches!(
             kind,
-            MotionKind::ArcCw | MotionKind::ArcCcw | MotionKind::ArcThroughPoint | MotionKind::ArcTangential
+            MotionKind::ArcCw
+                | MotionKind::ArcCcw
+                | MotionKind::ArcThroughPoint
+                | MotionKind::ArcTangential
         );
         let mut arc = None;
         if is_arc {
@@ -201,7 +214,8 @@ impl Channel<'_> {
         }
         {
             let scratch = &mut self.motion;
-            self.state.to_machine(&frame, &scratch.target, &mut scratch.machine);
+            self.state
+                .to_machine(&frame, &scratch.target, &mut scratch.machine);
         }
         // Figures.
         let length = match &arc {
@@ -260,11 +274,17 @@ impl Channel<'_> {
                         }
                     }
                     event.centre = Some(centre);
-                    event.radius = Some(if state.inch() { a.radius / 25.4 } else { a.radius });
+                    event.radius = Some(if state.inch() {
+                        a.radius / 25.4
+                    } else {
+                        a.radius
+                    });
                     event.turns = circle
                         .as_ref()
                         .and_then(|c| c.turns.as_ref())
-                        .map_or(0, |_| (a.sweep.abs() / std::f64::consts::TAU).floor() as u32);
+                        .map_or(0, |_| {
+                            (a.sweep.abs() / std::f64::consts::TAU).floor() as u32
+                        });
                 }
                 None => {
                     event.centre = None;
@@ -362,35 +382,40 @@ impl Channel<'_> {
         let real = |v: &gcodec_ail::Value| eval::eval_real(&env, v);
         let length = |v: f64| if self.state.inch() { v * 25.4 } else { v };
         // `I J K` (and `I1 J1 K1`) to a point of the geometry axes.
-        let offsets = |values: &[AxisValue], relative_default: bool| -> Result<Option<Point3>, RunError> {
-            if values.is_empty() {
-                return Ok(None);
-            }
-            let mut p = start;
-            let mut given = [false; 3];
-            for value in values {
-                let g = match value.axis.as_ref() {
-                    "I" | "I1" => 0,
-                    "J" | "J1" => 1,
-                    "K" | "K1" => 2,
-                    _ => continue,
-                };
-                let v = length(real(&value.value)?);
-                let relative = match value.mode {
-                    Some(DimensionMode::Ac) => false,
-                    Some(DimensionMode::Ic) => true,
-                    _ => relative_default,
-                };
-                p[g] = if relative { start[g] + v } else { v };
-                given[g] = true;
-            }
-            let _ = given;
-            Ok(Some(p))
-        };
+        let offsets =
+            |values: &[AxisValue], relative_default: bool| -> Result<Option<Point3>, RunError> {
+                if values.is_empty() {
+                    return Ok(None);
+                }
+                let mut p = start;
+                let mut given = [false; 3];
+                for value in values {
+                    let g = match value.axis.as_ref() {
+                        "I" | "I1" => 0,
+                        "J" | "J1" => 1,
+                        "K" | "K1" => 2,
+                        _ => continue,
+                    };
+                    let v = length(real(&value.value)?);
+                    let relative = match value.mode {
+                        Some(DimensionMode::Ac) => false,
+                        Some(DimensionMode::Ic) => true,
+                        _ => relative_default,
+                    };
+                    p[g] = if relative { start[g] + v } else { v };
+                    given[g] = true;
+                }
+                let _ = given;
+                Ok(Some(p))
+            };
         let form = if kind == MotionKind::ArcThroughPoint {
-            let point = offsets(&circle.intermediate, self.state.incremental())?.ok_or_else(|| {
-                RunError::new("gcodec::run::circle_intermediate", "`CIP` needs an intermediate point (`I1= J1= K1=`)")
-            })?;
+            let point =
+                offsets(&circle.intermediate, self.state.incremental())?.ok_or_else(|| {
+                    RunError::new(
+                        "gcodec::run::circle_intermediate",
+                        "`CIP` needs an intermediate point (`I1= J1= K1=`)",
+                    )
+                })?;
             ArcForm::Intermediate { point }
         } else if kind == MotionKind::ArcTangential {
             let tangent = self.motion.last_tangent.unwrap_or([0.0; 3]);
@@ -400,7 +425,11 @@ impl Channel<'_> {
             let radius = circle.radius.as_ref().map(real).transpose()?.map(length);
             let angle = circle.opening_angle.as_ref().map(real).transpose()?;
             match (centre, radius, angle) {
-                (Some(centre), _, Some(angle)) => ArcForm::AngleFromCentre { direction, centre, angle },
+                (Some(centre), _, Some(angle)) => ArcForm::AngleFromCentre {
+                    direction,
+                    centre,
+                    angle,
+                },
                 (Some(centre), _, None) => ArcForm::Centre { direction, centre },
                 (None, Some(radius), _) => ArcForm::Radius { direction, radius },
                 (None, None, Some(angle)) => ArcForm::AngleToEnd { direction, angle },
@@ -454,7 +483,10 @@ impl Channel<'_> {
         };
         let minutes = match self.state.modal(15) {
             Some("G93") => 1.0 / feed,
-            Some("G95" | "G96" | "G961" | "G97" | "G971" | "G942" | "G952" | "G962" | "G972" | "G973") => {
+            Some(
+                "G95" | "G96" | "G961" | "G97" | "G971" | "G942" | "G952" | "G962" | "G972"
+                | "G973",
+            ) => {
                 let speed = self.state.master_spindle().map_or(0.0, |s| s.speed);
                 if speed <= 0.0 {
                     return 0.0;
@@ -469,7 +501,9 @@ impl Channel<'_> {
 
 fn kind_key(kind: MotionKind) -> &'static str {
     match kind {
-        MotionKind::Aspline | MotionKind::Bspline | MotionKind::Cspline | MotionKind::Poly => "motion-spline",
+        MotionKind::Aspline | MotionKind::Bspline | MotionKind::Cspline | MotionKind::Poly => {
+            "motion-spline"
+        }
         MotionKind::InvoluteCw | MotionKind::InvoluteCcw => "motion-involute",
         _ => "motion-thread",
     }
@@ -485,12 +519,20 @@ fn fill_map(map: &mut AxisMap, state: &MachineState, values: &[f64], programmed:
     if map.len() != state.axes.len() {
         map.clear();
         for (i, info) in state.axes.iter().enumerate() {
-            let v = if programmed { state.as_programmed(i, values[i]) } else { values[i] };
+            let v = if programmed {
+                state.as_programmed(i, values[i])
+            } else {
+                values[i]
+            };
             map.insert(info.name.clone(), v);
         }
         return;
     }
     for (i, slot) in map.values_mut().enumerate() {
-        *slot = if programmed { state.as_programmed(i, values[i]) } else { values[i] };
+        *slot = if programmed {
+            state.as_programmed(i, values[i])
+        } else {
+            values[i]
+        };
     }
 }

@@ -285,7 +285,12 @@ fn machine_axis_number(name: &str, count: usize) -> Option<usize> {
 
 /// The settable frame `$P_UIFR[index]` as the profile's
 /// `work_offsets.values` give it (translations).
-fn settable_frame(profile: &Profile, frame_axes: &FrameAxes, axes: &[AxisInfo], index: usize) -> Frame {
+fn settable_frame(
+    profile: &Profile,
+    frame_axes: &FrameAxes,
+    axes: &[AxisInfo],
+    index: usize,
+) -> Frame {
     let values = profile
         .work_offsets
         .values
@@ -351,7 +356,9 @@ impl RuntimeInterface for MachineState {
             )),
             ("$P_TOOL", []) => Ok(RtValue::Int(self.edge as i32)),
             ("$P_F", []) => Ok(RtValue::Real(self.feed)),
-            ("$P_S", []) => Ok(RtValue::Real(self.master_spindle().map_or(0.0, |s| s.speed))),
+            ("$P_S", []) => Ok(RtValue::Real(
+                self.master_spindle().map_or(0.0, |s| s.speed),
+            )),
             ("$P_MC", []) => Ok(RtValue::Bool(self.modal_call_active)),
             ("$P_UIFRNUM", []) => Ok(RtValue::Int(i32::from(self.group8_index()))),
             ("$P_PFRAME", []) => Ok(self.frame_value(&self.programmable)),
@@ -367,7 +374,9 @@ impl RuntimeInterface for MachineState {
                 let frame = usize::try_from(n)
                     .ok()
                     .and_then(|i| self.settable.get(i))
-                    .filter(|_| self.profile.work_offsets.supported_group8()[n.clamp(0, 99) as usize])
+                    .filter(|_| {
+                        self.profile.work_offsets.supported_group8()[n.clamp(0, 99) as usize]
+                    })
                     .ok_or_else(|| {
                         RunError::new(
                             codes::INDEX_OUT_OF_RANGE,
@@ -377,7 +386,8 @@ impl RuntimeInterface for MachineState {
                 Ok(self.frame_value(frame))
             }
             ("$P_UIFR", [n, axis, component]) => {
-                let RtValue::Frame(frame) = self.system_variable(name, std::slice::from_ref(n))? else {
+                let RtValue::Frame(frame) = self.system_variable(name, std::slice::from_ref(n))?
+                else {
                     return Err(RunError::type_mismatch(n, "FRAME"));
                 };
                 let axis = self.axis_argument(name, axis)?;
@@ -444,7 +454,10 @@ impl RuntimeInterface for MachineState {
                     return Err(RunError::type_mismatch(value, "FRAME"));
                 };
                 let frame = Frame::from_value(&self.frame_axes, f)?;
-                match usize::try_from(n).ok().and_then(|i| self.settable.get_mut(i)) {
+                match usize::try_from(n)
+                    .ok()
+                    .and_then(|i| self.settable.get_mut(i))
+                {
                     Some(slot) => {
                         *slot = frame;
                         Ok(())
@@ -457,7 +470,8 @@ impl RuntimeInterface for MachineState {
             }
             ("$P_UIFR", [n, axis, component]) => {
                 let n = n.to_int()?;
-                let Some(slot) = usize::try_from(n).ok().filter(|&i| i < self.settable.len()) else {
+                let Some(slot) = usize::try_from(n).ok().filter(|&i| i < self.settable.len())
+                else {
                     return Err(RunError::new(
                         codes::INDEX_OUT_OF_RANGE,
                         format!("`$P_UIFR[{n}]`: the machine has no settable offset {n}"),
@@ -491,8 +505,17 @@ impl RuntimeInterface for MachineState {
 }
 
 /// Writes one component (`TR`, `FI`, `RT`, `SC`, `MI`) of `axis`.
-fn set_component(frame: &mut FrameValue, axis: &str, component: &str, value: f64) -> Result<(), RunError> {
-    let at = match frame.axes.iter().position(|a| a.axis.eq_ignore_ascii_case(axis)) {
+fn set_component(
+    frame: &mut FrameValue,
+    axis: &str,
+    component: &str,
+    value: f64,
+) -> Result<(), RunError> {
+    let at = match frame
+        .axes
+        .iter()
+        .position(|a| a.axis.eq_ignore_ascii_case(axis))
+    {
         Some(at) => at,
         None => {
             frame.axes.push(crate::value::FrameAxis::neutral(axis));

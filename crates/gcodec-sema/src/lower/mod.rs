@@ -417,6 +417,8 @@ const DUPLICATE_SUPPRESSION: &str = "gcodec::lower::duplicate_suppression";
 const UNKNOWN_ADDRESS: &str = "gcodec::lower::unknown_address";
 pub(crate) const UNKNOWN_SPINDLE: &str = "gcodec::lower::unknown_spindle";
 const BLOCK_TOO_LONG: &str = "gcodec::lower::block_too_long";
+const REPEATED_AXIS: &str = "gcodec::lower::repeated_axis";
+const MISSING_CIRCLE_DATA: &str = "gcodec::lower::missing_circle_data";
 pub(crate) const INVALID_VALUE: &str = "gcodec::lower::invalid_value";
 const UNKNOWN_SYSTEM_VARIABLE: &str = "gcodec::lower::unknown_system_variable";
 const MISSING_JUMP_TARGET: &str = "gcodec::lower::missing_jump_target";
@@ -572,11 +574,16 @@ struct BlockPlan {
     spline_span: Option<Span>,
     /// `CHF=`, `CHR=`, `RND=`.
     transition: Option<(gcodec_ail::Transition, Span)>,
+    /// Axes written a second time in the block, where (alarm 12010).
+    repeated_axes: Vec<(Cow<'static, str>, Span)>,
 }
 
 impl BlockPlan {
     fn add_target(&mut self, target: AxisValue, span: Span) {
         self.target_span.get_or_insert(span);
+        if self.targets.iter().any(|t| t.axis == target.axis) {
+            self.repeated_axes.push((target.axis.clone(), span));
+        }
         self.targets.push(target);
     }
 }
@@ -919,6 +926,33 @@ impl<'a> Lowering<'a> {
             };
             // Under an unknown command the circle data go with the motion
             // as written; the executor reads them by the command then.
+            for (axis, span) in std::mem::take(&mut plan.repeated_axes) {
+                self.diagnostics.push(
+                    Diagnostic::error(
+                        REPEATED_AXIS,
+                        format!("`{axis}` is programmed twice in this block"),
+                    )
+                    .with_label(span, "again")
+                    .with_help(
+                        "the control rejects the block (alarm 12010); program each axis once",
+                    ),
+                );
+            }
+            let circle_missing = matches!(motion, MotionKind::ArcCw | MotionKind::ArcCcw)
+                && plan.circle.centre.is_empty()
+                && plan.circle.radius.is_none()
+                && plan.circle.opening_angle.is_none();
+            if circle_missing {
+                let code = self.modal[0].unwrap_or("G2");
+                self.diagnostics.push(
+                    Diagnostic::error(
+                        MISSING_CIRCLE_DATA,
+                        format!("`{code}` is active, but the block gives no centre, radius or opening angle"),
+                    )
+                    .with_label(first, "circle end point")
+                    .with_help("program the centre (`I J K`), the radius (`CR=`) or the opening angle (`AR=`), or change to `G0`/`G1` for a straight line"),
+                );
+            }
             let arc = is_arc(motion) || motion == MotionKind::Modal && plan.circle_span.is_some();
             let threaded = is_threaded(motion);
             let circle_data = std::mem::take(&mut plan.circle);

@@ -8,6 +8,8 @@ mod parser_common;
 
 pub use parser_common::{corpus_dir, programs, repo};
 
+pub mod machines;
+
 /// A shipped profile, by file name (`lathe_828d.toml`).
 pub fn profile(name: &str) -> gcodec_profile::Profile {
     let text = std::fs::read_to_string(repo().join("profiles").join(name)).expect("profile");

@@ -1,0 +1,152 @@
+//! Every main program of the shared corpus runs to its end, or to a
+//! clearly diagnosed external dependency: a subprogram or cycle that is
+//! not in the corpus, a variable of the machine the corpus does not hold
+//! (its other GUD files, the measuring cycles' results). Nothing else may
+//! stop a run, and nothing may panic. The end of every run is a snapshot,
+//! so a change in how far a program gets is seen in review.
+//!
+//! Programs run with the machine they were written for (the mapping of
+//! the lowering corpus test), `M0` does not stop (`--no-stop`), and the
+//! corpus's subprogram directories are on the search path.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use gcodec_exec::channel::{Channel, RunOptions};
+use gcodec_exec::event::{
+    CountingSink, Event, EventKind, EventSeverity, EventSink, ProgramEndReason,
+};
+use gcodec_exec::loader::{FileLoader, SearchPath, compile};
+use gcodec_source::SourceFile;
+
+#[path = "../../gcodec-sema/tests/common/mod.rs"]
+mod common;
+
+use common::machines::{definitions, machine_profile};
+
+/// What may end a run early: what lies outside the corpus.
+const EXTERNAL: &[&str] = &[
+    "gcodec::run::cycle_alarm",
+    "gcodec::run::program_not_found",
+    "gcodec::run::system_variable",
+    "gcodec::run::undefined_variable",
+];
+
+/// Keeps the last error diagnostic and counts the rest.
+#[derive(Default)]
+struct Outcome {
+    counts: CountingSink,
+    last_error: Option<(String, u32, String)>,
+}
+
+impl EventSink for Outcome {
+    fn event(&mut self, event: &Event) -> std::io::Result<()> {
+        if let EventKind::Diagnostic(d) = &event.kind
+            && d.severity == EventSeverity::Error
+        {
+            self.last_error = Some((d.code.to_string(), event.source.line, d.message.to_string()));
+        }
+        self.counts.event(event)
+    }
+}
+
+/// The directories of the corpus that hold subprograms and cycles.
+fn subprogram_dirs(corpus: &Path) -> Vec<PathBuf> {
+    let mut dirs = Vec::new();
+    for path in common::programs(corpus) {
+        let spf = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("spf"));
+        if let (true, Some(dir)) = (spf, path.parent())
+            && !dirs.iter().any(|d: &PathBuf| d == dir)
+        {
+            dirs.push(dir.to_path_buf());
+        }
+    }
+    dirs.sort();
+    dirs
+}
+
+#[test]
+fn every_main_program_runs_to_its_end_or_a_diagnosed_dependency() {
+    let Some(corpus) = common::corpus_dir() else {
+        return;
+    };
+    let dirs = subprogram_dirs(&corpus);
+    let mains: Vec<PathBuf> = common::programs(&corpus)
+        .into_iter()
+        .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("mpf")))
+        .collect();
+    assert!(
+        mains.len() >= 40,
+        "found only {} main programs",
+        mains.len()
+    );
+    let mut report = String::new();
+    let mut failures = Vec::new();
+    for path in &mains {
+        let shown = path
+            .strip_prefix(&corpus)
+            .unwrap_or(path)
+            .display()
+            .to_string()
+            .replace('\\', "/");
+        let profile = Arc::new(machine_profile(&shown).1);
+        let definitions = Arc::new(definitions(&corpus, &shown));
+        let file = SourceFile::new(shown.clone(), std::fs::read(path).expect("read"));
+        let stem = path
+            .file_stem()
+            .unwrap()
+            .to_string_lossy()
+            .to_ascii_uppercase();
+        let main = compile(stem, &file, &profile, &definitions, false);
+        if main.has_errors {
+            // The two programs the lowering test expects errors in.
+            report.push_str(&format!("{shown}: not run (lowering errors)\n"));
+            continue;
+        }
+        let search = SearchPath::new().with_dirs(dirs.iter().cloned());
+        let mut loader = FileLoader::new(search, Arc::clone(&profile), Arc::clone(&definitions));
+        let mut options = RunOptions::for_profile(&profile);
+        options.stop_at_m0 = false;
+        options.max_steps = 200_000;
+        let mut sink = Outcome::default();
+        // Runs resolve relative to the corpus: the main program's file name
+        // is shown relative to it.
+        let outcome = with_dir(&corpus, || {
+            Channel::new(profile, options, &mut loader, &mut sink)
+                .with_globals(&definitions)
+                .run(main.program)
+        })
+        .expect("events go to memory");
+        let end = match (&outcome.reason, &sink.last_error) {
+            (ProgramEndReason::Alarm, Some((code, line, message))) => {
+                if !EXTERNAL.contains(&code.as_str()) {
+                    failures.push(format!("{shown}:{line}: {code}: {message}"));
+                }
+                format!("alarm {code} at line {line}")
+            }
+            (reason, _) => format!("{reason:?}"),
+        };
+        report.push_str(&format!(
+            "{shown}: {end}, {} blocks\n",
+            outcome.summary.blocks
+        ));
+    }
+    assert!(
+        failures.is_empty(),
+        "runs stopped for reasons inside the corpus:\n{}",
+        failures.join("\n")
+    );
+    insta::assert_snapshot!(report);
+}
+
+/// Runs `f` with the current directory set to `dir` (the loader resolves
+/// the caller's directory from the file name).
+fn with_dir<R>(dir: &Path, f: impl FnOnce() -> R) -> R {
+    let previous = std::env::current_dir().expect("current dir");
+    std::env::set_current_dir(dir).expect("corpus dir");
+    let result = f();
+    std::env::set_current_dir(previous).expect("back");
+    result
+}
