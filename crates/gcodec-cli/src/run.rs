@@ -173,12 +173,15 @@ pub fn run(args: RunArgs) -> u8 {
         );
         return EXIT_DIAGNOSTICS;
     }
-    let main = Program::new(
+    let mut main = Program::new(
         program_name(&args.file),
         Arc::from(file.name()),
         lowered.document,
-    )
-    .with_text(Arc::from(file.bytes()));
+    );
+    // Only the CSV rows read block numbers from the text.
+    if let RunFormat::Csv = args.format {
+        main = main.with_text(Arc::from(file.bytes()));
+    }
     let main = Arc::new(main);
     let search = SearchPath::new()
         .with_profile(&profile, profile_path)

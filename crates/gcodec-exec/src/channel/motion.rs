@@ -129,8 +129,8 @@ impl Channel<'_> {
             return Ok(());
         };
         let kind = motion_kind(self.state.modal(1)).unwrap_or(*motion);
-        let frame = self.state.total_frame();
         {
+            let frame = self.state.total_frame();
             let scratch = &mut self.motion;
             self.state
                 .to_workpiece(&frame, &self.state.machine, &mut scratch.wcs);
@@ -213,6 +213,7 @@ impl Channel<'_> {
             );
         }
         {
+            let frame = self.state.total_frame();
             let scratch = &mut self.motion;
             self.state
                 .to_machine(&frame, &scratch.target, &mut scratch.machine);

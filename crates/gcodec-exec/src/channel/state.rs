@@ -3,6 +3,7 @@
 //! the system variables a program reads ([`RuntimeInterface`]).
 
 use std::borrow::Cow;
+use std::cell::{Ref, RefCell};
 use std::sync::Arc;
 
 use gcodec_profile::{AxisKind, Profile};
@@ -81,6 +82,19 @@ pub struct MachineState {
     pub spindles: Vec<Spindle>,
     /// `MCALL`: the modal call in force.
     pub modal_call_active: bool,
+    /// The last total frame with what it was made of, so that a motion
+    /// does not chain frames (and allocate) unless one changed.
+    frame_cache: RefCell<Option<FrameCache>>,
+    /// Room for a position, reused.
+    scratch: RefCell<Vec<f64>>,
+}
+
+struct FrameCache {
+    group8: WorkOffsetCode,
+    suppressed: bool,
+    settable: Frame,
+    programmable: Frame,
+    total: Frame,
 }
 
 impl MachineState {
@@ -132,6 +146,8 @@ impl MachineState {
             feed: 0.0,
             spindles,
             modal_call_active: false,
+            frame_cache: RefCell::new(None),
+            scratch: RefCell::new(Vec::new()),
             profile,
         }
     }
@@ -198,15 +214,39 @@ impl MachineState {
     /// The frame from workpiece to machine coordinates in force for this
     /// block: the settable offset (unless G500 or suppressed) chained with
     /// the programmable frame (unless suppressed).
-    pub fn total_frame(&self) -> Frame {
-        if self.suppression.is_some() {
-            return Frame::neutral(&self.frame_axes);
+    pub fn total_frame(&self) -> Ref<'_, Frame> {
+        let suppressed = self.suppression.is_some();
+        let neutral;
+        let settable = match self.settable.get(usize::from(self.group8_index())) {
+            Some(s) if self.group8 != WorkOffsetCode::G500 => s,
+            _ => {
+                neutral = Frame::neutral(&self.frame_axes);
+                &neutral
+            }
+        };
+        let fresh = self.frame_cache.borrow().as_ref().is_some_and(|c| {
+            c.group8 == self.group8
+                && c.suppressed == suppressed
+                && c.settable == *settable
+                && c.programmable == self.programmable
+        });
+        if !fresh {
+            let total = if suppressed {
+                Frame::neutral(&self.frame_axes)
+            } else {
+                settable.chain(&self.programmable)
+            };
+            *self.frame_cache.borrow_mut() = Some(FrameCache {
+                group8: self.group8,
+                suppressed,
+                settable: settable.clone(),
+                programmable: self.programmable.clone(),
+                total,
+            });
         }
-        let settable = self.settable.get(usize::from(self.group8_index()));
-        match settable {
-            Some(s) if self.group8 != WorkOffsetCode::G500 => s.chain(&self.programmable),
-            _ => self.programmable.clone(),
-        }
+        Ref::map(self.frame_cache.borrow(), |c| {
+            &c.as_ref().expect("filled above").total
+        })
     }
 
     /// `$P_UIFRNUM`: the index of the Group 8 selection.
@@ -225,7 +265,9 @@ impl MachineState {
     /// Workpiece coordinates (mm, radius) of the machine position `machine`
     /// under `frame`.
     pub fn to_workpiece(&self, frame: &Frame, machine: &[f64], out: &mut [f64]) {
-        let mut shifted = machine.to_vec();
+        let mut shifted = self.scratch.borrow_mut();
+        shifted.clear();
+        shifted.extend_from_slice(machine);
         if let Some(axis) = self.infeed_axis() {
             shifted[axis] -= self.tool_length;
         }

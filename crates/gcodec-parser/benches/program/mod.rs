@@ -5,7 +5,12 @@
 //! linear moves with block numbers and comments, rapid moves, arcs with
 //! `CR=`, R-parameter arithmetic, and `IF … ELSE … ENDIF` and
 //! `WHILE … ENDWHILE` structures (nested up to three deep) with conditions.
-//! Every generated program parses without diagnostics.
+//! Every generated program parses without diagnostics, and runs: arcs have
+//! a radius larger than half of any chord in the coordinate range (so they
+//! fit whatever path reached them) and are not written inside loops (a
+//! second pass would start at their own end point); each `WHILE` counts
+//! its own R parameter (`R41`…`R43`, which nothing else writes) up in its
+//! first body line, so every loop ends.
 //!
 //! No `rand` dependency: a 64-bit LCG (Knuth's MMIX constants) drives all
 //! choices, so the same `blocks` always gives the same bytes.
@@ -64,7 +69,16 @@ pub fn generate(blocks: usize) -> Vec<u8> {
     // Open structures, each with the number of blocks in its current body.
     let mut stack: Vec<(Open, u32)> = Vec::new();
     let mut n = 0u32;
+    // The counter a `WHILE` just opened increments in its first line.
+    let mut pending_count = None;
     for line in 0..blocks {
+        if let Some(counter) = pending_count.take() {
+            let _ = writeln!(out, "R{counter}=R{counter}+1");
+            if let Some(top) = stack.last_mut() {
+                top.1 += 1;
+            }
+            continue;
+        }
         let remaining = blocks - line;
         // Close everything before the end: each open structure needs a line.
         let must_close = remaining <= stack.len();
@@ -92,15 +106,18 @@ pub fn generate(blocks: usize) -> Vec<u8> {
                 };
                 stack.push((Open::If(false), 0));
             } else {
-                let _ = writeln!(out, "WHILE R{r}<{}", rng.below(100) + 1);
+                let counter = 41 + stack.len();
+                let _ = writeln!(out, "WHILE R{counter}<{}", rng.below(100) + 1);
                 stack.push((Open::While, 0));
+                pending_count = Some(counter);
             }
             if let Some(parent) = stack.iter_mut().rev().nth(1) {
                 parent.1 += 1;
             }
             continue;
         } else {
-            statement_block(&mut rng, &mut out, &mut n, roll);
+            let in_loop = stack.iter().any(|(open, _)| *open == Open::While);
+            statement_block(&mut rng, &mut out, &mut n, roll, in_loop);
         }
         if let Some(top) = stack.last_mut() {
             top.1 += 1;
@@ -110,8 +127,12 @@ pub fn generate(blocks: usize) -> Vec<u8> {
 }
 
 /// One ordinary block: a move, an arc, a rapid or an R-parameter line.
-fn statement_block(rng: &mut Lcg, out: &mut String, n: &mut u32, roll: u32) {
-    let kind = rng.below(100);
+fn statement_block(rng: &mut Lcg, out: &mut String, n: &mut u32, roll: u32, in_loop: bool) {
+    let mut kind = rng.below(100);
+    if in_loop && (65..=74).contains(&kind) {
+        // No arcs in loops: a linear move instead.
+        kind = 0;
+    }
     // Most blocks carry a block number.
     if kind < 75 {
         *n = (*n + 10) % 100_000;
@@ -147,9 +168,9 @@ fn statement_block(rng: &mut Lcg, out: &mut String, n: &mut u32, roll: u32) {
             rng.coord(out, 200);
             out.push_str(" Y");
             rng.coord(out, 200);
-            out.push_str(" CR=");
-            rng.coord(out, 50);
-            out.push('0');
+            // Coordinates lie within ±300, so no chord is longer than
+            // 849 mm: a radius of at least 425 mm always fits.
+            let _ = write!(out, " CR={}.{:03}0", 430 + rng.below(50), rng.below(1000));
         }
         // R-parameter arithmetic.
         75..=92 => {
