@@ -316,8 +316,11 @@ impl Channel<'_> {
     pub(super) fn frame(&mut self, frame: &FrameInstruction) -> Result<(), RunError> {
         let op = FrameOp::parse(&frame.op).ok_or_else(|| {
             RunError::new(
-                codes::NOT_SIMULATED,
-                format!("`{}` is not simulated", frame.op),
+                crate::frames::FRAME,
+                format!(
+                    "`{}` is not simulated: the positions after it would be wrong",
+                    frame.op
+                ),
             )
         })?;
         let inch = self.state.inch();

@@ -466,7 +466,7 @@ impl RuntimeInterface for MachineState {
                 let axis = one_axis("the machine position")?;
                 Ok(RtValue::Real(self.machine[axis]))
             }
-            ("$AA_IW" | "$P_EP" | "$AA_IEN" | "$P_AXN", _) if indices.len() == 1 => {
+            ("$AA_IW" | "$P_EP", _) => {
                 let axis = one_axis("the workpiece position")?;
                 let mut wcs = vec![0.0; self.axes.len()];
                 self.to_workpiece(&self.total_frame(), &self.machine, &mut wcs);
