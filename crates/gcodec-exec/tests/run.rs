@@ -158,6 +158,7 @@ golden! {
     control => "control.mpf",
     calls => "calls.mpf",
     tools => "tools.mpf",
+    tool_management => "tool_management.mpf",
     stop => "stop.mpf",
     skip => "skip.mpf",
     limits => "limits.mpf",

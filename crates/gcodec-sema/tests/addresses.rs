@@ -569,3 +569,33 @@ fn an_axis_with_a_longer_name_is_a_target_not_a_variable() {
             .any(|i| matches!(i.op, gcodec_ail::Op::Assign { .. }))
     );
 }
+
+// ---- axes written twice, circles without data ----
+
+#[test]
+fn an_axis_written_twice_is_an_error() {
+    let l = lower_with(&mill(), "G1 X1 Y2 X=3 F100\nG1 X1 Y2 Z3 C4\n");
+    assert_eq!(codes(&l), ["gcodec::lower::repeated_axis"]);
+    let d = &l.diagnostics[0];
+    assert!(d.message.contains("`X`"), "{}", d.message);
+    // The label is on the second `X`.
+    assert_eq!(d.span().map(|s| s.start), Some(9));
+}
+
+#[test]
+fn a_circle_needs_a_centre_radius_or_angle() {
+    let l = lower_with(
+        &mill(),
+        "G17 G2 X10 Y0 F100\nG3 X0 Y10 I-10\nG2 X10 Y0 CR=10\nG3 X0 Y10 AR=90\nCIP X5 Y5 I1=2 J1=3\nG1 X0\n",
+    );
+    assert_eq!(codes(&l), ["gcodec::lower::missing_circle_data"]);
+    assert!(l.diagnostics[0].message.contains("`G2`"));
+    // Under a motion command lowering does not know (after a label a jump
+    // reaches), the executor decides.
+    let l = lower_with(&mill(), "G2 X1 Y1 CR=5\nLBL: X2 Y2\nGOTOB LBL\n");
+    assert!(
+        !codes(&l).contains(&"gcodec::lower::missing_circle_data"),
+        "{:?}",
+        codes(&l)
+    );
+}

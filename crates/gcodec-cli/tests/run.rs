@@ -1,0 +1,170 @@
+//! End-to-end tests of `gcodec run`: formats, options, the summary, exit
+//! codes. What the channel does is tested in gcodec-exec; here the command
+//! around it.
+
+use std::path::PathBuf;
+
+use serde_json::Value;
+
+mod common;
+
+use common::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, code, gcodec, stderr, stdout, temp_file};
+
+fn example(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+}
+
+fn events(out: &std::process::Output) -> Vec<Value> {
+    stdout(out)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
+        .collect()
+}
+
+#[test]
+fn jsonl_is_one_event_a_line_ending_with_program_end() {
+    let out = gcodec(["run".as_ref(), example("pocket_mill.mpf").as_os_str()]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let events = events(&out);
+    assert!(events.iter().all(|e| e["source"]["line"].is_u64()));
+    let last = events.last().expect("events");
+    assert_eq!(last["event"], "program_end");
+    assert_eq!(last["reason"], "m30");
+    // The subprogram next to the example is found and called.
+    assert!(
+        events
+            .iter()
+            .any(|e| e["event"] == "call" && e["target"] == "CHAMFER_EDGE")
+    );
+    // The summary goes to stderr in jsonl mode.
+    assert!(
+        stderr(&out).contains("blocks executed: 81"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn text_trace_ends_with_the_summary() {
+    let out = gcodec([
+        "run".as_ref(),
+        example("pocket_mill.mpf").as_os_str(),
+        "--format".as_ref(),
+        "text".as_ref(),
+    ]);
+    assert_eq!(code(&out), EXIT_CLEAN);
+    let text = stdout(&out);
+    assert!(
+        text.contains("tool_change T1 -> T2 pending_then_m6 m6"),
+        "{text}"
+    );
+    assert!(text.contains("blocks executed: 81"));
+    assert!(text.lines().any(|l| l.starts_with("T3 ")), "{text}");
+}
+
+#[test]
+fn csv_has_a_header_and_a_row_per_block() {
+    let out = gcodec([
+        "run".as_ref(),
+        example("pocket_mill.mpf").as_os_str(),
+        "--format".as_ref(),
+        "csv".as_ref(),
+    ]);
+    assert_eq!(code(&out), EXIT_CLEAN);
+    let text = stdout(&out);
+    let mut lines = text.lines();
+    assert!(
+        lines
+            .next()
+            .expect("header")
+            .starts_with("block,file,line,level,X,Y,Z,tool")
+    );
+    assert_eq!(lines.count(), 81);
+}
+
+#[test]
+fn skip_levels_and_max_steps_and_no_stop() {
+    let program = "N10 G0 X0\n/1 N20 X10\nN30 M0\nN40 LOOP\nN50 R1=R1+1\nN60 ENDLOOP\n";
+    let file = temp_file("run-options", "options.mpf", program);
+    let run = |extra: &[&str]| {
+        let mut args = vec!["run", file.to_str().expect("path"), "--format", "text"];
+        args.extend_from_slice(extra);
+        gcodec(args)
+    };
+    // M0 ends the run: exit 0.
+    let out = run(&[]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    assert!(stdout(&out).contains("program_end stopped"));
+    assert!(stdout(&out).contains("X10"), "level 1 is off by default");
+    // Skip level 1 on: the block is skipped.
+    let out = run(&["--skip-levels", "1"]);
+    assert!(!stdout(&out).contains("X10"), "{}", stdout(&out));
+    // --no-stop runs into the endless loop; --max-steps ends it: exit 1.
+    let out = run(&["--no-stop", "--max-steps", "50"]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    assert!(
+        stdout(&out).contains("program_end limit blocks 51"),
+        "{}",
+        stdout(&out)
+    );
+    assert!(
+        stderr(&out).contains("error[gcodec::run::step_limit]"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn a_missing_subprogram_is_an_alarm_naming_the_search_path() {
+    let file = temp_file("run-missing", "missing.mpf", "N10 NOT_THERE\nN20 M30\n");
+    let extra = file.parent().expect("dir").join("extra");
+    let out = gcodec([
+        "run".as_ref(),
+        file.as_os_str(),
+        "--subprogram-path".as_ref(),
+        extra.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    let err = stderr(&out);
+    assert!(
+        err.contains("error[gcodec::run::program_not_found]"),
+        "{err}"
+    );
+    assert!(err.contains("NOT_THERE") && err.contains("extra"), "{err}");
+    assert_eq!(events(&out).last().expect("end")["reason"], "alarm");
+}
+
+#[test]
+fn a_program_with_errors_is_not_run() {
+    let file = temp_file("run-errors", "bad.mpf", "N10 G1 X1 X2 F100\n");
+    let out = gcodec(["run".as_ref(), file.as_os_str()]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    assert!(stdout(&out).is_empty());
+    assert!(
+        stderr(&out).contains("gcodec::lower::repeated_axis"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn bad_options_are_usage_errors() {
+    let file = temp_file("run-usage", "ok.mpf", "M30\n");
+    for args in [
+        vec!["run", file.to_str().expect("path"), "--skip-levels", "12"],
+        vec!["run", file.to_str().expect("path"), "--format", "xml"],
+        vec!["run", "/no/such/file.mpf"],
+        vec![
+            "run",
+            file.to_str().expect("path"),
+            "--profile",
+            "/no/such.toml",
+        ],
+    ] {
+        let out = gcodec(&args);
+        assert_eq!(code(&out), EXIT_USAGE, "{args:?}: {}", stderr(&out));
+        assert!(!stderr(&out).contains("panicked"));
+    }
+}
