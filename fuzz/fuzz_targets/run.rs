@@ -1,0 +1,65 @@
+//! Feeds arbitrary bytes through parsing, lowering and the channel with
+//! every shipped machine profile, and checks what every run must satisfy:
+//! no panic and no hang (the step limit is small), exactly one
+//! `program_end`, the last event, and every event serialises. The input
+//! also serves as the one subprogram `SUB` the program may call, so calls,
+//! parameters and returns are exercised too.
+
+#![no_main]
+
+use std::sync::Arc;
+
+use gcodec_exec::channel::{Channel, RunOptions};
+use gcodec_exec::event::{EventKind, VecSink};
+use gcodec_exec::loader::{MemoryLoader, compile};
+use gcodec_sema::Definitions;
+use gcodec_source::SourceFile;
+use libfuzzer_sys::fuzz_target;
+
+fn profiles() -> &'static [Arc<gcodec_profile::Profile>] {
+    static PROFILES: std::sync::OnceLock<Vec<Arc<gcodec_profile::Profile>>> =
+        std::sync::OnceLock::new();
+    PROFILES.get_or_init(|| {
+        let texts = [
+            include_str!("../../profiles/default.toml"),
+            include_str!("../../profiles/mill_tool_management.toml"),
+            include_str!("../../profiles/lathe_828d.toml"),
+            include_str!("../../profiles/mill_5axis.toml"),
+        ];
+        texts
+            .iter()
+            .map(|t| Arc::new(gcodec_profile::load(t).expect("shipped profiles load")))
+            .collect()
+    })
+}
+
+fuzz_target!(|data: &[u8]| {
+    let file = SourceFile::new("fuzz.mpf", data);
+    for profile in profiles() {
+        let definitions = Arc::new(Definitions::new());
+        let main = compile("FUZZ", &file, profile, &definitions, false);
+        let mut loader = MemoryLoader::new(Arc::clone(profile), Arc::clone(&definitions))
+            .with_program("SUB.SPF", data);
+        let mut options = RunOptions::for_profile(profile);
+        options.max_steps = 2_000;
+        options.stop_at_m0 = false;
+        let mut sink = VecSink::new();
+        let outcome = Channel::new(Arc::clone(profile), options, &mut loader, &mut sink)
+            .run(main.program)
+            .expect("events go to memory");
+        let ends = sink
+            .events
+            .iter()
+            .filter(|e| matches!(e.kind, EventKind::ProgramEnd(_)))
+            .count();
+        assert_eq!(ends, 1, "exactly one program_end");
+        assert!(matches!(
+            sink.events.last().map(|e| &e.kind),
+            Some(EventKind::ProgramEnd(_))
+        ));
+        assert!(outcome.summary.blocks <= 2_001);
+        for event in &sink.events {
+            serde_json::to_vec(event).expect("the event serialises");
+        }
+    }
+});
