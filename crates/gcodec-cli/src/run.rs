@@ -183,6 +183,9 @@ pub fn run(args: RunArgs) -> u8 {
         main = main.with_text(Arc::from(file.bytes()));
     }
     let main = Arc::new(main);
+    // Freeing millions of instructions one by one at the end would only
+    // cost time: the process is about to exit.
+    let keep = Arc::clone(&main);
     let search = SearchPath::new()
         .with_profile(&profile, profile_path)
         .with_dirs(args.subprogram_paths.iter().cloned());
@@ -246,6 +249,7 @@ pub fn run(args: RunArgs) -> u8 {
             }
         }
     };
+    std::mem::forget(keep);
     let outcome = match outcome {
         Ok(outcome) => outcome,
         Err(e) => return output_error(&e),

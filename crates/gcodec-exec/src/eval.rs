@@ -250,6 +250,11 @@ fn eval_var<C: EvalContext + ?Sized>(
     match kind {
         VarKind::System => system_var(ctx, name, indices, depth),
         VarKind::Axis if indices.is_empty() => Ok(RtValue::axis(name)),
+        // `R5`, the commonest variable of all: straight to the store.
+        VarKind::RParameter if constant_index(indices).is_some() => {
+            let index = constant_index(indices).unwrap_or_default();
+            ctx.variables().r(index).map(RtValue::Real)
+        }
         kind => {
             let mut buf = [0i32; 4];
             let idx = int_indices(ctx, indices, depth, &mut buf)?;
@@ -262,6 +267,15 @@ fn eval_var<C: EvalContext + ?Sized>(
                 None => Err(undefined(name)),
             }
         }
+    }
+}
+
+/// The one index of `R5`, when it is a whole constant.
+#[inline]
+fn constant_index(indices: &[Expr]) -> Option<i32> {
+    match indices {
+        [Expr::Number { value }] if *value == f64::from(*value as i32) => Some(*value as i32),
+        _ => None,
     }
 }
 

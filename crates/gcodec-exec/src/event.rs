@@ -541,7 +541,7 @@ pub struct MessageEvent {
 
 /// A subprogram, cycle or section starts; its blocks run at the level of
 /// this event's source plus one.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct CallEvent {
     /// The program called (upper case; for `PCALL` the path as written);
     /// for a `REPEAT` section, the section's start label.
@@ -555,6 +555,31 @@ pub struct CallEvent {
     /// runs, as labels or block numbers; left out for a whole program.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub section: Option<SectionEvent>,
+    /// The arguments as the call passes them (evaluated; `null` for an
+    /// omitted one); left out when there are none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub arguments: Vec<Option<ArgumentValue>>,
+}
+
+/// An argument of a call, evaluated.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum ArgumentValue {
+    /// INT and REAL.
+    Number(f64),
+    Bool(bool),
+    /// STRING, CHAR (one character), AXIS (its name), FRAME (`"FRAME"`).
+    Text(String),
+}
+
+impl fmt::Display for ArgumentValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Number(n) => write!(f, "{n}"),
+            Self::Bool(b) => write!(f, "{}", if *b { "TRUE" } else { "FALSE" }),
+            Self::Text(t) => write!(f, "\"{t}\""),
+        }
+    }
 }
 
 /// How a call came about.
@@ -894,29 +919,60 @@ impl<S: EventSink + ?Sized> EventSink for Box<S> {
 
 /// `--format jsonl`: one JSON object a line, buffered.
 ///
-/// Motions, most of the output, are written by hand rather than through
-/// serde: the derived path (a flattened, internally tagged enum) costs
-/// about 1 µs an event, several times the hand-written one. The bytes are
-/// the same; a test compares them.
+/// Motions and modal changes, most of the output, are written by hand
+/// rather than through serde: the derived path (a flattened, internally
+/// tagged enum) costs about 1 µs an event, several times the hand-written
+/// one. The bytes are the same; tests compare them. Lines are built
+/// straight into the output buffer, which goes to the writer in blocks of
+/// about 64 KiB; [`EventSink::finish`], [`JsonlSink::into_inner`] or
+/// dropping the sink writes the rest.
 pub struct JsonlSink<W: Write> {
-    out: BufWriter<W>,
-    /// The line being built, reused.
-    line: Vec<u8>,
+    /// `None` only after [`JsonlSink::into_inner`].
+    out: Option<W>,
+    /// Lines not yet written.
+    buffer: Vec<u8>,
 }
+
+/// The size at which [`JsonlSink`] hands its lines to the writer.
+const JSONL_BLOCK: usize = 1 << 16;
 
 impl<W: Write> JsonlSink<W> {
     pub fn new(writer: W) -> Self {
         Self {
-            out: BufWriter::with_capacity(1 << 16, writer),
-            line: Vec::with_capacity(512),
+            out: Some(writer),
+            buffer: Vec::with_capacity(JSONL_BLOCK + 4096),
         }
     }
 
     /// Flushes and gives the writer back.
-    pub fn into_inner(self) -> io::Result<W> {
-        self.out
-            .into_inner()
-            .map_err(io::IntoInnerError::into_error)
+    pub fn into_inner(mut self) -> io::Result<W> {
+        self.write_buffer()?;
+        let mut out = self.out.take().ok_or_else(taken)?;
+        out.flush()?;
+        Ok(out)
+    }
+
+    /// Hands the buffered lines to the writer.
+    fn write_buffer(&mut self) -> io::Result<()> {
+        if self.buffer.is_empty() {
+            return Ok(());
+        }
+        let out = self.out.as_mut().ok_or_else(taken)?;
+        let result = out.write_all(&self.buffer);
+        self.buffer.clear();
+        result
+    }
+}
+
+/// The writer was given back (not reachable through the public API).
+fn taken() -> io::Error {
+    io::Error::other("the JSONL sink has no writer any more")
+}
+
+impl<W: Write> Drop for JsonlSink<W> {
+    /// Writes what is buffered, as a `BufWriter` does when dropped.
+    fn drop(&mut self) {
+        let _ = self.write_buffer();
     }
 }
 
@@ -924,20 +980,23 @@ impl<W: Write> EventSink for JsonlSink<W> {
     fn event(&mut self, event: &Event) -> io::Result<()> {
         match &event.kind {
             EventKind::Motion(motion) => {
-                self.line.clear();
-                write_motion_json(&mut self.line, motion, &event.source);
-                self.line.push(b'\n');
-                self.out.write_all(&self.line)
+                write_motion_json(&mut self.buffer, motion, &event.source);
             }
-            _ => {
-                serde_json::to_writer(&mut self.out, event)?;
-                self.out.write_all(b"\n")
+            EventKind::ModalChange(change) => {
+                write_modal_change_json(&mut self.buffer, change, &event.source);
             }
+            _ => serde_json::to_writer(&mut self.buffer, event)?,
         }
+        self.buffer.push(b'\n');
+        if self.buffer.len() >= JSONL_BLOCK {
+            self.write_buffer()?;
+        }
+        Ok(())
     }
 
     fn finish(&mut self) -> io::Result<()> {
-        self.out.flush()
+        self.write_buffer()?;
+        self.out.as_mut().ok_or_else(taken)?.flush()
     }
 }
 
@@ -984,7 +1043,29 @@ fn write_motion_json(out: &mut Vec<u8>, motion: &MotionEvent, source: &EventSour
     });
     out.extend_from_slice(b",\"effective_suppression_mask\":\"");
     out.extend_from_slice(context.effective_suppression_mask.name().as_bytes());
-    out.extend_from_slice(b"\",\"source\":{\"file\":");
+    out.push(b'"');
+    write_source_json(out, source);
+    out.push(b'}');
+}
+
+/// A modal change as serde writes it (the second commonest event).
+fn write_modal_change_json(out: &mut Vec<u8>, change: &ModalChangeEvent, source: &EventSource) {
+    out.extend_from_slice(b"{\"event\":\"modal_change\",\"group\":");
+    write_u64(out, u64::from(change.group));
+    out.extend_from_slice(b",\"code\":");
+    write_str_json(out, &change.code);
+    out.extend_from_slice(b",\"previous\":");
+    match &change.previous {
+        Some(previous) => write_str_json(out, previous),
+        None => out.extend_from_slice(b"null"),
+    }
+    write_source_json(out, source);
+    out.push(b'}');
+}
+
+/// `,"source":{…}`.
+fn write_source_json(out: &mut Vec<u8>, source: &EventSource) {
+    out.extend_from_slice(b",\"source\":{\"file\":");
     write_str_json(out, &source.file);
     out.extend_from_slice(b",\"line\":");
     write_u64(out, u64::from(source.line));
@@ -992,7 +1073,7 @@ fn write_motion_json(out: &mut Vec<u8>, motion: &MotionEvent, source: &EventSour
     write_u64(out, u64::from(source.col));
     out.extend_from_slice(b",\"level\":");
     write_u64(out, u64::from(source.level));
-    out.extend_from_slice(b"}}");
+    out.push(b'}');
 }
 
 fn write_axis_map_json(out: &mut Vec<u8>, axes: &AxisMap) {
@@ -1057,12 +1138,12 @@ fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> bool {
     // |scaled| < 1e13: exact in u64.
     let scaled = scaled.abs() as u64;
     write_u64(out, scaled / 10_000);
-    match fraction_digits(scaled % 10_000, &mut [0; 4]) {
-        "" if point_zero => out.extend_from_slice(b".0"),
-        "" => {}
+    match fraction_digit_bytes(scaled % 10_000, &mut [0; 4]) {
+        b"" if point_zero => out.extend_from_slice(b".0"),
+        b"" => {}
         fraction => {
             out.push(b'.');
-            out.extend_from_slice(fraction.as_bytes());
+            out.extend_from_slice(fraction);
         }
     }
     true
@@ -1071,6 +1152,11 @@ fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> bool {
 /// `fraction` (0…9999) as 4 decimals without trailing zeros; empty for
 /// 0.
 fn fraction_digits(fraction: u64, buffer: &mut [u8; 4]) -> &str {
+    std::str::from_utf8(fraction_digit_bytes(fraction, buffer)).unwrap_or("")
+}
+
+/// [`fraction_digits`] as bytes (no UTF-8 check, for the JSONL writer).
+fn fraction_digit_bytes(fraction: u64, buffer: &mut [u8; 4]) -> &[u8] {
     let fraction = fraction % 10_000;
     *buffer = [
         b'0' + (fraction / 1000) as u8,
@@ -1079,11 +1165,16 @@ fn fraction_digits(fraction: u64, buffer: &mut [u8; 4]) -> &str {
         b'0' + (fraction % 10) as u8,
     ];
     let used = 4 - buffer.iter().rev().take_while(|d| **d == b'0').count();
-    std::str::from_utf8(&buffer[..used]).unwrap_or("")
+    &buffer[..used]
 }
 
 /// The decimal digits of `value`.
-fn u64_digits(mut value: u64, buffer: &mut [u8; 20]) -> &str {
+fn u64_digits(value: u64, buffer: &mut [u8; 20]) -> &str {
+    std::str::from_utf8(u64_digit_bytes(value, buffer)).unwrap_or("")
+}
+
+/// [`u64_digits`] as bytes (no UTF-8 check, for the JSONL writer).
+fn u64_digit_bytes(mut value: u64, buffer: &mut [u8; 20]) -> &[u8] {
     let mut start = buffer.len();
     loop {
         start -= 1;
@@ -1093,11 +1184,11 @@ fn u64_digits(mut value: u64, buffer: &mut [u8; 20]) -> &str {
             break;
         }
     }
-    std::str::from_utf8(&buffer[start..]).unwrap_or("")
+    &buffer[start..]
 }
 
 fn write_u64(out: &mut Vec<u8>, value: u64) {
-    out.extend_from_slice(u64_digits(value, &mut [0; 20]).as_bytes());
+    out.extend_from_slice(u64_digit_bytes(value, &mut [0; 20]));
 }
 
 /// `--format text`: a readable trace, one line an event:
@@ -1274,6 +1365,18 @@ pub fn write_trace_line(out: &mut impl fmt::Write, event: &Event) -> fmt::Result
             )?;
             if let Some(section) = &call.section {
                 write!(out, " {}..{}", section.from, section.to)?;
+            }
+            if !call.arguments.is_empty() {
+                out.write_str(" (")?;
+                for (i, argument) in call.arguments.iter().enumerate() {
+                    if i > 0 {
+                        out.write_str(", ")?;
+                    }
+                    if let Some(argument) = argument {
+                        write!(out, "{argument}")?;
+                    }
+                }
+                out.write_char(')')?;
             }
         }
         EventKind::Return(ret) => write!(out, " {}", ret.target)?,

@@ -27,6 +27,9 @@ pub struct Program {
     /// Every label in order: (name before `@`, upper case; instruction
     /// index), for computed jumps and `CALL … BLOCK`.
     label_list: Vec<(String, usize)>,
+    /// The target of every `jump` and `skip_block` whose label exists, by
+    /// the instruction's index: a loop pass then costs no string hashing.
+    jump_targets: FxHashMap<usize, usize>,
 }
 
 impl Program {
@@ -47,6 +50,19 @@ impl Program {
                 }
             }
         }
+        let jump_targets = document
+            .instructions
+            .iter()
+            .enumerate()
+            .filter_map(|(index, instruction)| {
+                let target = match &instruction.op {
+                    Op::Jump { target, .. } => target,
+                    Op::SkipBlock { end, .. } => end,
+                    _ => return None,
+                };
+                labels.get(target.as_str()).map(|&to| (index, to))
+            })
+            .collect();
         Self {
             name: name.into(),
             file,
@@ -55,7 +71,14 @@ impl Program {
             document,
             labels,
             label_list,
+            jump_targets,
         }
+    }
+
+    /// The instruction index the `jump` or `skip_block` at `at` goes to,
+    /// when its label exists.
+    pub fn jump_target(&self, at: usize) -> Option<usize> {
+        self.jump_targets.get(&at).copied()
     }
 
     /// With the source text.

@@ -6,7 +6,6 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::borrow::Cow;
 use std::cell::Cell;
 use std::collections::HashMap;
-use std::time::Instant;
 
 use gcodec_ail::{BinaryOp as B, Expr, Op, UnaryOp as U, Value, VarKind};
 use gcodec_exec::eval::{
@@ -989,25 +988,19 @@ fn a_lowered_loop_computes() {
 }
 
 #[test]
-fn a_million_iterations_run_fast() {
-    // WHILE R1 < 1000000: R1 = R1 + 1, R2 = R2 + R1 * 0.5 - SIN(30).
-    // Debug builds are slow; the 0.5 s bound is for optimised builds.
+fn a_long_loop_computes_exactly() {
+    // WHILE R1 < 100000: R1 = R1 + 1, R2 = R2 + R1 * 0.5 - SIN(30). Its
+    // speed is measured by `cargo bench -p gcodec-exec --bench run`
+    // (docs/performance.md), not here.
     let profile = builtin();
-    let src = "WHILE R1 < 1000000\nR1 = R1 + 1\nR2 = R2 + R1 * 0.5 - SIN(30)\nENDWHILE\nM30\n";
+    let src = "WHILE R1 < 100000\nR1 = R1 + 1\nR2 = R2 + R1 * 0.5 - SIN(30)\nENDWHILE\nM30\n";
     let parsed = gcodec_parser::parse_bytes("loop.mpf", src.as_bytes());
     let lowered = gcodec_sema::lower(&parsed.program, &profile);
     assert!(!lowered.has_errors());
-    let start = Instant::now();
     let vars = run_document(&lowered.document, &profile);
-    let elapsed = start.elapsed();
-    assert_eq!(vars.r(1), Ok(1_000_000.0));
-    // Σ (k/2 − 1/2) for k = 1 … 10⁶ = (10⁶·(10⁶+1)/2 − 10⁶)/2.
-    assert_eq!(vars.r(2), Ok(249_999_750_000.0));
-    let bound = if cfg!(debug_assertions) { 10.0 } else { 0.5 };
-    assert!(
-        elapsed.as_secs_f64() < bound,
-        "{elapsed:?} for 1,000,000 iterations"
-    );
+    assert_eq!(vars.r(1), Ok(100_000.0));
+    // Σ (k/2 − 1/2) for k = 1 … 10⁵ = (10⁵·(10⁵+1)/2 − 10⁵)/2.
+    assert_eq!(vars.r(2), Ok(2_499_975_000.0));
 }
 
 #[test]

@@ -170,6 +170,11 @@ fn every_kind() -> Vec<Event> {
                 pass: 1,
                 passes: 2,
                 section: None,
+                arguments: vec![
+                    Some(ArgumentValue::Number(10.0)),
+                    None,
+                    Some(ArgumentValue::Text("X".into())),
+                ],
             }),
         ),
         Event {
@@ -644,6 +649,44 @@ fn hand_written_motion_json_is_what_serde_writes() {
     for (line, (got, want)) in written.lines().zip(expected.lines()).enumerate() {
         assert_eq!(got, want, "line {line}");
     }
+    assert_eq!(written, expected);
+}
+
+#[test]
+fn hand_written_modal_change_json_is_what_serde_writes() {
+    let mut sink = JsonlSink::new(Vec::new());
+    let mut expected = String::new();
+    let codes: [Cow<'static, str>; 4] = [
+        Cow::Borrowed("G1"),
+        Cow::Borrowed("DIAMON"),
+        Cow::Owned("ODD \"CODE\"\\".into()),
+        Cow::Owned("G\u{e4}\n".into()),
+    ];
+    for (index, code) in codes.iter().enumerate() {
+        for previous in [None, Some(codes[(index + 1) % codes.len()].clone())] {
+            let event = Event {
+                kind: EventKind::ModalChange(ModalChangeEvent {
+                    group: (index * 21) as u8,
+                    code: code.clone(),
+                    previous,
+                }),
+                source: EventSource {
+                    file: Arc::from(if index % 2 == 0 {
+                        "dir\\odd \"name\".mpf"
+                    } else {
+                        "part.mpf"
+                    }),
+                    line: u32::MAX - index as u32,
+                    col: index as u32,
+                    level: 2,
+                },
+            };
+            expected.push_str(&serde_json::to_string(&event).expect("serialises"));
+            expected.push('\n');
+            sink.event(&event).expect("writes");
+        }
+    }
+    let written = String::from_utf8(sink.into_inner().expect("flushes")).expect("UTF-8");
     assert_eq!(written, expected);
 }
 

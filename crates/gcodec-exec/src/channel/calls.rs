@@ -14,7 +14,8 @@ use gcodec_ail::{Call, Declare, Expr, Instruction, Op, Parameter, RepeatSection,
 use super::{Channel, Flow, Level, LevelKind, codes};
 use crate::eval;
 use crate::event::{
-    CallEvent, CallKind, EventKind, EventSeverity, ProgramEndReason, ReturnEvent, SectionEvent,
+    ArgumentValue, CallEvent, CallKind, EventKind, EventSeverity, ProgramEndReason, ReturnEvent,
+    SectionEvent,
 };
 use crate::loader::LoadRequest;
 use crate::program::Program;
@@ -34,6 +35,8 @@ pub(super) struct ActiveCall {
     /// `CALL … BLOCK … TO …`: the last line of the section.
     pub section_end_line: Option<u32>,
     section: Option<SectionEvent>,
+    /// The arguments as the `call` events show them.
+    arguments: Vec<Option<ArgumentValue>>,
     /// Whether the call opened a program level (a section of the calling
     /// program itself does not).
     own_level: bool,
@@ -66,6 +69,7 @@ pub(super) struct ModalCall {
     /// `None`: a cycle not on the search path (reported, not run).
     program: Option<Arc<Program>>,
     bindings: Vec<Binding>,
+    arguments: Vec<Option<ArgumentValue>>,
 }
 
 /// Names of Siemens standard cycles and ShopMill/ShopTurn steps: when one
@@ -77,6 +81,18 @@ pub fn is_standard_cycle(name: &str) -> bool {
     ]
     .iter()
     .any(|prefix| upper.starts_with(prefix))
+}
+
+/// A value as a `call` event shows it.
+fn argument_value(value: &RtValue) -> ArgumentValue {
+    match value {
+        RtValue::Int(n) => ArgumentValue::Number(f64::from(*n)),
+        RtValue::Real(r) => ArgumentValue::Number(*r),
+        RtValue::Bool(b) => ArgumentValue::Bool(*b),
+        RtValue::Char(c) => ArgumentValue::Text(char::from(*c).to_string()),
+        RtValue::String(s) | RtValue::Axis(s) => ArgumentValue::Text(s.to_string()),
+        RtValue::Frame(_) => ArgumentValue::Text("FRAME".to_owned()),
+    }
 }
 
 /// Predefined procedures of the control (reference §7.6 "Procedures"):
@@ -216,6 +232,7 @@ impl Channel<'_> {
             self.modal_call = Some(modal);
             return Ok(Flow::Next);
         }
+        let arguments = self.argument_values(call)?;
         let passes = match &call.passes {
             None => 1,
             Some(p) => {
@@ -241,6 +258,7 @@ impl Channel<'_> {
                         &target,
                         CallKind::Program,
                         passes,
+                        arguments,
                     );
                     return Ok(Flow::Next);
                 }
@@ -286,6 +304,7 @@ impl Channel<'_> {
             start,
             section_end_line,
             section,
+            arguments,
             own_level,
         };
         self.enter(program, instruction, pc + 1, callee, active)
@@ -361,21 +380,35 @@ impl Channel<'_> {
         target: &str,
         kind: CallKind,
         passes: u32,
+        arguments: Vec<Option<ArgumentValue>>,
     ) {
-        for pass in 1..=passes.min(1) {
-            let call = EventKind::Call(CallEvent {
-                target: target.to_owned(),
-                call_kind: kind,
-                pass,
-                passes,
-                section: None,
-            });
-            self.emit_at(program, instruction, call);
-            let ret = EventKind::Return(ReturnEvent {
-                target: target.to_owned(),
-            });
-            self.emit_at(program, instruction, ret);
-        }
+        let call = EventKind::Call(CallEvent {
+            target: target.to_owned(),
+            call_kind: kind,
+            pass: 1,
+            passes,
+            section: None,
+            arguments,
+        });
+        self.emit_at(program, instruction, call);
+        let ret = EventKind::Return(ReturnEvent {
+            target: target.to_owned(),
+        });
+        self.emit_at(program, instruction, ret);
+    }
+
+    /// The arguments of `call`, evaluated in the caller's context, as the
+    /// `call` event shows them.
+    fn argument_values(&self, call: &Call) -> Result<Vec<Option<ArgumentValue>>, RunError> {
+        let env = self.env();
+        call.args
+            .iter()
+            .map(|arg| {
+                arg.as_ref()
+                    .map(|value| eval::eval_value(&env, value).map(|v| argument_value(&v)))
+                    .transpose()
+            })
+            .collect()
     }
 
     fn prepare_modal_call(
@@ -394,6 +427,7 @@ impl Channel<'_> {
             target: target.to_owned(),
             program: callee,
             bindings,
+            arguments: self.argument_values(call)?,
         })
     }
 
@@ -411,7 +445,14 @@ impl Channel<'_> {
             None => return Flow::Next,
         };
         let Some(callee) = modal.program else {
-            self.not_simulated_call(program, &instruction, &modal.target, CallKind::Modal, 1);
+            self.not_simulated_call(
+                program,
+                &instruction,
+                &modal.target,
+                CallKind::Modal,
+                1,
+                modal.arguments,
+            );
             return Flow::Next;
         };
         let active = ActiveCall {
@@ -423,6 +464,7 @@ impl Channel<'_> {
             start: 0,
             section_end_line: None,
             section: None,
+            arguments: modal.arguments,
             own_level: true,
         };
         match self.enter(program, &instruction, pc, callee, active) {
@@ -462,6 +504,7 @@ impl Channel<'_> {
             pass: 1,
             passes: active.passes,
             section: active.section.clone(),
+            arguments: active.arguments.clone(),
         });
         self.emit_at(program, instruction, event);
         let program_level = self.program_level() + u32::from(active.own_level);
@@ -711,6 +754,7 @@ impl Channel<'_> {
             // The end is a label lowering made; the target names the
             // section.
             section: None,
+            arguments: Vec::new(),
         });
         self.emit_at(program, instruction, event);
         let program_level = self.program_level();
@@ -758,6 +802,7 @@ impl Channel<'_> {
                 pass: *pass,
                 passes: *passes,
                 section: None,
+                arguments: Vec::new(),
             });
             self.emit_at(&program, &instruction, event);
             return None;
@@ -844,6 +889,7 @@ impl Channel<'_> {
                 pass: call.pass,
                 passes: call.passes,
                 section: call.section.clone(),
+                arguments: call.arguments.clone(),
             });
             let bindings = call.bindings.clone();
             let own_level = call.own_level;

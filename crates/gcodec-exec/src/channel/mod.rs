@@ -648,11 +648,11 @@ impl<'r> Channel<'r> {
     fn jump_to_label(
         &mut self,
         program: &Arc<Program>,
-        _pc: usize,
+        pc: usize,
         _instruction: &Instruction,
         target: &str,
     ) -> Result<Flow, RunError> {
-        match program.label(target) {
+        match program.jump_target(pc).or_else(|| program.label(target)) {
             Some(index) => Ok(Flow::Jump(index)),
             None => {
                 let name = target.split_once('@').map_or(target, |(name, _)| name);
@@ -716,6 +716,16 @@ impl<'r> Channel<'r> {
         group: u8,
         code: &'static str,
     ) {
+        if group == 7 && matches!(code, "G41" | "G42") {
+            self.report_once(
+                program,
+                instruction,
+                "radius-compensation",
+                codes::NOT_SIMULATED,
+                "tool radius compensation (G41/G42) is not simulated: paths are the programmed contour"
+                    .into(),
+            );
+        }
         let slot = &mut self.state.modal[usize::from(group) - 1];
         let previous = *slot;
         if previous == Some(code) {
@@ -762,9 +772,16 @@ impl<'r> Channel<'r> {
         code: WorkOffsetCode,
     ) {
         self.state.group8 = code;
-        if let Some(name) =
-            ggroups::lookup(&format!("G{}", code.0)).and_then(|(g, i)| ggroups::member(g, i))
-        {
+        // `G<n>` in a stack buffer: no allocation per block.
+        let mut buf = [0u8; 8];
+        let text = {
+            use std::io::Write as _;
+            let mut rest = &mut buf[..];
+            let _ = write!(rest, "G{}", code.0);
+            let len = 8 - rest.len();
+            std::str::from_utf8(&buf[..len]).unwrap_or("")
+        };
+        if let Some(name) = ggroups::lookup(text).and_then(|(g, i)| ggroups::member(g, i)) {
             self.set_modal(program, instruction, 8, name);
         }
     }

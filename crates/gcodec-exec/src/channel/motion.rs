@@ -224,8 +224,8 @@ impl Channel<'_> {
             None => distance(start, end),
         };
         let time = self.motion_time(kind, length);
-        let tool = self.state.active_tool.as_ref().map(|t| t.label.clone());
-        let figures = self.summary.tool(tool.as_deref());
+        let tool = self.state.active_tool.as_ref().map(|t| t.label.as_str());
+        let figures = self.summary.tool(tool);
         let bbox = match &arc {
             Some(a) => a.bounding_box(),
             // The end point only: a start point is the previous end, or a

@@ -251,7 +251,14 @@ impl MachineState {
 
     /// `$P_UIFRNUM`: the index of the Group 8 selection.
     pub fn group8_index(&self) -> u8 {
-        gcodec_profile::group8_index(&format!("G{}", self.group8.0)).unwrap_or(0)
+        // `gcodec_profile::group8_index` of `G<n>`, without formatting the
+        // code (this runs twice for every motion).
+        match self.group8.0 {
+            500 => 0,
+            n @ 54..=57 => (n - 53) as u8,
+            n @ 505..=599 => (n - 500) as u8,
+            _ => 0,
+        }
     }
 
     /// The tool length offset vector in machine coordinates.

@@ -75,11 +75,31 @@ pub fn lower_in_parts(
     definitions: &Definitions,
     parts: usize,
 ) -> Lowered {
-    let (names, mut diagnostics) = variables::Names::new(program, profile, definitions);
+    // The three walks over the whole program are independent: on a large
+    // program the names are collected on a second thread.
+    let ((names, mut diagnostics), flow, signatures) =
+        if parts > 1 && program.blocks.len() >= 100_000 {
+            std::thread::scope(|scope| {
+                let names = scope.spawn(|| variables::Names::new(program, profile, definitions));
+                let flow = Flow::new(program);
+                let signatures = calls::signatures(program);
+                // A panic surfaces on this thread, as it would without one.
+                let names = names
+                    .join()
+                    .unwrap_or_else(|_| variables::Names::new(program, profile, definitions));
+                (names, flow, signatures)
+            })
+        } else {
+            (
+                variables::Names::new(program, profile, definitions),
+                Flow::new(program),
+                calls::signatures(program),
+            )
+        };
     let context = Context {
-        flow: Flow::new(program),
+        flow,
         m_overrides: mfunc::overrides(profile),
-        signatures: calls::signatures(program),
+        signatures,
         names,
     };
     diagnostics.extend(duplicate_labels(program, &context.flow));
@@ -977,7 +997,10 @@ impl<'a> Lowering<'a> {
                 first,
                 Op::Motion {
                     motion,
-                    targets: std::mem::take(&mut plan.targets),
+                    // Exactly as long as needed: the plan's vector grew
+                    // to room for four axes, and a large program keeps
+                    // hundreds of thousands of these.
+                    targets: plan.targets.drain(..).collect(),
                     circle,
                     details,
                 },
