@@ -406,6 +406,35 @@ pub enum MotionKind {
     InvoluteCcw,
 }
 
+impl MotionKind {
+    /// The motion of a group 1 command as the registry spells it (`G1`,
+    /// `CIP`); `None` for another text.
+    pub fn of_command(code: &str) -> Option<Self> {
+        Some(match code {
+            "G0" => Self::Rapid,
+            "G1" => Self::Linear,
+            "G2" => Self::ArcCw,
+            "G3" => Self::ArcCcw,
+            "CIP" => Self::ArcThroughPoint,
+            "CT" => Self::ArcTangential,
+            "ASPLINE" => Self::Aspline,
+            "BSPLINE" => Self::Bspline,
+            "CSPLINE" => Self::Cspline,
+            "POLY" => Self::Poly,
+            "G33" => Self::Thread,
+            "G34" => Self::ThreadIncreasingLead,
+            "G35" => Self::ThreadDecreasingLead,
+            "G331" => Self::Tapping,
+            "G332" => Self::TappingRetract,
+            "G335" => Self::ThreadConvexCw,
+            "G336" => Self::ThreadConvexCcw,
+            "INVCW" => Self::InvoluteCw,
+            "INVCCW" => Self::InvoluteCcw,
+            _ => return None,
+        })
+    }
+}
+
 /// A value for one axis (or circle parameter), with its dimension mode.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]

@@ -44,11 +44,7 @@ impl Channel<'_> {
             }
             (None, None) => 0,
         };
-        let extension = match (&m.address_extension, &m.address_extension_expr) {
-            (Some(e), _) => Some(*e),
-            (None, Some(expr)) => Some(eval::eval(&env, expr)?.to_int()?.max(0) as u32),
-            (None, None) => None,
-        };
+        let extension = self.extension(m.address_extension, m.address_extension_expr.as_ref())?;
         // A computed value is classified now, as lowering classifies
         // constants.
         let class = if m.m_value.is_none() {
@@ -157,6 +153,20 @@ impl Channel<'_> {
         Ok(Flow::Next)
     }
 
+    /// An address extension (a spindle number, `M2=`, `H[I]=`): written,
+    /// or computed when the block runs (a negative value is 0).
+    fn extension(
+        &self,
+        constant: Option<u32>,
+        computed: Option<&gcodec_ail::Expr>,
+    ) -> Result<Option<u32>, RunError> {
+        match (constant, computed) {
+            (Some(n), _) => Ok(Some(n)),
+            (None, Some(expr)) => Ok(Some(eval::eval(&self.env(), expr)?.to_int()?.max(0) as u32)),
+            (None, None) => Ok(None),
+        }
+    }
+
     /// Whether a call level is on the stack (a section of the main program
     /// runs at level 0).
     fn in_call(&self) -> bool {
@@ -221,11 +231,7 @@ impl Channel<'_> {
         spindle_expr: Option<&gcodec_ail::Expr>,
     ) -> Result<(), RunError> {
         let env = self.env();
-        let number = match (spindle, spindle_expr) {
-            (Some(n), _) => Some(n),
-            (None, Some(expr)) => Some(eval::eval(&env, expr)?.to_int()?.max(0) as u32),
-            (None, None) => None,
-        };
+        let number = self.extension(spindle, spindle_expr)?;
         let speed = eval::eval_real(&env, speed)?;
         self.state.spindle(number).speed = speed;
         self.spindle_event(program, instruction, number);
@@ -267,11 +273,7 @@ impl Channel<'_> {
             (None, Some(expr)) => eval::eval(&env, expr)?.to_real()?,
             (None, None) => 0.0,
         };
-        let extension = match (&h.address_extension, &h.address_extension_expr) {
-            (Some(e), _) => Some(*e),
-            (None, Some(expr)) => Some(eval::eval(&env, expr)?.to_int()?.max(0) as u32),
-            (None, None) => None,
-        };
+        let extension = self.extension(h.address_extension, h.address_extension_expr.as_ref())?;
         let event = EventKind::HFunction(HFunctionEvent {
             h_value: value,
             address_extension: extension,
@@ -294,11 +296,7 @@ impl Channel<'_> {
         let value = eval::eval_real(&env, &address.value)?;
         match address.address.as_str() {
             "SPOS" | "SPOSA" => {
-                let number = match (&address.extension, &address.extension_expr) {
-                    (Some(n), _) => Some(*n),
-                    (None, Some(expr)) => Some(eval::eval(&env, expr)?.to_int()?.max(0) as u32),
-                    (None, None) => None,
-                };
+                let number = self.extension(address.extension, address.extension_expr.as_ref())?;
                 let s = self.state.spindle(number);
                 s.state = SpindleState::Positioned;
                 s.position = Some(value);

@@ -824,7 +824,7 @@ impl<'r> Channel<'r> {
         self.emit_at(program, instruction, event);
     }
 
-    /// A warning or advice reported once per run for `key`.
+    /// Advice reported once per run for `key`.
     fn report_once(
         &mut self,
         program: &Arc<Program>,
@@ -833,16 +833,14 @@ impl<'r> Channel<'r> {
         code: &'static str,
         message: String,
     ) {
-        if self.reported.insert(key.to_owned()) {
-            self.diagnostic_at(
-                program,
-                instruction,
-                code,
-                EventSeverity::Advice,
-                message,
-                None,
-            );
-        }
+        self.once(
+            program,
+            instruction,
+            key,
+            code,
+            EventSeverity::Advice,
+            message,
+        );
     }
 
     /// A warning reported once per run for `key`.
@@ -854,15 +852,27 @@ impl<'r> Channel<'r> {
         code: &'static str,
         message: String,
     ) {
+        self.once(
+            program,
+            instruction,
+            key,
+            code,
+            EventSeverity::Warning,
+            message,
+        );
+    }
+
+    fn once(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        key: &str,
+        code: &'static str,
+        severity: EventSeverity,
+        message: String,
+    ) {
         if self.reported.insert(key.to_owned()) {
-            self.diagnostic_at(
-                program,
-                instruction,
-                code,
-                EventSeverity::Warning,
-                message,
-                None,
-            );
+            self.diagnostic_at(program, instruction, code, severity, message, None);
         }
     }
 

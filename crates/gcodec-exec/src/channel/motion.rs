@@ -67,32 +67,6 @@ impl MotionScratch {
     }
 }
 
-/// The motion command of group 1.
-fn motion_kind(code: Option<&str>) -> Option<MotionKind> {
-    Some(match code? {
-        "G0" => MotionKind::Rapid,
-        "G1" => MotionKind::Linear,
-        "G2" => MotionKind::ArcCw,
-        "G3" => MotionKind::ArcCcw,
-        "CIP" => MotionKind::ArcThroughPoint,
-        "CT" => MotionKind::ArcTangential,
-        "ASPLINE" => MotionKind::Aspline,
-        "BSPLINE" => MotionKind::Bspline,
-        "CSPLINE" => MotionKind::Cspline,
-        "POLY" => MotionKind::Poly,
-        "G33" => MotionKind::Thread,
-        "G34" => MotionKind::ThreadIncreasingLead,
-        "G35" => MotionKind::ThreadDecreasingLead,
-        "G331" => MotionKind::Tapping,
-        "G332" => MotionKind::TappingRetract,
-        "G335" => MotionKind::ThreadConvexCw,
-        "G336" => MotionKind::ThreadConvexCcw,
-        "INVCW" => MotionKind::InvoluteCw,
-        "INVCCW" => MotionKind::InvoluteCcw,
-        _ => return None,
-    })
-}
-
 fn geometry_plane(plane: Plane) -> geometry::Plane {
     match plane {
         Plane::G17 => geometry::Plane::G17,
@@ -128,7 +102,11 @@ impl Channel<'_> {
         else {
             return Ok(());
         };
-        let kind = motion_kind(self.state.modal(1)).unwrap_or(*motion);
+        let kind = self
+            .state
+            .modal(1)
+            .and_then(MotionKind::of_command)
+            .unwrap_or(*motion);
         {
             let frame = self.state.total_frame();
             let scratch = &mut self.motion;

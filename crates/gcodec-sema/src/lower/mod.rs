@@ -250,7 +250,9 @@ fn stitch(parts: &mut [Lowering<'_>]) -> bool {
         if let (false, Some(code)) = (part.pending_motions.is_empty(), group1) {
             // One run would have reported the command or read `F` as
             // the lead change of G34/G35.
-            let Some(kind) = motion_kind(code).filter(|_| !matches!(code, "G34" | "G35")) else {
+            let Some(kind) =
+                MotionKind::of_command(code).filter(|_| !matches!(code, "G34" | "G35"))
+            else {
                 return false;
             };
             for &i in &part.pending_motions {
@@ -310,32 +312,6 @@ fn settle_motion(
     } else if !is_arc(kind) {
         *circle = None;
     }
-}
-
-/// The motion of a group-1 command.
-fn motion_kind(code: &str) -> Option<MotionKind> {
-    Some(match code {
-        "G0" => MotionKind::Rapid,
-        "G1" => MotionKind::Linear,
-        "G2" => MotionKind::ArcCw,
-        "G3" => MotionKind::ArcCcw,
-        "CIP" => MotionKind::ArcThroughPoint,
-        "CT" => MotionKind::ArcTangential,
-        "ASPLINE" => MotionKind::Aspline,
-        "BSPLINE" => MotionKind::Bspline,
-        "CSPLINE" => MotionKind::Cspline,
-        "POLY" => MotionKind::Poly,
-        "G33" => MotionKind::Thread,
-        "G34" => MotionKind::ThreadIncreasingLead,
-        "G35" => MotionKind::ThreadDecreasingLead,
-        "G331" => MotionKind::Tapping,
-        "G332" => MotionKind::TappingRetract,
-        "G335" => MotionKind::ThreadConvexCw,
-        "G336" => MotionKind::ThreadConvexCcw,
-        "INVCW" => MotionKind::InvoluteCw,
-        "INVCCW" => MotionKind::InvoluteCcw,
-        _ => return None,
-    })
 }
 
 /// Motions with circle data.
@@ -417,7 +393,7 @@ fn refine(document: &mut Document, profile: &Profile, subprogram: bool) {
                 details,
                 ..
             } => {
-                if let Some(kind) = state.get(1).and_then(motion_kind) {
+                if let Some(kind) = state.get(1).and_then(MotionKind::of_command) {
                     settle_motion(motion, circle, details, kind);
                 }
             }
@@ -939,7 +915,7 @@ impl<'a> Lowering<'a> {
                 .unwrap_or(block.span);
             let motion = match self.modal[0] {
                 None => MotionKind::Modal,
-                Some(code) => motion_kind(code).unwrap_or_else(|| {
+                Some(code) => MotionKind::of_command(code).unwrap_or_else(|| {
                     self.not_lowered(first, &format!("motion under `{code}`"));
                     MotionKind::Linear
                 }),
