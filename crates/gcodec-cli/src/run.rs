@@ -178,8 +178,13 @@ pub fn run(args: RunArgs) -> u8 {
         Arc::from(file.name()),
         lowered.document,
     );
-    // Only the CSV rows read block numbers from the text.
-    if let RunFormat::Csv = args.format {
+    // The CSV rows read block numbers from the text, and `CALL … BLOCK`
+    // finds the labels of its section there (lowering keeps labels only
+    // for the jump targets it knows).
+    let sections = main.instructions().iter().any(|i| {
+        matches!(&i.op, gcodec_ail::Op::Call(call) if call.section.is_some() && call.target.is_empty() && call.target_expr.is_none())
+    });
+    if matches!(args.format, RunFormat::Csv) || sections {
         main = main.with_text(Arc::from(file.bytes()));
     }
     let main = Arc::new(main);

@@ -135,6 +135,96 @@ impl Program {
         std::str::from_utf8(&digits[..len]).ok()?.parse().ok()
     }
 
+    /// The line of the nearest block labelled or numbered `target` in the
+    /// text, searched from `line` as `search` says.
+    pub fn search_text(&self, target: &str, line: u32, search: JumpSearch) -> Option<u32> {
+        let lines = self.line_starts.len() as u32;
+        let matches = |l: u32| self.line_is(l, target);
+        let forward = || (line + 1..=lines).find(|&l| matches(l));
+        let backward = || (1..=line.min(lines)).rev().find(|&l| matches(l));
+        match search {
+            JumpSearch::Forward => forward(),
+            JumpSearch::Backward => backward(),
+            JumpSearch::ForwardThenBackward => forward().or_else(backward),
+        }
+    }
+
+    /// Whether `line` carries the label or block number `target` (`SEC`,
+    /// `N40`, any case; block numbers compare by value).
+    fn line_is(&self, line: u32, target: &str) -> bool {
+        let Some(rest) = self.line_text(line) else {
+            return false;
+        };
+        let mut i = 0;
+        let skip_blanks = |i: &mut usize| {
+            while rest.get(*i).is_some_and(|b| *b == b' ' || *b == b'\t') {
+                *i += 1;
+            }
+        };
+        skip_blanks(&mut i);
+        if rest.get(i) == Some(&b'/') {
+            i += 1;
+            while rest.get(i).is_some_and(u8::is_ascii_digit) {
+                i += 1;
+            }
+            skip_blanks(&mut i);
+        }
+        let wanted_number = target
+            .strip_prefix(['N', 'n'])
+            .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+            .and_then(|d| d.parse::<u64>().ok());
+        if matches!(rest.get(i), Some(b'N' | b'n' | b':'))
+            && rest.get(i + 1).is_some_and(u8::is_ascii_digit)
+        {
+            let digits = rest[i + 1..]
+                .iter()
+                .take_while(|b| b.is_ascii_digit())
+                .count();
+            let number = std::str::from_utf8(&rest[i + 1..i + 1 + digits])
+                .ok()
+                .and_then(|d| d.parse::<u64>().ok());
+            if wanted_number.is_some() && number == wanted_number {
+                return true;
+            }
+            i += 1 + digits;
+            skip_blanks(&mut i);
+        }
+        // A label: a name and `:` (not `:=`, not a main-block number).
+        let name_len = rest[i.min(rest.len())..]
+            .iter()
+            .take_while(|b| b.is_ascii_alphanumeric() || **b == b'_')
+            .count();
+        name_len > 0
+            && rest.get(i + name_len) == Some(&b':')
+            && rest.get(i + name_len + 1) != Some(&b'=')
+            && rest[i..i + name_len].eq_ignore_ascii_case(target.as_bytes())
+    }
+
+    /// `CALL … BLOCK from TO to`: the first instruction of the section and
+    /// the line of its last block; `Err` names the label not found. Both
+    /// are searched from the program's start (`to` from `from` on).
+    pub fn section<'t>(&self, from: &'t str, to: &'t str) -> Result<(usize, u32), &'t str> {
+        let search = JumpSearch::Forward;
+        if self.text.is_some() {
+            let first = self.search_text(from, 0, search).ok_or(from)?;
+            let last = self
+                .search_text(to, first.saturating_sub(1), search)
+                .ok_or(to)?;
+            let start = self
+                .document
+                .instructions
+                .partition_point(|i| i.source.line < first);
+            return Ok((start, last));
+        }
+        let start = self
+            .search_label(from, 0, JumpSearch::ForwardThenBackward)
+            .ok_or(from)?;
+        let end = self
+            .search_label(to, start, JumpSearch::ForwardThenBackward)
+            .ok_or(to)?;
+        Ok((start, self.document.instructions[end].source.line))
+    }
+
     pub fn instructions(&self) -> &[Instruction] {
         &self.document.instructions
     }
@@ -148,6 +238,12 @@ impl Program {
     /// `N100`; any case) from the instruction `from` the way `search`
     /// says, nearest first (reference §8.1): forward from the instruction
     /// after `from`'s block, backward from `from`'s block.
+    ///
+    /// With the program's text every label and block number of the text
+    /// is found (lowering keeps labels only for the targets it knows, so
+    /// `CALL … BLOCK` sections need the text); without it, the labels
+    /// lowering kept. The index is the first instruction of the block, or
+    /// of the next block with instructions.
     pub fn search_label(&self, target: &str, from: usize, search: JumpSearch) -> Option<usize> {
         let target = target.trim();
         let line = self
@@ -155,6 +251,14 @@ impl Program {
             .instructions
             .get(from)
             .map_or(0, |i| i.source.line);
+        if self.text.is_some() {
+            let found = self.search_text(target, line, search)?;
+            let index = self
+                .document
+                .instructions
+                .partition_point(|i| i.source.line < found);
+            return Some(index.min(self.document.instructions.len().saturating_sub(1)));
+        }
         let line_of = |index: usize| self.document.instructions[index].source.line;
         let matches = |(name, _): &&(String, usize)| name.eq_ignore_ascii_case(target);
         let forward = || {

@@ -161,6 +161,7 @@ golden! {
     tool_management => "tool_management.mpf",
     stop => "stop.mpf",
     skip => "skip.mpf",
+    sections => "sections.mpf",
     limits => "limits.mpf",
     variables => "variables.mpf",
     lathe => "lathe.mpf",
@@ -174,4 +175,45 @@ fn motion_jsonl() {
 #[test]
 fn motion_csv() {
     insta::assert_snapshot!(run(&fixture("motion.mpf"), Output::Csv));
+}
+
+/// Runs `file` with the fixture mill and `program` as the profile's
+/// `[program]` section; the end reason.
+fn end_with_program_settings(file: &str, program: &str) -> gcodec_exec::event::ProgramEndReason {
+    let mill = std::fs::read_to_string(fixture("mill.toml")).expect("profile");
+    let profile = gcodec_profile::load(&format!("{mill}\n[program]\n{program}\n")).expect("valid");
+    let profile = Arc::new(profile);
+    let options = RunOptions::for_profile(&profile);
+    let text = std::fs::read(fixture(file)).expect("fixture");
+    let source = SourceFile::new(file, text);
+    let definitions = Arc::new(Definitions::new());
+    let main = compile("MAIN", &source, &profile, &definitions, false);
+    let mut loader = FileLoader::new(SearchPath::new(), Arc::clone(&profile), definitions);
+    let mut sink = gcodec_exec::event::CountingSink::default();
+    Channel::new(profile, options, &mut loader, &mut sink)
+        .run(main.program)
+        .expect("memory")
+        .reason
+}
+
+#[test]
+fn the_profile_can_let_runs_go_on_after_m0() {
+    use gcodec_exec::event::ProgramEndReason as End;
+    assert_eq!(end_with_program_settings("stop.mpf", ""), End::Stopped);
+    assert_eq!(
+        end_with_program_settings("stop.mpf", "stop_at_m0 = false"),
+        End::M30
+    );
+}
+
+#[test]
+fn the_circle_tolerance_comes_from_the_profile() {
+    use gcodec_exec::event::ProgramEndReason as End;
+    // arcs.mpf ends with an arc whose end point is 41.1 mm off its circle
+    // (radius 5 at the start, 46.1 at the end).
+    assert_eq!(end_with_program_settings("arcs.mpf", ""), End::Alarm);
+    assert_eq!(
+        end_with_program_settings("arcs.mpf", "circle_error_const = 41.2"),
+        End::M30
+    );
 }

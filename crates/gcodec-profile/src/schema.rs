@@ -312,6 +312,18 @@ pub struct ProgramSettings {
     /// Folders searched for subprograms, relative to the profile's folder.
     #[serde(default)]
     pub subprogram_paths: Vec<String>,
+    /// Whether `M0` ends a simulated run (it waits for NC start on the
+    /// machine); `false` lets runs go on, as `gcodec run --no-stop`.
+    #[serde(default = "yes")]
+    pub stop_at_m0: bool,
+    /// MD21000 `CIRCLE_ERROR_CONST`: the end point of a circle may lie this
+    /// far (mm) off the circle…
+    #[serde(default = "default_circle_error_const")]
+    pub circle_error_const: Spanned<f64>,
+    /// …or, for large circles, this fraction of the radius (MD21010
+    /// `CIRCLE_ERROR_FACTOR`), whichever is larger.
+    #[serde(default = "default_circle_error_factor")]
+    pub circle_error_factor: Spanned<f64>,
 }
 
 impl Default for ProgramSettings {
@@ -321,8 +333,19 @@ impl Default for ProgramSettings {
             max_block_length: default_max_block_length(),
             max_feed: default_max_feed(),
             subprogram_paths: Vec::new(),
+            stop_at_m0: true,
+            circle_error_const: default_circle_error_const(),
+            circle_error_factor: default_circle_error_factor(),
         }
     }
+}
+
+fn default_circle_error_const() -> Spanned<f64> {
+    spanned(0.01)
+}
+
+fn default_circle_error_factor() -> Spanned<f64> {
+    spanned(0.001)
 }
 
 fn spanned<T>(value: T) -> Spanned<T> {

@@ -413,6 +413,16 @@ fn check_program(p: &ProgramSettings, out: &mut Vec<Diagnostic>) {
             "here",
         ));
     }
+    for tolerance in [&p.circle_error_const, &p.circle_error_factor] {
+        if !(tolerance.get_ref().is_finite() && *tolerance.get_ref() >= 0.0) {
+            out.push(error(
+                OUT_OF_RANGE,
+                tolerance,
+                "a circle tolerance must be 0 or more".into(),
+                "here",
+            ));
+        }
+    }
 }
 
 #[cfg(test)]
@@ -423,6 +433,15 @@ mod tests {
             Ok(_) => Vec::new(),
             Err(d) => d.iter().map(|d| d.code).collect(),
         }
+    }
+
+    #[test]
+    fn circle_tolerances_are_not_negative() {
+        assert_eq!(
+            codes("[program]\ncircle_error_const = -0.1\ncircle_error_factor = 0.001\n"),
+            ["gcodec::profile::out_of_range"]
+        );
+        assert!(codes("[program]\ncircle_error_const = 0.05\nstop_at_m0 = false\n").is_empty());
     }
 
     #[test]

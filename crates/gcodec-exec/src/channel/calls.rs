@@ -269,20 +269,12 @@ impl Channel<'_> {
             Some(section) => {
                 let from = eval::eval_value(&self.env(), &section.from)?.to_text()?;
                 let to = eval::eval_value(&self.env(), &section.to)?.to_text()?;
-                let search = gcodec_ail::JumpSearch::ForwardThenBackward;
-                let missing = |label: &str| {
+                let (start, end_line) = callee.section(&from, &to).map_err(|label| {
                     RunError::new(
                         codes::JUMP_TARGET,
                         format!("the section label `{label}` is not in `{}`", callee.name),
                     )
-                };
-                let start = callee
-                    .search_label(&from, 0, search)
-                    .ok_or_else(|| missing(&from))?;
-                let end = callee
-                    .search_label(&to, start, search)
-                    .ok_or_else(|| missing(&to))?;
-                let end_line = callee.instructions()[end].source.line;
+                })?;
                 (start, Some(end_line), Some(SectionEvent { from, to }))
             }
         };

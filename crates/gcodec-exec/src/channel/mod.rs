@@ -105,8 +105,8 @@ pub struct RunOptions {
 }
 
 impl RunOptions {
-    /// The defaults for a machine: its skip levels, 10 million blocks,
-    /// 16 levels, M0 stops, M1 does not.
+    /// The defaults for a machine: its skip levels, `stop_at_m0` and
+    /// circle tolerance, 10 million blocks, 16 levels, M1 does not stop.
     pub fn for_profile(profile: &Profile) -> Self {
         let mut skip_levels = [false; 10];
         for level in &profile.program.skip_levels {
@@ -118,10 +118,13 @@ impl RunOptions {
             skip_levels,
             max_steps: 10_000_000,
             max_levels: 16,
-            stop_at_m0: true,
+            stop_at_m0: profile.program.stop_at_m0,
             optional_stop: false,
             interrupt: None,
-            circle_tolerance: CircleTolerance::DEFAULT,
+            circle_tolerance: CircleTolerance {
+                absolute: *profile.program.circle_error_const.get_ref(),
+                relative: *profile.program.circle_error_factor.get_ref(),
+            },
         }
     }
 }
