@@ -1,11 +1,12 @@
 //! The executor: runs AIL the way a SINUMERIK channel would and emits
-//! runtime events as they happen.
+//! runtime events as they happen (SPEC §11).
 //!
-//! Built so far (issue 4 in progress): the runtime events and their sinks
+//! [`channel::Channel`] runs a [`program::Program`] with a machine profile,
+//! a [`loader::ProgramLoader`] for the subprograms it calls and an
+//! [`event::EventSink`]. Its parts: runtime events and their sinks
 //! ([`event`]), values, expressions and variables ([`value`], [`eval`],
-//! [`vars`]), and circle geometry ([`geometry`]). Not built yet: the
-//! channel itself (modal state, positions, frames, control flow, calls)
-//! and `gcodec run`.
+//! [`vars`]), circle geometry ([`geometry`]), programmable frames
+//! ([`frames`]).
 
 pub mod channel;
 pub mod eval;

@@ -19,10 +19,14 @@
 //! G-group registry ([`check_profile`]: `modal_defaults`, `[g_codes]`
 //! names, `legacy_aliases` keys).
 //!
-//! Not built yet: `CASE`, `CALL`/`PCALL`/`MCALL`, `PROC` signatures and
-//! call arity, macro expansion, `REDEF` attributes.
-//! Each such construct gives the warning `gcodec::lower::not_lowered`
-//! rather than being dropped in silence.
+//! Control flow (`IF` … `CASE`, jumps, `REPEAT` sections, skip marks),
+//! calls (`CALL`, `PCALL`, `MCALL`, `PROC`/`EXTERN` signatures and arity)
+//! and the modal state at every block ([`modal`]) are lowered too.
+//!
+//! Not lowered (SPEC §10.13): synchronized actions, `PO[…]`, `OEMIPO`, a
+//! computed G group, macro expansion, `REDEF` attributes. Each such
+//! construct gives the warning `gcodec::lower::not_lowered` rather than
+//! being dropped in silence.
 
 pub mod definitions;
 mod flow;
