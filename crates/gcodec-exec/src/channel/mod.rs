@@ -3,7 +3,7 @@
 //!
 //! [`Channel::run`] walks the main program's instructions with a program
 //! counter. Subprograms, cycles, modal calls and `REPEAT` sections push a
-//! [`Level`] on a stack (at most [`RunOptions::max_levels`] program
+//! level on a stack (at most [`RunOptions::max_levels`] program
 //! levels); jumps go to the instruction index of their label. A block is
 //! the run of instructions of one source line; at its end the modal call
 //! runs (after a traversing block), and the CSV row is written. Nothing
