@@ -198,7 +198,7 @@ fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 
     }
 }
 
-pub fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: DiagnosticOptions) {
+fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: DiagnosticOptions) {
     if diagnostics.is_empty() {
         return;
     }
@@ -299,13 +299,8 @@ fn lower(
         Ok(f) => f,
         Err(code) => return code,
     };
-    let parsed = gcodec_parser::parse(&file);
-    let lowered = gcodec_sema::lower_with(&parsed.program, &profile, &definitions);
-    let mut diagnostics = parsed.diagnostics;
-    diagnostics.extend(lowered.diagnostics);
-    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
-    report(&diagnostics, Some(&file), options);
-    let mut exit = if diagnostics.iter().any(Diagnostic::is_error) {
+    let (document, has_errors) = lower_file(&file, &profile, &definitions, options);
+    let mut exit = if has_errors {
         EXIT_DIAGNOSTICS
     } else {
         EXIT_CLEAN
@@ -315,21 +310,41 @@ fn lower(
     let written = match format {
         Format::Text => {
             let mut listing = FmtToIo::new(&mut out);
-            let _ = gcodec_ail::write_listing(&lowered.document, &mut listing);
+            let _ = gcodec_ail::write_listing(&document, &mut listing);
             listing.finish()
         }
-        Format::Json => serde_json::to_writer_pretty(&mut out, &lowered.document)
+        Format::Json => serde_json::to_writer_pretty(&mut out, &document)
             .map_err(std::io::Error::from)
             .and_then(|()| writeln!(out)),
     };
     if (written.is_err() || out.flush().is_err()) && exit == EXIT_CLEAN {
         exit = EXIT_USAGE;
     }
-    // The process ends next: freeing a large program's tree and
-    // instruction list block by block would only delay the exit.
-    std::mem::forget(lowered.document);
-    std::mem::forget(parsed.program);
+    // The process ends next: freeing a large program's instruction list
+    // block by block would only delay the exit.
+    std::mem::forget(document);
     exit
+}
+
+/// Parses and lowers `file`, renders every diagnostic of both stages in
+/// source order on stderr; the document and whether any is an error. The
+/// syntax tree is not freed (the process ends soon; freeing it block by
+/// block would only cost time).
+pub fn lower_file(
+    file: &SourceFile,
+    profile: &gcodec_profile::Profile,
+    definitions: &gcodec_sema::Definitions,
+    options: DiagnosticOptions,
+) -> (gcodec_ail::Document, bool) {
+    let parsed = gcodec_parser::parse(file);
+    let lowered = gcodec_sema::lower_with(&parsed.program, profile, definitions);
+    std::mem::forget(parsed.program);
+    let mut diagnostics = parsed.diagnostics;
+    diagnostics.extend(lowered.diagnostics);
+    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    report(&diagnostics, Some(file), options);
+    let has_errors = diagnostics.iter().any(Diagnostic::is_error);
+    (lowered.document, has_errors)
 }
 
 /// Writes formatted text straight to an `io::Write` (the listing of a

@@ -17,7 +17,7 @@ use gcodec_source::Diagnostic;
 
 use crate::commands::{
     DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
-    read, report,
+    lower_file, read,
 };
 
 /// How events are written.
@@ -157,27 +157,15 @@ pub fn run(args: RunArgs) -> u8 {
         Ok(f) => f,
         Err(code) => return code,
     };
-    let parsed = gcodec_parser::parse(&file);
-    let lowered = gcodec_sema::lower_with(&parsed.program, &profile, &definitions);
-    // The tree is not needed any more; freeing it block by block would
-    // only cost time.
-    std::mem::forget(parsed.program);
-    let mut diagnostics = parsed.diagnostics;
-    diagnostics.extend(lowered.diagnostics);
-    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
-    report(&diagnostics, Some(&file), options);
-    if diagnostics.iter().any(Diagnostic::is_error) {
+    let (document, has_errors) = lower_file(&file, &profile, &definitions, options);
+    if has_errors {
         eprintln!(
             "gcodec: `{}` has errors; it is not run",
             args.file.display()
         );
         return EXIT_DIAGNOSTICS;
     }
-    let mut main = Program::new(
-        program_name(&args.file),
-        Arc::from(file.name()),
-        lowered.document,
-    );
+    let mut main = Program::new(program_name(&args.file), Arc::from(file.name()), document);
     // The CSV rows read block numbers from the text, and `CALL … BLOCK`
     // finds the labels of its section there (lowering keeps labels only
     // for the jump targets it knows).

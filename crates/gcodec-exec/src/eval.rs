@@ -247,14 +247,15 @@ fn eval_var<C: EvalContext + ?Sized>(
     indices: &[Expr],
     depth: usize,
 ) -> Result<RtValue, RunError> {
+    // `R5`, the commonest variable of all: straight to the store.
+    if kind == VarKind::RParameter
+        && let Some(index) = constant_index(indices)
+    {
+        return ctx.variables().r(index).map(RtValue::Real);
+    }
     match kind {
         VarKind::System => system_var(ctx, name, indices, depth),
         VarKind::Axis if indices.is_empty() => Ok(RtValue::axis(name)),
-        // `R5`, the commonest variable of all: straight to the store.
-        VarKind::RParameter if constant_index(indices).is_some() => {
-            let index = constant_index(indices).unwrap_or_default();
-            ctx.variables().r(index).map(RtValue::Real)
-        }
         kind => {
             let mut buf = [0i32; 4];
             let idx = int_indices(ctx, indices, depth, &mut buf)?;

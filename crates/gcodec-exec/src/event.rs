@@ -200,6 +200,16 @@ pub enum Plane {
     G19,
 }
 
+impl From<Plane> for crate::geometry::Plane {
+    fn from(plane: Plane) -> Self {
+        match plane {
+            Plane::G17 => Self::G17,
+            Plane::G18 => Self::G18,
+            Plane::G19 => Self::G19,
+        }
+    }
+}
+
 impl Plane {
     /// `G17`, `G18`, `G19`.
     pub fn code(self) -> &'static str {

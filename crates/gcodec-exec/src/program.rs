@@ -112,27 +112,53 @@ impl Program {
     /// The block number (`N20`, `:20`) the `line` starts with, after a
     /// skip mark.
     pub fn block_number(&self, line: u32) -> Option<u32> {
+        self.line_head(line)?
+            .number
+            .and_then(|n| u32::try_from(n).ok())
+    }
+
+    /// The block number and label the `line` starts with, after a skip
+    /// mark (`/1 N20 LBL: …`).
+    fn line_head(&self, line: u32) -> Option<LineHead<'_>> {
         let rest = self.line_text(line)?;
         let mut i = 0;
-        let blanks = |i: &mut usize| {
-            while *i < rest.len() && (rest[*i] == b' ' || rest[*i] == b'\t') {
+        let skip_blanks = |i: &mut usize| {
+            while rest.get(*i).is_some_and(|b| *b == b' ' || *b == b'\t') {
                 *i += 1;
             }
         };
-        blanks(&mut i);
+        skip_blanks(&mut i);
         if rest.get(i) == Some(&b'/') {
             i += 1;
             while rest.get(i).is_some_and(u8::is_ascii_digit) {
                 i += 1;
             }
-            blanks(&mut i);
+            skip_blanks(&mut i);
         }
-        if !matches!(rest.get(i), Some(b'N' | b'n' | b':')) {
-            return None;
+        let mut number = None;
+        if matches!(rest.get(i), Some(b'N' | b'n' | b':'))
+            && rest.get(i + 1).is_some_and(u8::is_ascii_digit)
+        {
+            let digits = rest[i + 1..]
+                .iter()
+                .take_while(|b| b.is_ascii_digit())
+                .count();
+            number = std::str::from_utf8(&rest[i + 1..i + 1 + digits])
+                .ok()
+                .and_then(|d| d.parse::<u64>().ok());
+            i += 1 + digits;
+            skip_blanks(&mut i);
         }
-        let digits = &rest[i + 1..];
-        let len = digits.iter().take_while(|b| b.is_ascii_digit()).count();
-        std::str::from_utf8(&digits[..len]).ok()?.parse().ok()
+        // A label: a name and `:` (not `:=`, not a main-block number).
+        let name_len = rest[i.min(rest.len())..]
+            .iter()
+            .take_while(|b| b.is_ascii_alphanumeric() || **b == b'_')
+            .count();
+        let label = (name_len > 0
+            && rest.get(i + name_len) == Some(&b':')
+            && rest.get(i + name_len + 1) != Some(&b'='))
+        .then(|| &rest[i..i + name_len]);
+        Some(LineHead { number, label })
     }
 
     /// The line of the nearest block labelled or numbered `target` in the
@@ -152,52 +178,17 @@ impl Program {
     /// Whether `line` carries the label or block number `target` (`SEC`,
     /// `N40`, any case; block numbers compare by value).
     fn line_is(&self, line: u32, target: &str) -> bool {
-        let Some(rest) = self.line_text(line) else {
+        let Some(head) = self.line_head(line) else {
             return false;
         };
-        let mut i = 0;
-        let skip_blanks = |i: &mut usize| {
-            while rest.get(*i).is_some_and(|b| *b == b' ' || *b == b'\t') {
-                *i += 1;
-            }
-        };
-        skip_blanks(&mut i);
-        if rest.get(i) == Some(&b'/') {
-            i += 1;
-            while rest.get(i).is_some_and(u8::is_ascii_digit) {
-                i += 1;
-            }
-            skip_blanks(&mut i);
-        }
         let wanted_number = target
             .strip_prefix(['N', 'n'])
             .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
             .and_then(|d| d.parse::<u64>().ok());
-        if matches!(rest.get(i), Some(b'N' | b'n' | b':'))
-            && rest.get(i + 1).is_some_and(u8::is_ascii_digit)
-        {
-            let digits = rest[i + 1..]
-                .iter()
-                .take_while(|b| b.is_ascii_digit())
-                .count();
-            let number = std::str::from_utf8(&rest[i + 1..i + 1 + digits])
-                .ok()
-                .and_then(|d| d.parse::<u64>().ok());
-            if wanted_number.is_some() && number == wanted_number {
-                return true;
-            }
-            i += 1 + digits;
-            skip_blanks(&mut i);
-        }
-        // A label: a name and `:` (not `:=`, not a main-block number).
-        let name_len = rest[i.min(rest.len())..]
-            .iter()
-            .take_while(|b| b.is_ascii_alphanumeric() || **b == b'_')
-            .count();
-        name_len > 0
-            && rest.get(i + name_len) == Some(&b':')
-            && rest.get(i + name_len + 1) != Some(&b'=')
-            && rest[i..i + name_len].eq_ignore_ascii_case(target.as_bytes())
+        (wanted_number.is_some() && head.number == wanted_number)
+            || head
+                .label
+                .is_some_and(|label| label.eq_ignore_ascii_case(target.as_bytes()))
     }
 
     /// `CALL … BLOCK from TO to`: the first instruction of the section and
@@ -282,4 +273,10 @@ impl Program {
             JumpSearch::ForwardThenBackward => forward().or_else(backward),
         }
     }
+}
+
+/// What a line starts with.
+struct LineHead<'t> {
+    number: Option<u64>,
+    label: Option<&'t [u8]>,
 }

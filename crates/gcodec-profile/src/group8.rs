@@ -8,7 +8,12 @@ pub fn group8_index(code: &str) -> Option<u8> {
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) || digits.len() > 3 {
         return None;
     }
-    match digits.parse::<u16>().ok()? {
+    group8_number_index(digits.parse::<u16>().ok()?)
+}
+
+/// The index of the Group 8 command `G<number>` (`54` → 1), if it is one.
+pub fn group8_number_index(number: u16) -> Option<u8> {
+    match number {
         500 => Some(0),
         n @ 54..=57 => Some((n - 53) as u8),
         n @ 505..=599 => Some((n - 500) as u8),

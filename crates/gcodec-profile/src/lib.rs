@@ -16,7 +16,7 @@ mod group8;
 mod schema;
 mod validate;
 
-pub use group8::{group8_code, group8_index, group8_range};
+pub use group8::{group8_code, group8_index, group8_number_index, group8_range};
 pub use schema::*;
 
 use gcodec_source::{Diagnostic, Span};

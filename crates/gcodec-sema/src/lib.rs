@@ -42,5 +42,6 @@ mod values;
 
 pub use definitions::Definitions;
 pub use lower::{Lowered, lower, lower_in_parts, lower_with};
+pub use mfunc::m_class;
 pub use profile_check::check_profile;
 pub use types::DataType;

@@ -241,6 +241,21 @@ pub(crate) fn check_count(words: &[MWord], profile: &Profile, diagnostics: &mut 
     }
 }
 
+/// The class of the M function `value` on the machine `profile`
+/// describes: its `mcode_class_overrides` first, then the predefined
+/// classes (seed 001); `None` for a value the machine does not know. For
+/// values computed when a block runs (lowering classifies constants with
+/// the overrides read once, [`overrides`]).
+pub fn m_class(profile: &Profile, value: u32) -> Option<MClass> {
+    profile
+        .m_functions
+        .mcode_class_overrides
+        .iter()
+        .find(|(k, _)| k.get_ref().parse::<u32>() == Ok(value))
+        .map(|(_, class)| *class)
+        .or_else(|| predefined_class(value, *profile.tool_change.change_m_code.get_ref()))
+}
+
 /// The profile's `mcode_class_overrides` by M value, read once.
 pub(crate) fn overrides(profile: &Profile) -> HashMap<u32, MClass> {
     profile

@@ -202,7 +202,7 @@ impl Channel<'_> {
         }
         let message =
             format!("the predefined procedure `{target}` has no effect in the simulation");
-        self.report_once(program, instruction, target, codes::NOT_SIMULATED, message);
+        self.not_simulated(program, instruction, target, message);
         Some(Ok(Flow::Next))
     }
 
@@ -816,13 +816,13 @@ impl Channel<'_> {
         pc: usize,
         section_end: bool,
     ) -> Flow {
-        let instruction = match program
+        let Some(instruction) = program
             .instructions()
             .get(pc)
             .or(program.instructions().last())
-        {
-            Some(i) => i.clone(),
-            None => return Flow::End(ProgramEndReason::EndOfText),
+            .cloned()
+        else {
+            return Flow::End(ProgramEndReason::EndOfText);
         };
         // A return inside a `REPEAT` section leaves the section too.
         while matches!(
@@ -831,84 +831,65 @@ impl Channel<'_> {
         ) {
             self.stack.pop();
         }
-        let Some(top) = self.stack.last_mut() else {
-            return Flow::End(ProgramEndReason::EndOfText);
+        let (bindings, own_level, target) = match self.stack.last_mut().map(|l| &mut l.kind) {
+            Some(LevelKind::Call(call)) => (
+                std::mem::take(&mut call.bindings),
+                call.own_level,
+                call.target.clone(),
+            ),
+            _ => {
+                let reason = if section_end || matches!(instruction.op, Op::End) {
+                    ProgramEndReason::EndOfText
+                } else {
+                    ProgramEndReason::M17
+                };
+                return Flow::End(reason);
+            }
         };
-        let LevelKind::Call(call) = &mut top.kind else {
-            let reason = if section_end || matches!(instruction.op, Op::End) {
-                ProgramEndReason::EndOfText
-            } else {
-                ProgramEndReason::M17
-            };
-            return Flow::End(reason);
-        };
-        let bindings = std::mem::take(&mut call.bindings);
-        let own_level = call.own_level;
-        let result = if own_level {
+        if own_level {
             let written = self.write_back(&bindings);
             self.vars.pop_level();
-            written
-        } else {
-            Ok(())
-        };
-        if let Err(error) = result {
-            self.alarm(program, &instruction, error);
-            return Flow::End(ProgramEndReason::Alarm);
-        }
-        let Some(top) = self.stack.last_mut() else {
-            return Flow::End(ProgramEndReason::EndOfText);
-        };
-        let LevelKind::Call(call) = &mut top.kind else {
-            return Flow::End(ProgramEndReason::EndOfText);
-        };
-        call.bindings = bindings;
-        let event = EventKind::Return(ReturnEvent {
-            target: call.target.clone(),
-        });
-        self.emit_at(program, &instruction, event);
-        let Some(top) = self.stack.last_mut() else {
-            return Flow::End(ProgramEndReason::EndOfText);
-        };
-        let LevelKind::Call(call) = &mut top.kind else {
-            return Flow::End(ProgramEndReason::EndOfText);
-        };
-        if call.pass < call.passes {
-            call.pass += 1;
-            top.pc = call.start;
-            let event = EventKind::Call(CallEvent {
-                target: call.target.clone(),
-                call_kind: call.kind,
-                pass: call.pass,
-                passes: call.passes,
-                section: call.section.clone(),
-                arguments: call.arguments.clone(),
-            });
-            let bindings = call.bindings.clone();
-            let own_level = call.own_level;
-            // The next pass is reported at the caller's level.
-            let caller_level = top.program_level.saturating_sub(u32::from(own_level));
-            let mut source = self.source(program, &instruction);
-            source.level = caller_level;
-            self.emit(&crate::event::Event {
-                kind: event,
-                source,
-            });
-            if own_level {
-                self.vars.push_level();
-                if let Err(error) = self.bind(&bindings) {
-                    self.alarm(program, &instruction, error);
-                    return Flow::End(ProgramEndReason::Alarm);
-                }
+            if let Err(error) = written {
+                self.alarm(program, &instruction, error);
+                return Flow::End(ProgramEndReason::Alarm);
             }
+        }
+        self.emit_at(
+            program,
+            &instruction,
+            EventKind::Return(ReturnEvent { target }),
+        );
+        let Some(mut level) = self.stack.pop() else {
+            return Flow::End(ProgramEndReason::EndOfText);
+        };
+        let LevelKind::Call(call) = &mut level.kind else {
+            return Flow::End(ProgramEndReason::EndOfText);
+        };
+        if call.pass >= call.passes {
             return Flow::Switch;
         }
-        self.stack.pop();
+        // The next pass, reported at the caller's level (the call's level
+        // is off the stack here).
+        call.pass += 1;
+        level.pc = call.start;
+        let event = EventKind::Call(CallEvent {
+            target: call.target.clone(),
+            call_kind: call.kind,
+            pass: call.pass,
+            passes: call.passes,
+            section: call.section.clone(),
+            arguments: call.arguments.clone(),
+        });
+        call.bindings = bindings.clone();
+        self.emit_at(program, &instruction, event);
+        self.stack.push(level);
+        if own_level {
+            self.vars.push_level();
+            if let Err(error) = self.bind(&bindings) {
+                self.alarm(program, &instruction, error);
+                return Flow::End(ProgramEndReason::Alarm);
+            }
+        }
         Flow::Switch
-    }
-
-    /// The end of a program's text: a subprogram returns, the main program
-    /// ends.
-    pub(super) fn end_of_text(&mut self, program: &Arc<Program>, pc: usize) -> Flow {
-        self.return_from_call(program, pc, false)
     }
 }

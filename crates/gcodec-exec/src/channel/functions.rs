@@ -5,8 +5,8 @@
 use std::sync::Arc;
 
 use gcodec_ail::{
-    Address, Frame as FrameInstruction, HFunction, Instruction, MClass, MFunction, MTiming,
-    SelectorKind, ToolChangeTrigger, ToolSelect, ToolTiming, Value,
+    Address, Frame as FrameInstruction, HFunction, Instruction, MClass, MFunction, SelectorKind,
+    ToolChangeTrigger, ToolSelect, Value,
 };
 use gcodec_profile::{Policy, Tool, ToolState, UnresolvedToolPolicy};
 
@@ -47,10 +47,13 @@ impl Channel<'_> {
         let extension = self.extension(m.address_extension, m.address_extension_expr.as_ref())?;
         // A computed value is classified now, as lowering classifies
         // constants.
-        let class = if m.m_value.is_none() {
-            self.classify_m(value)
-        } else {
-            m.class
+        let computed_class = m
+            .m_value
+            .is_none()
+            .then(|| gcodec_sema::m_class(&self.state.profile, value));
+        let class = match computed_class {
+            Some(known) => known.unwrap_or(MClass::Custom),
+            None => m.class,
         };
         let change_m = *self.state.profile.tool_change.change_m_code.get_ref();
         let action = match (class, value) {
@@ -68,11 +71,7 @@ impl Channel<'_> {
             (MClass::Gearbox, 41..=45) => MAction::GearStage,
             _ => MAction::Output,
         };
-        if m.m_value.is_none()
-            && action == MAction::Output
-            && class == MClass::Custom
-            && !self.m_known(value)
-        {
+        if computed_class == Some(None) {
             match self.state.profile.m_functions.unknown_mcode_policy {
                 Policy::Error => {
                     return Err(RunError::new(
@@ -149,7 +148,6 @@ impl Channel<'_> {
             }
             _ => {}
         }
-        let _ = MTiming::InBlock;
         Ok(Flow::Next)
     }
 
@@ -173,37 +171,6 @@ impl Channel<'_> {
         self.stack
             .iter()
             .any(|l| matches!(l.kind, super::LevelKind::Call(_)))
-    }
-
-    /// The class of a computed M value (seed 001), as lowering classifies
-    /// constants: the profile's overrides first.
-    fn classify_m(&self, value: u32) -> MClass {
-        let profile = &self.state.profile;
-        if let Some((_, class)) = profile
-            .m_functions
-            .mcode_class_overrides
-            .iter()
-            .find(|(k, _)| k.get_ref().trim().parse::<u32>() == Ok(value))
-        {
-            return *class;
-        }
-        match value {
-            0 | 1 | 2 | 17 | 30 => MClass::ProgramFlow,
-            3 | 4 | 5 | 19 | 70 => MClass::Spindle,
-            40..=45 => MClass::Gearbox,
-            v if v == *profile.tool_change.change_m_code.get_ref() => MClass::Tool,
-            _ => MClass::Custom,
-        }
-    }
-
-    /// Whether the machine knows `value` (predefined, or in the overrides).
-    fn m_known(&self, value: u32) -> bool {
-        self.state
-            .profile
-            .m_functions
-            .mcode_class_overrides
-            .keys()
-            .any(|k| k.get_ref().trim().parse::<u32>() == Ok(value))
     }
 
     fn spindle_event(
@@ -251,8 +218,7 @@ impl Channel<'_> {
         let speed = self.state.master_spindle().map_or(0.0, |s| s.speed);
         let time = seconds.unwrap_or(0.0)
             + revolutions.map_or(0.0, |r| if speed > 0.0 { r / speed * 60.0 } else { 0.0 });
-        let tool = self.state.active_tool.as_ref().map(|t| t.label.clone());
-        self.summary.tool(tool.as_deref()).feed_time += time.max(0.0);
+        self.figures().feed_time += time.max(0.0);
         let event = EventKind::Dwell(DwellEvent {
             seconds,
             revolutions,
@@ -305,7 +271,7 @@ impl Channel<'_> {
             other => {
                 let key = format!("address {other}");
                 let message = format!("`{other}=` has no effect in the simulation");
-                self.report_once(program, instruction, &key, codes::NOT_SIMULATED, message);
+                self.not_simulated(program, instruction, &key, message);
             }
         }
         Ok(())
@@ -375,7 +341,7 @@ impl Channel<'_> {
         let axes = self.state.frame_axes.clone();
         self.state
             .programmable
-            .apply(&axes, op, &values, rpl, frame_plane(plane))
+            .apply(&axes, op, &values, rpl, plane.into())
     }
 
     pub(super) fn tool_select(
@@ -416,7 +382,6 @@ impl Channel<'_> {
         // `T0` selects "no tool": pending as `None`.
         self.state.pending_tool = resolved.map(|(t, _)| t);
         self.pending_selected = true;
-        let _ = ToolTiming::Immediate;
         Ok(())
     }
 
@@ -562,6 +527,7 @@ impl Channel<'_> {
             trigger,
         });
         self.state.active_tool = new;
+        self.figures_slot = None;
         self.emit_at(program, instruction, event);
         // The new tool's first edge is active (MD20270 = 1), D0 without a
         // tool.
@@ -633,13 +599,5 @@ impl Channel<'_> {
             }
             None => {}
         }
-    }
-}
-
-fn frame_plane(plane: crate::event::Plane) -> crate::geometry::Plane {
-    match plane {
-        crate::event::Plane::G17 => crate::geometry::Plane::G17,
-        crate::event::Plane::G18 => crate::geometry::Plane::G18,
-        crate::event::Plane::G19 => crate::geometry::Plane::G19,
     }
 }

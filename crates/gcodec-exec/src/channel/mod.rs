@@ -220,6 +220,9 @@ pub struct Channel<'r> {
     pending_selected: bool,
     /// Whether the pending selection is a substitute (a sister tool).
     pending_substituted: bool,
+    /// Where the active tool's figures are in the summary, once looked up
+    /// (cleared by a tool change): not searched for every block.
+    figures_slot: Option<usize>,
 }
 
 impl<'r> Channel<'r> {
@@ -251,6 +254,7 @@ impl<'r> Channel<'r> {
             output_error: None,
             pending_selected: false,
             pending_substituted: false,
+            figures_slot: None,
         }
     }
 
@@ -352,7 +356,7 @@ impl<'r> Channel<'r> {
                 let Some(instruction) = program.instructions().get(pc) else {
                     // Past the last instruction (lowering always ends with
                     // `end`; a hand-made document may not).
-                    match self.end_of_text(&program, pc.saturating_sub(1)) {
+                    match self.return_from_call(&program, pc.saturating_sub(1), false) {
                         Flow::End(reason) => return reason,
                         _ => break,
                     }
@@ -423,8 +427,7 @@ impl<'r> Channel<'r> {
             self.block.number = program.block_number(instruction.source.line);
         }
         self.summary.blocks += 1;
-        let tool = self.state.active_tool.as_ref().map(|t| t.label.as_str());
-        self.summary.tool(tool).blocks += 1;
+        self.figures().blocks += 1;
         if self.summary.blocks > self.options.max_steps {
             let message = format!(
                 "the run stopped after {} blocks (--max-steps): an endless loop, or a longer program than expected",
@@ -502,6 +505,20 @@ impl<'r> Channel<'r> {
         for (slot, column) in row.modal.iter_mut().zip(crate::event::MAIN_MODAL_GROUPS) {
             *slot = Cow::Borrowed(state.modal(column.group).unwrap_or(""));
         }
+    }
+
+    /// The figures of the active tool.
+    fn figures(&mut self) -> &mut ToolSummary {
+        let slot = match self.figures_slot {
+            Some(slot) => slot,
+            None => {
+                let tool = self.state.active_tool.as_ref().map(|t| t.label.as_str());
+                let slot = self.summary.slot(tool);
+                self.figures_slot = Some(slot);
+                slot
+            }
+        };
+        &mut self.summary.tools[slot]
     }
 
     fn program_level(&self) -> u32 {
@@ -633,7 +650,7 @@ impl<'r> Channel<'r> {
             }
             Op::RepeatSection(section) => self.repeat_section(program, pc, instruction, section),
             Op::Return { .. } => Ok(self.return_from_call(program, pc, false)),
-            Op::End => Ok(self.end_of_text(program, pc)),
+            Op::End => Ok(self.return_from_call(program, pc, false)),
         };
         match result {
             Ok(flow) => flow,
@@ -720,12 +737,7 @@ impl<'r> Channel<'r> {
         code: &'static str,
     ) {
         if group == 7 && matches!(code, "G41" | "G42") {
-            self.report_once(
-                program,
-                instruction,
-                "radius-compensation",
-                codes::NOT_SIMULATED,
-                "tool radius compensation (G41/G42) is not simulated: paths are the programmed contour"
+            self.not_simulated(program, instruction, "radius-compensation", "tool radius compensation (G41/G42) is not simulated: paths are the programmed contour"
                     .into(),
             );
         }
@@ -775,16 +787,10 @@ impl<'r> Channel<'r> {
         code: WorkOffsetCode,
     ) {
         self.state.group8 = code;
-        // `G<n>` in a stack buffer: no allocation per block.
-        let mut buf = [0u8; 8];
-        let text = {
-            use std::io::Write as _;
-            let mut rest = &mut buf[..];
-            let _ = write!(rest, "G{}", code.0);
-            let len = 8 - rest.len();
-            std::str::from_utf8(&buf[..len]).unwrap_or("")
-        };
-        if let Some(name) = ggroups::lookup(text).and_then(|(g, i)| ggroups::member(g, i)) {
+        // The registry lists group 8 in `$P_UIFR` order from index 1.
+        let name = gcodec_profile::group8_number_index(code.0)
+            .and_then(|uifr| ggroups::member(8, uifr + 1));
+        if let Some(name) = name {
             self.set_modal(program, instruction, 8, name);
         }
     }
@@ -827,15 +833,15 @@ impl<'r> Channel<'r> {
         self.emit_at(program, instruction, event);
     }
 
-    /// Advice reported once per run for `key`.
-    fn report_once(
+    /// Advice, once per run for `key`, that a construct is not simulated.
+    fn not_simulated(
         &mut self,
         program: &Arc<Program>,
         instruction: &Instruction,
         key: &str,
-        code: &'static str,
         message: String,
     ) {
+        let code = codes::NOT_SIMULATED;
         self.once(
             program,
             instruction,
@@ -846,25 +852,7 @@ impl<'r> Channel<'r> {
         );
     }
 
-    /// A warning reported once per run for `key`.
-    fn warn_once(
-        &mut self,
-        program: &Arc<Program>,
-        instruction: &Instruction,
-        key: &str,
-        code: &'static str,
-        message: String,
-    ) {
-        self.once(
-            program,
-            instruction,
-            key,
-            code,
-            EventSeverity::Warning,
-            message,
-        );
-    }
-
+    /// A diagnostic reported once per run for `key`.
     fn once(
         &mut self,
         program: &Arc<Program>,

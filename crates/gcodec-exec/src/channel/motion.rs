@@ -67,14 +67,6 @@ impl MotionScratch {
     }
 }
 
-fn geometry_plane(plane: Plane) -> geometry::Plane {
-    match plane {
-        Plane::G17 => geometry::Plane::G17,
-        Plane::G18 => geometry::Plane::G18,
-        Plane::G19 => geometry::Plane::G19,
-    }
-}
-
 /// The geometry axes of `values` as a point (0 for a geometry axis the
 /// machine lacks).
 fn point(state: &MachineState, values: &[f64]) -> Point3 {
@@ -139,22 +131,12 @@ impl Channel<'_> {
                 self.set_target(axis, &value)?;
             }
             if details.spline.is_some() || details.transition.is_some() {
-                self.report_once(
-                    program,
-                    instruction,
-                    "motion-details",
-                    super::codes::NOT_SIMULATED,
-                    "spline weights, chamfers and roundings (`PW`, `PL`, `CHF`, `CHR`, `RND`) are not simulated: the path is the programmed straight or circular element".into(),
+                self.not_simulated(program, instruction, "motion-details", "spline weights, chamfers and roundings (`PW`, `PL`, `CHF`, `CHR`, `RND`) are not simulated: the path is the programmed straight or circular element".into(),
                 );
             }
         }
         if kind != MotionKind::Rapid && self.state.feed <= 0.0 {
-            self.warn_once(
-                program,
-                instruction,
-                "no-feed",
-                super::codes::NO_FEED,
-                "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into(),
+            self.once(program, instruction, "no-feed", super::codes::NO_FEED, crate::event::EventSeverity::Warning, "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into(),
             );
         }
         let plane = self.state.plane();
@@ -179,11 +161,10 @@ impl Channel<'_> {
             }
             arc = Some(resolved);
         } else if !matches!(kind, MotionKind::Rapid | MotionKind::Linear) {
-            self.report_once(
+            self.not_simulated(
                 program,
                 instruction,
                 kind_key(kind),
-                super::codes::NOT_SIMULATED,
                 format!(
                     "`{}` motions are simulated as straight lines to their end points",
                     self.state.modal(1).unwrap_or("this")
@@ -202,8 +183,7 @@ impl Channel<'_> {
             None => distance(start, end),
         };
         let time = self.motion_time(kind, length);
-        let tool = self.state.active_tool.as_ref().map(|t| t.label.as_str());
-        let figures = self.summary.tool(tool);
+        let figures = self.figures();
         let bbox = match &arc {
             Some(a) => a.bounding_box(),
             // The end point only: a start point is the previous end, or a
@@ -244,7 +224,7 @@ impl Channel<'_> {
                 Some(a) => {
                     let mut centre = event.centre.take().unwrap_or_default();
                     centre.clear();
-                    let (h, v, _) = geometry_plane(state.plane()).axes();
+                    let (h, v, _) = geometry::Plane::from(state.plane()).axes();
                     for (i, info) in state.axes.iter().enumerate() {
                         if let Some(g) = info.geometry
                             && (g == h || g == v)
@@ -367,7 +347,6 @@ impl Channel<'_> {
                     return Ok(None);
                 }
                 let mut p = start;
-                let mut given = [false; 3];
                 for value in values {
                     let g = match value.axis.as_ref() {
                         "I" | "I1" => 0,
@@ -382,9 +361,7 @@ impl Channel<'_> {
                         _ => relative_default,
                     };
                     p[g] = if relative { start[g] + v } else { v };
-                    given[g] = true;
                 }
-                let _ = given;
                 Ok(Some(p))
             };
         let form = if kind == MotionKind::ArcThroughPoint {
@@ -422,7 +399,7 @@ impl Channel<'_> {
         };
         let turns = circle.turns.as_ref().map(real).transpose()?.unwrap_or(0.0);
         geometry::resolve_arc(
-            geometry_plane(plane),
+            plane.into(),
             start,
             end,
             &form,

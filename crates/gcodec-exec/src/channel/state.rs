@@ -84,7 +84,9 @@ pub struct MachineState {
     pub modal_call_active: bool,
     /// The last total frame with what it was made of, so that a motion
     /// does not chain frames (and allocate) unless one changed.
-    frame_cache: RefCell<Option<FrameCache>>,
+    frame_cache: RefCell<FrameCache>,
+    /// The neutral frame (`G500`, a suppressed block).
+    neutral: Frame,
     /// Room for a position, reused.
     scratch: RefCell<Vec<f64>>,
 }
@@ -130,10 +132,10 @@ impl MachineState {
                 ..Spindle::default()
             })
             .collect();
+        let neutral = Frame::neutral(&frame_axes);
         Self {
             machine: vec![0.0; axes.len()],
-            programmable: Frame::neutral(&frame_axes),
-            frame_axes,
+            programmable: neutral.clone(),
             settable,
             axes,
             modal,
@@ -146,7 +148,16 @@ impl MachineState {
             feed: 0.0,
             spindles,
             modal_call_active: false,
-            frame_cache: RefCell::new(None),
+            // A group 8 code no block selects: the first motion fills it.
+            frame_cache: RefCell::new(FrameCache {
+                group8: WorkOffsetCode(0),
+                suppressed: false,
+                settable: neutral.clone(),
+                programmable: neutral.clone(),
+                total: neutral.clone(),
+            }),
+            neutral,
+            frame_axes,
             scratch: RefCell::new(Vec::new()),
             profile,
         }
@@ -186,15 +197,10 @@ impl MachineState {
         self.modal(14) == Some("G91")
     }
 
-    /// How the diameter axis reads values: (absolute values are diameters,
-    /// incremental values are diameters).
+    /// How the diameter axis reads values (group 29): (absolute values are
+    /// diameters, incremental values are diameters).
     pub fn diameter_mode(&self) -> (bool, bool) {
-        let mode = self
-            .modal
-            .iter()
-            .flatten()
-            .find(|c| matches!(**c, "DIAMON" | "DIAMOF" | "DIAM90" | "DIAMCYCOF"));
-        match mode.copied() {
+        match self.modal(29) {
             Some("DIAMON") => (true, true),
             Some("DIAM90") => (true, false),
             _ => (false, false),
@@ -203,12 +209,21 @@ impl MachineState {
 
     /// The infeed axis of the plane (where the tool length acts).
     pub fn infeed_axis(&self) -> Option<usize> {
-        let geometry = match self.plane() {
+        let slot = match self.plane() {
             Plane::G17 => 2,
             Plane::G18 => 1,
             Plane::G19 => 0,
         };
-        self.axes.iter().position(|a| a.geometry == Some(geometry))
+        self.frame_axes.geometry_axis(slot)
+    }
+
+    /// The settable frame in force (`$P_IFRAME`): the selected offset's,
+    /// neutral under `G500`.
+    pub fn active_settable(&self) -> &Frame {
+        match self.settable.get(usize::from(self.group8_index())) {
+            Some(s) if self.group8 != WorkOffsetCode::G500 => s,
+            _ => &self.neutral,
+        }
     }
 
     /// The frame from workpiece to machine coordinates in force for this
@@ -216,57 +231,34 @@ impl MachineState {
     /// the programmable frame (unless suppressed).
     pub fn total_frame(&self) -> Ref<'_, Frame> {
         let suppressed = self.suppression.is_some();
-        let neutral;
-        let settable = match self.settable.get(usize::from(self.group8_index())) {
-            Some(s) if self.group8 != WorkOffsetCode::G500 => s,
-            _ => {
-                neutral = Frame::neutral(&self.frame_axes);
-                &neutral
-            }
-        };
-        let fresh = self.frame_cache.borrow().as_ref().is_some_and(|c| {
+        let settable = self.active_settable();
+        let fresh = {
+            let c = self.frame_cache.borrow();
             c.group8 == self.group8
                 && c.suppressed == suppressed
                 && c.settable == *settable
                 && c.programmable == self.programmable
-        });
+        };
         if !fresh {
             let total = if suppressed {
-                Frame::neutral(&self.frame_axes)
+                self.neutral.clone()
             } else {
                 settable.chain(&self.programmable)
             };
-            *self.frame_cache.borrow_mut() = Some(FrameCache {
+            *self.frame_cache.borrow_mut() = FrameCache {
                 group8: self.group8,
                 suppressed,
                 settable: settable.clone(),
                 programmable: self.programmable.clone(),
                 total,
-            });
+            };
         }
-        Ref::map(self.frame_cache.borrow(), |c| {
-            &c.as_ref().expect("filled above").total
-        })
+        Ref::map(self.frame_cache.borrow(), |c| &c.total)
     }
 
     /// `$P_UIFRNUM`: the index of the Group 8 selection.
     pub fn group8_index(&self) -> u8 {
-        // `gcodec_profile::group8_index` of `G<n>`, without formatting the
-        // code (this runs twice for every motion).
-        match self.group8.0 {
-            500 => 0,
-            n @ 54..=57 => (n - 53) as u8,
-            n @ 505..=599 => (n - 500) as u8,
-            _ => 0,
-        }
-    }
-
-    /// The tool length offset vector in machine coordinates.
-    pub fn tool_offset(&self, out: &mut [f64]) {
-        out.fill(0.0);
-        if let Some(axis) = self.infeed_axis() {
-            out[axis] = self.tool_length;
-        }
+        gcodec_profile::group8_number_index(self.group8.0).unwrap_or(0)
     }
 
     /// Workpiece coordinates (mm, radius) of the machine position `machine`
@@ -411,12 +403,7 @@ impl RuntimeInterface for MachineState {
             ("$P_MC", []) => Ok(RtValue::Bool(self.modal_call_active)),
             ("$P_UIFRNUM", []) => Ok(RtValue::Int(i32::from(self.group8_index()))),
             ("$P_PFRAME", []) => Ok(self.frame_value(&self.programmable)),
-            ("$P_IFRAME", []) => Ok(self.frame_value(
-                self.settable
-                    .get(usize::from(self.group8_index()))
-                    .filter(|_| self.group8 != WorkOffsetCode::G500)
-                    .unwrap_or(&Frame::neutral(&self.frame_axes)),
-            )),
+            ("$P_IFRAME", []) => Ok(self.frame_value(self.active_settable())),
             ("$P_ACTFRAME", []) => Ok(self.frame_value(&self.total_frame())),
             ("$P_UIFR", [n]) => {
                 let n = n.to_int()?;

@@ -42,15 +42,20 @@ pub struct RunSummary {
 impl RunSummary {
     /// The figures of `tool`, created on first use.
     pub fn tool(&mut self, tool: Option<&str>) -> &mut ToolSummary {
+        let at = self.slot(tool);
+        &mut self.tools[at]
+    }
+
+    /// The position of `tool`'s figures in `tools`, created on first use.
+    pub fn slot(&mut self, tool: Option<&str>) -> usize {
         let at = self.tools.iter().position(|t| t.tool.as_deref() == tool);
-        let at = at.unwrap_or_else(|| {
+        at.unwrap_or_else(|| {
             self.tools.push(ToolSummary {
                 tool: tool.map(str::to_owned),
                 ..ToolSummary::default()
             });
             self.tools.len() - 1
-        });
-        &mut self.tools[at]
+        })
     }
 
     /// The sum over all tools.
