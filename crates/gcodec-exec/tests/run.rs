@@ -162,6 +162,7 @@ golden! {
     stop => "stop.mpf",
     skip => "skip.mpf",
     sections => "sections.mpf",
+    helix => "helix.mpf",
     limits => "limits.mpf",
     variables => "variables.mpf",
     lathe => "lathe.mpf",

@@ -150,8 +150,11 @@ impl Channel<'_> {
                 | MotionKind::ArcTangential
         );
         let mut arc = None;
+        // `TURN=` as programmed (`resolve_arc` accepted it: 0…999, whole).
+        let mut arc_turns = 0;
         if is_arc {
-            let resolved = self.arc(kind, plane, start, end, circle.as_deref())?;
+            let (resolved, turns) = self.arc(kind, plane, start, end, circle.as_deref())?;
+            arc_turns = turns;
             // `AR=` with a centre computes the end point in the plane.
             end = resolved.end;
             for (i, info) in self.state.axes.iter().enumerate() {
@@ -238,12 +241,7 @@ impl Channel<'_> {
                     } else {
                         a.radius
                     });
-                    event.turns = circle
-                        .as_ref()
-                        .and_then(|c| c.turns.as_ref())
-                        .map_or(0, |_| {
-                            (a.sweep.abs() / std::f64::consts::TAU).floor() as u32
-                        });
+                    event.turns = arc_turns;
                 }
                 None => {
                     event.centre = None;
@@ -321,7 +319,7 @@ impl Channel<'_> {
         v
     }
 
-    /// Resolves the arc of a block.
+    /// Resolves the arc of a block; with its `TURN=`.
     fn arc(
         &self,
         kind: MotionKind,
@@ -329,7 +327,7 @@ impl Channel<'_> {
         start: Point3,
         end: Point3,
         circle: Option<&Circle>,
-    ) -> Result<geometry::Arc, RunError> {
+    ) -> Result<(geometry::Arc, u32), RunError> {
         let empty = Circle::default();
         let circle = circle.unwrap_or(&empty);
         let direction = if kind == MotionKind::ArcCw {
@@ -406,6 +404,7 @@ impl Channel<'_> {
             turns,
             &self.options.circle_tolerance,
         )
+        .map(|arc| (arc, turns as u32))
         .map_err(|e| RunError::new(e.code(), e.to_string()))
     }
 
