@@ -149,6 +149,91 @@ fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment
     }
 }
 
+/// A run of whole lines of a source: the unit a streamed run parses,
+/// lowers and runs at a time (no token crosses a line end).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Chunk {
+    /// The bytes of its lines, line ends included.
+    pub bytes: std::ops::Range<usize>,
+    /// The index of its first block (line) in the program.
+    pub first_block: usize,
+    /// How many blocks (lines) it holds.
+    pub blocks: usize,
+}
+
+/// Cuts `src` into chunks of `lines` lines each (the last may be
+/// shorter). A source without lines is one empty chunk.
+pub fn chunks(src: &[u8], lines: usize) -> Vec<Chunk> {
+    let lines = lines.max(1);
+    let mut chunks = Vec::new();
+    let mut start = 0;
+    let mut first_block = 0;
+    while start < src.len() || chunks.is_empty() {
+        let mut end = start;
+        let mut count = 0;
+        while end < src.len() && count < lines {
+            end = src[end..]
+                .iter()
+                .position(|&b| b == b'\n')
+                .map_or(src.len(), |p| end + p + 1);
+            count += 1;
+        }
+        chunks.push(Chunk {
+            bytes: start..end,
+            first_block,
+            blocks: count,
+        });
+        first_block += count;
+        start = end;
+    }
+    chunks
+}
+
+/// One chunk, parsed: its blocks (depth not yet set: see
+/// [`crate::Pairing`]) and what else it found.
+#[derive(Debug)]
+pub struct ParsedChunk {
+    pub first_block: usize,
+    pub blocks: Vec<Block>,
+    /// Only the first chunk may hold the header and path lines.
+    pub header: Option<Header>,
+    pub path: Option<PathDirective>,
+    /// Lexical and syntax errors, in source order.
+    pub diagnostics: Vec<Diagnostic>,
+    /// The blocks holding a structure statement, by index in the program.
+    pub structure_blocks: Vec<u32>,
+}
+
+/// Parses the lines of `chunk` of `src` as [`parse_bytes`] parses them in
+/// the whole file: the same blocks, spans and diagnostics.
+pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
+    let mut blocks: Vec<Block> = Vec::with_capacity(chunk.blocks);
+    let segment = Segment {
+        start: chunk.bytes.start,
+        end: chunk.bytes.end,
+    };
+    let part = run_segment(
+        src,
+        segment,
+        &mut blocks.spare_capacity_mut()[..chunk.blocks],
+        true,
+    );
+    // SAFETY: `run_segment` wrote every one of the `chunk.blocks` slots
+    // (one block per line; `chunks` counted the lines).
+    unsafe { blocks.set_len(chunk.blocks) };
+    let mut diagnostics = part.diagnostics;
+    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    let first = chunk.first_block as u32;
+    ParsedChunk {
+        first_block: chunk.first_block,
+        blocks,
+        header: part.header,
+        path: part.path,
+        diagnostics,
+        structure_blocks: part.structure_blocks.iter().map(|b| first + b).collect(),
+    }
+}
+
 /// `slots` cut into consecutive runs of the given lengths.
 fn runs<'a, T>(mut slots: &'a mut [T], lengths: &[usize]) -> Vec<&'a mut [T]> {
     lengths

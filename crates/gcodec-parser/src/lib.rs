@@ -22,7 +22,8 @@ mod outline;
 mod structure;
 
 pub use driver::{
-    MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, parse, parse_bytes,
-    parse_bytes_in_segments, parse_bytes_with_grammar_only,
+    Chunk, MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, ParsedChunk, chunks, parse,
+    parse_bytes, parse_bytes_in_segments, parse_bytes_with_grammar_only, parse_chunk,
 };
 pub use outline::{write_expr, write_outline};
+pub use structure::Pairing;

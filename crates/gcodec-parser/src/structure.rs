@@ -45,126 +45,169 @@ pub(crate) fn pair(
     structure_blocks: &[u32],
     diagnostics: &mut Vec<Diagnostic>,
 ) {
-    let mut stack: Vec<Open> = Vec::new();
-    let mut structures: Vec<ControlStructure> = Vec::new();
-    let mut unvisited = 0;
-    for &index in structure_blocks {
-        let bi = index as usize;
-        let Some(before) = program.blocks.get_mut(unvisited..bi) else {
-            continue;
-        };
-        for block in before {
-            block.depth = stack.len() as u32;
-        }
-        unvisited = bi + 1;
-        let block = &mut program.blocks[bi];
-        let mut depth = stack.len();
-        for st in &block.statements {
-            let opens = match &st.kind {
-                StatementKind::If(_) => Some(StructureKind::If),
-                StatementKind::While(_) => Some(StructureKind::While),
-                StatementKind::For(_) => Some(StructureKind::For),
-                StatementKind::Loop => Some(StructureKind::Loop),
-                StatementKind::Repeat => Some(StructureKind::Repeat),
-                _ => None,
-            };
-            if let Some(kind) = opens {
-                structures.push(ControlStructure {
-                    kind,
-                    open: bi as u32,
-                    middle: None,
-                    close: None,
-                });
-                stack.push(Open {
-                    kind,
-                    index: structures.len() - 1,
-                    span: st.span,
-                });
-                if stack.len() == CONTROL_NESTING_LIMIT + 1 {
-                    diagnostics.push(
-                        Diagnostic::warning(
-                            "gcodec::parse::deep_nesting",
-                            format!(
-                                "control structures nested more than {CONTROL_NESTING_LIMIT} deep"
-                            ),
-                        )
-                        .with_label(st.span, "this structure is too deep for the control")
-                        .with_help("SINUMERIK allows 16 nested control structures per program level; move inner parts into a subprogram"),
-                    );
-                }
+    let mut pairing = Pairing::default();
+    pairing.feed(&mut program.blocks, 0, structure_blocks, diagnostics);
+    let (structures, unclosed) = pairing.finish();
+    diagnostics.extend(unclosed);
+    program.structures = structures;
+}
+
+/// Structure pairing fed with a program's blocks a run at a time, in
+/// order (the streamed run parses a program in chunks): the same
+/// structures, depths and diagnostics as pairing the whole program.
+#[derive(Default)]
+pub struct Pairing {
+    stack: Vec<Open>,
+    structures: Vec<ControlStructure>,
+    /// The end of the last block with content so far, and of the last
+    /// block: where an unclosed structure's end is expected.
+    content_end: Option<Span>,
+    last_end: Option<Span>,
+}
+
+impl Pairing {
+    /// Pairs the structures of `blocks`, the blocks from index `first` on,
+    /// and sets their depths. `structure_blocks` lists the absolute indices
+    /// of those among them holding a structure statement, in order.
+    pub fn feed(
+        &mut self,
+        blocks: &mut [Block],
+        first: usize,
+        structure_blocks: &[u32],
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        let stack = &mut self.stack;
+        let structures = &mut self.structures;
+        let mut unvisited = 0;
+        for &index in structure_blocks {
+            let Some(bi) = (index as usize).checked_sub(first) else {
                 continue;
-            }
-            let closes = match &st.kind {
-                StatementKind::EndIf => Some((StructureKind::If, "ENDIF")),
-                StatementKind::EndWhile => Some((StructureKind::While, "ENDWHILE")),
-                StatementKind::EndFor => Some((StructureKind::For, "ENDFOR")),
-                StatementKind::EndLoop => Some((StructureKind::Loop, "ENDLOOP")),
-                StatementKind::Until(_) => Some((StructureKind::Repeat, "UNTIL")),
-                _ => None,
             };
-            if let StatementKind::Else = st.kind {
-                match stack.last() {
-                    Some(top)
-                        if top.kind == StructureKind::If
-                            && structures[top.index].middle.is_none() =>
-                    {
-                        structures[top.index].middle = Some(bi as u32);
-                        depth = stack.len() - 1;
+            let Some(before) = blocks.get_mut(unvisited..bi) else {
+                continue;
+            };
+            for block in before {
+                block.depth = stack.len() as u32;
+            }
+            unvisited = bi + 1;
+            let index = index as usize;
+            let block = &mut blocks[bi];
+            let mut depth = stack.len();
+            for st in &block.statements {
+                let opens = match &st.kind {
+                    StatementKind::If(_) => Some(StructureKind::If),
+                    StatementKind::While(_) => Some(StructureKind::While),
+                    StatementKind::For(_) => Some(StructureKind::For),
+                    StatementKind::Loop => Some(StructureKind::Loop),
+                    StatementKind::Repeat => Some(StructureKind::Repeat),
+                    _ => None,
+                };
+                if let Some(kind) = opens {
+                    structures.push(ControlStructure {
+                        kind,
+                        open: index as u32,
+                        middle: None,
+                        close: None,
+                    });
+                    stack.push(Open {
+                        kind,
+                        index: structures.len() - 1,
+                        span: st.span,
+                    });
+                    if stack.len() == CONTROL_NESTING_LIMIT + 1 {
+                        diagnostics.push(
+                            Diagnostic::warning(
+                                "gcodec::parse::deep_nesting",
+                                format!(
+                                    "control structures nested more than {CONTROL_NESTING_LIMIT} deep"
+                                ),
+                            )
+                            .with_label(st.span, "this structure is too deep for the control")
+                            .with_help("SINUMERIK allows 16 nested control structures per program level; move inner parts into a subprogram"),
+                        );
                     }
-                    _ => diagnostics.push(
+                    continue;
+                }
+                let closes = match &st.kind {
+                    StatementKind::EndIf => Some((StructureKind::If, "ENDIF")),
+                    StatementKind::EndWhile => Some((StructureKind::While, "ENDWHILE")),
+                    StatementKind::EndFor => Some((StructureKind::For, "ENDFOR")),
+                    StatementKind::EndLoop => Some((StructureKind::Loop, "ENDLOOP")),
+                    StatementKind::Until(_) => Some((StructureKind::Repeat, "UNTIL")),
+                    _ => None,
+                };
+                if let StatementKind::Else = st.kind {
+                    match stack.last() {
+                        Some(top)
+                            if top.kind == StructureKind::If
+                                && structures[top.index].middle.is_none() =>
+                        {
+                            structures[top.index].middle = Some(index as u32);
+                            depth = stack.len() - 1;
+                        }
+                        _ => diagnostics.push(
+                            Diagnostic::error(
+                                "gcodec::parse::unmatched_end",
+                                "`ELSE` without an open `IF`",
+                            )
+                            .with_label(st.span, "no IF to belong to")
+                            .with_help("ELSE stands between `IF cond` and `ENDIF`, once per IF"),
+                        ),
+                    }
+                    continue;
+                }
+                let Some((kind, word)) = closes else { continue };
+                match stack.iter().rposition(|o| o.kind == kind) {
+                    Some(pos) => {
+                        // Everything opened after the match is left unclosed.
+                        for inner in stack.drain(pos + 1..).rev() {
+                            diagnostics.push(unclosed(&inner, st.span, "before this"));
+                        }
+                        if let Some(open) = stack.pop() {
+                            structures[open.index].close = Some(index as u32);
+                        }
+                        depth = depth.min(stack.len());
+                    }
+                    None => diagnostics.push(
                         Diagnostic::error(
                             "gcodec::parse::unmatched_end",
-                            "`ELSE` without an open `IF`",
+                            format!("`{word}` without an open `{}`", opener_word(kind)),
                         )
-                        .with_label(st.span, "no IF to belong to")
-                        .with_help("ELSE stands between `IF cond` and `ENDIF`, once per IF"),
+                        .with_label(st.span, "nothing to close")
+                        .with_help(format!(
+                            "remove it, or add the `{}` it should close",
+                            opener_word(kind)
+                        )),
                     ),
                 }
-                continue;
             }
-            let Some((kind, word)) = closes else { continue };
-            match stack.iter().rposition(|o| o.kind == kind) {
-                Some(pos) => {
-                    // Everything opened after the match is left unclosed.
-                    for inner in stack.drain(pos + 1..).rev() {
-                        diagnostics.push(unclosed(&inner, st.span, "before this"));
-                    }
-                    if let Some(open) = stack.pop() {
-                        structures[open.index].close = Some(bi as u32);
-                    }
-                    depth = depth.min(stack.len());
-                }
-                None => diagnostics.push(
-                    Diagnostic::error(
-                        "gcodec::parse::unmatched_end",
-                        format!("`{word}` without an open `{}`", opener_word(kind)),
-                    )
-                    .with_label(st.span, "nothing to close")
-                    .with_help(format!(
-                        "remove it, or add the `{}` it should close",
-                        opener_word(kind)
-                    )),
-                ),
-            }
+            block.depth = depth as u32;
         }
-        block.depth = depth as u32;
+        for block in blocks.get_mut(unvisited..).unwrap_or_default() {
+            block.depth = stack.len() as u32;
+        }
+        // The end is expected at the end of the last block that has content
+        // (of the last block, if none has).
+        let end = |b: &Block| Span::new(b.span.end, b.span.end);
+        if let Some(block) = blocks.iter().rev().find(|b| !b.span.is_empty()) {
+            self.content_end = Some(end(block));
+        }
+        if let Some(block) = blocks.last() {
+            self.last_end = Some(end(block));
+        }
     }
-    for block in program.blocks.get_mut(unvisited..).unwrap_or_default() {
-        block.depth = stack.len() as u32;
+
+    /// The structures, and a diagnostic for each one never closed.
+    pub fn finish(self) -> (Vec<ControlStructure>, Vec<Diagnostic>) {
+        let eof = self.content_end.or(self.last_end).unwrap_or_default();
+        let unclosed = self
+            .stack
+            .iter()
+            .rev()
+            .map(|open| unclosed(open, eof, "by the end of the program"))
+            .collect();
+        (self.structures, unclosed)
     }
-    // The end is expected at the end of the last block that has content.
-    let eof = program
-        .blocks
-        .iter()
-        .rev()
-        .find(|b| !b.span.is_empty())
-        .or(program.blocks.last())
-        .map(|b| Span::new(b.span.end, b.span.end))
-        .unwrap_or_default();
-    for open in stack.iter().rev() {
-        diagnostics.push(unclosed(open, eof, "by the end of the program"));
-    }
-    program.structures = structures;
 }
 
 fn opener_word(kind: StructureKind) -> &'static str {

@@ -1,12 +1,69 @@
-//! Large files are parsed in segments of whole lines on several threads;
-//! the split must not change the tree or the diagnostics.
+//! Large files are parsed in segments of whole lines on several threads,
+//! and a streamed run parses them in chunks with the structures paired as
+//! the chunks come: neither split may change the tree or the diagnostics.
 
 mod common;
 
-use gcodec_parser::parse_bytes_in_segments;
+use gcodec_parser::ast::Program;
+use gcodec_parser::{Pairing, chunks, parse_bytes_in_segments, parse_chunk};
+
+/// Parses `src` chunk by chunk, pairing structures as the chunks come.
+fn parse_in_chunks(name: &str, src: &[u8], lines: usize) -> gcodec_parser::Parse {
+    let mut pairing = Pairing::default();
+    let mut program = Program {
+        file: name.to_owned(),
+        header: None,
+        path: None,
+        blocks: Vec::new(),
+        structures: Vec::new(),
+    };
+    let mut diagnostics = Vec::new();
+    for chunk in chunks(src, lines) {
+        let mut parsed = parse_chunk(src, &chunk);
+        assert_eq!(
+            parsed.blocks.len(),
+            chunk.blocks,
+            "{name}: one block per line"
+        );
+        assert_eq!(
+            parsed.first_block,
+            program.blocks.len(),
+            "{name}: chunks in order"
+        );
+        pairing.feed(
+            &mut parsed.blocks,
+            parsed.first_block,
+            &parsed.structure_blocks,
+            &mut parsed.diagnostics,
+        );
+        program.header = program.header.take().or(parsed.header);
+        program.path = program.path.take().or(parsed.path);
+        program.blocks.append(&mut parsed.blocks);
+        diagnostics.append(&mut parsed.diagnostics);
+    }
+    let (structures, unclosed) = pairing.finish();
+    program.structures = structures;
+    diagnostics.extend(unclosed);
+    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    gcodec_parser::Parse {
+        program,
+        diagnostics,
+    }
+}
 
 fn assert_split_invariant(name: &str, src: &[u8]) {
     let whole = parse_bytes_in_segments(name, src, 1);
+    for lines in [1, 2, 7, 1000] {
+        let chunked = parse_in_chunks(name, src, lines);
+        assert_eq!(
+            whole.program, chunked.program,
+            "{name} in chunks of {lines}"
+        );
+        assert_eq!(
+            whole.diagnostics, chunked.diagnostics,
+            "{name} in chunks of {lines}"
+        );
+    }
     for threads in [2, 3, 7] {
         let split = parse_bytes_in_segments(name, src, threads);
         assert_eq!(whole.program, split.program, "{name} in {threads} segments");

@@ -22,9 +22,10 @@ use rustc_hash::FxHashMap;
 
 use gcodec_ail::JumpSearch;
 use gcodec_parser::ast::{
-    BlockNumber, CaseArm, GotoKind, Jump, JumpTarget, Program, RepeatSection, StatementKind,
-    StructureKind,
+    Block, BlockNumber, CaseArm, ControlStructure, GotoKind, Jump, JumpTarget, RepeatSection,
+    StatementKind, StructureKind,
 };
+use gcodec_source::Span;
 
 /// What a block is to the structures around it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -41,6 +42,7 @@ pub(crate) struct Flow {
     blocks: FxHashMap<usize, BlockFlow>,
     /// Blocks by label (upper case) and by block number, in order.
     labels: HashMap<String, Vec<usize>>,
+    label_spans: FxHashMap<usize, Span>,
     numbers: HashMap<u64, Vec<usize>>,
     /// Per `REPEAT` block: its section, or the target that is missing.
     sections: HashMap<usize, Result<Section, String>>,
@@ -105,10 +107,59 @@ pub(crate) enum Resolved {
     Computed,
 }
 
-impl Flow {
-    pub(crate) fn new(program: &Program) -> Self {
+/// Collects the control-flow facts of a program fed block by block in
+/// order; [`FlowBuilder::finish`] resolves them into a [`Flow`].
+#[derive(Default)]
+pub(crate) struct FlowBuilder {
+    jumps: Vec<(usize, Search, JumpTarget)>,
+    repeats: Vec<(usize, RepeatSection)>,
+    /// Blocks by label (upper case), in order, and each label's span.
+    labels: HashMap<String, Vec<usize>>,
+    label_spans: FxHashMap<usize, Span>,
+    /// Every block number with its block, in order: which of them jumps
+    /// name is known only at the end.
+    numbers: Vec<(u64, u32)>,
+}
+
+impl FlowBuilder {
+    /// Takes in block `index` of the program.
+    pub(crate) fn block(&mut self, index: usize, block: &Block) {
+        for statement in block.statements.iter() {
+            let (single, arms, default): (Option<&Jump>, &[CaseArm], Option<&Jump>) =
+                match &statement.kind {
+                    StatementKind::Goto(j) => (Some(j.as_ref()), &[], None),
+                    StatementKind::IfGoto(g) => (Some(&g.jump), &[], None),
+                    StatementKind::Case(c) => (None, &c.arms, c.default.as_ref()),
+                    StatementKind::RepeatSection(r) => {
+                        self.repeats.push((index, r.as_ref().clone()));
+                        continue;
+                    }
+                    _ => continue,
+                };
+            let all = single.into_iter().chain(arms.iter().map(|arm| &arm.jump));
+            for jump in all.chain(default) {
+                if let Some(target) = &jump.target {
+                    self.jumps
+                        .push((index, Search::of(jump.goto), target.clone()));
+                }
+            }
+        }
+        if let Some(label) = &block.label {
+            self.labels
+                .entry(label.name.to_ascii_uppercase().to_string())
+                .or_default()
+                .push(index);
+            self.label_spans.insert(index, label.span);
+        }
+        if let Some(BlockNumber { value, .. }) = &block.number {
+            self.numbers.push((*value, index as u32));
+        }
+    }
+
+    /// The facts, given the program's paired `structures`.
+    pub(crate) fn finish(self, structures: &[ControlStructure]) -> Flow {
         let mut blocks: FxHashMap<usize, BlockFlow> = FxHashMap::default();
-        for (i, s) in program.structures.iter().enumerate() {
+        for (i, s) in structures.iter().enumerate() {
             let parts = [
                 (Some(s.open), Role::Open),
                 (s.middle, Role::Middle),
@@ -124,36 +175,19 @@ impl Flow {
                 }
             }
         }
-        // One walk over the statements finds every jump and section.
-        let mut jumps: Vec<(usize, Search, &JumpTarget)> = Vec::new();
-        let mut repeats: Vec<(usize, &RepeatSection)> = Vec::new();
-        for (i, block) in program.blocks.iter().enumerate() {
-            for statement in block.statements.iter() {
-                let (single, arms, default): (Option<&Jump>, &[CaseArm], Option<&Jump>) =
-                    match &statement.kind {
-                        StatementKind::Goto(j) => (Some(j.as_ref()), &[], None),
-                        StatementKind::IfGoto(g) => (Some(&g.jump), &[], None),
-                        StatementKind::Case(c) => (None, &c.arms, c.default.as_ref()),
-                        StatementKind::RepeatSection(r) => {
-                            repeats.push((i, r.as_ref()));
-                            continue;
-                        }
-                        _ => continue,
-                    };
-                let all = single.into_iter().chain(arms.iter().map(|arm| &arm.jump));
-                for jump in all.chain(default) {
-                    if let Some(target) = &jump.target {
-                        jumps.push((i, Search::of(jump.goto), target));
-                    }
-                }
-            }
-        }
+        let FlowBuilder {
+            jumps,
+            repeats,
+            labels,
+            label_spans,
+            numbers: all_numbers,
+        } = self;
         let computed_jumps = jumps
             .iter()
             .any(|(_, _, target)| matches!(target, JumpTarget::Expr(_)));
         // Only the block numbers some jump or section names are indexed:
         // most blocks of a program have a number, few are jumped to.
-        let named = jumps.iter().map(|(_, _, t)| *t).chain(
+        let named = jumps.iter().map(|(_, _, t)| t).chain(
             repeats
                 .iter()
                 .flat_map(|(_, r)| std::iter::once(&r.start).chain(r.end.as_ref())),
@@ -164,65 +198,88 @@ impl Flow {
                 _ => None,
             })
             .collect();
-        let mut labels: HashMap<String, Vec<usize>> = HashMap::new();
-        for (i, block) in program.blocks.iter().enumerate() {
-            if let Some(label) = &block.label {
-                labels
-                    .entry(label.name.to_ascii_uppercase().to_string())
-                    .or_default()
-                    .push(i);
-            }
-            if let Some(BlockNumber { value, .. }) = &block.number {
-                if let Some(blocks) = numbers.get_mut(value) {
-                    blocks.push(i);
-                } else if computed_jumps {
-                    numbers.insert(*value, vec![i]);
-                }
+        for &(value, block) in &all_numbers {
+            if let Some(blocks) = numbers.get_mut(&value) {
+                blocks.push(block as usize);
+            } else if computed_jumps {
+                numbers.insert(value, vec![block as usize]);
             }
         }
-        let mut flow = Self {
+        let mut flow = Flow {
             blocks,
             labels,
+            label_spans,
             numbers,
             sections: HashMap::new(),
         };
         // Every jump's target block carries its label.
-        for (i, kind, target) in jumps {
-            if let Some(to) = flow.search(i, kind, target) {
+        for (i, kind, target) in &jumps {
+            if let Some(to) = flow.search(*i, *kind, target) {
                 flow.add_target(to, label_name(target, to));
             }
         }
-        for (i, repeat) in repeats {
-            let section = flow.section(i, repeat);
+        for (i, repeat) in &repeats {
+            let section = flow.section(*i, repeat);
             if let Ok((start, end)) = &section {
                 flow.add_target(*start, label_name(&repeat.start, *start));
                 flow.blocks
                     .entry(*end)
                     .or_default()
                     .section_ends
-                    .push(section_end_label(i));
+                    .push(section_end_label(*i));
             }
             flow.sections.insert(
-                i,
+                *i,
                 section.map(|(start, _)| Section {
                     start: label_name(&repeat.start, start),
-                    end: section_end_label(i),
+                    end: section_end_label(*i),
                 }),
             );
         }
         // A computed target can be any label or block number: each is
         // a label instruction for the executor's search.
         if computed_jumps {
-            for (i, block) in program.blocks.iter().enumerate() {
-                if let Some(label) = &block.label {
-                    flow.add_target(i, format!("{}@{}", label.name.to_ascii_uppercase(), i + 1));
-                }
-                if let Some(BlockNumber { value, .. }) = &block.number {
-                    flow.add_target(i, format!("N{value}@{}", i + 1));
+            let mut named_blocks: Vec<(usize, String)> = flow
+                .labels
+                .iter()
+                .flat_map(|(name, blocks)| {
+                    blocks
+                        .iter()
+                        .map(move |&b| (b, format!("{name}@{}", b + 1)))
+                })
+                .collect();
+            named_blocks.sort_by_key(|(b, _)| *b);
+            let mut named_blocks = named_blocks.into_iter().peekable();
+            let mut numbered = all_numbers.iter().peekable();
+            // In block order, a block's label before its number.
+            loop {
+                let label_block = named_blocks.peek().map(|(b, _)| *b);
+                let number_block = numbered.peek().map(|(_, b)| *b as usize);
+                match (label_block, number_block) {
+                    (Some(l), Some(n)) if l <= n => {
+                        let (b, name) = named_blocks.next().expect("peeked");
+                        flow.add_target(b, name);
+                    }
+                    (Some(_), None) => {
+                        let (b, name) = named_blocks.next().expect("peeked");
+                        flow.add_target(b, name);
+                    }
+                    (_, Some(_)) => {
+                        let &(value, b) = numbered.next().expect("peeked");
+                        flow.add_target(b as usize, format!("N{value}@{}", b + 1));
+                    }
+                    (None, None) => break,
                 }
             }
         }
         flow
+    }
+}
+
+impl Flow {
+    /// The span of the label of block `index`.
+    pub(crate) fn label_span(&self, index: usize) -> Option<Span> {
+        self.label_spans.get(&index).copied()
     }
 
     fn add_target(&mut self, block: usize, name: String) {

@@ -859,8 +859,7 @@ impl Lowering<'_> {
     /// `G4 F…` / `G4 S…`: the dwell of a block with `G4`, taking the
     /// block's F and S values (which then are no feed or speed). `G4`
     /// needs a block of its own (reference §2.7).
-    pub(super) fn dwell(&mut self, index: usize, g4: Span, plan: &mut BlockPlan) -> Op {
-        let block = &self.program.blocks[index];
+    pub(super) fn dwell(&mut self, block: &ast::Block, g4: Span, plan: &mut BlockPlan) -> Op {
         let mut others = Vec::new();
         for statement in &block.statements {
             let StatementKind::Word(word) = &statement.kind else {

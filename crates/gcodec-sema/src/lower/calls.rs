@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 
 use gcodec_ail::{Op, Value};
-use gcodec_parser::ast::{self, CallTarget, JumpTarget, Program, StatementKind};
+use gcodec_parser::ast::{self, CallTarget, JumpTarget, StatementKind};
 use gcodec_source::{Diagnostic, Span};
 
 use crate::{ggroups, values};
@@ -17,45 +17,41 @@ const ARGUMENT_NOT_VARIABLE: &str = "gcodec::lower::argument_not_variable";
 const PROC_NOT_FIRST: &str = "gcodec::lower::proc_not_first";
 
 /// A signature the file declares: by a `PROC` of its own or `EXTERN`.
-pub(super) struct Signature<'a> {
+pub(super) struct Signature {
     /// Per parameter: its name (none in `EXTERN`) and whether it is `VAR`.
-    params: Vec<(Option<&'a str>, bool)>,
+    params: Vec<(Option<String>, bool)>,
     /// Where it is declared, for the diagnostic.
     span: Span,
 }
 
-/// The signatures of the `PROC`s and `EXTERN`s of a program, by name in
-/// upper case. The later declaration of a name wins, as a later `EXTERN`
-/// replaces an earlier one on the control.
-pub(super) fn signatures(program: &Program) -> HashMap<String, Signature<'_>> {
-    let mut found = HashMap::new();
-    for block in &program.blocks {
-        for statement in block.statements.iter() {
-            let (name, signature) = match &statement.kind {
-                StatementKind::Proc(proc) => (
-                    &proc.name,
-                    Signature {
-                        params: proc
-                            .params
-                            .iter()
-                            .map(|p| (Some(p.name.as_str()), p.by_reference))
-                            .collect(),
-                        span: proc.name_span,
-                    },
-                ),
-                StatementKind::Extern(decl) => (
-                    &decl.name,
-                    Signature {
-                        params: decl.params.iter().map(|p| (None, p.by_reference)).collect(),
-                        span: statement.span,
-                    },
-                ),
-                _ => continue,
-            };
-            found.insert(name.to_ascii_uppercase().to_string(), signature);
-        }
+/// Adds the signatures of the `PROC`s and `EXTERN`s of `block` to those of
+/// its program, by name in upper case. The later declaration of a name
+/// wins, as a later `EXTERN` replaces an earlier one on the control.
+pub(super) fn add_signatures(block: &ast::Block, found: &mut HashMap<String, Signature>) {
+    for statement in block.statements.iter() {
+        let (name, signature) = match &statement.kind {
+            StatementKind::Proc(proc) => (
+                &proc.name,
+                Signature {
+                    params: proc
+                        .params
+                        .iter()
+                        .map(|p| (Some(p.name.to_string()), p.by_reference))
+                        .collect(),
+                    span: proc.name_span,
+                },
+            ),
+            StatementKind::Extern(decl) => (
+                &decl.name,
+                Signature {
+                    params: decl.params.iter().map(|p| (None, p.by_reference)).collect(),
+                    span: statement.span,
+                },
+            ),
+            _ => continue,
+        };
+        found.insert(name.to_ascii_uppercase().to_string(), signature);
     }
-    found
 }
 
 impl Lowering<'_> {
@@ -154,7 +150,7 @@ impl Lowering<'_> {
         for ((name, by_reference), arg) in signature.params.iter().zip(args) {
             let Some(arg) = arg else { continue };
             if *by_reference && !matches!(arg.kind, ast::ExprKind::Var { .. }) {
-                problems.push((*name, arg.span));
+                problems.push((name.clone(), arg.span));
             }
         }
         for (name, at) in problems {
@@ -258,14 +254,7 @@ impl Lowering<'_> {
     /// `PROC NAME(REAL A, VAR INT B) SBLOF`: the program's signature. It
     /// must be the program's first block (language reference §8.5).
     pub(super) fn procedure(&mut self, proc: &ast::Proc, span: Span, plan: &mut BlockPlan) {
-        let first = self
-            .program
-            .blocks
-            .iter()
-            .find(|b| !b.statements.is_empty())
-            .and_then(|b| b.statements.first())
-            .map(|s| s.span);
-        if first != Some(span) {
+        if self.outline.first_statement != Some(span) {
             self.diagnostics.push(
                 Diagnostic::error(PROC_NOT_FIRST, "`PROC` must open the program")
                     .with_label(span, "after other statements")

@@ -29,7 +29,7 @@ impl<'a> Lowering<'a> {
             plan.head.push((Op::Label { name: name.clone() }, at));
         }
         for &(structure, role) in &facts.roles {
-            let s = &self.program.structures[structure];
+            let s = &self.outline.structures[structure];
             let line = s.open as usize + 1;
             let label = |part: &str| flow::structure_label(s.kind, line, part);
             let jump = |target: String| Op::Jump {
@@ -110,12 +110,12 @@ impl<'a> Lowering<'a> {
         kind: StructureKind,
         role: Role,
     ) -> Option<&'a ast::ControlStructure> {
-        let program = self.program;
+        let structures = &self.outline.structures;
         self.flow
             .roles(index)
             .iter()
-            .find(|(s, r)| *r == role && program.structures[*s].kind == kind)
-            .map(|(s, _)| &program.structures[*s])
+            .find(|(s, r)| *r == role && structures[*s].kind == kind)
+            .map(|(s, _)| &structures[*s])
     }
 
     /// `IF`, `WHILE`, `UNTIL`, `FOR`, `ENDFOR` and jumps.
@@ -214,12 +214,7 @@ impl<'a> Lowering<'a> {
                     return;
                 };
                 let line = s.open as usize + 1;
-                let open = &self.program.blocks[s.open as usize];
-                let var = open.statements.iter().find_map(|st| match &st.kind {
-                    StatementKind::For(f) => Some(values::variable(&f.var)),
-                    _ => None,
-                });
-                if let Some(var) = var {
+                if let Some(var) = self.outline.for_variables.get(&s.open).cloned() {
                     plan.tail.push((
                         Op::Assign {
                             target: Box::new(var.clone()),

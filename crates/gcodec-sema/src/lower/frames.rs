@@ -18,13 +18,12 @@ const FRAME_NOT_ALONE: &str = "gcodec::lower::frame_not_alone";
 impl Lowering<'_> {
     pub(super) fn frame(
         &mut self,
-        index: usize,
+        block: &ast::Block,
         frame: &ast::Frame,
         span: Span,
         plan: &mut BlockPlan,
     ) {
         // Frame instructions need a block of their own (reference §9.1).
-        let block = &self.program.blocks[index];
         if block.statements.len() > 1 {
             let mut diagnostic = Diagnostic::error(
                 FRAME_NOT_ALONE,

@@ -26,12 +26,15 @@ use gcodec_source::{Diagnostic, Span};
 use crate::definitions::Definitions;
 use crate::flow::Flow;
 use crate::{ggroups, mfunc};
+use outline::Outline;
 
 mod addresses;
 mod calls;
 mod control;
 mod frames;
+pub(crate) mod outline;
 mod statements;
+pub(crate) mod stream;
 mod variables;
 mod words;
 
@@ -75,35 +78,9 @@ pub fn lower_in_parts(
     definitions: &Definitions,
     parts: usize,
 ) -> Lowered {
-    // The three walks over the whole program are independent: on a large
-    // program the names are collected on a second thread.
-    let ((names, mut diagnostics), flow, signatures) =
-        if parts > 1 && program.blocks.len() >= 100_000 {
-            std::thread::scope(|scope| {
-                let names = scope.spawn(|| variables::Names::new(program, profile, definitions));
-                let flow = Flow::new(program);
-                let signatures = calls::signatures(program);
-                // A panic surfaces on this thread, as it would without one.
-                let names = names
-                    .join()
-                    .unwrap_or_else(|_| variables::Names::new(program, profile, definitions));
-                (names, flow, signatures)
-            })
-        } else {
-            (
-                variables::Names::new(program, profile, definitions),
-                Flow::new(program),
-                calls::signatures(program),
-            )
-        };
-    let context = Context {
-        flow,
-        m_overrides: mfunc::overrides(profile),
-        signatures,
-        names,
-    };
-    diagnostics.extend(duplicate_labels(program, &context.flow));
-    let subprogram = is_subprogram(program);
+    let outline = outline::outline(program, profile, definitions);
+    let mut diagnostics = outline.diagnostics().to_vec();
+    let subprogram = outline.subprogram;
     let blocks = program.blocks.len();
     let parts = parts.clamp(1, blocks.max(1));
     let ranges: Vec<std::ops::Range<usize>> = (0..parts)
@@ -124,7 +101,7 @@ pub fn lower_in_parts(
     let total: usize = statements.iter().sum();
     let lower_part = |k: usize, range: std::ops::Range<usize>| {
         let reserve = if k == 0 { total } else { statements[k] };
-        let mut lowering = Lowering::new(&context, program, profile, reserve, k > 0);
+        let mut lowering = Lowering::new(&outline, profile, reserve, k > 0);
         if k == 0 && subprogram {
             // A subprogram starts in its caller's state.
             lowering.forget_modal_state();
@@ -179,12 +156,7 @@ pub fn lower_in_parts(
         first.document.instructions.append(&mut instructions);
         first.diagnostics.extend(part.diagnostics);
     }
-    let end = program.blocks.last().map_or(0, |b| b.span.end);
-    let source = first.source_at(blocks.max(1) - 1, Span::new(end, end));
-    first.document.instructions.push(Instruction {
-        op: Op::End,
-        source,
-    });
+    first.end();
     let mut document = first.document;
     diagnostics.append(&mut first.diagnostics);
     refine(&mut document, profile, subprogram);
@@ -192,46 +164,6 @@ pub fn lower_in_parts(
         document,
         diagnostics,
     }
-}
-
-/// Labels defined twice: allowed (jumps find the nearest in their
-/// direction), but rarely meant.
-fn duplicate_labels(program: &Program, flow: &Flow) -> Vec<Diagnostic> {
-    let mut duplicates: Vec<(&String, &Vec<usize>)> = flow.duplicate_labels().collect();
-    duplicates.sort_by_key(|(_, blocks)| blocks[0]);
-    let span = |b: usize| {
-        program.blocks[b]
-            .label
-            .as_ref()
-            .map_or(program.blocks[b].span, |l| l.span)
-    };
-    duplicates
-        .into_iter()
-        .map(|(name, blocks)| {
-            // The control does not check this (reference §1.7): advice.
-            let mut diagnostic = Diagnostic::advice(
-                DUPLICATE_LABEL,
-                format!("label `{name}` is defined {} times", blocks.len()),
-            )
-            .with_label(span(blocks[0]), "first")
-            .with_help("a jump goes to the nearest one in its search direction");
-            for &b in &blocks[1..] {
-                diagnostic = diagnostic.with_label(span(b), "again");
-            }
-            diagnostic
-        })
-        .collect()
-}
-
-/// What every part of a lowering reads, computed once before the blocks.
-struct Context<'a> {
-    flow: Flow,
-    /// `mcode_class_overrides` by M value.
-    m_overrides: HashMap<u32, gcodec_ail::MClass>,
-    /// The `PROC` and `EXTERN` signatures of the program, by name.
-    signatures: HashMap<String, calls::Signature<'a>>,
-    /// The names the program may use, by section (`variables.rs`).
-    names: variables::Names<'a>,
 }
 
 /// Settles what the parts after the first left open because they start
@@ -341,25 +273,12 @@ fn is_threaded(kind: MotionKind) -> bool {
     )
 }
 
-/// Whether `program` is a subprogram: it starts in its caller's modal
-/// state. `.SPF` files and programs opening with `PROC` are.
-fn is_subprogram(program: &Program) -> bool {
-    let spf = std::path::Path::new(&program.file)
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("spf"));
-    let proc = program
-        .blocks
-        .iter()
-        .find_map(|b| b.statements.first())
-        .is_some_and(|s| matches!(s.kind, ast::StatementKind::Proc(_)));
-    spf || proc
-}
-
 /// Fills in what lowering left to run time because paths meet
 /// (`motion: modal`, `group8_selected: null`) where the dataflow over the
 /// whole document ([`crate::modal`]) shows every path agrees. Straight-line
 /// programs have nothing to refine and skip the analysis.
-fn refine(document: &mut Document, profile: &Profile, subprogram: bool) {
+#[doc(hidden)]
+pub fn refine(document: &mut Document, profile: &Profile, subprogram: bool) {
     let open = |op: &Op| match op {
         Op::Motion { motion, .. } => *motion == MotionKind::Modal,
         Op::WorkOffset {
@@ -418,7 +337,7 @@ const MISSING_CIRCLE_DATA: &str = "gcodec::lower::missing_circle_data";
 pub(crate) const INVALID_VALUE: &str = "gcodec::lower::invalid_value";
 const UNKNOWN_SYSTEM_VARIABLE: &str = "gcodec::lower::unknown_system_variable";
 const MISSING_JUMP_TARGET: &str = "gcodec::lower::missing_jump_target";
-const DUPLICATE_LABEL: &str = "gcodec::lower::duplicate_label";
+pub(crate) const DUPLICATE_LABEL: &str = "gcodec::lower::duplicate_label";
 
 /// The warning for a construct lowering does not translate yet: it is
 /// named, never dropped in silence.
@@ -469,8 +388,10 @@ fn direction(kind: GotoKind) -> &'static str {
 
 /// The state carried from block to block.
 struct Lowering<'a> {
-    program: &'a Program,
+    outline: &'a Outline<'a>,
     profile: &'a Profile,
+    /// Where the block being lowered starts (columns count from there).
+    block_start: u32,
     file: Arc<str>,
     document: Document,
     diagnostics: Vec<Diagnostic>,
@@ -497,7 +418,7 @@ struct Lowering<'a> {
     /// The Group 8 indices the machine has.
     group8_supported: [bool; 100],
     /// The `PROC` and `EXTERN` signatures of the program, by name.
-    signatures: &'a HashMap<String, calls::Signature<'a>>,
+    signatures: &'a HashMap<String, calls::Signature>,
     /// The names the program may use, by section (`variables.rs`).
     names: &'a variables::Names<'a>,
 }
@@ -589,8 +510,7 @@ impl<'a> Lowering<'a> {
     /// of about `statements` statements; `inherits` for a part after the
     /// first, which starts in the state the part before it ends in.
     fn new(
-        context: &'a Context<'a>,
-        program: &'a Program,
+        outline: &'a Outline<'a>,
         profile: &'a Profile,
         statements: usize,
         inherits: bool,
@@ -603,9 +523,10 @@ impl<'a> Lowering<'a> {
             group8 = None;
         }
         Self {
-            program,
+            outline,
             profile,
-            file: Arc::from(program.file.as_str()),
+            block_start: 0,
+            file: Arc::clone(&outline.file),
             document: Document {
                 instructions: Vec::with_capacity(statements * 5 / 4 + 16),
                 ..Document::new()
@@ -618,20 +539,19 @@ impl<'a> Lowering<'a> {
             group8_inherited: inherits,
             pending_motions: Vec::new(),
             pending_offsets: Vec::new(),
-            flow: &context.flow,
-            m_overrides: &context.m_overrides,
+            flow: &outline.flow,
+            m_overrides: &outline.m_overrides,
             group8_supported: profile.work_offsets.supported_group8(),
-            signatures: &context.signatures,
-            names: &context.names,
+            signatures: &outline.signatures,
+            names: &outline.names,
         }
     }
 
     fn source_at(&self, block: usize, span: Span) -> Source {
-        let start = self.program.blocks.get(block).map_or(0, |b| b.span.start);
         Source {
             file: self.file.clone(),
             line: block as u32 + 1,
-            col: span.start.saturating_sub(start) + 1,
+            col: span.start.saturating_sub(self.block_start) + 1,
             span: ByteRange {
                 start: span.start,
                 end: span.end,
@@ -666,7 +586,19 @@ impl<'a> Lowering<'a> {
         self.group8_inherited = false;
     }
 
+    /// The program's end, after its last block.
+    fn end(&mut self) {
+        let (start, end) = self.outline.last_block;
+        self.block_start = start;
+        let source = self.source_at(self.outline.blocks.max(1) - 1, Span::new(end, end));
+        self.document.instructions.push(Instruction {
+            op: Op::End,
+            source,
+        });
+    }
+
     fn block(&mut self, index: usize, block: &Block) {
+        self.block_start = block.span.start;
         let max = *self.profile.program.max_block_length.get_ref();
         if block.span.len() > max {
             self.diagnostics.push(
@@ -690,7 +622,7 @@ impl<'a> Lowering<'a> {
             self.structure_parts(facts, block, &mut plan);
         }
         for statement in &block.statements {
-            self.statement(index, statement, &mut plan);
+            self.statement(block, index, statement, &mut plan);
         }
         // Jump targets and structure labels come first: a jump to a skipped
         // block lands before its skip test.
@@ -797,7 +729,7 @@ impl<'a> Lowering<'a> {
             .iter()
             .find(|(g, c, _)| *g == 2 && *c == "G4")
             .map(|(_, _, s)| *s)
-            .map(|g4| (self.dwell(index, g4, &mut plan), g4));
+            .map(|g4| (self.dwell(block, g4, &mut plan), g4));
         for &(group, code, span) in &plan.g_codes {
             if group == 8 || dwell.is_some() && code == "G4" {
                 continue;

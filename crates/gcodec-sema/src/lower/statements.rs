@@ -11,6 +11,7 @@ use super::{BlockPlan, Lowering};
 impl Lowering<'_> {
     pub(super) fn statement(
         &mut self,
+        block: &ast::Block,
         index: usize,
         statement: &ast::Statement,
         plan: &mut BlockPlan,
@@ -34,7 +35,7 @@ impl Lowering<'_> {
             | StatementKind::EndLoop
             | StatementKind::Repeat => {}
             StatementKind::Def(def) => self.declare(def, span, plan),
-            StatementKind::Frame(frame) => self.frame(index, frame, span, plan),
+            StatementKind::Frame(frame) => self.frame(block, frame, span, plan),
             StatementKind::Ret(ret) => {
                 let values = ret
                     .args

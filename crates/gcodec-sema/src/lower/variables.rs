@@ -137,116 +137,122 @@ pub(super) struct Names<'a> {
     current: AtomicUsize,
 }
 
-impl<'a> Names<'a> {
-    /// Collects the sections and local names of `program`; reports `DEF`s
-    /// after the first executable statement and names defined twice.
-    pub(super) fn new(
-        program: &ast::Program,
-        profile: &Profile,
-        definitions: &'a Definitions,
-    ) -> (Self, Vec<Diagnostic>) {
+/// Collects the sections and local names of a program fed block by block
+/// in order; reports `DEF`s after the first executable statement and
+/// names defined twice.
+pub(super) struct NameCollector<'a> {
+    names: Names<'a>,
+    diagnostics: Vec<Diagnostic>,
+    /// Still in the definition part of the section; else the first
+    /// executable statement.
+    first_executable: Option<Span>,
+    /// The last block with statements ended a program part.
+    after_end: bool,
+    new_section_next: bool,
+}
+
+impl<'a> NameCollector<'a> {
+    pub(super) fn new(profile: &Profile, definitions: &'a Definitions) -> Self {
         let mut axes = NameMap::default();
         for axis in &profile.axes {
             axes.insert_new(axis.name.get_ref(), ());
         }
-        let mut names = Names {
-            definitions,
-            axes,
-            sections: vec![Section::default()],
-            current: AtomicUsize::new(0),
-        };
-        let diagnostics = names.collect(program);
-        (names, diagnostics)
+        NameCollector {
+            names: Names {
+                definitions,
+                axes,
+                sections: vec![Section::default()],
+                current: AtomicUsize::new(0),
+            },
+            diagnostics: Vec::new(),
+            first_executable: None,
+            after_end: false,
+            new_section_next: false,
+        }
     }
 
-    fn collect(&mut self, program: &ast::Program) -> Vec<Diagnostic> {
-        let mut diagnostics = Vec::new();
-        // Still in the definition part of the section; else the first
-        // executable statement.
-        let mut first_executable: Option<Span> = None;
-        // The last block with statements ended a program part.
-        let mut after_end = false;
-        let mut new_section_next = false;
-        for block in program.blocks.iter() {
-            if block.statements.is_empty() {
-                continue;
-            }
-            if std::mem::take(&mut new_section_next) {
-                self.start_section(block.span.start);
-                first_executable = None;
-            }
-            let mut ends = false;
-            for statement in block.statements.iter() {
-                let span = statement.span;
-                match &statement.kind {
-                    StatementKind::Proc(proc) => {
-                        self.start_section(block.span.start);
-                        first_executable = None;
-                        for param in &proc.params {
-                            let shape = Shape::new(
-                                DataType::from_ast(&param.ty.kind),
-                                param.dims.iter().map(constant_count),
-                            );
-                            self.define(
-                                param.span,
-                                &param.name,
-                                shape,
-                                span.start,
-                                &mut diagnostics,
-                            );
-                        }
-                    }
-                    StatementKind::Def(def) => {
-                        if let Some(executable) = first_executable {
-                            if after_end {
-                                self.start_section(block.span.start);
-                                first_executable = None;
-                            } else {
-                                diagnostics.push(
-                                    Diagnostic::error(
-                                        MISPLACED_DEFINITION,
-                                        "`DEF` after the first executable statement",
-                                    )
-                                    .with_label(span, "defined here")
-                                    .with_label(executable, "the program part starts here")
-                                    .with_help("definitions belong at the start of the program or procedure, before any other statement; the control rejects this `DEF` (alarm 14500)"),
-                                );
-                            }
-                        }
-                        let ty = DataType::from_ast(&def.ty.kind);
-                        for var in &def.vars {
-                            let shape = Shape::new(ty, var.dims.iter().map(constant_count));
-                            self.define(var.span, &var.name, shape, var.span.end, &mut diagnostics);
-                        }
-                    }
-                    StatementKind::Define(define) => {
-                        let section = self.sections.last_mut().expect("one section");
-                        section.macros.insert_new(&define.name, span.end);
-                    }
-                    StatementKind::Redef(_) | StatementKind::Extern(_) => {}
-                    StatementKind::EndProc => {
-                        ends = true;
-                        new_section_next = true;
-                        first_executable.get_or_insert(span);
-                    }
-                    StatementKind::Ret(_) => {
-                        ends = true;
-                        first_executable.get_or_insert(span);
-                    }
-                    StatementKind::Word(word) if is_program_end(word, span) => {
-                        ends = true;
-                        first_executable.get_or_insert(span);
-                    }
-                    _ => {
-                        first_executable.get_or_insert(span);
+    /// The names and what was wrong with them.
+    pub(super) fn finish(self) -> (Names<'a>, Vec<Diagnostic>) {
+        (self.names, self.diagnostics)
+    }
+
+    /// Takes in the next block of the program (its depth set).
+    pub(super) fn block(&mut self, block: &ast::Block) {
+        if block.statements.is_empty() {
+            return;
+        }
+        let names = &mut self.names;
+        let diagnostics = &mut self.diagnostics;
+        if std::mem::take(&mut self.new_section_next) {
+            names.start_section(block.span.start);
+            self.first_executable = None;
+        }
+        let mut ends = false;
+        for statement in block.statements.iter() {
+            let span = statement.span;
+            match &statement.kind {
+                StatementKind::Proc(proc) => {
+                    names.start_section(block.span.start);
+                    self.first_executable = None;
+                    for param in &proc.params {
+                        let shape = Shape::new(
+                            DataType::from_ast(&param.ty.kind),
+                            param.dims.iter().map(constant_count),
+                        );
+                        names.define(param.span, &param.name, shape, span.start, diagnostics);
                     }
                 }
+                StatementKind::Def(def) => {
+                    if let Some(executable) = self.first_executable {
+                        if self.after_end {
+                            names.start_section(block.span.start);
+                            self.first_executable = None;
+                        } else {
+                            diagnostics.push(
+                                Diagnostic::error(
+                                    MISPLACED_DEFINITION,
+                                    "`DEF` after the first executable statement",
+                                )
+                                .with_label(span, "defined here")
+                                .with_label(executable, "the program part starts here")
+                                .with_help("definitions belong at the start of the program or procedure, before any other statement; the control rejects this `DEF` (alarm 14500)"),
+                            );
+                        }
+                    }
+                    let ty = DataType::from_ast(&def.ty.kind);
+                    for var in &def.vars {
+                        let shape = Shape::new(ty, var.dims.iter().map(constant_count));
+                        names.define(var.span, &var.name, shape, var.span.end, diagnostics);
+                    }
+                }
+                StatementKind::Define(define) => {
+                    let section = names.sections.last_mut().expect("one section");
+                    section.macros.insert_new(&define.name, span.end);
+                }
+                StatementKind::Redef(_) | StatementKind::Extern(_) => {}
+                StatementKind::EndProc => {
+                    ends = true;
+                    self.new_section_next = true;
+                    self.first_executable.get_or_insert(span);
+                }
+                StatementKind::Ret(_) => {
+                    ends = true;
+                    self.first_executable.get_or_insert(span);
+                }
+                StatementKind::Word(word) if is_program_end(word, span) => {
+                    ends = true;
+                    self.first_executable.get_or_insert(span);
+                }
+                _ => {
+                    self.first_executable.get_or_insert(span);
+                }
             }
-            after_end = ends && block.depth == 0;
         }
-        diagnostics
+        self.after_end = ends && block.depth == 0;
     }
+}
 
+impl<'a> Names<'a> {
     fn start_section(&mut self, start: u32) {
         self.sections.push(Section {
             start,

@@ -6,7 +6,7 @@
 #[path = "../../../gcodec-parser/tests/common/mod.rs"]
 mod parser_common;
 
-pub use parser_common::{corpus_dir, programs, repo};
+pub use parser_common::{all_programs, corpus_dir, programs, repo};
 
 pub mod machines;
 

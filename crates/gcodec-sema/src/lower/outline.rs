@@ -1,0 +1,188 @@
+//! What lowering reads about the whole program before its first block:
+//! control flow (structures, jump targets, `REPEAT` sections), the names
+//! of each section, the `PROC`/`EXTERN` signatures. It owns all of it, so
+//! a program can be outlined chunk by chunk and its syntax trees dropped
+//! (a streamed run, `crate::ChunkLowering`), or outlined whole.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use gcodec_ail::MClass;
+use gcodec_parser::ast::{self, Block, ControlStructure, StatementKind};
+use gcodec_profile::Profile;
+use gcodec_source::{Diagnostic, Span};
+use rustc_hash::FxHashMap;
+
+use crate::definitions::Definitions;
+use crate::flow::{Flow, FlowBuilder};
+use crate::{mfunc, values};
+
+use super::{DUPLICATE_LABEL, calls, variables};
+
+/// The whole-program facts lowering reads, computed before the blocks.
+pub struct Outline<'d> {
+    pub(super) file: Arc<str>,
+    pub(super) structures: Vec<ControlStructure>,
+    /// The loop variable of each `FOR`, by the block that opens it: the
+    /// `ENDFOR` block counts it up.
+    pub(super) for_variables: FxHashMap<u32, gcodec_ail::Expr>,
+    pub(super) flow: Flow,
+    /// The names the program may use, by section (`variables.rs`).
+    pub(super) names: variables::Names<'d>,
+    /// The `PROC` and `EXTERN` signatures of the program, by name.
+    pub(super) signatures: HashMap<String, calls::Signature>,
+    /// `mcode_class_overrides` by M value.
+    pub(super) m_overrides: HashMap<u32, MClass>,
+    /// It starts in its caller's modal state (see [`OutlineBuilder`]).
+    pub(super) subprogram: bool,
+    /// Where the program's first statement is (`PROC` must be it).
+    pub(super) first_statement: Option<Span>,
+    /// How many blocks (lines) the program has.
+    pub(super) blocks: usize,
+    /// The start and end of its last block: the program's end instruction
+    /// sits there.
+    pub(super) last_block: (u32, u32),
+    /// What outlining found wrong (names defined twice or too late) and
+    /// advice on labels defined twice.
+    diagnostics: Vec<Diagnostic>,
+}
+
+impl Outline<'_> {
+    /// Outlining's diagnostics: report them with the lowering's.
+    pub fn diagnostics(&self) -> &[Diagnostic] {
+        &self.diagnostics
+    }
+
+    /// Whether the program starts in its caller's modal state: a `.SPF`
+    /// file, or one opening with `PROC`.
+    pub fn is_subprogram(&self) -> bool {
+        self.subprogram
+    }
+
+    /// How many blocks (lines) the program has.
+    pub fn blocks(&self) -> usize {
+        self.blocks
+    }
+}
+
+/// Builds an [`Outline`] from a program's blocks, fed in order (their
+/// depths set by the structure pairing), a run at a time.
+pub struct OutlineBuilder<'d> {
+    file: Arc<str>,
+    profile_overrides: HashMap<u32, MClass>,
+    flow: FlowBuilder,
+    names: variables::NameCollector<'d>,
+    signatures: HashMap<String, calls::Signature>,
+    for_variables: FxHashMap<u32, gcodec_ail::Expr>,
+    /// The first statement of the program, once seen, and whether it is
+    /// `PROC`.
+    first_statement: Option<(Span, bool)>,
+    blocks: usize,
+    last_block: (u32, u32),
+}
+
+impl<'d> OutlineBuilder<'d> {
+    /// An outline of the program in `file` for the machine `profile`
+    /// describes, with the global names of `definitions`.
+    pub fn new(file: &str, profile: &Profile, definitions: &'d Definitions) -> Self {
+        Self {
+            file: Arc::from(file),
+            profile_overrides: mfunc::overrides(profile),
+            flow: FlowBuilder::default(),
+            names: variables::NameCollector::new(profile, definitions),
+            signatures: HashMap::new(),
+            for_variables: FxHashMap::default(),
+            first_statement: None,
+            blocks: 0,
+            last_block: (0, 0),
+        }
+    }
+
+    /// Takes in the next blocks of the program, the first of them block
+    /// `first` (0-based).
+    pub fn feed(&mut self, first: usize, blocks: &[Block]) {
+        for (offset, block) in blocks.iter().enumerate() {
+            let index = first + offset;
+            self.flow.block(index, block);
+            self.names.block(block);
+            if block.statements.is_empty() {
+                continue;
+            }
+            calls::add_signatures(block, &mut self.signatures);
+            self.first_statement.get_or_insert_with(|| {
+                let first = &block.statements[0];
+                (first.span, matches!(first.kind, StatementKind::Proc(_)))
+            });
+            if let Some(f) = block.statements.iter().find_map(|st| match &st.kind {
+                StatementKind::For(f) => Some(f),
+                _ => None,
+            }) {
+                self.for_variables
+                    .insert(index as u32, values::variable(&f.var));
+            }
+        }
+        if let Some(last) = blocks.last() {
+            self.blocks = first + blocks.len();
+            self.last_block = (last.span.start, last.span.end);
+        }
+    }
+
+    /// The outline, given the program's paired `structures`.
+    pub fn finish(self, structures: Vec<ControlStructure>) -> Outline<'d> {
+        let flow = self.flow.finish(&structures);
+        let (names, mut diagnostics) = self.names.finish();
+        diagnostics.extend(duplicate_labels(&flow));
+        let spf = std::path::Path::new(&*self.file)
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("spf"));
+        Outline {
+            subprogram: spf || self.first_statement.is_some_and(|(_, proc)| proc),
+            first_statement: self.first_statement.map(|(span, _)| span),
+            file: self.file,
+            structures,
+            for_variables: self.for_variables,
+            flow,
+            names,
+            signatures: self.signatures,
+            m_overrides: self.profile_overrides,
+            blocks: self.blocks,
+            last_block: self.last_block,
+            diagnostics,
+        }
+    }
+}
+
+/// The outline of a whole parsed program.
+pub fn outline<'d>(
+    program: &ast::Program,
+    profile: &Profile,
+    definitions: &'d Definitions,
+) -> Outline<'d> {
+    let mut builder = OutlineBuilder::new(&program.file, profile, definitions);
+    builder.feed(0, &program.blocks);
+    builder.finish(program.structures.clone())
+}
+
+/// Labels defined twice: allowed (jumps find the nearest in their
+/// direction), but rarely meant.
+fn duplicate_labels(flow: &Flow) -> Vec<Diagnostic> {
+    let mut duplicates: Vec<(&String, &Vec<usize>)> = flow.duplicate_labels().collect();
+    duplicates.sort_by_key(|(_, blocks)| blocks[0]);
+    let span = |b: usize| flow.label_span(b).unwrap_or_default();
+    duplicates
+        .into_iter()
+        .map(|(name, blocks)| {
+            // The control does not check this (reference §1.7): advice.
+            let mut diagnostic = Diagnostic::advice(
+                DUPLICATE_LABEL,
+                format!("label `{name}` is defined {} times", blocks.len()),
+            )
+            .with_label(span(blocks[0]), "first")
+            .with_help("a jump goes to the nearest one in its search direction");
+            for &b in &blocks[1..] {
+                diagnostic = diagnostic.with_label(span(b), "again");
+            }
+            diagnostic
+        })
+        .collect()
+}

@@ -1,0 +1,110 @@
+//! A streamed run outlines a program chunk by chunk, then lowers it chunk
+//! by chunk again: the chunks' instructions, refined, are the document of
+//! lowering the whole program, and their diagnostics its diagnostics.
+
+use gcodec_parser::{Pairing, chunks, parse_chunk};
+use gcodec_sema::{ChunkLowering, Definitions, OutlineBuilder, lower_in_parts, refine};
+
+mod common;
+
+#[path = "../../gcodec-parser/benches/program/mod.rs"]
+mod program;
+
+fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Profile) {
+    let parsed = gcodec_parser::parse_bytes(name, src);
+    let definitions = Definitions::new();
+    let whole = lower_in_parts(&parsed.program, profile, &definitions, 1);
+    for lines in [1, 3, 64] {
+        let chunks = chunks(src, lines);
+        // Pass 1: the outline, the trees dropped chunk by chunk.
+        let mut builder = OutlineBuilder::new(name, profile, &definitions);
+        let mut pairing = Pairing::default();
+        let mut diagnostics = Vec::new();
+        for chunk in &chunks {
+            let mut parsed = parse_chunk(src, chunk);
+            pairing.feed(
+                &mut parsed.blocks,
+                parsed.first_block,
+                &parsed.structure_blocks,
+                &mut diagnostics,
+            );
+            builder.feed(parsed.first_block, &parsed.blocks);
+        }
+        let (structures, _) = pairing.finish();
+        let outline = builder.finish(structures);
+        diagnostics.clear();
+        diagnostics.extend_from_slice(outline.diagnostics());
+        // Pass 2: the chunks parsed again and lowered in order.
+        let mut lowering = ChunkLowering::new(&outline, profile);
+        let mut document = gcodec_ail::Document::new();
+        for chunk in &chunks {
+            let parsed = parse_chunk(src, chunk);
+            let mut lowered = lowering
+                .lower(parsed.first_block, &parsed.blocks)
+                .expect("chunks in order");
+            document.instructions.append(&mut lowered.instructions);
+            diagnostics.append(&mut lowered.diagnostics);
+        }
+        let end = lowering.finish();
+        document.instructions.extend(end.instructions);
+        diagnostics.extend(end.diagnostics);
+        refine(&mut document, profile, outline.is_subprogram());
+        assert_eq!(
+            whole.diagnostics, diagnostics,
+            "{name}: diagnostics differ in chunks of {lines}"
+        );
+        assert!(
+            whole.document == document,
+            "{name}: instructions differ in chunks of {lines}"
+        );
+    }
+}
+
+#[test]
+fn chunks_out_of_order_are_refused() {
+    let profile = gcodec_profile::builtin().unwrap();
+    let definitions = Definitions::new();
+    let src = b"G1 X1 F100\nX2\nM30\n";
+    let parsed = gcodec_parser::parse_bytes("order.mpf", src);
+    let outline = gcodec_sema::outline(&parsed.program, &profile, &definitions);
+    let mut lowering = ChunkLowering::new(&outline, &profile);
+    assert!(lowering.lower(1, &parsed.program.blocks[1..]).is_none());
+    assert!(lowering.lower(0, &parsed.program.blocks[..1]).is_some());
+    assert!(lowering.lower(0, &parsed.program.blocks[..1]).is_none());
+}
+
+#[test]
+fn the_generated_program_lowers_the_same_streamed() {
+    let src = program::generate(3_000);
+    let profile = gcodec_profile::builtin().unwrap();
+    assert_streamed_agrees("bench.mpf", &src, &profile);
+}
+
+#[test]
+fn flow_names_and_calls_across_chunks() {
+    let profile = gcodec_profile::builtin().unwrap();
+    let src = "DEF REAL A, B[3]\nDEFINE M_ON AS M3\nEXTERN SUB(REAL, VAR REAL)\nN10 G55 G0 X0\n\
+               LBL: X1\nFOR R1=1 TO 3\nG1 X=R1 F100\nENDFOR\nIF A>0 GOTOF END_LBL\nGOTOB LBL\n\
+               WHILE A<3\nA=A+1\nIF A==2\nG2 X1 Y1 CR=5\nELSE\nX3\nENDIF\nENDWHILE\n\
+               REPEAT LBL P=2\nSUB(1, A)\nSUB(1, 2, 3)\nGOTOF N10\nLBL: X4\nEND_LBL: M30\n";
+    assert_streamed_agrees("flow.mpf", src.as_bytes(), &profile);
+    let computed = "R1=1\nGOTOF \"L\"<<R1\nL1: X1\nN20 X2\nL2: X3\nM30\n";
+    assert_streamed_agrees("computed.mpf", computed.as_bytes(), &profile);
+    let late = "G1 X1 F100\nDEF REAL LATE\nX2\nM30\nDEF INT OTHER\nPROC LAST\nX3\nM17\n";
+    assert_streamed_agrees("late.mpf", late.as_bytes(), &profile);
+    let procedure = "PROC SUB(REAL A, VAR REAL B)\nB=A*2\nG1 X=A F100\nM17\n";
+    assert_streamed_agrees("SUB.SPF", procedure.as_bytes(), &profile);
+    let unclosed = "IF R1>0\nX1\nWHILE 1\nX2\n\nENDIF\nELSE\n";
+    assert_streamed_agrees("unclosed.mpf", unclosed.as_bytes(), &profile);
+}
+
+#[test]
+fn fixtures_and_corpus_lower_the_same_streamed() {
+    let profile = gcodec_profile::builtin().unwrap();
+    let all = common::all_programs();
+    assert!(all.len() >= 30, "found only {} programs", all.len());
+    for path in all {
+        let bytes = std::fs::read(&path).unwrap();
+        assert_streamed_agrees(&path.display().to_string(), &bytes, &profile);
+    }
+}
