@@ -7,8 +7,8 @@
 //! `stream_passes FILE [LINES_PER_CHUNK]`
 use std::time::{Duration, Instant};
 
-use gcodec_parser::{Pairing, chunks, parse_chunk};
-use gcodec_sema::{ChunkLowering, Definitions, OutlineBuilder};
+use gcodec_parser::{chunks, parse_chunk};
+use gcodec_sema::{ChunkLowering, Definitions, outline_chunks};
 
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -30,20 +30,7 @@ fn main() {
     let t_chunks = t.elapsed();
 
     let t = Instant::now();
-    let mut builder = OutlineBuilder::new(&path, &profile, &definitions);
-    let mut pairing = Pairing::default();
-    let mut diagnostics = Vec::new();
-    for chunk in &chunks {
-        let mut parsed = parse_chunk(&src, chunk);
-        pairing.feed(
-            &mut parsed.blocks,
-            parsed.first_block,
-            &parsed.structure_blocks,
-            &mut diagnostics,
-        );
-        builder.feed(parsed.first_block, &parsed.blocks);
-    }
-    let outline = builder.finish(pairing.finish().0);
+    let (outline, _) = outline_chunks(&path, &src, &chunks, &profile, &definitions);
     let t_outline = t.elapsed();
 
     let t = Instant::now();

@@ -41,7 +41,7 @@ pub mod types;
 mod values;
 
 pub use definitions::Definitions;
-pub use lower::outline::{Outline, OutlineBuilder, outline};
+pub use lower::outline::{Outline, OutlineBuilder, outline, outline_chunks};
 pub use lower::stream::{ChunkLowering, LoweredChunk};
 pub use lower::{Lowered, lower, lower_in_parts, lower_with, refine};
 pub use mfunc::m_class;

@@ -2,8 +2,8 @@
 //! by chunk again: the chunks' instructions, refined, are the document of
 //! lowering the whole program, and their diagnostics its diagnostics.
 
-use gcodec_parser::{Pairing, chunks, parse_chunk};
-use gcodec_sema::{ChunkLowering, Definitions, OutlineBuilder, lower_in_parts, refine};
+use gcodec_parser::{chunks, parse_chunk};
+use gcodec_sema::{ChunkLowering, Definitions, lower_in_parts, outline_chunks, refine};
 
 mod common;
 
@@ -17,23 +17,13 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
     for lines in [1, 3, 64] {
         let chunks = chunks(src, lines);
         // Pass 1: the outline, the trees dropped chunk by chunk.
-        let mut builder = OutlineBuilder::new(name, profile, &definitions);
-        let mut pairing = Pairing::default();
-        let mut diagnostics = Vec::new();
-        for chunk in &chunks {
-            let mut parsed = parse_chunk(src, chunk);
-            pairing.feed(
-                &mut parsed.blocks,
-                parsed.first_block,
-                &parsed.structure_blocks,
-                &mut diagnostics,
-            );
-            builder.feed(parsed.first_block, &parsed.blocks);
-        }
-        let (structures, _) = pairing.finish();
-        let outline = builder.finish(structures);
-        diagnostics.clear();
-        diagnostics.extend_from_slice(outline.diagnostics());
+        let (outline, parse_diagnostics) =
+            outline_chunks(name, src, &chunks, profile, &definitions);
+        assert_eq!(
+            parsed.diagnostics, parse_diagnostics,
+            "{name}: parse diagnostics differ in chunks of {lines}"
+        );
+        let mut diagnostics = outline.diagnostics().to_vec();
         // Pass 2: the chunks parsed again and lowered in order.
         let mut lowering = ChunkLowering::new(&outline, profile);
         let mut document = gcodec_ail::Document::new();

@@ -163,6 +163,37 @@ pub fn outline<'d>(
     builder.finish(program.structures.clone())
 }
 
+/// The outline of the program `src` (named `file`), parsed chunk by chunk
+/// with each chunk's tree dropped after it (pass 1 of a streamed run),
+/// and the parse diagnostics in source order (the outline's own are in
+/// [`Outline::diagnostics`]).
+pub fn outline_chunks<'d>(
+    file: &str,
+    src: &[u8],
+    chunks: &[gcodec_parser::Chunk],
+    profile: &Profile,
+    definitions: &'d Definitions,
+) -> (Outline<'d>, Vec<Diagnostic>) {
+    let mut builder = OutlineBuilder::new(file, profile, definitions);
+    let mut pairing = gcodec_parser::Pairing::default();
+    let mut diagnostics = Vec::new();
+    for chunk in chunks {
+        let mut parsed = gcodec_parser::parse_chunk(src, chunk);
+        diagnostics.append(&mut parsed.diagnostics);
+        pairing.feed(
+            &mut parsed.blocks,
+            parsed.first_block,
+            &parsed.structure_blocks,
+            &mut diagnostics,
+        );
+        builder.feed(parsed.first_block, &parsed.blocks);
+    }
+    let (structures, unclosed) = pairing.finish();
+    diagnostics.extend(unclosed);
+    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    (builder.finish(structures), diagnostics)
+}
+
 /// Labels defined twice: allowed (jumps find the nearest in their
 /// direction), but rarely meant.
 fn duplicate_labels(flow: &Flow) -> Vec<Diagnostic> {
