@@ -42,6 +42,7 @@ pub(crate) struct Flow {
     blocks: FxHashMap<usize, BlockFlow>,
     /// Blocks by label (upper case) and by block number, in order.
     labels: HashMap<String, Vec<usize>>,
+    /// The span of each block's label, for diagnostics.
     label_spans: FxHashMap<usize, Span>,
     numbers: HashMap<u64, Vec<usize>>,
     /// Per `REPEAT` block: its section, or the target that is missing.
@@ -239,37 +240,24 @@ impl FlowBuilder {
         // A computed target can be any label or block number: each is
         // a label instruction for the executor's search.
         if computed_jumps {
-            let mut named_blocks: Vec<(usize, String)> = flow
+            // In block order, a block's label before its number.
+            let mut named: Vec<(usize, bool, String)> = flow
                 .labels
                 .iter()
                 .flat_map(|(name, blocks)| {
                     blocks
                         .iter()
-                        .map(move |&b| (b, format!("{name}@{}", b + 1)))
+                        .map(move |&b| (b, false, format!("{name}@{}", b + 1)))
                 })
+                .chain(
+                    all_numbers
+                        .iter()
+                        .map(|&(value, b)| (b as usize, true, format!("N{value}@{}", b + 1))),
+                )
                 .collect();
-            named_blocks.sort_by_key(|(b, _)| *b);
-            let mut named_blocks = named_blocks.into_iter().peekable();
-            let mut numbered = all_numbers.iter().peekable();
-            // In block order, a block's label before its number.
-            loop {
-                let label_block = named_blocks.peek().map(|(b, _)| *b);
-                let number_block = numbered.peek().map(|(_, b)| *b as usize);
-                match (label_block, number_block) {
-                    (Some(l), Some(n)) if l <= n => {
-                        let (b, name) = named_blocks.next().expect("peeked");
-                        flow.add_target(b, name);
-                    }
-                    (Some(_), None) => {
-                        let (b, name) = named_blocks.next().expect("peeked");
-                        flow.add_target(b, name);
-                    }
-                    (_, Some(_)) => {
-                        let &(value, b) = numbered.next().expect("peeked");
-                        flow.add_target(b as usize, format!("N{value}@{}", b + 1));
-                    }
-                    (None, None) => break,
-                }
+            named.sort_by_key(|(block, is_number, _)| (*block, *is_number));
+            for (block, _, name) in named {
+                flow.add_target(block, name);
             }
         }
         flow
