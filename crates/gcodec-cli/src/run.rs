@@ -2,7 +2,7 @@
 //! streams its events (jsonl, a text trace, or one CSV row per block).
 
 use std::io::{self, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -11,7 +11,7 @@ use gcodec_exec::channel::{BlockObserver, Channel, RunOptions};
 use gcodec_exec::event::{
     BlockRow, CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
 };
-use gcodec_exec::loader::{FileLoader, SearchPath};
+use gcodec_exec::loader::{FileLoader, SearchPath, program_name};
 use gcodec_exec::program::Program;
 use gcodec_source::Diagnostic;
 
@@ -205,18 +205,16 @@ pub fn run(args: RunArgs) -> u8 {
     let stdout = io::stdout();
     let out = stdout.lock();
     let outcome = match args.format {
-        RunFormat::Jsonl => {
-            let mut sink = Diagnostics {
-                inner: JsonlSink::new(out),
+        RunFormat::Jsonl | RunFormat::Text => {
+            let (mut jsonl, mut text);
+            let inner: &mut dyn EventSink = if matches!(args.format, RunFormat::Jsonl) {
+                jsonl = JsonlSink::new(out);
+                &mut jsonl
+            } else {
+                text = TextSink::new(out);
+                &mut text
             };
-            Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
-                .with_globals(&definitions)
-                .run(main)
-        }
-        RunFormat::Text => {
-            let mut sink = Diagnostics {
-                inner: TextSink::new(out),
-            };
+            let mut sink = Diagnostics { inner };
             Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
                 .with_globals(&definitions)
                 .run(main)
@@ -260,17 +258,6 @@ pub fn run(args: RunArgs) -> u8 {
     } else {
         EXIT_CLEAN
     }
-}
-
-/// The program's name: its file stem in upper case (`_N_PART_MPF` → `PART`).
-fn program_name(path: &Path) -> String {
-    let stem = path
-        .file_stem()
-        .map(|s| s.to_string_lossy().to_ascii_uppercase())
-        .unwrap_or_default();
-    stem.strip_prefix("_N_")
-        .and_then(|s| s.strip_suffix("_MPF").or_else(|| s.strip_suffix("_SPF")))
-        .map_or(stem.clone(), str::to_owned)
 }
 
 fn output_error(e: &io::Error) -> u8 {

@@ -1293,20 +1293,18 @@ fn tool_parameter(
         return Err(sys_index_count(name, "2", indices.len()));
     };
     let (t, d) = (t.to_int()?, d.to_int()?);
-    let tool = profile
-        .tools
-        .iter()
-        .find(|tool| i64::from(*tool.number.get_ref()) == i64::from(t))
+    let tool = u32::try_from(t)
+        .ok()
+        .and_then(|t| profile.tool(t))
         .ok_or_else(|| {
             RunError::new(
                 codes::INDEX_OUT_OF_RANGE,
                 format!("`{name}[{t},{d}]`: the tool table has no tool {t}"),
             )
         })?;
-    let edge = tool
-        .edges
-        .iter()
-        .find(|e| i64::from(*e.d.get_ref()) == i64::from(d))
+    let edge = u32::try_from(d)
+        .ok()
+        .and_then(|d| tool.edge(d))
         .ok_or_else(|| {
             RunError::new(
                 codes::INDEX_OUT_OF_RANGE,

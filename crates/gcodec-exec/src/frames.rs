@@ -181,21 +181,24 @@ pub enum FrameOp {
 }
 
 impl FrameOp {
+    /// Every frame instruction.
+    pub const ALL: [FrameOp; 8] = [
+        FrameOp::Trans,
+        FrameOp::ATrans,
+        FrameOp::Rot,
+        FrameOp::ARot,
+        FrameOp::Scale,
+        FrameOp::AScale,
+        FrameOp::Mirror,
+        FrameOp::AMirror,
+    ];
+
     /// The instruction named `op` (any case), as AIL's `frame.op` writes
     /// it. `None` for the ones not supported (`ROTS`, `AROTS`, `CROTS`,
     /// `G58`, `G59`) and anything else: the channel reports them.
     pub fn parse(op: &str) -> Option<Self> {
-        const ALL: [FrameOp; 8] = [
-            FrameOp::Trans,
-            FrameOp::ATrans,
-            FrameOp::Rot,
-            FrameOp::ARot,
-            FrameOp::Scale,
-            FrameOp::AScale,
-            FrameOp::Mirror,
-            FrameOp::AMirror,
-        ];
-        ALL.into_iter()
+        Self::ALL
+            .into_iter()
             .find(|k| k.keyword().eq_ignore_ascii_case(op.trim()))
     }
 
@@ -506,6 +509,12 @@ impl Frame {
         Ok(())
     }
 
+    /// The geometry slots that have an axis: (slot, axis index).
+    fn geometry(&self) -> impl Iterator<Item = (usize, usize)> + use<> {
+        let slots = self.slots;
+        (0..3).filter_map(move |s| slots[s].map(|i| (s, i)))
+    }
+
     /// Maps a point of this frame's inner (workpiece) system to its outer
     /// system: `T + R·(S·M·p)` for all axes. `point` and `out` are indexed
     /// like the [`FrameAxes`]; entries past the frame's axes are copied
@@ -515,24 +524,16 @@ impl Frame {
         let len = point.len().min(out.len());
         let n = self.axes.len().min(len);
         let mut g = [0.0; 3];
-        for (s, slot) in self.slots.iter().enumerate() {
-            if let Some(i) = *slot {
-                if i < n {
-                    g[s] = self.axes[i].factor() * point[i];
-                }
-            }
+        for (s, i) in self.geometry().filter(|&(_, i)| i < n) {
+            g[s] = self.axes[i].factor() * point[i];
         }
         let g = self.rotation.apply(g);
         for i in 0..n {
             let a = &self.axes[i];
             out[i] = a.offset() + a.factor() * point[i];
         }
-        for (s, slot) in self.slots.iter().enumerate() {
-            if let Some(i) = *slot {
-                if i < n {
-                    out[i] = self.axes[i].offset() + g[s];
-                }
-            }
+        for (s, i) in self.geometry().filter(|&(_, i)| i < n) {
+            out[i] = self.axes[i].offset() + g[s];
         }
         out[n..len].copy_from_slice(&point[n..len]);
     }
@@ -544,24 +545,16 @@ impl Frame {
         let len = point.len().min(out.len());
         let n = self.axes.len().min(len);
         let mut g = [0.0; 3];
-        for (s, slot) in self.slots.iter().enumerate() {
-            if let Some(i) = *slot {
-                if i < n {
-                    g[s] = point[i] - self.axes[i].offset();
-                }
-            }
+        for (s, i) in self.geometry().filter(|&(_, i)| i < n) {
+            g[s] = point[i] - self.axes[i].offset();
         }
         let g = self.rotation.apply_inverse(g);
         for i in 0..n {
             let a = &self.axes[i];
             out[i] = (point[i] - a.offset()) / a.factor();
         }
-        for (s, slot) in self.slots.iter().enumerate() {
-            if let Some(i) = *slot {
-                if i < n {
-                    out[i] = g[s] / self.axes[i].factor();
-                }
-            }
+        for (s, i) in self.geometry().filter(|&(_, i)| i < n) {
+            out[i] = g[s] / self.axes[i].factor();
         }
         out[n..len].copy_from_slice(&point[n..len]);
     }
@@ -592,22 +585,18 @@ impl Frame {
         let mut coarse = [0.0; 3];
         let mut fine = [0.0; 3];
         let mut mirror = [false; 3];
-        for (s, slot) in self.slots.iter().enumerate() {
-            if let Some(i) = *slot {
-                let (a, b) = (self.part(i), inner.part(i));
-                coarse[s] = a.factor() * b.coarse;
-                fine[s] = a.factor() * b.fine;
-                mirror[s] = a.mirror;
-            }
+        for (s, i) in self.geometry() {
+            let (a, b) = (self.part(i), inner.part(i));
+            coarse[s] = a.factor() * b.coarse;
+            fine[s] = a.factor() * b.fine;
+            mirror[s] = a.mirror;
         }
         let coarse = self.rotation.apply(coarse);
         let fine = self.rotation.apply(fine);
-        for (s, slot) in self.slots.iter().enumerate() {
-            if let Some(i) = *slot {
-                let a = self.part(i);
-                axes[i].coarse = a.coarse + coarse[s];
-                axes[i].fine = a.fine + fine[s];
-            }
+        for (s, i) in self.geometry() {
+            let a = self.part(i);
+            axes[i].coarse = a.coarse + coarse[s];
+            axes[i].fine = a.fine + fine[s];
         }
         Frame {
             axes,
@@ -633,23 +622,19 @@ impl Frame {
         let mut coarse = [0.0; 3];
         let mut fine = [0.0; 3];
         let mut mirror = [false; 3];
-        for (s, slot) in self.slots.iter().enumerate() {
-            if let Some(i) = *slot {
-                let a = self.part(i);
-                coarse[s] = a.coarse;
-                fine[s] = a.fine;
-                mirror[s] = a.mirror;
-            }
+        for (s, i) in self.geometry() {
+            let a = self.part(i);
+            coarse[s] = a.coarse;
+            fine[s] = a.fine;
+            mirror[s] = a.mirror;
         }
         let coarse = self.rotation.apply_inverse(coarse);
         let fine = self.rotation.apply_inverse(fine);
-        for (s, slot) in self.slots.iter().enumerate() {
-            if let Some(i) = *slot {
-                if let Some(a) = axes.get_mut(i) {
-                    let factor = self.axes[i].factor();
-                    a.coarse = -coarse[s] / factor;
-                    a.fine = -fine[s] / factor;
-                }
+        for (s, i) in self.geometry() {
+            if let Some(a) = axes.get_mut(i) {
+                let factor = self.axes[i].factor();
+                a.coarse = -coarse[s] / factor;
+                a.fine = -fine[s] / factor;
             }
         }
         Frame {

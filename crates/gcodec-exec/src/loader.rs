@@ -404,6 +404,22 @@ fn internal_name(text: &str) -> Option<(&str, Kind)> {
     (!name.is_empty()).then_some((name, kind))
 }
 
+/// The name callers use for the program in the file `path`, as the
+/// search path names it: `PART` for `part.mpf`, `_N_PART_MPF` and
+/// `_N_PART_MPF.MPF`; the file stem in upper case for other names.
+pub fn program_name(path: &std::path::Path) -> String {
+    let file_name = path.file_name().map(|n| n.to_string_lossy());
+    file_name
+        .as_deref()
+        .and_then(classify)
+        .map(|(name, _)| name)
+        .unwrap_or_else(|| {
+            path.file_stem()
+                .map(|s| s.to_string_lossy().to_ascii_uppercase())
+                .unwrap_or_default()
+        })
+}
+
 /// The program a directory entry holds: its name in upper case and its
 /// type. `NAME.SPF`, `NAME.MPF`, `_N_NAME_SPF`, `_N_NAME_MPF`,
 /// `_N_NAME_SPF.SPF`; any case. Other files hold none.
@@ -765,7 +781,7 @@ impl FileLoader {
             let result = match SourceFile::read(&path) {
                 Ok(file) => {
                     let mut loaded = compile(
-                        program_name(wanted, &found.file_name),
+                        found_program_name(wanted, &found.file_name),
                         &file,
                         &self.profile,
                         &self.definitions,
@@ -805,7 +821,7 @@ impl FileLoader {
 
 /// The program's name, upper case: the one its file's name gives
 /// (`_N_SUB_SPF`: `SUB`).
-fn program_name(wanted: &Wanted, file_name: &str) -> String {
+fn found_program_name(wanted: &Wanted, file_name: &str) -> String {
     match classify(file_name) {
         Some((name, _)) => name,
         None => wanted.name.clone(),

@@ -16,7 +16,7 @@ use gcodec_exec::channel::{Channel, RunOptions};
 use gcodec_exec::event::{
     CountingSink, Event, EventKind, EventSeverity, EventSink, ProgramEndReason,
 };
-use gcodec_exec::loader::{FileLoader, SearchPath, compile};
+use gcodec_exec::loader::{FileLoader, SearchPath, compile, program_name};
 use gcodec_source::SourceFile;
 
 #[path = "../../gcodec-sema/tests/common/mod.rs"]
@@ -94,12 +94,7 @@ fn every_main_program_runs_to_its_end_or_a_diagnosed_dependency() {
         let profile = Arc::new(machine_profile(&shown).1);
         let definitions = Arc::new(definitions(&corpus, &shown));
         let file = SourceFile::new(shown.clone(), std::fs::read(path).expect("read"));
-        let stem = path
-            .file_stem()
-            .unwrap()
-            .to_string_lossy()
-            .to_ascii_uppercase();
-        let main = compile(stem, &file, &profile, &definitions, false);
+        let main = compile(program_name(path), &file, &profile, &definitions, false);
         if main.has_errors {
             // The two programs the lowering test expects errors in.
             report.push_str(&format!("{shown}: not run (lowering errors)\n"));

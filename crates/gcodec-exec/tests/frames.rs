@@ -933,16 +933,7 @@ fn odd_inputs_never_panic() {
         359.999_999_999,
         -720.0,
     ];
-    let ops = [
-        FrameOp::Trans,
-        FrameOp::ATrans,
-        FrameOp::Rot,
-        FrameOp::ARot,
-        FrameOp::Scale,
-        FrameOp::AScale,
-        FrameOp::Mirror,
-        FrameOp::AMirror,
-    ];
+    let ops = FrameOp::ALL;
     let planes = [Plane::G17, Plane::G18, Plane::G19];
     let mut f = busy(&axes);
     for (k, &v) in odd.iter().enumerate() {

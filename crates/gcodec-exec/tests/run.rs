@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use gcodec_exec::channel::{BlockObserver, Channel, RunOptions};
 use gcodec_exec::event::{BlockRow, CsvWriter, JsonlSink, TextSink};
-use gcodec_exec::loader::{FileLoader, SearchPath, compile};
+use gcodec_exec::loader::{FileLoader, SearchPath, compile, program_name};
 use gcodec_sema::Definitions;
 use gcodec_source::SourceFile;
 
@@ -83,12 +83,7 @@ fn run(path: &Path, output: Output) -> String {
     let Setup { profile, options } = setup(path, &text);
     let file = SourceFile::new(path.to_string_lossy().replace('\\', "/"), text.as_bytes());
     let definitions = Arc::new(Definitions::new());
-    let stem = path
-        .file_stem()
-        .unwrap()
-        .to_string_lossy()
-        .to_ascii_uppercase();
-    let main = compile(stem, &file, &profile, &definitions, false);
+    let main = compile(program_name(path), &file, &profile, &definitions, false);
     assert!(
         !main.has_errors,
         "{} has lowering errors: {:#?}",

@@ -184,6 +184,37 @@ pub struct Tool {
     pub edges: Vec<Edge>,
 }
 
+impl Profile {
+    /// The tool numbered `number` in the tool table.
+    pub fn tool(&self, number: u32) -> Option<&Tool> {
+        self.tools.iter().find(|t| *t.number.get_ref() == number)
+    }
+}
+
+impl Tool {
+    /// Whether a tool selection of `kind` naming `value` (a T number, a
+    /// magazine location, a name in any case; as AIL writes a selection)
+    /// selects this tool. A computed selection is known only at run time:
+    /// it may select any tool.
+    pub fn is_selected_by(&self, kind: gcodec_ail::SelectorKind, value: &str) -> bool {
+        use gcodec_ail::SelectorKind;
+        match kind {
+            SelectorKind::Number => self.number.get_ref().to_string() == value,
+            SelectorKind::Location => self.location.is_some_and(|l| l.to_string() == value),
+            SelectorKind::Name => self
+                .name
+                .as_ref()
+                .is_some_and(|n| n.get_ref().eq_ignore_ascii_case(value)),
+            SelectorKind::Computed => true,
+        }
+    }
+
+    /// The cutting edge `D<d>`.
+    pub fn edge(&self, d: u32) -> Option<&Edge> {
+        self.edges.iter().find(|e| *e.d.get_ref() == d)
+    }
+}
+
 /// Whether a tool may be used.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]

@@ -160,15 +160,7 @@ fn resolve(
     if profile.tools.is_empty() || value == "0" || kind == SelectorKind::Computed {
         return;
     }
-    let found = profile.tools.iter().any(|t| match kind {
-        SelectorKind::Number => t.number.get_ref().to_string() == value,
-        SelectorKind::Location => t.location.is_some_and(|l| l.to_string() == value),
-        SelectorKind::Computed => true,
-        SelectorKind::Name => t
-            .name
-            .as_ref()
-            .is_some_and(|n| n.get_ref().eq_ignore_ascii_case(value)),
-    });
+    let found = profile.tools.iter().any(|t| t.is_selected_by(kind, value));
     if found {
         return;
     }

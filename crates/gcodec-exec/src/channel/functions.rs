@@ -287,7 +287,21 @@ impl Channel<'_> {
                 ),
             )
         })?;
+        // A translation of a linear axis is a length: in mm from inch.
         let inch = self.state.inch();
+        let state = &self.state;
+        let scaled = |axis: usize, value: f64| {
+            let is_length =
+                matches!(op, FrameOp::Trans | FrameOp::ATrans) && !state.axes[axis].rotary;
+            (
+                axis,
+                if is_length && inch {
+                    value * 25.4
+                } else {
+                    value
+                },
+            )
+        };
         let mut values = Vec::with_capacity(frame.values.len());
         let mut rpl = None;
         let env = self.env();
@@ -297,45 +311,15 @@ impl Channel<'_> {
                 rpl = Some(value);
                 continue;
             }
-            let axis = self.state.axis_index(&v.axis).ok_or_else(|| {
-                RunError::new(
-                    value_codes::UNKNOWN_AXIS,
-                    format!("the machine has no axis `{}`", v.axis),
-                )
-            })?;
-            let is_length =
-                matches!(op, FrameOp::Trans | FrameOp::ATrans) && !self.state.axes[axis].rotary;
-            values.push((
-                axis,
-                if is_length && inch {
-                    value * 25.4
-                } else {
-                    value
-                },
-            ));
+            values.push(scaled(self.axis(&v.axis)?, value));
         }
         for v in &frame.indirect_values {
             let name = match eval::eval(&env, &v.axis)? {
                 RtValue::Axis(a) | RtValue::String(a) => a,
                 other => return Err(RunError::type_mismatch(&other, "AXIS")),
             };
-            let axis = self.state.axis_index(&name).ok_or_else(|| {
-                RunError::new(
-                    value_codes::UNKNOWN_AXIS,
-                    format!("the machine has no axis `{name}`"),
-                )
-            })?;
-            let value = eval::eval_real(&env, &v.value)?;
-            let is_length =
-                matches!(op, FrameOp::Trans | FrameOp::ATrans) && !self.state.axes[axis].rotary;
-            values.push((
-                axis,
-                if is_length && inch {
-                    value * 25.4
-                } else {
-                    value
-                },
-            ));
+            let axis = self.axis(&name)?;
+            values.push(scaled(axis, eval::eval_real(&env, &v.value)?));
         }
         let plane = self.state.plane();
         let axes = self.state.frame_axes.clone();
@@ -417,25 +401,16 @@ impl Channel<'_> {
             _ => format!("T{}", tool.number.get_ref()),
         };
         let candidates: Vec<&Tool> = match kind {
-            SelectorKind::Number => profile
+            SelectorKind::Number | SelectorKind::Location => profile
                 .tools
                 .iter()
-                .filter(|t| t.number.get_ref().to_string() == value)
-                .collect(),
-            SelectorKind::Location => profile
-                .tools
-                .iter()
-                .filter(|t| t.location.is_some_and(|l| l.to_string() == value))
+                .filter(|t| t.is_selected_by(kind, value))
                 .collect(),
             _ => {
                 let mut sisters: Vec<&Tool> = profile
                     .tools
                     .iter()
-                    .filter(|t| {
-                        t.name
-                            .as_ref()
-                            .is_some_and(|n| n.get_ref().eq_ignore_ascii_case(value))
-                    })
+                    .filter(|t| t.is_selected_by(SelectorKind::Name, value))
                     .collect();
                 sisters.sort_by_key(|t| t.duplo);
                 sisters
@@ -574,14 +549,10 @@ impl Channel<'_> {
             return;
         };
         let profile = Arc::clone(&self.state.profile);
-        let entry = profile
-            .tools
-            .iter()
-            .find(|t| *t.number.get_ref() == tool.number);
-        let Some(entry) = entry else {
+        let Some(entry) = profile.tool(tool.number) else {
             return;
         };
-        match entry.edges.iter().find(|e| *e.d.get_ref() == d) {
+        match entry.edge(d) {
             Some(e) => self.state.tool_length = e.length,
             None if programmed => {
                 let message = format!(

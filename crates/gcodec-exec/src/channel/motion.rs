@@ -5,7 +5,7 @@
 use std::borrow::Cow;
 use std::sync::Arc;
 
-use gcodec_ail::{AxisValue, Circle, DimensionMode, Instruction, MotionKind, Op};
+use gcodec_ail::{AxisValue, Circle, DimensionMode, Instruction, MotionKind, Op, Value};
 
 use super::Channel;
 use crate::eval;
@@ -108,7 +108,7 @@ impl Channel<'_> {
         }
         for target in targets {
             let axis = self.axis(&target.axis)?;
-            self.set_target(axis, target)?;
+            self.set_target(axis, &target.value, target.mode)?;
         }
         if let Some(details) = details {
             for target in &details.indirect_targets {
@@ -123,12 +123,7 @@ impl Channel<'_> {
                     }
                 };
                 let axis = self.axis(&name)?;
-                let value = AxisValue {
-                    axis: Cow::Owned(name.to_string()),
-                    value: target.value.clone(),
-                    mode: target.mode,
-                };
-                self.set_target(axis, &value)?;
+                self.set_target(axis, &target.value, target.mode)?;
             }
             if details.spline.is_some() || details.transition.is_some() {
                 self.not_simulated(program, instruction, "motion-details", "spline weights, chamfers and roundings (`PW`, `PL`, `CHF`, `CHR`, `RND`) are not simulated: the path is the programmed straight or circular element".into(),
@@ -261,7 +256,7 @@ impl Channel<'_> {
         Ok(())
     }
 
-    fn axis(&self, name: &str) -> Result<usize, RunError> {
+    pub(super) fn axis(&self, name: &str) -> Result<usize, RunError> {
         self.state.axis_index(name).ok_or_else(|| {
             RunError::new(
                 codes::UNKNOWN_AXIS,
@@ -272,10 +267,15 @@ impl Channel<'_> {
 
     /// Converts a programmed value to mm (radius) in workpiece
     /// coordinates: units, diameter programming, absolute or incremental.
-    fn set_target(&mut self, axis: usize, target: &AxisValue) -> Result<(), RunError> {
-        let value = eval::eval_real(&self.env(), &target.value)?;
+    fn set_target(
+        &mut self,
+        axis: usize,
+        value: &Value,
+        mode: Option<DimensionMode>,
+    ) -> Result<(), RunError> {
+        let value = eval::eval_real(&self.env(), value)?;
         let start = self.motion.wcs[axis];
-        self.motion.target[axis] = self.dimension(axis, value, target.mode, start);
+        self.motion.target[axis] = self.dimension(axis, value, mode, start);
         Ok(())
     }
 

@@ -58,18 +58,13 @@ impl Outline<'_> {
     pub fn is_subprogram(&self) -> bool {
         self.subprogram
     }
-
-    /// How many blocks (lines) the program has.
-    pub fn blocks(&self) -> usize {
-        self.blocks
-    }
 }
 
 /// Builds an [`Outline`] from a program's blocks, fed in order (their
 /// depths set by the structure pairing), a run at a time.
 pub struct OutlineBuilder<'d> {
     file: Arc<str>,
-    profile_overrides: HashMap<u32, MClass>,
+    m_overrides: HashMap<u32, MClass>,
     flow: FlowBuilder,
     names: variables::NameCollector<'d>,
     signatures: HashMap<String, calls::Signature>,
@@ -87,7 +82,7 @@ impl<'d> OutlineBuilder<'d> {
     pub fn new(file: &str, profile: &Profile, definitions: &'d Definitions) -> Self {
         Self {
             file: Arc::from(file),
-            profile_overrides: mfunc::overrides(profile),
+            m_overrides: mfunc::overrides(profile),
             flow: FlowBuilder::default(),
             names: variables::NameCollector::new(profile, definitions),
             signatures: HashMap::new(),
@@ -144,7 +139,7 @@ impl<'d> OutlineBuilder<'d> {
             flow,
             names,
             signatures: self.signatures,
-            m_overrides: self.profile_overrides,
+            m_overrides: self.m_overrides,
             blocks: self.blocks,
             last_block: self.last_block,
             diagnostics,

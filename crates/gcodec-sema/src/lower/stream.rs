@@ -58,15 +58,17 @@ impl<'a> ChunkLowering<'a> {
             self.lowering.block(first + offset, block);
         }
         self.next = first + blocks.len();
-        Some(LoweredChunk {
-            instructions: std::mem::take(&mut self.lowering.document.instructions),
-            diagnostics: std::mem::take(&mut self.lowering.diagnostics),
-        })
+        Some(self.take())
     }
 
     /// The program's end instruction, after the last chunk.
     pub fn finish(mut self) -> LoweredChunk {
         self.lowering.end();
+        self.take()
+    }
+
+    /// What was lowered since the last take.
+    fn take(&mut self) -> LoweredChunk {
         LoweredChunk {
             instructions: std::mem::take(&mut self.lowering.document.instructions),
             diagnostics: std::mem::take(&mut self.lowering.diagnostics),
