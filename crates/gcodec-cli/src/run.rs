@@ -12,12 +12,12 @@ use gcodec_exec::event::{
     BlockRow, CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
 };
 use gcodec_exec::loader::{FileLoader, SearchPath, program_name};
-use gcodec_exec::program::Program;
+use gcodec_exec::stream::{StreamOptions, run_streamed};
 use gcodec_source::Diagnostic;
 
 use crate::commands::{
     DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
-    lower_file, read,
+    read, report,
 };
 
 /// How events are written.
@@ -157,28 +157,6 @@ pub fn run(args: RunArgs) -> u8 {
         Ok(f) => f,
         Err(code) => return code,
     };
-    let (document, has_errors) = lower_file(&file, &profile, &definitions, options);
-    if has_errors {
-        eprintln!(
-            "gcodec: `{}` has errors; it is not run",
-            args.file.display()
-        );
-        return EXIT_DIAGNOSTICS;
-    }
-    let mut main = Program::new(program_name(&args.file), Arc::from(file.name()), document);
-    // The CSV rows read block numbers from the text, and `CALL … BLOCK`
-    // finds the labels of its section there (lowering keeps labels only
-    // for the jump targets it knows).
-    let sections = main.instructions().iter().any(|i| {
-        matches!(&i.op, gcodec_ail::Op::Call(call) if call.section.is_some() && call.target.is_empty() && call.target_expr.is_none())
-    });
-    if matches!(args.format, RunFormat::Csv) || sections {
-        main = main.with_text(Arc::from(file.bytes()));
-    }
-    let main = Arc::new(main);
-    // Freeing millions of instructions one by one at the end would only
-    // cost time: the process is about to exit.
-    let keep = Arc::clone(&main);
     let search = SearchPath::new()
         .with_profile(&profile, profile_path)
         .with_dirs(args.subprogram_paths.iter().cloned());
@@ -202,45 +180,54 @@ pub fn run(args: RunArgs) -> u8 {
         });
     }
     run_options.interrupt = Some(interrupt);
-    let stdout = io::stdout();
-    let out = stdout.lock();
-    let outcome = match args.format {
-        RunFormat::Jsonl | RunFormat::Text => {
-            let (mut jsonl, mut text);
-            let inner: &mut dyn EventSink = if matches!(args.format, RunFormat::Jsonl) {
-                jsonl = JsonlSink::new(out);
-                &mut jsonl
-            } else {
-                text = TextSink::new(out);
-                &mut text
-            };
-            let mut sink = Diagnostics { inner };
-            Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
-                .with_globals(&definitions)
-                .run(main)
-        }
-        RunFormat::Csv => {
-            let axes = profile
-                .axes
-                .iter()
-                .map(|a| std::borrow::Cow::Owned(a.name.get_ref().to_ascii_uppercase()));
-            let writer = match CsvWriter::new(out, axes) {
-                Ok(w) => w,
-                Err(e) => return output_error(&e),
-            };
-            let mut rows = CsvRows(writer);
-            let mut sink = Diagnostics { inner: Discard };
-            let result = Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
-                .with_globals(&definitions)
-                .with_observer(&mut rows)
-                .run(main);
-            match (result, rows.0.finish()) {
-                (Ok(outcome), Ok(())) => Ok(outcome),
-                (Err(e), _) | (_, Err(e)) => Err(e),
+    let stream = StreamOptions::default();
+    let name = program_name(&args.file);
+    let (outcome, diagnostics) =
+        run_streamed(&file, name, &profile, &definitions, stream, |main| {
+            let stdout = io::stdout();
+            let out = stdout.lock();
+            match args.format {
+                RunFormat::Jsonl | RunFormat::Text => {
+                    let (mut jsonl, mut text);
+                    let inner: &mut dyn EventSink = if matches!(args.format, RunFormat::Jsonl) {
+                        jsonl = JsonlSink::new(out);
+                        &mut jsonl
+                    } else {
+                        text = TextSink::new(out);
+                        &mut text
+                    };
+                    let mut sink = Diagnostics { inner };
+                    Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
+                        .with_globals(&definitions)
+                        .run(main)
+                }
+                RunFormat::Csv => {
+                    let axes = profile
+                        .axes
+                        .iter()
+                        .map(|a| std::borrow::Cow::Owned(a.name.get_ref().to_ascii_uppercase()));
+                    let writer = match CsvWriter::new(out, axes) {
+                        Ok(w) => w,
+                        Err(e) => return Err(e),
+                    };
+                    let mut rows = CsvRows(writer);
+                    let mut sink = Diagnostics { inner: Discard };
+                    let result =
+                        Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
+                            .with_globals(&definitions)
+                            .with_observer(&mut rows)
+                            .run(main);
+                    match (result, rows.0.finish()) {
+                        (Ok(outcome), Ok(())) => Ok(outcome),
+                        (Err(e), _) | (_, Err(e)) => Err(e),
+                    }
+                }
             }
-        }
-    };
-    std::mem::forget(keep);
+        });
+    // The program's own diagnostics, all of them, after the run that
+    // went on while it was lowered.
+    report(&diagnostics, Some(&file), options);
+    let has_errors = diagnostics.iter().any(Diagnostic::is_error);
     let outcome = match outcome {
         Ok(outcome) => outcome,
         Err(e) => return output_error(&e),
@@ -253,7 +240,7 @@ pub fn run(args: RunArgs) -> u8 {
         }
         _ => eprint!("{summary}"),
     }
-    if outcome.errors > 0 || outcome.reason == ProgramEndReason::Alarm {
+    if has_errors || outcome.errors > 0 || outcome.reason == ProgramEndReason::Alarm {
         EXIT_DIAGNOSTICS
     } else {
         EXIT_CLEAN

@@ -137,15 +137,50 @@ fn a_missing_subprogram_is_an_alarm_naming_the_search_path() {
 }
 
 #[test]
-fn a_program_with_errors_is_not_run() {
-    let file = temp_file("run-errors", "bad.mpf", "N10 G1 X1 X2 F100\n");
+fn a_run_stops_with_an_alarm_at_the_first_block_with_errors_it_reaches() {
+    let file = temp_file(
+        "run-errors",
+        "bad.mpf",
+        "N10 G1 X1 F100\nN20 G1 X1 X2\nN30 G1 X3\nM30\n",
+    );
     let out = gcodec(["run".as_ref(), file.as_os_str()]);
     assert_eq!(code(&out), EXIT_DIAGNOSTICS);
-    assert!(stdout(&out).is_empty());
+    let err = stderr(&out);
+    assert!(err.contains("gcodec::lower::repeated_axis"), "{err}");
     assert!(
-        stderr(&out).contains("gcodec::lower::repeated_axis"),
-        "{}",
-        stderr(&out)
+        err.contains("error[gcodec::run::block_with_errors]"),
+        "{err}"
+    );
+    assert!(err.contains("bad.mpf:2:"), "{err}");
+    let events = events(&out);
+    let last = events.last().expect("end");
+    assert_eq!(last["event"], "program_end");
+    assert_eq!(last["reason"], "alarm");
+    // N10 ran, N20 and N30 did not.
+    let motions: Vec<_> = events.iter().filter(|e| e["event"] == "motion").collect();
+    assert_eq!(motions.len(), 1, "{events:?}");
+    assert_eq!(motions[0]["source"]["line"], 1);
+}
+
+#[test]
+fn a_block_with_errors_the_run_does_not_reach_is_reported_not_run() {
+    let file = temp_file(
+        "run-errors-skipped",
+        "skipped.mpf",
+        "N10 G1 X1 F100\nIF 1 == 0\nN20 G1 X1 X2\nENDIF\nN30 G1 X3\nM30\n",
+    );
+    let out = gcodec(["run".as_ref(), file.as_os_str()]);
+    // The program has an error, so exit code 1; the run goes round it.
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    let err = stderr(&out);
+    assert!(err.contains("gcodec::lower::repeated_axis"), "{err}");
+    assert!(!err.contains("block_with_errors"), "{err}");
+    let events = events(&out);
+    assert_eq!(events.last().expect("end")["reason"], "m30");
+    assert_eq!(
+        events.iter().filter(|e| e["event"] == "motion").count(),
+        2,
+        "{events:?}"
     );
 }
 

@@ -1,14 +1,21 @@
 //! A program as the channel runs it: its lowered instructions, where they
 //! come from, and the index of its jump targets.
+//!
+//! A program is held whole (a subprogram, a document lowered in one go)
+//! or streamed: its instructions arrive a page at a time from a
+//! [`PageSource`] while it runs, and the pages the run cannot come back
+//! to are forgotten (docs/ARCHITECTURE.md, gcodec-exec, "The streamed
+//! run"), so memory follows the program's longest loop, not its length.
 
-use std::sync::Arc;
+use std::collections::VecDeque;
+use std::ops::Deref;
+use std::sync::{Arc, Mutex, PoisonError};
 
-use gcodec_ail::{Document, Instruction, JumpSearch, Op};
+use gcodec_ail::{Document, Instruction, JumpSearch, Op, Source};
 use rustc_hash::FxHashMap;
 
 /// One program (main program, subprogram or cycle), lowered and ready to
 /// run. Shared (`Arc`) between the program levels that run it.
-#[derive(Debug)]
 pub struct Program {
     /// The name callers use, upper case, without extension (`CYCLE81`,
     /// `L100`, the main program's file stem).
@@ -20,65 +27,481 @@ pub struct Program {
     pub text: Option<Arc<[u8]>>,
     /// The byte offset of each line of `text`.
     line_starts: Vec<u32>,
-    pub document: Document,
+    body: Body,
+}
+
+impl std::fmt::Debug for Program {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Program")
+            .field("name", &self.name)
+            .field("file", &self.file)
+            .field("streamed", &matches!(self.body, Body::Streamed(_)))
+            .finish_non_exhaustive()
+    }
+}
+
+enum Body {
+    Whole { page: Page, labels: Labels },
+    Streamed(Mutex<Stream>),
+}
+
+/// A run of a program's consecutive instructions, shared with the run
+/// loop that executes them.
+#[derive(Clone, Debug)]
+pub struct Page {
+    /// The index of the first instruction in the program.
+    base: usize,
+    instructions: Arc<[Instruction]>,
+    /// Where the program has blocks with errors, by line, up to this
+    /// page's last line (sorted): a run that reaches one stops there.
+    errors: Arc<[Source]>,
+}
+
+impl Page {
+    fn empty() -> Self {
+        Self {
+            base: 0,
+            instructions: Arc::from(Vec::new()),
+            errors: Arc::from(Vec::new()),
+        }
+    }
+
+    /// The instruction at program index `pc`, if on this page.
+    pub fn get(&self, pc: usize) -> Option<&Instruction> {
+        self.instructions.get(pc.checked_sub(self.base)?)
+    }
+
+    /// The index after the page's last instruction.
+    fn end(&self) -> usize {
+        self.base + self.instructions.len()
+    }
+
+    fn last_line(&self) -> u32 {
+        self.instructions.last().map_or(0, |i| i.source.line)
+    }
+
+    /// The first block with errors in lines `after + 1 ..= line` (`after`
+    /// `None`: on `line` only).
+    pub fn error_reached(&self, after: Option<u32>, line: u32) -> Option<&Source> {
+        if self.errors.is_empty() {
+            return None;
+        }
+        let from = after.map_or(line, |a| a.saturating_add(1));
+        let i = self.errors.partition_point(|e| e.line < from);
+        self.errors.get(i).filter(|e| e.line <= line)
+    }
+}
+
+/// One instruction of a program, keeping its page alive.
+#[derive(Clone, Debug)]
+pub struct InstructionRef {
+    page: Page,
+    offset: usize,
+}
+
+impl Deref for InstructionRef {
+    type Target = Instruction;
+    fn deref(&self) -> &Instruction {
+        &self.page.instructions[self.offset]
+    }
+}
+
+/// What a streamed program's instructions come from, in program order.
+pub trait PageSource: Send {
+    /// The next page, or `None` after the last (which holds the `end`).
+    fn next_page(&mut self) -> Option<SourcePage>;
+}
+
+/// A page as its source gives it.
+#[derive(Debug, Default)]
+pub struct SourcePage {
+    /// The next instructions of the program; a page with none only
+    /// carries errors.
+    pub instructions: Vec<Instruction>,
+    /// Where the blocks up to the page's last line that have errors are
+    /// (where their first error is), in order; blocks without
+    /// instructions included.
+    pub errors: Vec<Source>,
+}
+
+impl PageSource for std::sync::mpsc::Receiver<SourcePage> {
+    fn next_page(&mut self) -> Option<SourcePage> {
+        self.recv().ok()
+    }
+}
+
+/// The label index of a program, built page by page.
+#[derive(Default)]
+struct Labels {
     /// Label name → index of the `label` instruction (the first of that
     /// name: lowering names labels uniquely, `<name>@<line>`).
-    labels: FxHashMap<String, usize>,
-    /// Every label in order: (name before `@`, upper case; instruction
-    /// index), for computed jumps and `CALL … BLOCK`.
-    label_list: Vec<(String, usize)>,
+    by_name: FxHashMap<String, usize>,
+    /// Every label of the text in order: (name before `@`, upper case;
+    /// instruction index; line), for computed jumps and `CALL … BLOCK`.
+    list: Vec<(String, usize, u32)>,
     /// The target of every `jump` and `skip_block` whose label exists, by
     /// the instruction's index: a loop pass then costs no string hashing.
     jump_targets: FxHashMap<usize, usize>,
+    /// Jumps to labels not received yet, by label.
+    waiting: FxHashMap<String, Vec<usize>>,
+}
+
+impl Labels {
+    fn add(&mut self, base: usize, instructions: &[Instruction]) {
+        for (offset, instruction) in instructions.iter().enumerate() {
+            if let Op::Label { name } = &instruction.op {
+                let index = base + offset;
+                self.by_name.entry(name.clone()).or_insert(index);
+                for jump in self.waiting.remove(name).unwrap_or_default() {
+                    self.jump_targets.insert(jump, index);
+                }
+                // `<name>@<line>` is a label or block number of the text;
+                // lowering's own labels (`WHILE@7.end`, `SKIP@3.end`) have
+                // a part after the line and are no jump targets.
+                if let Some((label, line)) = name.split_once('@')
+                    && line.bytes().all(|b| b.is_ascii_digit())
+                {
+                    self.list
+                        .push((label.to_ascii_uppercase(), index, instruction.source.line));
+                }
+            }
+        }
+        for (offset, instruction) in instructions.iter().enumerate() {
+            let target = match &instruction.op {
+                Op::Jump { target, .. } => target,
+                Op::SkipBlock { end, .. } => end,
+                _ => continue,
+            };
+            let index = base + offset;
+            match self.by_name.get(target.as_str()) {
+                Some(&to) => {
+                    self.jump_targets.insert(index, to);
+                }
+                None => self.waiting.entry(target.clone()).or_default().push(index),
+            }
+        }
+    }
+
+    /// Searches the label list as [`Program::search_label`] does, among
+    /// the labels indexed so far.
+    fn search(&self, target: &str, line: u32, search: Direction) -> Option<usize> {
+        let matches = |(name, _, _): &&(String, usize, u32)| name.eq_ignore_ascii_case(target);
+        match search {
+            Direction::Forward => self
+                .list
+                .iter()
+                .filter(|(_, _, l)| *l > line)
+                .find(matches)
+                .map(|(_, i, _)| *i),
+            Direction::Backward => self
+                .list
+                .iter()
+                .rev()
+                .filter(|(_, _, l)| *l <= line)
+                .find(matches)
+                .map(|(_, i, _)| *i),
+        }
+    }
+}
+
+#[derive(Clone, Copy)]
+enum Direction {
+    Forward,
+    Backward,
+}
+
+/// A streamed program's pages and what is known of the rest.
+struct Stream {
+    /// The pages held, in order.
+    pages: VecDeque<Page>,
+    /// The index after the last instruction received.
+    received: usize,
+    /// Where more pages come from; `None` once the last came.
+    source: Option<Box<dyn PageSource>>,
+    labels: Labels,
+    /// Every block with errors received so far.
+    errors: Arc<[Source]>,
+    /// Where control can go back ([`Returns`]); `None`: anywhere, so no
+    /// page is forgotten.
+    returns: Option<Returns>,
+}
+
+/// The spans of lines (first, last) control can go back in, sorted by
+/// their first line, with the furthest last line up to each.
+struct Returns {
+    spans: Vec<(u32, u32)>,
+    reach: Vec<u32>,
+}
+
+impl Returns {
+    fn new(mut spans: Vec<(u32, u32)>) -> Self {
+        spans.sort_unstable();
+        let reach = spans
+            .iter()
+            .scan(0, |max, &(_, last)| {
+                *max = last.max(*max);
+                Some(*max)
+            })
+            .collect();
+        Self { spans, reach }
+    }
+
+    /// The first line a run at `line` can still come back to.
+    fn keep_from(&self, line: u32) -> u32 {
+        // The first span reaching `line` has the least first line of all
+        // spans reaching it; it holds `line` if it starts at or before.
+        let i = self.reach.partition_point(|&r| r < line);
+        self.spans
+            .get(i)
+            .map_or(line, |&(first, _)| first.min(line))
+    }
+}
+
+impl Stream {
+    /// Takes in the next page from the source; `false` at the end.
+    fn pull(&mut self) -> bool {
+        loop {
+            let Some(source) = self.source.as_mut() else {
+                return false;
+            };
+            let Some(page) = source.next_page() else {
+                self.source = None;
+                return false;
+            };
+            if !page.errors.is_empty() {
+                let mut errors = self.errors.to_vec();
+                errors.extend(page.errors);
+                errors.sort_by_key(|e| (e.line, e.col));
+                self.errors = Arc::from(errors);
+            }
+            if page.instructions.is_empty() {
+                continue;
+            }
+            let base = self.received;
+            self.labels.add(base, &page.instructions);
+            self.received += page.instructions.len();
+            self.pages.push_back(Page {
+                base,
+                instructions: Arc::from(page.instructions),
+                errors: Arc::clone(&self.errors),
+            });
+            return true;
+        }
+    }
+
+    /// The page holding `pc`, pulling pages up to it.
+    fn page(&mut self, pc: usize) -> Option<Page> {
+        while pc >= self.received {
+            if !self.pull() {
+                return None;
+            }
+        }
+        let first = self.pages.front()?.base;
+        let at = self.pages.partition_point(|p| p.end() <= pc);
+        let page = self.pages.get(at).filter(|_| pc >= first)?.clone();
+        self.forget_before(at, page.get(pc).map_or(0, |i| i.source.line));
+        Some(page)
+    }
+
+    /// Forgets the pages before page `at` (keeping the one just before
+    /// it) that a run at `line` cannot come back to.
+    fn forget_before(&mut self, at: usize, line: u32) {
+        let Some(returns) = &self.returns else {
+            return;
+        };
+        let keep_from = returns.keep_from(line);
+        let mut forgettable = 0;
+        while forgettable + 1 < at && self.pages[forgettable].last_line() < keep_from {
+            forgettable += 1;
+        }
+        self.pages.drain(..forgettable);
+    }
+
+    /// Pulls pages until `found` says yes or the source ends.
+    fn pull_until(&mut self, mut found: impl FnMut(&Self) -> bool) -> bool {
+        loop {
+            if found(self) {
+                return true;
+            }
+            if !self.pull() {
+                return false;
+            }
+        }
+    }
 }
 
 impl Program {
     /// Indexes the labels of `document`.
     pub fn new(name: impl Into<String>, file: Arc<str>, document: Document) -> Self {
-        let mut labels = FxHashMap::default();
-        let mut label_list = Vec::new();
-        for (index, instruction) in document.instructions.iter().enumerate() {
-            if let Op::Label { name } = &instruction.op {
-                labels.entry(name.clone()).or_insert(index);
-                // `<name>@<line>` is a label or block number of the text;
-                // lowering's own labels (`WHILE@7.end`, `SKIP@3.end`) have
-                // a part after the line and are no jump targets.
-                if let Some((base, line)) = name.split_once('@')
-                    && line.bytes().all(|b| b.is_ascii_digit())
-                {
-                    label_list.push((base.to_ascii_uppercase(), index));
-                }
-            }
-        }
-        let jump_targets = document
-            .instructions
-            .iter()
-            .enumerate()
-            .filter_map(|(index, instruction)| {
-                let target = match &instruction.op {
-                    Op::Jump { target, .. } => target,
-                    Op::SkipBlock { end, .. } => end,
-                    _ => return None,
-                };
-                labels.get(target.as_str()).map(|&to| (index, to))
-            })
-            .collect();
+        let mut labels = Labels::default();
+        labels.add(0, &document.instructions);
         Self {
             name: name.into(),
             file,
             text: None,
             line_starts: Vec::new(),
-            document,
-            labels,
-            label_list,
-            jump_targets,
+            body: Body::Whole {
+                page: Page {
+                    base: 0,
+                    instructions: Arc::from(document.instructions),
+                    errors: Arc::from(Vec::new()),
+                },
+                labels,
+            },
         }
     }
 
+    /// A program whose instructions come from `source` as it runs.
+    /// `returns` are the spans of lines control can go back in
+    /// (`gcodec_sema::Outline::returns`): the pages before them are
+    /// forgotten once the run is past; `None` keeps every page.
+    pub fn streamed(
+        name: impl Into<String>,
+        file: Arc<str>,
+        source: Box<dyn PageSource>,
+        returns: Option<Vec<(u32, u32)>>,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            file,
+            text: None,
+            line_starts: Vec::new(),
+            body: Body::Streamed(Mutex::new(Stream {
+                pages: VecDeque::new(),
+                received: 0,
+                source: Some(source),
+                labels: Labels::default(),
+                errors: Arc::from(Vec::new()),
+                returns: returns.map(Returns::new),
+            })),
+        }
+    }
+
+    /// Stops taking pages: a run that ended leaves the rest to its
+    /// source, which must not wait for it.
+    pub fn end_stream(&self) {
+        if let Body::Streamed(stream) = &self.body {
+            Self::stream(stream, |s| s.source = None);
+        }
+    }
+
+    /// Runs `f` on the stream of a streamed program.
+    fn stream<T>(stream: &Mutex<Stream>, f: impl FnOnce(&mut Stream) -> T) -> T {
+        // A panic while the lock was held cannot leave the stream half
+        // updated in a way that matters more than the panic itself.
+        f(&mut stream.lock().unwrap_or_else(PoisonError::into_inner))
+    }
+
+    /// The page holding the instruction `pc`, or `None` past the end.
+    pub fn page(&self, pc: usize) -> Option<Page> {
+        match &self.body {
+            Body::Whole { page, .. } => (pc < page.end()).then(|| page.clone()),
+            Body::Streamed(stream) => Self::stream(stream, |s| s.page(pc)),
+        }
+    }
+
+    /// A page to start a run loop with: it holds no instruction.
+    pub fn no_page() -> Page {
+        Page::empty()
+    }
+
+    /// Whether `pc` was an instruction of a streamed program that has
+    /// been forgotten (the run should never come back to one).
+    pub fn is_forgotten(&self, pc: usize) -> bool {
+        match &self.body {
+            Body::Whole { .. } => false,
+            Body::Streamed(stream) => {
+                Self::stream(stream, |s| s.pages.front().is_some_and(|p| pc < p.base))
+            }
+        }
+    }
+
+    /// The instruction `pc`.
+    pub fn instruction(&self, pc: usize) -> Option<InstructionRef> {
+        let page = self.page(pc)?;
+        Some(InstructionRef {
+            offset: pc - page.base,
+            page,
+        })
+    }
+
+    /// The last instruction held (of a streamed program: received).
+    pub fn last_instruction(&self) -> Option<InstructionRef> {
+        let page = match &self.body {
+            Body::Whole { page, .. } => page.clone(),
+            Body::Streamed(stream) => Self::stream(stream, |s| s.pages.back().cloned())?,
+        };
+        let offset = page.instructions.len().checked_sub(1)?;
+        Some(InstructionRef { page, offset })
+    }
+
+    /// The program's first instruction that is not a label (its `PROC`,
+    /// if it has one).
+    pub fn first_statement(&self) -> Option<InstructionRef> {
+        (0..)
+            .map_while(|pc| self.instruction(pc))
+            .find(|i| !matches!(i.op, Op::Label { .. }))
+    }
+
+    /// The instructions of a program held whole; `None` for a streamed
+    /// one.
+    pub fn whole_instructions(&self) -> Option<&[Instruction]> {
+        match &self.body {
+            Body::Whole { page, .. } => Some(&page.instructions),
+            Body::Streamed(_) => None,
+        }
+    }
+
+    /// Runs `f` on the label index, complete for a whole program; for a
+    /// streamed one `f` answers `Some` once it finds what it looks for,
+    /// and pages are pulled until it does or the program ends.
+    fn find_label<T>(&self, mut f: impl FnMut(&Labels) -> Option<T>) -> Option<T> {
+        match &self.body {
+            Body::Whole { labels, .. } => f(labels),
+            Body::Streamed(stream) => Self::stream(stream, |s| {
+                let mut found = None;
+                s.pull_until(|s| {
+                    found = f(&s.labels);
+                    found.is_some()
+                });
+                found
+            }),
+        }
+    }
+
+    /// Runs `f` on the labels indexed so far.
+    fn labels_now<T>(&self, f: impl FnOnce(&Labels) -> T) -> T {
+        match &self.body {
+            Body::Whole { labels, .. } => f(labels),
+            Body::Streamed(stream) => Self::stream(stream, |s| f(&s.labels)),
+        }
+    }
+
+    /// The index of the first instruction on `line` or after, if any.
+    fn index_at_line(&self, line: u32) -> Option<usize> {
+        match &self.body {
+            Body::Whole { page, .. } => {
+                let index = page.instructions.partition_point(|i| i.source.line < line);
+                (index < page.instructions.len()).then_some(index)
+            }
+            Body::Streamed(stream) => Self::stream(stream, |s| {
+                s.pull_until(|s| s.pages.back().is_some_and(|p| p.last_line() >= line));
+                let at = s.pages.partition_point(|p| p.last_line() < line);
+                let page = s.pages.get(at)?;
+                Some(page.base + page.instructions.partition_point(|i| i.source.line < line))
+            }),
+        }
+    }
+
+    /// The line of instruction `pc` (0 before the program).
+    fn line_of(&self, pc: usize) -> u32 {
+        self.instruction(pc).map_or(0, |i| i.source.line)
+    }
+
     /// The instruction index the `jump` or `skip_block` at `at` goes to,
-    /// when its label exists.
+    /// when its label has been seen.
     pub fn jump_target(&self, at: usize) -> Option<usize> {
-        self.jump_targets.get(&at).copied()
+        self.labels_now(|labels| labels.jump_targets.get(&at).copied())
     }
 
     /// With the source text.
@@ -201,10 +624,7 @@ impl Program {
             let last = self
                 .search_text(to, first.saturating_sub(1), search)
                 .ok_or(to)?;
-            let start = self
-                .document
-                .instructions
-                .partition_point(|i| i.source.line < first);
+            let start = self.index_at_line(first).ok_or(from)?;
             return Ok((start, last));
         }
         let start = self
@@ -213,16 +633,12 @@ impl Program {
         let end = self
             .search_label(to, start, JumpSearch::ForwardThenBackward)
             .ok_or(to)?;
-        Ok((start, self.document.instructions[end].source.line))
-    }
-
-    pub fn instructions(&self) -> &[Instruction] {
-        &self.document.instructions
+        Ok((start, self.line_of(end)))
     }
 
     /// The instruction index of the label `name` (as lowering named it).
     pub fn label(&self, name: &str) -> Option<usize> {
-        self.labels.get(name).copied()
+        self.find_label(|labels| labels.by_name.get(name).copied())
     }
 
     /// Searches a label or block number written in the program (`LBL`,
@@ -237,36 +653,16 @@ impl Program {
     /// of the next block with instructions.
     pub fn search_label(&self, target: &str, from: usize, search: JumpSearch) -> Option<usize> {
         let target = target.trim();
-        let line = self
-            .document
-            .instructions
-            .get(from)
-            .map_or(0, |i| i.source.line);
+        let line = self.line_of(from);
         if self.text.is_some() {
             let found = self.search_text(target, line, search)?;
-            let index = self
-                .document
-                .instructions
-                .partition_point(|i| i.source.line < found);
-            return Some(index.min(self.document.instructions.len().saturating_sub(1)));
+            return self
+                .index_at_line(found)
+                .or_else(|| self.last_instruction().map(|i| i.page.base + i.offset));
         }
-        let line_of = |index: usize| self.document.instructions[index].source.line;
-        let matches = |(name, _): &&(String, usize)| name.eq_ignore_ascii_case(target);
-        let forward = || {
-            self.label_list
-                .iter()
-                .filter(|(_, i)| line_of(*i) > line)
-                .find(matches)
-                .map(|(_, i)| *i)
-        };
-        let backward = || {
-            self.label_list
-                .iter()
-                .rev()
-                .filter(|(_, i)| line_of(*i) <= line)
-                .find(matches)
-                .map(|(_, i)| *i)
-        };
+        let forward = || self.find_label(|l| l.search(target, line, Direction::Forward));
+        // Every label up to `line` has been received.
+        let backward = || self.labels_now(|l| l.search(target, line, Direction::Backward));
         match search {
             JumpSearch::Forward => forward(),
             JumpSearch::Backward => backward(),
@@ -279,4 +675,94 @@ impl Program {
 struct LineHead<'t> {
     number: Option<u64>,
     label: Option<&'t [u8]>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use gcodec_ail::ByteRange;
+
+    /// Pages of one instruction per line, lines `1..=lines`.
+    struct Lines {
+        next: u32,
+        lines: u32,
+    }
+
+    impl PageSource for Lines {
+        fn next_page(&mut self) -> Option<SourcePage> {
+            (self.next <= self.lines).then(|| {
+                let line = self.next;
+                self.next += 1;
+                let source = Source {
+                    file: Arc::from("t.mpf"),
+                    line,
+                    col: 1,
+                    span: ByteRange { start: 0, end: 0 },
+                };
+                SourcePage {
+                    instructions: vec![Instruction {
+                        source,
+                        op: Op::Label {
+                            name: format!("L@{line}"),
+                        },
+                    }],
+                    errors: Vec::new(),
+                }
+            })
+        }
+    }
+
+    fn held(program: &Program) -> usize {
+        match &program.body {
+            Body::Streamed(stream) => Program::stream(stream, |s| s.pages.len()),
+            Body::Whole { .. } => 1,
+        }
+    }
+
+    fn streamed(returns: Option<Vec<(u32, u32)>>) -> Program {
+        let source = Box::new(Lines {
+            next: 1,
+            lines: 100,
+        });
+        Program::streamed("T", Arc::from("t.mpf"), source, returns)
+    }
+
+    #[test]
+    fn pages_behind_the_run_are_forgotten_unless_control_can_come_back() {
+        // No way back: the page before the run's is all that is kept.
+        let program = streamed(Some(Vec::new()));
+        for pc in 0..100 {
+            assert!(program.page(pc).is_some());
+            assert!(held(&program) <= 2, "{} pages held at {pc}", held(&program));
+        }
+        assert!(program.is_forgotten(0));
+        assert!(program.page(0).is_none());
+        // A loop over lines 10..=60 keeps line 10 on until the run is
+        // past line 60.
+        let program = streamed(Some(vec![(10, 60)]));
+        for pc in 0..100 {
+            assert!(program.page(pc).is_some());
+            let line = pc as u32 + 1;
+            if (10..=60).contains(&line) {
+                assert!(!program.is_forgotten(9), "line 10 forgotten at {line}");
+            }
+        }
+        assert!(program.is_forgotten(9));
+        // Anywhere: nothing is forgotten.
+        let program = streamed(None);
+        for pc in 0..100 {
+            assert!(program.page(pc).is_some());
+        }
+        assert_eq!(held(&program), 100);
+    }
+
+    #[test]
+    fn labels_ahead_are_found_by_pulling_pages() {
+        let program = streamed(Some(Vec::new()));
+        assert_eq!(program.label("L@50"), Some(49));
+        assert_eq!(program.label("L@500"), None);
+        assert!(program.page(99).is_some());
+        assert!(program.page(100).is_none());
+        assert!(!program.is_forgotten(100));
+    }
 }

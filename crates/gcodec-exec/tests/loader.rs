@@ -74,7 +74,8 @@ fn found(loaded: &Loaded) -> String {
 fn motions(loaded: &Loaded) -> Vec<MotionKind> {
     loaded
         .program
-        .instructions()
+        .whole_instructions()
+        .expect("a loaded program is whole")
         .iter()
         .filter_map(|i| match &i.op {
             Op::Motion { motion, .. } => Some(*motion),
@@ -115,7 +116,8 @@ fn a_program_on_a_later_directory_is_found() {
     assert!(
         loaded
             .program
-            .instructions()
+            .whole_instructions()
+            .expect("a loaded program is whole")
             .iter()
             .all(|i| i.source.file == loaded.program.file)
     );
@@ -252,7 +254,8 @@ fn the_controls_internal_file_names_hold_programs() {
     assert!(
         loaded
             .program
-            .instructions()
+            .whole_instructions()
+            .expect("a loaded program is whole")
             .iter()
             .all(|i| *i.source.file == *loaded.program.file)
     );
@@ -513,7 +516,12 @@ fn a_program_with_errors_is_returned_with_its_diagnostics() {
     assert_eq!((event.source.line, event.source.col), (3, 4));
     assert_eq!(event.source.level, 0);
     // The rest of the program is there.
-    assert!(!loaded.program.instructions().is_empty());
+    assert!(
+        loaded
+            .program
+            .whole_instructions()
+            .is_some_and(|i| !i.is_empty())
+    );
 }
 
 #[test]
@@ -614,7 +622,8 @@ fn the_corpus_cycles_load_from_their_directory() {
         // A cycle opens with its PROC.
         let first = loaded
             .program
-            .instructions()
+            .whole_instructions()
+            .expect("a loaded program is whole")
             .iter()
             .find_map(|i| match &i.op {
                 Op::Procedure(proc) => Some(proc.name.clone()),

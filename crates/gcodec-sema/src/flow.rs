@@ -47,6 +47,8 @@ pub(crate) struct Flow {
     numbers: HashMap<u64, Vec<usize>>,
     /// Per `REPEAT` block: its section, or the target that is missing.
     sections: HashMap<usize, Result<Section, String>>,
+    /// Where control can go back: see [`Flow::returns`].
+    returns: Option<Vec<(usize, usize)>>,
 }
 
 /// What control flow says about one block.
@@ -120,6 +122,11 @@ pub(crate) struct FlowBuilder {
     /// Every block number with its block, in order: which of them jumps
     /// name is known only at the end.
     numbers: Vec<(u64, u32)>,
+    /// A `CALL BLOCK` section of the program itself: it may start at any
+    /// block.
+    calls_own_section: bool,
+    /// The blocks with a `GOTOS`.
+    restarts: Vec<usize>,
 }
 
 impl FlowBuilder {
@@ -135,13 +142,20 @@ impl FlowBuilder {
                         self.repeats.push((index, r.as_ref().clone()));
                         continue;
                     }
+                    StatementKind::IndirectCall(call) => {
+                        self.calls_own_section |= call.section.is_some() && call.program.is_none();
+                        continue;
+                    }
                     _ => continue,
                 };
             let all = single.into_iter().chain(arms.iter().map(|arm| &arm.jump));
             for jump in all.chain(default) {
-                if let Some(target) = &jump.target {
-                    self.jumps
-                        .push((index, Search::of(jump.goto), target.clone()));
+                match &jump.target {
+                    Some(target) => self
+                        .jumps
+                        .push((index, Search::of(jump.goto), target.clone())),
+                    // `GOTOS`: back to the program's start.
+                    None => self.restarts.push(index),
                 }
             }
         }
@@ -182,6 +196,8 @@ impl FlowBuilder {
             labels,
             label_spans,
             numbers: all_numbers,
+            calls_own_section,
+            restarts,
         } = self;
         let computed_jumps = jumps
             .iter()
@@ -212,16 +228,29 @@ impl FlowBuilder {
             label_spans,
             numbers,
             sections: HashMap::new(),
+            returns: None,
         };
+        let mut returns: Vec<(usize, usize)> = structures
+            .iter()
+            .filter(|s| s.kind != StructureKind::If)
+            .filter_map(|s| Some((s.open as usize, s.close? as usize)))
+            .chain(restarts.iter().map(|&at| (0, at)))
+            .collect();
         // Every jump's target block carries its label.
         for (i, kind, target) in &jumps {
             if let Some(to) = flow.search(*i, *kind, target) {
                 flow.add_target(to, label_name(target, to));
+                if to <= *i {
+                    returns.push((to, *i));
+                }
             }
         }
         for (i, repeat) in &repeats {
             let section = flow.section(*i, repeat);
             if let Ok((start, end)) = &section {
+                // The section's passes go back to its start, and back to
+                // the `REPEAT` after them.
+                returns.push(((*start).min(*i), (*end).max(*i)));
                 flow.add_target(*start, label_name(&repeat.start, *start));
                 flow.blocks
                     .entry(*end)
@@ -260,11 +289,26 @@ impl FlowBuilder {
                 flow.add_target(block, name);
             }
         }
+        if !computed_jumps && !calls_own_section {
+            returns.sort_unstable();
+            flow.returns = Some(returns);
+        }
         flow
     }
 }
 
 impl Flow {
+    /// Every way control can go back in the program, as (first, last)
+    /// block: a loop from its end to its start, a jump to a target at or
+    /// before it, a `REPEAT` section and its `REPEAT`; sorted. A run that
+    /// is past a block no span covering the run's block starts at or
+    /// before it never comes back to it. `None` when the program can go
+    /// back anywhere (a computed jump target, a `CALL BLOCK` section of
+    /// the program itself).
+    pub(crate) fn returns(&self) -> Option<&[(usize, usize)]> {
+        self.returns.as_deref()
+    }
+
     /// The span of the label of block `index`.
     pub(crate) fn label_span(&self, index: usize) -> Option<Span> {
         self.label_spans.get(&index).copied()

@@ -429,11 +429,10 @@ impl Channel<'_> {
             return Flow::Next;
         };
         let instruction = match program
-            .instructions()
-            .get(pc.saturating_sub(1))
-            .or(program.instructions().get(pc))
+            .instruction(pc.saturating_sub(1))
+            .or_else(|| program.instruction(pc))
         {
-            Some(i) => i.clone(),
+            Some(i) => i,
             None => return Flow::Next,
         };
         let Some(callee) = modal.program else {
@@ -532,15 +531,11 @@ impl Channel<'_> {
     /// Evaluates the arguments of `call` in the caller's context against
     /// the callee's `PROC` parameters.
     fn bindings(&self, callee: &Program, call: &Call) -> Result<Vec<Binding>, RunError> {
-        let procedure = callee
-            .instructions()
-            .iter()
-            .find(|i| !matches!(i.op, Op::Label { .. }))
-            .and_then(|i| match &i.op {
-                Op::Procedure(p) => Some(p),
-                _ => None,
-            });
-        let params: &[Parameter] = procedure.map_or(&[], |p| &p.params);
+        let first = callee.first_statement();
+        let params: &[Parameter] = match first.as_deref().map(|i| &i.op) {
+            Some(Op::Procedure(p)) => &p.params,
+            _ => &[],
+        };
         if call.args.len() > params.len()
             && call.args.iter().skip(params.len()).any(Option::is_some)
         {
@@ -781,10 +776,8 @@ impl Channel<'_> {
             return None;
         };
         let instruction = program
-            .instructions()
-            .get(*end)
-            .or(program.instructions().last())?
-            .clone();
+            .instruction(*end)
+            .or_else(|| program.last_instruction())?;
         if *pass < *passes {
             *pass += 1;
             top.pc = *start;
@@ -817,10 +810,8 @@ impl Channel<'_> {
         section_end: bool,
     ) -> Flow {
         let Some(instruction) = program
-            .instructions()
-            .get(pc)
-            .or(program.instructions().last())
-            .cloned()
+            .instruction(pc)
+            .or_else(|| program.last_instruction())
         else {
             return Flow::End(ProgramEndReason::EndOfText);
         };

@@ -52,6 +52,10 @@ use crate::vars::{Scope, Variables};
 pub mod codes {
     /// A jump whose target is not in the program (alarm 14080).
     pub const JUMP_TARGET: &str = "gcodec::run::jump_target_not_found";
+    /// The run reaches a block that has errors.
+    pub const BLOCK_WITH_ERRORS: &str = "gcodec::run::block_with_errors";
+    /// A streamed run comes back to an instruction it forgot.
+    pub const FORGOTTEN: &str = "gcodec::run::forgotten_instruction";
     /// A called program that is on no search path (alarm 14011).
     pub const PROGRAM_NOT_FOUND: &str = "gcodec::run::program_not_found";
     /// A standard cycle or predefined procedure that is not on the search
@@ -303,7 +307,7 @@ impl<'r> Channel<'r> {
         let reason = match self.bind_main(&main) {
             Ok(()) => self.run_levels(),
             Err(error) => {
-                let first = main.instructions().first().cloned();
+                let first = main.instruction(0);
                 if let Some(first) = first {
                     self.alarm(&main, &first, error);
                 }
@@ -346,6 +350,13 @@ impl<'r> Channel<'r> {
                 LevelKind::Call(call) => call.section_end_line,
                 _ => None,
             };
+            // The page of `pc`, fetched when the run leaves it (a streamed
+            // program arrives and is forgotten page by page).
+            let mut page = Program::no_page();
+            // The line of the instruction run before `pc` in sequence (0:
+            // none, at the program's start): blocks with errors between
+            // it and `pc` are reached.
+            let mut previous_line = (pc == 0).then_some(0);
             loop {
                 if repeat_end == Some(pc) {
                     match self.repeat_pass_done() {
@@ -353,13 +364,24 @@ impl<'r> Channel<'r> {
                         None => break,
                     }
                 }
-                let Some(instruction) = program.instructions().get(pc) else {
-                    // Past the last instruction (lowering always ends with
-                    // `end`; a hand-made document may not).
-                    match self.return_from_call(&program, pc.saturating_sub(1), false) {
-                        Flow::End(reason) => return reason,
-                        _ => break,
+                if page.get(pc).is_none() {
+                    match program.page(pc) {
+                        Some(next) => page = next,
+                        None if program.is_forgotten(pc) => {
+                            return self.forgotten(&program, pc);
+                        }
+                        // Past the last instruction (lowering always ends
+                        // with `end`; a hand-made document may not).
+                        None => {
+                            match self.return_from_call(&program, pc.saturating_sub(1), false) {
+                                Flow::End(reason) => return reason,
+                                _ => break,
+                            }
+                        }
                     }
+                }
+                let Some(instruction) = page.get(pc) else {
+                    break;
                 };
                 let line = instruction.source.line;
                 if section_end.is_some_and(|end| line > end) {
@@ -381,10 +403,16 @@ impl<'r> Channel<'r> {
                             }
                         }
                     }
+                    let after = previous_line.filter(|_| !self.block.transferred);
+                    if let Some(error) = page.error_reached(after, line) {
+                        let error = error.clone();
+                        return self.block_with_errors(&program, instruction, error);
+                    }
                     if let Some(reason) = self.start_block(&program, instruction) {
                         return reason;
                     }
                 }
+                previous_line = Some(line);
                 if let Some(top) = self.stack.last_mut() {
                     top.pc = pc;
                 }
@@ -405,6 +433,40 @@ impl<'r> Channel<'r> {
                 }
             }
         }
+    }
+
+    /// A block the program's lowering found errors in is reached: the
+    /// control stops there with an alarm (SPEC §11.9).
+    fn block_with_errors(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        at: gcodec_ail::Source,
+    ) -> ProgramEndReason {
+        let mut there = instruction.clone();
+        there.source = at;
+        let error = RunError::new(
+            codes::BLOCK_WITH_ERRORS,
+            "the run reaches a block with errors (reported with the program's diagnostics)",
+        );
+        self.alarm(program, &there, error);
+        ProgramEndReason::Alarm
+    }
+
+    /// The run comes back to an instruction of a streamed program that
+    /// was forgotten: the outline missed a way back (a bug in gcodec).
+    fn forgotten(&mut self, program: &Arc<Program>, pc: usize) -> ProgramEndReason {
+        if let Some(last) = program.last_instruction() {
+            let error = RunError::new(
+                codes::FORGOTTEN,
+                format!(
+                    "the run comes back to instruction {pc}, which the streamed run \
+                     had forgotten; please report this program to gcodec"
+                ),
+            );
+            self.alarm(program, &last, error);
+        }
+        ProgramEndReason::Alarm
     }
 
     /// The start of a block: counts it, checks the limits.
@@ -881,10 +943,9 @@ impl<'r> Channel<'r> {
         let file = level.map_or_else(|| Arc::from(""), |l| l.program.file.clone());
         let line = level
             .and_then(|l| {
-                let instructions = l.program.instructions();
-                instructions
-                    .get(l.pc)
-                    .or_else(|| instructions.last())
+                l.program
+                    .instruction(l.pc)
+                    .or_else(|| l.program.last_instruction())
                     .map(|i| (i.source.line, i.source.col))
             })
             .unwrap_or((1, 1));
@@ -936,6 +997,7 @@ fn send(sink: &mut dyn EventSink, error: &mut Option<io::Error>, event: &Event) 
 fn alarm_number(code: &str) -> Option<u32> {
     match code {
         codes::JUMP_TARGET => Some(14080),
+        codes::BLOCK_WITH_ERRORS => Some(12080),
         codes::PROGRAM_NOT_FOUND => Some(14011),
         crate::value::codes::UNDEFINED_VARIABLE => Some(12550),
         crate::value::codes::INDEX_OUT_OF_RANGE => Some(17020),

@@ -58,6 +58,21 @@ impl Outline<'_> {
     pub fn is_subprogram(&self) -> bool {
         self.subprogram
     }
+
+    /// Where control can go back in the program, as spans of lines
+    /// (first, last), sorted: a loop from its end to its start, a jump to
+    /// a block at or before its own, a `REPEAT` section with its `REPEAT`.
+    /// A run at line `l` comes back to a line before `l` only inside a
+    /// span holding `l`, so a streamed run may forget the instructions
+    /// before the first such span (or before `l`). `None` when control
+    /// can go back anywhere: a computed jump target, a `CALL BLOCK`
+    /// section of the program itself.
+    pub fn returns(&self) -> Option<Vec<(u32, u32)>> {
+        // Block `b` is line `b + 1`.
+        let line = |b: usize| u32::try_from(b + 1).unwrap_or(u32::MAX);
+        let returns = self.flow.returns()?;
+        Some(returns.iter().map(|&(a, b)| (line(a), line(b))).collect())
+    }
 }
 
 /// Builds an [`Outline`] from a program's blocks, fed in order (their

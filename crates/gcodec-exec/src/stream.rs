@@ -1,0 +1,155 @@
+//! A streamed run of a main program: it runs while it is lowered, and
+//! neither its syntax tree nor all its instructions are ever held
+//! (docs/ARCHITECTURE.md, gcodec-exec, "The streamed run").
+//!
+//! Pass 1 parses the program chunk by chunk into its outline (structures,
+//! jump targets, names, signatures), dropping each tree. Pass 2, on a
+//! second thread, parses each chunk again, lowers it against the outline
+//! and hands its instructions to the run as a page through a bounded
+//! channel; it lowers to the end even when the run stops early, so every
+//! diagnostic is reported. A block with errors stops the run with an
+//! alarm when the run reaches it (SPEC §11.9).
+
+use std::sync::Arc;
+use std::sync::mpsc::{SyncSender, sync_channel};
+
+use gcodec_ail::{ByteRange, Source};
+use gcodec_parser::{chunks, parse_chunk};
+use gcodec_profile::Profile;
+use gcodec_sema::{ChunkLowering, Definitions, outline_chunks};
+use gcodec_source::{Diagnostic, SourceFile};
+
+use crate::program::{Program, SourcePage};
+
+/// How a streamed run cuts its program.
+#[derive(Clone, Copy, Debug)]
+pub struct StreamOptions {
+    /// Lines per chunk, and so per page of instructions.
+    pub page_lines: usize,
+}
+
+impl Default for StreamOptions {
+    fn default() -> Self {
+        Self { page_lines: 16_384 }
+    }
+}
+
+/// Pages the channel holds before pass 2 waits for the run: enough for
+/// the two threads not to wait on each other at every page.
+const PAGES_AHEAD: usize = 2;
+
+/// Runs the main program in `file` (called `name`) streamed: `run` gets
+/// the [`Program`] while pass 2 still lowers it. Returns what `run`
+/// returned and all the program's own diagnostics (parse, structure,
+/// outline, lowering) in source order.
+pub fn run_streamed<R>(
+    file: &SourceFile,
+    name: String,
+    profile: &Profile,
+    definitions: &Definitions,
+    options: StreamOptions,
+    run: impl FnOnce(Arc<Program>) -> R,
+) -> (R, Vec<Diagnostic>) {
+    let src = file.bytes();
+    let chunks = chunks(src, options.page_lines.max(1));
+    let (outline, mut diagnostics) =
+        outline_chunks(file.name(), src, &chunks, profile, definitions);
+    diagnostics.extend_from_slice(outline.diagnostics());
+    let file_name: Arc<str> = Arc::from(file.name());
+    let known_errors = error_sources(file, &file_name, &diagnostics);
+    let returns = outline.returns();
+    let (sender, receiver) = sync_channel::<SourcePage>(PAGES_AHEAD);
+    // With its text, as `loader::compile` gives a program: the CSV trace
+    // reads block numbers there, computed jumps and `CALL BLOCK` search
+    // it.
+    let program = Program::streamed(name, Arc::clone(&file_name), Box::new(receiver), returns)
+        .with_text(Arc::from(src));
+    let program = Arc::new(program);
+    let (result, lowered) = std::thread::scope(|scope| {
+        let pass2 = scope.spawn(|| {
+            let mut pages = Pages {
+                sender: Some(sender),
+            };
+            // The errors pass 1 found go ahead of every page.
+            pages.send(SourcePage {
+                instructions: Vec::new(),
+                errors: known_errors,
+            });
+            let mut lowering = ChunkLowering::new(&outline, profile);
+            let mut diagnostics = Vec::new();
+            for chunk in &chunks {
+                let parsed = parse_chunk(src, chunk);
+                // Pass 1 reported the parse diagnostics.
+                let Some(lowered) = lowering.lower(parsed.first_block, &parsed.blocks) else {
+                    continue;
+                };
+                drop(parsed);
+                let errors = error_sources(file, &file_name, &lowered.diagnostics);
+                diagnostics.extend(lowered.diagnostics);
+                pages.send(SourcePage {
+                    instructions: lowered.instructions,
+                    errors,
+                });
+            }
+            let last = lowering.finish();
+            let errors = error_sources(file, &file_name, &last.diagnostics);
+            diagnostics.extend(last.diagnostics);
+            pages.send(SourcePage {
+                instructions: last.instructions,
+                errors,
+            });
+            diagnostics
+        });
+        let result = run(Arc::clone(&program));
+        // A run that stopped early leaves pages unread: pass 2 must not
+        // wait for it to take them.
+        program.end_stream();
+        let lowered = pass2
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (result, lowered)
+    });
+    diagnostics.extend(lowered);
+    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    (result, diagnostics)
+}
+
+/// The pages pass 2 sends, while the run takes them.
+struct Pages {
+    sender: Option<SyncSender<SourcePage>>,
+}
+
+impl Pages {
+    fn send(&mut self, page: SourcePage) {
+        if let Some(sender) = &self.sender
+            && sender.send(page).is_err()
+        {
+            // The run has ended: lowering goes on for the diagnostics.
+            self.sender = None;
+        }
+    }
+}
+
+/// Where the errors among `diagnostics` are, in line order; an error
+/// without a place counts as one on the first line.
+fn error_sources(file: &SourceFile, name: &Arc<str>, diagnostics: &[Diagnostic]) -> Vec<Source> {
+    let mut errors: Vec<Source> = diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| {
+            let span = d.span().unwrap_or_default();
+            let (line, col) = file.line_col(span.start);
+            Source {
+                file: Arc::clone(name),
+                line,
+                col,
+                span: ByteRange {
+                    start: span.start,
+                    end: span.end,
+                },
+            }
+        })
+        .collect();
+    errors.sort_by_key(|e| (e.line, e.col));
+    errors
+}

@@ -1,0 +1,180 @@
+//! A streamed run (`stream::run_streamed`, what `gcodec run` does) writes
+//! the same events as a run of the program lowered whole, byte for byte,
+//! however the program is cut into pages: every golden fixture and every
+//! corpus main program, with pages of 1, 3 and 16,384 lines. The
+//! program's diagnostics are the same too.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use gcodec_exec::channel::{Channel, RunOptions};
+use gcodec_exec::event::{EventKind, JsonlSink};
+use gcodec_exec::loader::{FileLoader, SearchPath, compile, program_name};
+use gcodec_exec::stream::{StreamOptions, run_streamed};
+use gcodec_profile::Profile;
+use gcodec_sema::Definitions;
+use gcodec_source::SourceFile;
+
+mod common;
+
+#[path = "../../gcodec-sema/tests/common/mod.rs"]
+mod sema_common;
+
+use common::setup::{FIXTURES, Setup, setup};
+
+struct Case<'a> {
+    file: SourceFile,
+    name: String,
+    profile: Arc<Profile>,
+    definitions: Arc<Definitions>,
+    options: RunOptions,
+    search: &'a dyn Fn() -> SearchPath,
+}
+
+/// The events and summary of a run of `main`.
+fn run(case: &Case, main: Arc<gcodec_exec::program::Program>) -> String {
+    let mut loader = FileLoader::new(
+        (case.search)(),
+        Arc::clone(&case.profile),
+        Arc::clone(&case.definitions),
+    );
+    let mut buffer = Vec::new();
+    let mut sink = JsonlSink::new(&mut buffer);
+    let outcome = Channel::new(
+        Arc::clone(&case.profile),
+        case.options.clone(),
+        &mut loader,
+        &mut sink,
+    )
+    .with_globals(&case.definitions)
+    .run(main)
+    .expect("events go to memory");
+    drop(sink);
+    let mut out = String::from_utf8(buffer).expect("UTF-8");
+    out.push_str(&outcome.summary.to_string());
+    out
+}
+
+/// Compares the streamed runs of `case` with its whole run; `false` when
+/// the program has errors (a whole program with errors is not run).
+fn check(case: &Case) -> bool {
+    let whole = compile(
+        case.name.clone(),
+        &case.file,
+        &case.profile,
+        &case.definitions,
+        false,
+    );
+    let whole_diagnostics: Vec<String> = whole
+        .diagnostics
+        .iter()
+        .filter_map(|e| match &e.kind {
+            EventKind::Diagnostic(d) => Some(format!("{}:{} {}", e.source.line, d.code, d.message)),
+            _ => None,
+        })
+        .collect();
+    let has_errors = whole.has_errors;
+    let expected = (!has_errors).then(|| run(case, whole.program));
+    for page_lines in [1, 3, 16_384] {
+        let (events, diagnostics) = run_streamed(
+            &case.file,
+            case.name.clone(),
+            &case.profile,
+            &case.definitions,
+            StreamOptions { page_lines },
+            |main| run(case, main),
+        );
+        let diagnostics: Vec<String> = diagnostics
+            .iter()
+            .map(|d| {
+                let line = d.span().map_or(0, |s| case.file.line_col(s.start).0);
+                format!("{line}:{} {}", d.code, d.message)
+            })
+            .collect();
+        assert_eq!(
+            diagnostics,
+            whole_diagnostics,
+            "{} in pages of {page_lines} lines: diagnostics",
+            case.file.name()
+        );
+        if let Some(expected) = &expected {
+            assert!(
+                events == *expected,
+                "{} in pages of {page_lines} lines: the events differ\nstreamed:\n{events}\nwhole:\n{expected}",
+                case.file.name()
+            );
+        }
+    }
+    !has_errors
+}
+
+#[test]
+fn streamed_runs_write_the_events_of_whole_runs() {
+    // The fixtures first: the corpus runs from the corpus directory.
+    let mut fixtures: Vec<PathBuf> = std::fs::read_dir(FIXTURES)
+        .expect("fixtures")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "mpf"))
+        .collect();
+    fixtures.sort();
+    assert!(fixtures.len() >= 10);
+    let no_search = SearchPath::new;
+    for path in &fixtures {
+        let text = std::fs::read_to_string(path).expect("fixture");
+        let Setup {
+            profile,
+            mut options,
+        } = setup(path, &text);
+        options.interrupt = None;
+        let case = Case {
+            file: SourceFile::new(path.to_string_lossy().replace('\\', "/"), text.as_bytes()),
+            name: program_name(path),
+            profile,
+            definitions: Arc::new(Definitions::new()),
+            options,
+            search: &no_search,
+        };
+        assert!(check(&case), "{} has errors", path.display());
+    }
+    let Some(corpus) = sema_common::corpus_dir() else {
+        return;
+    };
+    let programs = sema_common::programs(&corpus);
+    let mut dirs: Vec<PathBuf> = programs
+        .iter()
+        .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")))
+        .filter_map(|p| p.parent().map(Path::to_path_buf))
+        .collect();
+    dirs.sort();
+    dirs.dedup();
+    let search = || SearchPath::new().with_dirs(dirs.iter().cloned());
+    let previous = std::env::current_dir().expect("current dir");
+    std::env::set_current_dir(&corpus).expect("corpus dir");
+    let mut compared = 0;
+    for path in programs
+        .iter()
+        .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("mpf")))
+    {
+        let shown = path
+            .strip_prefix(&corpus)
+            .unwrap_or(path)
+            .display()
+            .to_string()
+            .replace('\\', "/");
+        let profile = sema_common::machines::machine_profile(&shown).1;
+        let mut options = RunOptions::for_profile(&profile);
+        options.stop_at_m0 = false;
+        options.max_steps = 200_000;
+        let case = Case {
+            file: SourceFile::new(shown.clone(), std::fs::read(path).expect("read")),
+            name: program_name(path),
+            profile: Arc::new(profile),
+            definitions: Arc::new(sema_common::machines::definitions(&corpus, &shown)),
+            options,
+            search: &search,
+        };
+        compared += usize::from(check(&case));
+    }
+    std::env::set_current_dir(previous).expect("back");
+    assert!(compared >= 40, "only {compared} corpus programs compared");
+}
