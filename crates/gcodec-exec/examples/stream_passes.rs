@@ -30,7 +30,7 @@ fn main() {
     let t_chunks = t.elapsed();
 
     let t = Instant::now();
-    let (outline, _) = outline_chunks(&path, &src, &chunks, &profile, &definitions);
+    let (outline, _) = outline_chunks(&path, &src, &chunks, 1, &profile, &definitions);
     let t_outline = t.elapsed();
 
     let t = Instant::now();

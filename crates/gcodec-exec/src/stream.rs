@@ -14,7 +14,7 @@ use std::sync::Arc;
 use std::sync::mpsc::{SyncSender, sync_channel};
 
 use gcodec_ail::{ByteRange, Source};
-use gcodec_parser::{chunks, parse_chunk};
+use gcodec_parser::{chunks, parse_chunks};
 use gcodec_profile::Profile;
 use gcodec_sema::{ChunkLowering, Definitions, outline_chunks};
 use gcodec_source::{Diagnostic, SourceFile};
@@ -26,11 +26,19 @@ use crate::program::{Program, SourcePage};
 pub struct StreamOptions {
     /// Lines per chunk, and so per page of instructions.
     pub page_lines: usize,
+    /// Threads that parse chunks ahead of the outline (pass 1) and of
+    /// the lowering (pass 2).
+    pub parse_workers: usize,
 }
 
 impl Default for StreamOptions {
     fn default() -> Self {
-        Self { page_lines: 16_384 }
+        Self {
+            // Measured on the 1,000,000-block program (docs/performance.md):
+            // smaller pages hold less in flight at the same speed.
+            page_lines: 1024,
+            parse_workers: 2,
+        }
     }
 }
 
@@ -52,8 +60,14 @@ pub fn run_streamed<R>(
 ) -> (R, Vec<Diagnostic>) {
     let src = file.bytes();
     let chunks = chunks(src, options.page_lines.max(1));
-    let (outline, mut diagnostics) =
-        outline_chunks(file.name(), src, &chunks, profile, definitions);
+    let (outline, mut diagnostics) = outline_chunks(
+        file.name(),
+        src,
+        &chunks,
+        options.parse_workers,
+        profile,
+        definitions,
+    );
     diagnostics.extend_from_slice(outline.diagnostics());
     let file_name: Arc<str> = Arc::from(file.name());
     let known_errors = error_sources(file, &file_name, &diagnostics);
@@ -77,11 +91,10 @@ pub fn run_streamed<R>(
             });
             let mut lowering = ChunkLowering::new(&outline, profile);
             let mut diagnostics = Vec::new();
-            for chunk in &chunks {
-                let parsed = parse_chunk(src, chunk);
+            parse_chunks(src, &chunks, options.parse_workers, |parsed| {
                 // Pass 1 reported the parse diagnostics.
                 let Some(lowered) = lowering.lower(parsed.first_block, &parsed.blocks) else {
-                    continue;
+                    return;
                 };
                 drop(parsed);
                 let errors = error_sources(file, &file_name, &lowered.diagnostics);
@@ -90,7 +103,7 @@ pub fn run_streamed<R>(
                     instructions: lowered.instructions,
                     errors,
                 });
-            }
+            });
             let last = lowering.finish();
             let errors = error_sources(file, &file_name, &last.diagnostics);
             diagnostics.extend(last.diagnostics);

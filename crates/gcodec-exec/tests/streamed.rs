@@ -81,7 +81,10 @@ fn check(case: &Case) -> bool {
             case.name.clone(),
             &case.profile,
             &case.definitions,
-            StreamOptions { page_lines },
+            StreamOptions {
+                page_lines,
+                parse_workers: page_lines % 2 + 1,
+            },
             |main| run(case, main),
         );
         let diagnostics: Vec<String> = diagnostics

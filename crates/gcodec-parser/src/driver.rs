@@ -234,6 +234,47 @@ pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
     }
 }
 
+/// Parses `chunks` of `src` on `workers` threads and hands each parsed
+/// chunk to `each` in order. A worker parses at most one chunk ahead of
+/// the chunk `each` takes, so memory does not grow with the program.
+pub fn parse_chunks(
+    src: &[u8],
+    chunks: &[Chunk],
+    workers: usize,
+    mut each: impl FnMut(ParsedChunk),
+) {
+    if workers <= 1 || chunks.len() <= 1 {
+        for chunk in chunks {
+            each(parse_chunk(src, chunk));
+        }
+        return;
+    }
+    std::thread::scope(|scope| {
+        // Worker `k` parses chunks `k`, `k + workers`, …; taking from the
+        // workers in turn restores the order.
+        let parsed: Vec<std::sync::mpsc::Receiver<ParsedChunk>> = (0..workers)
+            .map(|k| {
+                let (sender, receiver) = std::sync::mpsc::sync_channel(1);
+                scope.spawn(move || {
+                    for chunk in chunks.iter().skip(k).step_by(workers) {
+                        if sender.send(parse_chunk(src, chunk)).is_err() {
+                            return;
+                        }
+                    }
+                });
+                receiver
+            })
+            .collect();
+        for index in 0..chunks.len() {
+            // A worker that panicked ends the run; the scope re-raises it.
+            let Ok(chunk) = parsed[index % workers].recv() else {
+                break;
+            };
+            each(chunk);
+        }
+    });
+}
+
 /// `slots` cut into consecutive runs of the given lengths.
 fn runs<'a, T>(mut slots: &'a mut [T], lengths: &[usize]) -> Vec<&'a mut [T]> {
     lengths

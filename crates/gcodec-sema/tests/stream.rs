@@ -14,11 +14,12 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
     let parsed = gcodec_parser::parse_bytes(name, src);
     let definitions = Definitions::new();
     let whole = lower_in_parts(&parsed.program, profile, &definitions, 1);
-    for lines in [1, 3, 64] {
+    // Chunks parsed on one thread, and on three taking turns.
+    for (lines, workers) in [(1, 3), (3, 1), (64, 3)] {
         let chunks = chunks(src, lines);
         // Pass 1: the outline, the trees dropped chunk by chunk.
         let (outline, parse_diagnostics) =
-            outline_chunks(name, src, &chunks, profile, &definitions);
+            outline_chunks(name, src, &chunks, workers, profile, &definitions);
         assert_eq!(
             parsed.diagnostics, parse_diagnostics,
             "{name}: parse diagnostics differ in chunks of {lines}"

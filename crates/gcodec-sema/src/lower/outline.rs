@@ -174,21 +174,21 @@ pub fn outline<'d>(
 }
 
 /// The outline of the program `src` (named `file`), parsed chunk by chunk
-/// with each chunk's tree dropped after it (pass 1 of a streamed run),
-/// and the parse diagnostics in source order (the outline's own are in
-/// [`Outline::diagnostics`]).
+/// on `workers` threads with each chunk's tree dropped after it (pass 1
+/// of a streamed run), and the parse diagnostics in source order (the
+/// outline's own are in [`Outline::diagnostics`]).
 pub fn outline_chunks<'d>(
     file: &str,
     src: &[u8],
     chunks: &[gcodec_parser::Chunk],
+    workers: usize,
     profile: &Profile,
     definitions: &'d Definitions,
 ) -> (Outline<'d>, Vec<Diagnostic>) {
     let mut builder = OutlineBuilder::new(file, profile, definitions);
     let mut pairing = gcodec_parser::Pairing::default();
     let mut diagnostics = Vec::new();
-    for chunk in chunks {
-        let mut parsed = gcodec_parser::parse_chunk(src, chunk);
+    gcodec_parser::parse_chunks(src, chunks, workers, |mut parsed| {
         diagnostics.append(&mut parsed.diagnostics);
         pairing.feed(
             &mut parsed.blocks,
@@ -197,7 +197,7 @@ pub fn outline_chunks<'d>(
             &mut diagnostics,
         );
         builder.feed(parsed.first_block, &parsed.blocks);
-    }
+    });
     let (structures, unclosed) = pairing.finish();
     diagnostics.extend(unclosed);
     diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
