@@ -85,12 +85,7 @@ fn every_main_program_runs_to_its_end_or_a_diagnosed_dependency() {
     let mut report = String::new();
     let mut failures = Vec::new();
     for path in &mains {
-        let shown = path
-            .strip_prefix(&corpus)
-            .unwrap_or(path)
-            .display()
-            .to_string()
-            .replace('\\', "/");
+        let shown = common::shown(&corpus, path);
         let profile = Arc::new(machine_profile(&shown).1);
         let definitions = Arc::new(definitions(&corpus, &shown));
         let file = SourceFile::new(shown.clone(), std::fs::read(path).expect("read"));

@@ -158,12 +158,7 @@ fn streamed_runs_write_the_events_of_whole_runs() {
         .iter()
         .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("mpf")))
     {
-        let shown = path
-            .strip_prefix(&corpus)
-            .unwrap_or(path)
-            .display()
-            .to_string()
-            .replace('\\', "/");
+        let shown = sema_common::shown(&corpus, path);
         let profile = sema_common::machines::machine_profile(&shown).1;
         let mut options = RunOptions::for_profile(&profile);
         options.stop_at_m0 = false;

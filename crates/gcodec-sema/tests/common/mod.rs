@@ -10,6 +10,15 @@ pub use parser_common::{all_programs, corpus_dir, programs, repo};
 
 pub mod machines;
 
+/// `path` as the corpus tests show it: relative to the corpus, with `/`.
+pub fn shown(corpus: &std::path::Path, path: &std::path::Path) -> String {
+    path.strip_prefix(corpus)
+        .unwrap_or(path)
+        .display()
+        .to_string()
+        .replace('\\', "/")
+}
+
 /// A shipped profile, by file name (`lathe_828d.toml`).
 pub fn profile(name: &str) -> gcodec_profile::Profile {
     let text = std::fs::read_to_string(repo().join("profiles").join(name)).expect("profile");
