@@ -34,10 +34,10 @@ fn profiles() -> &'static [Arc<gcodec_profile::Profile>] {
 }
 
 fuzz_target!(|data: &[u8]| {
-    let file = SourceFile::new("fuzz.mpf", data);
+    let file = Arc::new(SourceFile::new("fuzz.mpf", data));
     for profile in profiles() {
         let definitions = Arc::new(Definitions::new());
-        let main = compile("FUZZ", &file, profile, &definitions, false);
+        let main = compile("FUZZ", Arc::clone(&file), profile, &definitions, false);
         let mut loader = MemoryLoader::new(Arc::clone(profile), Arc::clone(&definitions))
             .with_program("SUB.SPF", data);
         let mut options = RunOptions::for_profile(profile);

@@ -330,7 +330,7 @@ fn lower(
 /// source order on stderr; the document and whether any is an error. The
 /// syntax tree is not freed (the process ends soon; freeing it block by
 /// block would only cost time).
-pub fn lower_file(
+fn lower_file(
     file: &SourceFile,
     profile: &gcodec_profile::Profile,
     definitions: &gcodec_sema::Definitions,

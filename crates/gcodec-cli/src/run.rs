@@ -7,9 +7,9 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::ValueEnum;
-use gcodec_exec::channel::{BlockObserver, Channel, RunOptions};
+use gcodec_exec::channel::{Channel, RunOptions};
 use gcodec_exec::event::{
-    BlockRow, CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
+    CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
 };
 use gcodec_exec::loader::{FileLoader, SearchPath, program_name};
 use gcodec_exec::stream::{StreamOptions, run_streamed};
@@ -134,14 +134,6 @@ impl EventSink for Discard {
     }
 }
 
-struct CsvRows<W: Write>(CsvWriter<W>);
-
-impl<W: Write> BlockObserver for CsvRows<W> {
-    fn block(&mut self, row: &BlockRow) -> io::Result<()> {
-        self.0.row(row)
-    }
-}
-
 pub fn run(args: RunArgs) -> u8 {
     let options = args.diagnostics;
     let profile_path = args.profile.as_deref();
@@ -180,53 +172,34 @@ pub fn run(args: RunArgs) -> u8 {
         });
     }
     run_options.interrupt = Some(interrupt);
-    let stream = StreamOptions::default();
+    let file = Arc::new(file);
     let name = program_name(&args.file);
+    let stream = StreamOptions::default();
     let (outcome, diagnostics) =
         run_streamed(&file, name, &profile, &definitions, stream, |main| {
-            let stdout = io::stdout();
-            let out = stdout.lock();
-            match args.format {
-                RunFormat::Jsonl | RunFormat::Text => {
-                    let (mut jsonl, mut text);
-                    let inner: &mut dyn EventSink = if matches!(args.format, RunFormat::Jsonl) {
-                        jsonl = JsonlSink::new(out);
-                        &mut jsonl
-                    } else {
-                        text = TextSink::new(out);
-                        &mut text
-                    };
-                    let mut sink = Diagnostics { inner };
-                    Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
-                        .with_globals(&definitions)
-                        .run(main)
-                }
-                RunFormat::Csv => {
-                    let axes = profile
-                        .axes
-                        .iter()
-                        .map(|a| std::borrow::Cow::Owned(a.name.get_ref().to_ascii_uppercase()));
-                    let writer = match CsvWriter::new(out, axes) {
-                        Ok(w) => w,
-                        Err(e) => return Err(e),
-                    };
-                    let mut rows = CsvRows(writer);
-                    let mut sink = Diagnostics { inner: Discard };
-                    let result =
-                        Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
-                            .with_globals(&definitions)
-                            .with_observer(&mut rows)
-                            .run(main);
-                    match (result, rows.0.finish()) {
-                        (Ok(outcome), Ok(())) => Ok(outcome),
-                        (Err(e), _) | (_, Err(e)) => Err(e),
-                    }
-                }
+            let out = io::stdout().lock();
+            let (events, mut rows): (Box<dyn EventSink>, _) = match args.format {
+                RunFormat::Jsonl => (Box::new(JsonlSink::new(out)), None),
+                RunFormat::Text => (Box::new(TextSink::new(out)), None),
+                RunFormat::Csv => (
+                    Box::new(Discard),
+                    Some(CsvWriter::for_profile(out, &profile)?),
+                ),
+            };
+            let mut sink = Diagnostics { inner: events };
+            let mut channel =
+                Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
+                    .with_globals(&definitions);
+            if let Some(rows) = &mut rows {
+                channel = channel.with_observer(rows);
             }
+            let outcome = channel.run(main)?;
+            rows.as_mut().map_or(Ok(()), CsvWriter::finish)?;
+            Ok(outcome)
         });
     // The program's own diagnostics, all of them, after the run that
     // went on while it was lowered.
-    report(&diagnostics, Some(&file), options);
+    report(&diagnostics, Some(&*file), options);
     let has_errors = diagnostics.iter().any(Diagnostic::is_error);
     let outcome = match outcome {
         Ok(outcome) => outcome,

@@ -41,7 +41,8 @@ fn lowered(name: &str, src: &[u8], profile: &Profile) -> Arc<Program> {
     assert!(parsed.diagnostics.is_empty(), "{:?}", parsed.diagnostics);
     let lowered = gcodec_sema::lower(&parsed.program, profile);
     assert!(!lowered.has_errors(), "{:?}", lowered.diagnostics);
-    Arc::new(Program::new("MAIN", Arc::from(name), lowered.document))
+    let source = Arc::new(gcodec_source::SourceFile::new(name, src));
+    Arc::new(Program::new("MAIN", source, lowered.document))
 }
 
 /// One run of `program` to its end; the number of blocks executed.

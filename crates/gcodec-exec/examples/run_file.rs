@@ -47,11 +47,7 @@ fn main() {
     let rss_lower = rss();
     std::mem::forget(parsed.program);
     let instructions = lowered.document.instructions.len();
-    let main = Arc::new(Program::new(
-        "MAIN",
-        Arc::from(file.name()),
-        lowered.document,
-    ));
+    let main = Arc::new(Program::new("MAIN", Arc::new(file), lowered.document));
     let mut loader = FileLoader::new(
         SearchPath::new(),
         Arc::clone(&profile),

@@ -19,7 +19,7 @@ use gcodec_ail::{AssignList, BinaryOp, Declare, Expr, UnaryOp, Value, VarKind};
 use gcodec_profile::{Profile, ToolChangeMode};
 
 use crate::value::{
-    DataType, FrameAxis, FrameValue, RtValue, RunError, codes, format_real, real_to_int,
+    DataType, FrameAxis, FrameValue, RtValue, RunError, char_text, codes, real_to_int,
 };
 use crate::vars::{Init, Scope, Variables, undefined};
 
@@ -88,20 +88,24 @@ pub trait RuntimeInterface {
         let Some(profile) = self.profile() else {
             return false;
         };
-        if profile
+        profile
             .axes
             .iter()
             .any(|a| a.name.get_ref().eq_ignore_ascii_case(name))
-        {
-            return true;
-        }
-        let upper = name.as_bytes();
-        upper.len() > 2
-            && upper[..2].eq_ignore_ascii_case(b"AX")
-            && name[2..]
-                .parse::<usize>()
-                .is_ok_and(|n| (1..=profile.axes.len()).contains(&n))
+            || machine_axis_number(name, profile.axes.len()).is_some()
     }
+}
+
+/// `AX1`, `AX2`, … (any case): the index of machine axis `n` of `count`
+/// axes (MD10000); `None` for another name or a number outside
+/// `1 … count`.
+pub(crate) fn machine_axis_number(name: &str, count: usize) -> Option<usize> {
+    let bytes = name.as_bytes();
+    if bytes.len() > 2 && bytes[..2].eq_ignore_ascii_case(b"AX") {
+        let n: usize = name[2..].parse().ok()?;
+        return (1..=count).contains(&n).then(|| n - 1);
+    }
+    None
 }
 
 /// A machine profile is a runtime that knows what the profile says.
@@ -312,19 +316,50 @@ fn system_indices<C: EvalContext + ?Sized>(
     ctx: &C,
     indices: &[Expr],
     depth: usize,
-) -> Result<Vec<RtValue>, RunError> {
-    let mut out = Vec::with_capacity(indices.len());
-    for e in indices {
-        out.push(match e {
-            Expr::Var {
-                var_kind: VarKind::User | VarKind::Axis,
-                name,
-                indices,
-            } if indices.is_empty() && !ctx.variables().is_defined(name) => RtValue::axis(name),
-            e => eval_at(ctx, e, depth + 1)?,
-        });
+) -> Result<SystemIndices, RunError> {
+    let index = |e: &Expr| match e {
+        Expr::Var {
+            var_kind: VarKind::User | VarKind::Axis,
+            name,
+            indices,
+        } if indices.is_empty() && !ctx.variables().is_defined(name) => Ok(RtValue::axis(name)),
+        e => eval_at(ctx, e, depth + 1),
+    };
+    if indices.len() > INLINE_INDICES {
+        return indices
+            .iter()
+            .map(index)
+            .collect::<Result<_, _>>()
+            .map(SystemIndices::Heap);
     }
-    Ok(out)
+    let mut values = [const { RtValue::Int(0) }; INLINE_INDICES];
+    for (slot, e) in values.iter_mut().zip(indices) {
+        *slot = index(e)?;
+    }
+    Ok(SystemIndices::Inline(values, indices.len()))
+}
+
+/// System-variable indices held without allocating up to this many.
+const INLINE_INDICES: usize = 4;
+
+/// The evaluated indices of a system variable: inline when there are at
+/// most [`INLINE_INDICES`], so that reading `$P_UIFR[1, X, TR]` allocates
+/// no list.
+enum SystemIndices {
+    /// The values and how many of them are used.
+    Inline([RtValue; INLINE_INDICES], usize),
+    Heap(Vec<RtValue>),
+}
+
+impl std::ops::Deref for SystemIndices {
+    type Target = [RtValue];
+
+    fn deref(&self) -> &[RtValue] {
+        match self {
+            Self::Inline(values, len) => &values[..*len],
+            Self::Heap(values) => values,
+        }
+    }
 }
 
 #[inline(never)]
@@ -660,7 +695,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
     fn string(&self, i: usize) -> Result<Arc<str>, RunError> {
         match self.value(i)? {
             RtValue::String(s) => Ok(s),
-            RtValue::Char(c) => Ok(Arc::from(char::from(c).to_string().as_str())),
+            RtValue::Char(c) => Ok(Arc::from(char_text(c).as_str())),
             v => Err(self.wrong_type(i, &v, "a STRING")),
         }
     }
@@ -966,7 +1001,6 @@ fn parse_number(text: &str) -> Option<f64> {
     if matches!(b.first(), Some(b'+' | b'-')) {
         i += 1;
     }
-    let digits_start = i;
     let mut digits = 0;
     while i < b.len() && b[i].is_ascii_digit() {
         i += 1;
@@ -983,7 +1017,6 @@ fn parse_number(text: &str) -> Option<f64> {
         return None;
     }
     let mantissa = &t[..i];
-    let _ = digits_start;
     let mut exponent = 0i32;
     if i < b.len() && b[i].eq_ignore_ascii_case(&b'E') {
         i += 1;
@@ -1234,30 +1267,13 @@ fn settable_frame(profile: &Profile, name: &str, indices: &[RtValue]) -> Result<
         [n, axis, component] => (n, Some((axis, component))),
         _ => return Err(sys_index_count(name, "1 or 3", indices.len())),
     };
-    let n = n.to_int()?;
     let supported = profile.work_offsets.supported_group8();
-    let index = usize::try_from(n)
-        .ok()
-        .filter(|&i| i < supported.len() && supported[i]);
-    let Some(index) = index else {
-        return Err(RunError::new(
-            codes::INDEX_OUT_OF_RANGE,
-            format!("`{name}[{n}]`: the machine has no settable offset {n}"),
-        ));
-    };
-    let values = profile
-        .work_offsets
-        .values
-        .iter()
-        .find(|(code, _)| gcodec_profile::group8_index(code.get_ref()) == Some(index as u8))
-        .map(|(_, axes)| axes);
+    let index = settable_offset(n.to_int()?, |i| supported.get(i) == Some(&true))?;
     let frame = FrameValue {
-        axes: values
-            .into_iter()
-            .flatten()
-            .map(|(axis, &v)| FrameAxis {
+        axes: profile_offsets(profile, index)
+            .map(|(axis, v)| FrameAxis {
                 translation: v,
-                ..FrameAxis::neutral(&axis.get_ref().to_ascii_uppercase())
+                ..FrameAxis::neutral(&axis.to_ascii_uppercase())
             })
             .collect(),
     };
@@ -1265,22 +1281,43 @@ fn settable_frame(profile: &Profile, name: &str, indices: &[RtValue]) -> Result<
         return Ok(RtValue::Frame(Arc::new(frame)));
     };
     let axis = match axis {
-        RtValue::Axis(a) | RtValue::String(a) => a.clone(),
+        RtValue::Axis(a) | RtValue::String(a) => a,
         v => return Err(RunError::type_mismatch(v, "AXIS")),
     };
-    let component = match component {
-        RtValue::Axis(c) | RtValue::String(c) => c.clone(),
-        v => return Err(RunError::type_mismatch(v, "a frame component")),
-    };
-    frame
-        .component(&axis, &component)
-        .map(RtValue::Real)
+    frame.component_of(axis, component).map(RtValue::Real)
+}
+
+/// The settable offset `$P_UIFR[n]` addresses: `n` when `exists(n)`, else
+/// the error that the machine has no settable offset `n`.
+pub(crate) fn settable_offset(
+    n: i32,
+    exists: impl FnOnce(usize) -> bool,
+) -> Result<usize, RunError> {
+    usize::try_from(n)
+        .ok()
+        .filter(|&i| exists(i))
         .ok_or_else(|| {
             RunError::new(
-                codes::TYPE_MISMATCH,
-                format!("`{component}` is not a frame component (TR, FI, RT, SC, MI)"),
+                codes::INDEX_OUT_OF_RANGE,
+                format!("`$P_UIFR[{n}]`: the machine has no settable offset {n}"),
             )
         })
+}
+
+/// The translations (axis name as the profile writes it, value) the
+/// profile gives the settable offset with the Group 8 index `index`
+/// (`[work_offsets.values.G54]`); none when it gives none.
+pub(crate) fn profile_offsets(
+    profile: &Profile,
+    index: usize,
+) -> impl Iterator<Item = (&str, f64)> {
+    profile
+        .work_offsets
+        .values
+        .iter()
+        .find(|(code, _)| gcodec_profile::group8_index(code.get_ref()) == Some(index as u8))
+        .into_iter()
+        .flat_map(|(_, axes)| axes.iter().map(|(axis, &v)| (axis.get_ref().as_str(), v)))
 }
 
 fn tool_parameter(
@@ -1477,11 +1514,4 @@ pub fn declare(
         None => Init::List(&init),
     };
     vars.declare(scope, &decl.name, ty, &dims, init)
-}
-
-/// Writes a REAL as `<<` does (re-exported for the channel's messages).
-pub fn real_text(r: f64) -> String {
-    let mut s = String::new();
-    format_real(r, &mut s);
-    s
 }

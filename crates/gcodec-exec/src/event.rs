@@ -41,6 +41,22 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 /// statics, as in AIL, so that copying a name costs nothing.
 pub type AxisName = Cow<'static, str>;
 
+/// A profile's axis name as events and CSV columns write it: upper case,
+/// a single letter borrowed.
+pub fn axis_name(name: &str) -> AxisName {
+    match name.as_bytes() {
+        [b] if b.is_ascii_alphabetic() => {
+            Cow::Borrowed(gcodec_parser::ast::letter_str(b.to_ascii_uppercase()))
+        }
+        _ => Cow::Owned(name.to_ascii_uppercase()),
+    }
+}
+
+/// The names of the channel axes of `profile`, in order.
+pub fn axis_names(profile: &gcodec_profile::Profile) -> impl Iterator<Item = AxisName> + '_ {
+    profile.axes.iter().map(|a| axis_name(a.name.get_ref()))
+}
+
 /// One runtime event: what happened and where.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Event {
@@ -188,38 +204,7 @@ fn is_zero(value: &u32) -> bool {
     *value == 0
 }
 
-/// The working plane (group 6), as the control spells the command.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-pub enum Plane {
-    /// X/Y, infeed along Z.
-    #[default]
-    G17,
-    /// Z/X, infeed along Y.
-    G18,
-    /// Y/Z, infeed along X.
-    G19,
-}
-
-impl From<Plane> for crate::geometry::Plane {
-    fn from(plane: Plane) -> Self {
-        match plane {
-            Plane::G17 => Self::G17,
-            Plane::G18 => Self::G18,
-            Plane::G19 => Self::G19,
-        }
-    }
-}
-
-impl Plane {
-    /// `G17`, `G18`, `G19`.
-    pub fn code(self) -> &'static str {
-        match self {
-            Self::G17 => "G17",
-            Self::G18 => "G18",
-            Self::G19 => "G19",
-        }
-    }
-}
+pub use crate::geometry::Plane;
 
 /// The effective work-offset context of a block (seed 003): the modal
 /// Group 8 selection and what the block's `G53`/`G153`/`SUPA` suppresses.
@@ -1259,9 +1244,7 @@ pub fn write_trace_line(out: &mut impl fmt::Write, event: &Event) -> fmt::Result
             write_axes(out, &motion.to)?;
             if let Some(centre) = &motion.centre {
                 write!(out, " centre")?;
-                for (axis, value) in centre.iter() {
-                    write!(out, " {axis}{}", Num(value))?;
-                }
+                write_axes(out, centre)?;
             }
             if let Some(radius) = motion.radius {
                 write!(out, " radius {}", Num(radius))?;
@@ -1679,6 +1662,11 @@ impl<W: Write> CsvWriter<W> {
         }
         csv.out.write_all(b"\n")?;
         Ok(csv)
+    }
+
+    /// Writes the header for the channel axes of `profile`.
+    pub fn for_profile(writer: W, profile: &gcodec_profile::Profile) -> io::Result<Self> {
+        Self::new(writer, axis_names(profile))
     }
 
     /// Writes one row.

@@ -408,11 +408,16 @@ impl Frame {
     /// `G54`… of the machine profile. `values` are (axis index, value).
     pub fn translation(axes: &FrameAxes, values: &[(usize, f64)]) -> Result<Frame, RunError> {
         check_values(axes, "TRANS", values)?;
+        Ok(Frame::checked_translation(axes, values))
+    }
+
+    /// [`translation`](Self::translation) of values [`check_values`] passed.
+    fn checked_translation(axes: &FrameAxes, values: &[(usize, f64)]) -> Frame {
         let mut f = Frame::neutral(axes);
         for &(i, v) in values {
             f.axes[i].coarse = v;
         }
-        Ok(f)
+        f
     }
 
     /// The coarse translation (`TR`) of axis `index` (0 outside the axes).
@@ -488,7 +493,7 @@ impl Frame {
             }
         }
         let step = match op {
-            FrameOp::Trans | FrameOp::ATrans => Frame::translation(axes, values)?,
+            FrameOp::Trans | FrameOp::ATrans => Frame::checked_translation(axes, values),
             FrameOp::Rot | FrameOp::ARot => rotation_frame(axes, keyword, values, rpl, plane)?,
             FrameOp::Scale | FrameOp::AScale => scale_frame(axes, keyword, values)?,
             FrameOp::Mirror | FrameOp::AMirror => {
@@ -883,8 +888,8 @@ pub fn frame_function(
                 }
                 "CROT" => {
                     check_values(axes, &upper, &values)?;
-                    let f = rotation_frame(axes, &upper, &values, None, Plane::G17)?;
-                    f.check(&upper).map(|()| f)
+                    // Checked with every frame function's result below.
+                    rotation_frame(axes, &upper, &values, None, Plane::G17)
                 }
                 _ => {
                     check_values(axes, &upper, &values)?;

@@ -27,25 +27,36 @@
 //!   is the abscissa and `v` the ordinate, so angles are the usual polar
 //!   angles of the plane and a positive sweep is `G3`.
 
-use serde::Serialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::fmt;
 
 /// A point or vector of the three geometry axes, in channel order.
 pub type Point3 = [f64; 3];
 
-/// The working plane (G group 6).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+/// The working plane (group 6), as the control spells the command.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 pub enum Plane {
-    /// X/Y, infeed Z.
+    /// X/Y, infeed along Z.
+    #[default]
     G17,
-    /// Z/X, infeed Y.
+    /// Z/X, infeed along Y.
     G18,
-    /// Y/Z, infeed X.
+    /// Y/Z, infeed along X.
     G19,
 }
 
 impl Plane {
+    /// `G17`, `G18`, `G19`.
+    pub fn code(self) -> &'static str {
+        match self {
+            Self::G17 => "G17",
+            Self::G18 => "G18",
+            Self::G19 => "G19",
+        }
+    }
+
     /// Indices into a [`Point3`] of the abscissa, the ordinate and the
     /// infeed axis: `G17` (0, 1, 2), `G18` (2, 0, 1), `G19` (1, 2, 0).
     pub const fn axes(self) -> (usize, usize, usize) {
@@ -56,29 +67,9 @@ impl Plane {
         }
     }
 
-    /// The abscissa (first plane axis) index.
-    pub const fn abscissa(self) -> usize {
-        self.axes().0
-    }
-
-    /// The ordinate (second plane axis) index.
-    pub const fn ordinate(self) -> usize {
-        self.axes().1
-    }
-
     /// The infeed (third, perpendicular) axis index.
     pub const fn infeed(self) -> usize {
         self.axes().2
-    }
-
-    /// The centre parameters of the plane's axes, in the same order as
-    /// [`axes`](Self::axes): `G17` (I, J, K), `G18` (K, I, J), `G19` (J, K, I).
-    pub const fn centre_addresses(self) -> (&'static str, &'static str, &'static str) {
-        match self {
-            Plane::G17 => ("I", "J", "K"),
-            Plane::G18 => ("K", "I", "J"),
-            Plane::G19 => ("J", "K", "I"),
-        }
     }
 }
 

@@ -282,13 +282,13 @@ impl std::error::Error for LoadError {}
 /// events (see [`Loaded::diagnostics`]).
 pub fn compile(
     name: impl Into<String>,
-    file: &SourceFile,
+    file: Arc<SourceFile>,
     profile: &Profile,
     definitions: &Definitions,
     called: bool,
 ) -> Loaded {
     let file_name: Arc<str> = Arc::from(file.name());
-    let mut parsed = gcodec_parser::parse(file);
+    let mut parsed = gcodec_parser::parse(&file);
     // gcodec-sema takes a program for a subprogram by its `.SPF`
     // extension (or a leading PROC): a called `.MPF` or `_N_NAME_SPF` is
     // lowered under a name with that extension, and its instructions get
@@ -310,9 +310,9 @@ pub fn compile(
     let has_errors = diagnostics.iter().any(Diagnostic::is_error);
     let events = diagnostics
         .into_iter()
-        .map(|d| diagnostic_event(d, file, &file_name))
+        .map(|d| diagnostic_event(d, &file, &file_name))
         .collect();
-    let program = Program::new(name, file_name, document).with_text(Arc::from(file.bytes()));
+    let program = Program::new(name, file, document);
     Loaded {
         program: Arc::new(program),
         diagnostics: events,
@@ -447,6 +447,20 @@ struct Wanted {
 }
 
 impl Wanted {
+    /// Finds the wanted program in an index of programs by name (upper
+    /// case), each with a slot per type: the type asked for, else an SPF
+    /// before an MPF; then the literal name, of either type.
+    fn find_in<'i, T>(&self, index: &'i FxHashMap<String, [Option<T>; 2]>) -> Option<&'i T> {
+        let pick = |name: &str, kind: Option<Kind>| {
+            let slots = index.get(name)?;
+            match kind {
+                Some(kind) => slots[kind.index()].as_ref(),
+                None => slots[0].as_ref().or(slots[1].as_ref()),
+            }
+        };
+        pick(&self.name, self.kind).or_else(|| self.literal.as_deref().and_then(|l| pick(l, None)))
+    }
+
     /// The file name to suggest: `NAME.SPF`.
     fn file_name(&self) -> String {
         format!(
@@ -658,15 +672,7 @@ impl DirIndex {
     /// The file holding `wanted` here (an SPF before an MPF when the
     /// request names no type).
     fn find(&self, wanted: &Wanted) -> Option<&DirFile> {
-        let pick = |name: &str, kind: Option<Kind>| {
-            let files = self.programs.get(name)?;
-            match kind {
-                Some(kind) => files[kind.index()].as_ref(),
-                None => files[0].as_ref().or(files[1].as_ref()),
-            }
-        };
-        pick(&wanted.name, wanted.kind)
-            .or_else(|| wanted.literal.as_deref().and_then(|l| pick(l, None)))
+        wanted.find_in(&self.programs)
     }
 }
 
@@ -725,30 +731,23 @@ impl FileLoader {
         }
     }
 
-    pub fn search_path(&self) -> &SearchPath {
-        &self.search
-    }
-
-    /// The search path of a caller in `dir`: each directory once, listed.
-    fn caller(&mut self, dir: &Path) -> CallerDir {
+    /// The search path of a caller in `caller_file`: each directory once,
+    /// listed.
+    fn caller(&mut self, caller_file: &str) -> CallerDir {
         let mut dirs: Vec<SearchDir> = Vec::new();
         let mut seen: Vec<PathBuf> = Vec::new();
-        let all = std::iter::once(dir).chain(self.search.dirs());
-        for shown in all {
-            let key = fs::canonicalize(shown).unwrap_or_else(|_| shown.to_path_buf());
+        for shown in self.search.for_caller(caller_file) {
+            let key = fs::canonicalize(&shown).unwrap_or_else(|_| shown.clone());
             if seen.contains(&key) {
                 continue;
             }
             let index = self
                 .listings
                 .entry(key.clone())
-                .or_insert_with(|| Arc::new(DirIndex::list(shown)))
+                .or_insert_with(|| Arc::new(DirIndex::list(&shown)))
                 .clone();
             seen.push(key);
-            dirs.push(SearchDir {
-                shown: shown.to_path_buf(),
-                index,
-            });
+            dirs.push(SearchDir { shown, index });
         }
         CallerDir {
             dirs,
@@ -772,17 +771,13 @@ impl FileLoader {
             let path = dir.shown.join(&found.file_name);
             let canonical = fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
             if let Some(outcome) = self.programs.get(&canonical) {
-                return outcome.clone().map(|(program, has_errors)| Loaded {
-                    program,
-                    diagnostics: Vec::new(),
-                    has_errors,
-                });
+                return cached(outcome);
             }
             let result = match SourceFile::read(&path) {
                 Ok(file) => {
                     let mut loaded = compile(
                         found_program_name(wanted, &found.file_name),
-                        &file,
+                        Arc::new(file),
                         &self.profile,
                         &self.definitions,
                         true,
@@ -806,13 +801,7 @@ impl FileLoader {
                     help: Some("check that the file is readable".to_owned()),
                 }),
             };
-            self.programs.insert(
-                canonical,
-                result
-                    .as_ref()
-                    .map(|l| (l.program.clone(), l.has_errors))
-                    .map_err(Clone::clone),
-            );
+            self.programs.insert(canonical, to_cache(&result));
             return result;
         }
         Err(not_found(request, wanted, dirs, searched))
@@ -912,30 +901,35 @@ impl ProgramLoader for FileLoader {
         let wanted = parse_request(request.name).map_err(|why| invalid_name(request, why))?;
         let caller = match self.callers.remove(dir) {
             Some(caller) => caller,
-            None => self.caller(dir),
+            None => self.caller(request.caller_file),
         };
         let result = self.resolve(&caller.dirs, request, &wanted);
         let caller = self.callers.entry(dir.to_path_buf()).or_insert(caller);
-        caller.names.insert(
-            request.name.to_owned(),
-            result
-                .as_ref()
-                .map(|l| (l.program.clone(), l.has_errors))
-                .map_err(Clone::clone),
-        );
+        caller
+            .names
+            .insert(request.name.to_owned(), to_cache(&result));
         result
     }
 }
 
+/// A program loaded before: its diagnostics were reported then.
 fn cached(outcome: &Outcome) -> Result<Loaded, LoadError> {
-    match outcome {
-        Ok((program, has_errors)) => Ok(Loaded {
-            program: program.clone(),
+    outcome
+        .as_ref()
+        .map(|(program, has_errors)| Loaded {
+            program: Arc::clone(program),
             diagnostics: Vec::new(),
             has_errors: *has_errors,
-        }),
-        Err(e) => Err(e.clone()),
-    }
+        })
+        .map_err(Clone::clone)
+}
+
+/// What the caches keep of a load.
+fn to_cache(result: &Result<Loaded, LoadError>) -> Outcome {
+    result
+        .as_ref()
+        .map(|l| (Arc::clone(&l.program), l.has_errors))
+        .map_err(Clone::clone)
 }
 
 // ---------------------------------------------------------------------------
@@ -959,8 +953,8 @@ pub struct MemoryLoader {
 #[derive(Debug)]
 struct MemoryFile {
     name: String,
-    file: SourceFile,
-    loaded: Option<(Arc<Program>, bool)>,
+    file: Arc<SourceFile>,
+    loaded: Option<Outcome>,
 }
 
 impl MemoryLoader {
@@ -985,7 +979,7 @@ impl MemoryLoader {
     pub fn insert(&mut self, file_name: &str, text: impl Into<Vec<u8>>) {
         let base = file_name.rsplit('/').next().unwrap_or(file_name);
         let (name, kind) = classify(base).unwrap_or_else(|| (base.to_ascii_uppercase(), Kind::Spf));
-        let file = SourceFile::new(file_name, text);
+        let file = Arc::new(SourceFile::new(file_name, text));
         let slot = &mut self.index.entry(name.clone()).or_default()[kind.index()];
         let entry = MemoryFile {
             name,
@@ -1000,24 +994,12 @@ impl MemoryLoader {
             }
         }
     }
-
-    fn find(&self, wanted: &Wanted) -> Option<usize> {
-        let pick = |name: &str, kind: Option<Kind>| {
-            let slots = self.index.get(name)?;
-            match kind {
-                Some(kind) => slots[kind.index()],
-                None => slots[0].or(slots[1]),
-            }
-        };
-        pick(&wanted.name, wanted.kind)
-            .or_else(|| wanted.literal.as_deref().and_then(|l| pick(l, None)))
-    }
 }
 
 impl ProgramLoader for MemoryLoader {
     fn load(&mut self, request: &LoadRequest<'_>) -> Result<Loaded, LoadError> {
         let wanted = parse_request(request.name).map_err(|why| invalid_name(request, why))?;
-        let Some(index) = self.find(&wanted) else {
+        let Some(&index) = wanted.find_in(&self.index) else {
             return Err(LoadError {
                 code: PROGRAM_NOT_FOUND,
                 message: format!(
@@ -1031,21 +1013,17 @@ impl ProgramLoader for MemoryLoader {
             });
         };
         let entry = &mut self.files[index];
-        if let Some((program, has_errors)) = &entry.loaded {
-            return Ok(Loaded {
-                program: program.clone(),
-                diagnostics: Vec::new(),
-                has_errors: *has_errors,
-            });
+        if let Some(outcome) = &entry.loaded {
+            return cached(outcome);
         }
         let loaded = compile(
             entry.name.clone(),
-            &entry.file,
+            Arc::clone(&entry.file),
             &self.profile,
             &self.definitions,
             true,
         );
-        entry.loaded = Some((loaded.program.clone(), loaded.has_errors));
+        entry.loaded = Some(Ok((Arc::clone(&loaded.program), loaded.has_errors)));
         Ok(loaded)
     }
 }

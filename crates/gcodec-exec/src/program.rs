@@ -12,6 +12,7 @@ use std::ops::Deref;
 use std::sync::{Arc, Mutex, PoisonError};
 
 use gcodec_ail::{Document, Instruction, JumpSearch, Op, Source};
+use gcodec_source::SourceFile;
 use rustc_hash::FxHashMap;
 
 /// One program (main program, subprogram or cycle), lowered and ready to
@@ -22,11 +23,9 @@ pub struct Program {
     pub name: String,
     /// The file as given to gcodec or as found on the search path.
     pub file: Arc<str>,
-    /// The source text, when the program was read from a file: the CSV
-    /// trace takes block numbers from it.
-    pub text: Option<Arc<[u8]>>,
-    /// The byte offset of each line of `text`.
-    line_starts: Vec<u32>,
+    /// The source: the CSV trace takes block numbers from it, computed
+    /// jumps and `CALL … BLOCK` search their labels in it.
+    source: Arc<SourceFile>,
     body: Body,
 }
 
@@ -136,9 +135,6 @@ struct Labels {
     /// Label name → index of the `label` instruction (the first of that
     /// name: lowering names labels uniquely, `<name>@<line>`).
     by_name: FxHashMap<String, usize>,
-    /// Every label of the text in order: (name before `@`, upper case;
-    /// instruction index; line), for computed jumps and `CALL … BLOCK`.
-    list: Vec<(String, usize, u32)>,
     /// The target of every `jump` and `skip_block` whose label exists, by
     /// the instruction's index: a loop pass then costs no string hashing.
     jump_targets: FxHashMap<usize, usize>,
@@ -154,15 +150,6 @@ impl Labels {
                 self.by_name.entry(name.clone()).or_insert(index);
                 for jump in self.waiting.remove(name).unwrap_or_default() {
                     self.jump_targets.insert(jump, index);
-                }
-                // `<name>@<line>` is a label or block number of the text;
-                // lowering's own labels (`WHILE@7.end`, `SKIP@3.end`) have
-                // a part after the line and are no jump targets.
-                if let Some((label, line)) = name.split_once('@')
-                    && line.bytes().all(|b| b.is_ascii_digit())
-                {
-                    self.list
-                        .push((label.to_ascii_uppercase(), index, instruction.source.line));
                 }
             }
         }
@@ -181,33 +168,6 @@ impl Labels {
             }
         }
     }
-
-    /// Searches the label list as [`Program::search_label`] does, among
-    /// the labels indexed so far.
-    fn search(&self, target: &str, line: u32, search: Direction) -> Option<usize> {
-        let matches = |(name, _, _): &&(String, usize, u32)| name.eq_ignore_ascii_case(target);
-        match search {
-            Direction::Forward => self
-                .list
-                .iter()
-                .filter(|(_, _, l)| *l > line)
-                .find(matches)
-                .map(|(_, i, _)| *i),
-            Direction::Backward => self
-                .list
-                .iter()
-                .rev()
-                .filter(|(_, _, l)| *l <= line)
-                .find(matches)
-                .map(|(_, i, _)| *i),
-        }
-    }
-}
-
-#[derive(Clone, Copy)]
-enum Direction {
-    Forward,
-    Backward,
 }
 
 /// A streamed program's pages and what is known of the rest.
@@ -331,49 +291,45 @@ impl Stream {
 }
 
 impl Program {
-    /// Indexes the labels of `document`.
-    pub fn new(name: impl Into<String>, file: Arc<str>, document: Document) -> Self {
+    /// The program `document` lowered from `source`; indexes its labels.
+    pub fn new(name: impl Into<String>, source: Arc<SourceFile>, document: Document) -> Self {
         let mut labels = Labels::default();
         labels.add(0, &document.instructions);
-        Self {
-            name: name.into(),
-            file,
-            text: None,
-            line_starts: Vec::new(),
-            body: Body::Whole {
-                page: Page {
-                    base: 0,
-                    instructions: Arc::from(document.instructions),
-                    errors: Arc::from(Vec::new()),
-                },
-                labels,
-            },
-        }
+        let page = Page {
+            base: 0,
+            instructions: Arc::from(document.instructions),
+            errors: Arc::from(Vec::new()),
+        };
+        Self::with_body(name, source, Body::Whole { page, labels })
     }
 
-    /// A program whose instructions come from `source` as it runs.
-    /// `returns` are the spans of lines control can go back in
-    /// (`gcodec_sema::Outline::returns`): the pages before them are
-    /// forgotten once the run is past; `None` keeps every page.
+    /// The program lowered from `source` whose instructions come from
+    /// `pages` as it runs. `returns` are the spans of lines control can
+    /// go back in (`gcodec_sema::Outline::returns`): the pages before
+    /// them are forgotten once the run is past; `None` keeps every page.
     pub fn streamed(
         name: impl Into<String>,
-        file: Arc<str>,
-        source: Box<dyn PageSource>,
+        source: Arc<SourceFile>,
+        pages: Box<dyn PageSource>,
         returns: Option<Vec<(u32, u32)>>,
     ) -> Self {
+        let stream = Stream {
+            pages: VecDeque::new(),
+            received: 0,
+            source: Some(pages),
+            labels: Labels::default(),
+            errors: Arc::from(Vec::new()),
+            returns: returns.map(Returns::new),
+        };
+        Self::with_body(name, source, Body::Streamed(Mutex::new(stream)))
+    }
+
+    fn with_body(name: impl Into<String>, source: Arc<SourceFile>, body: Body) -> Self {
         Self {
             name: name.into(),
-            file,
-            text: None,
-            line_starts: Vec::new(),
-            body: Body::Streamed(Mutex::new(Stream {
-                pages: VecDeque::new(),
-                received: 0,
-                source: Some(source),
-                labels: Labels::default(),
-                errors: Arc::from(Vec::new()),
-                returns: returns.map(Returns::new),
-            })),
+            file: Arc::from(source.name()),
+            source,
+            body,
         }
     }
 
@@ -452,31 +408,6 @@ impl Program {
         }
     }
 
-    /// Runs `f` on the label index, complete for a whole program; for a
-    /// streamed one `f` answers `Some` once it finds what it looks for,
-    /// and pages are pulled until it does or the program ends.
-    fn find_label<T>(&self, mut f: impl FnMut(&Labels) -> Option<T>) -> Option<T> {
-        match &self.body {
-            Body::Whole { labels, .. } => f(labels),
-            Body::Streamed(stream) => Self::stream(stream, |s| {
-                let mut found = None;
-                s.pull_until(|s| {
-                    found = f(&s.labels);
-                    found.is_some()
-                });
-                found
-            }),
-        }
-    }
-
-    /// Runs `f` on the labels indexed so far.
-    fn labels_now<T>(&self, f: impl FnOnce(&Labels) -> T) -> T {
-        match &self.body {
-            Body::Whole { labels, .. } => f(labels),
-            Body::Streamed(stream) => Self::stream(stream, |s| f(&s.labels)),
-        }
-    }
-
     /// The index of the first instruction on `line` or after, if any.
     fn index_at_line(&self, line: u32) -> Option<usize> {
         match &self.body {
@@ -501,31 +432,26 @@ impl Program {
     /// The instruction index the `jump` or `skip_block` at `at` goes to,
     /// when its label has been seen.
     pub fn jump_target(&self, at: usize) -> Option<usize> {
-        self.labels_now(|labels| labels.jump_targets.get(&at).copied())
+        match &self.body {
+            Body::Whole { labels, .. } => labels.jump_targets.get(&at).copied(),
+            Body::Streamed(stream) => {
+                Self::stream(stream, |s| s.labels.jump_targets.get(&at).copied())
+            }
+        }
     }
 
-    /// With the source text.
-    pub fn with_text(mut self, text: Arc<[u8]>) -> Self {
-        self.line_starts = std::iter::once(0)
-            .chain(
-                text.iter()
-                    .enumerate()
-                    .filter(|(_, b)| **b == b'\n')
-                    .map(|(i, _)| i as u32 + 1),
-            )
-            .collect();
-        self.text = Some(text);
-        self
+    /// The program's source text.
+    pub fn text(&self) -> &[u8] {
+        self.source.bytes()
     }
 
-    /// The text of the 1-based `line` (without its line end), if the
-    /// program has its text.
+    /// The text of the 1-based `line` (without its line end).
     pub fn line_text(&self, line: u32) -> Option<&[u8]> {
-        let text = self.text.as_deref()?;
+        let text = self.source.bytes();
+        let line_starts = self.source.line_starts();
         let index = usize::try_from(line).ok()?.checked_sub(1)?;
-        let start = *self.line_starts.get(index)? as usize;
-        let end = self
-            .line_starts
+        let start = *line_starts.get(index)? as usize;
+        let end = line_starts
             .get(index + 1)
             .map_or(text.len(), |&e| e as usize);
         let line = text.get(start..end)?;
@@ -587,7 +513,7 @@ impl Program {
     /// The line of the nearest block labelled or numbered `target` in the
     /// text, searched from `line` as `search` says.
     pub fn search_text(&self, target: &str, line: u32, search: JumpSearch) -> Option<u32> {
-        let lines = self.line_starts.len() as u32;
+        let lines = self.source.line_starts().len() as u32;
         let matches = |l: u32| self.line_is(l, target);
         let forward = || (line + 1..=lines).find(|&l| matches(l));
         let backward = || (1..=line.min(lines)).rev().find(|&l| matches(l));
@@ -619,26 +545,27 @@ impl Program {
     /// are searched from the program's start (`to` from `from` on).
     pub fn section<'t>(&self, from: &'t str, to: &'t str) -> Result<(usize, u32), &'t str> {
         let search = JumpSearch::Forward;
-        if self.text.is_some() {
-            let first = self.search_text(from, 0, search).ok_or(from)?;
-            let last = self
-                .search_text(to, first.saturating_sub(1), search)
-                .ok_or(to)?;
-            let start = self.index_at_line(first).ok_or(from)?;
-            return Ok((start, last));
-        }
-        let start = self
-            .search_label(from, 0, JumpSearch::ForwardThenBackward)
-            .ok_or(from)?;
-        let end = self
-            .search_label(to, start, JumpSearch::ForwardThenBackward)
+        let first = self.search_text(from, 0, search).ok_or(from)?;
+        let last = self
+            .search_text(to, first.saturating_sub(1), search)
             .ok_or(to)?;
-        Ok((start, self.line_of(end)))
+        let start = self.index_at_line(first).ok_or(from)?;
+        Ok((start, last))
     }
 
     /// The instruction index of the label `name` (as lowering named it).
     pub fn label(&self, name: &str) -> Option<usize> {
-        self.find_label(|labels| labels.by_name.get(name).copied())
+        match &self.body {
+            Body::Whole { labels, .. } => labels.by_name.get(name).copied(),
+            Body::Streamed(stream) => Self::stream(stream, |s| {
+                let mut found = None;
+                s.pull_until(|s| {
+                    found = s.labels.by_name.get(name).copied();
+                    found.is_some()
+                });
+                found
+            }),
+        }
     }
 
     /// Searches a label or block number written in the program (`LBL`,
@@ -646,29 +573,20 @@ impl Program {
     /// says, nearest first (reference §8.1): forward from the instruction
     /// after `from`'s block, backward from `from`'s block.
     ///
-    /// With the program's text every label and block number of the text
-    /// is found (lowering keeps labels only for the targets it knows, so
-    /// `CALL … BLOCK` sections need the text); without it, the labels
-    /// lowering kept. The index is the first instruction of the block, or
-    /// of the next block with instructions.
+    /// Every label and block number of the text is found (lowering keeps
+    /// labels only for the targets it knows). The index is the first
+    /// instruction of the block, or of the next block with instructions.
     pub fn search_label(&self, target: &str, from: usize, search: JumpSearch) -> Option<usize> {
-        let target = target.trim();
-        let line = self.line_of(from);
-        if self.text.is_some() {
-            let found = self.search_text(target, line, search)?;
-            return self
-                .index_at_line(found)
-                .or_else(|| self.last_instruction().map(|i| i.page.base + i.offset));
-        }
-        let forward = || self.find_label(|l| l.search(target, line, Direction::Forward));
-        // Every label up to `line` has been received.
-        let backward = || self.labels_now(|l| l.search(target, line, Direction::Backward));
-        match search {
-            JumpSearch::Forward => forward(),
-            JumpSearch::Backward => backward(),
-            JumpSearch::ForwardThenBackward => forward().or_else(backward),
-        }
+        let found = self.search_text(target.trim(), self.line_of(from), search)?;
+        self.index_at_line(found)
+            .or_else(|| self.last_instruction().map(|i| i.page.base + i.offset))
     }
+}
+
+/// The label `name` as written in the program: lowering names labels
+/// `<name>@<line>` (a structure's `<KEYWORD>@<line>.<part>`).
+pub fn written_label(name: &str) -> &str {
+    name.split_once('@').map_or(name, |(written, _)| written)
 }
 
 /// What a line starts with.
@@ -724,7 +642,9 @@ mod tests {
             next: 1,
             lines: 100,
         });
-        Program::streamed("T", Arc::from("t.mpf"), source, returns)
+        let text: String = (1..=100).map(|l| format!("L{l}:\n")).collect();
+        let file = Arc::new(SourceFile::new("t.mpf", text));
+        Program::streamed("T", file, source, returns)
     }
 
     #[test]

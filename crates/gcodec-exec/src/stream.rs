@@ -14,9 +14,9 @@ use std::sync::Arc;
 use std::sync::mpsc::{SyncSender, sync_channel};
 
 use gcodec_ail::{ByteRange, Source};
-use gcodec_parser::{chunks, parse_chunks};
+use gcodec_parser::chunks;
 use gcodec_profile::Profile;
-use gcodec_sema::{ChunkLowering, Definitions, outline_chunks};
+use gcodec_sema::{Definitions, LoweredChunk, lower_chunks, outline_chunks};
 use gcodec_source::{Diagnostic, SourceFile};
 
 use crate::program::{Program, SourcePage};
@@ -51,7 +51,7 @@ const PAGES_AHEAD: usize = 2;
 /// returned and all the program's own diagnostics (parse, structure,
 /// outline, lowering) in source order.
 pub fn run_streamed<R>(
-    file: &SourceFile,
+    file: &Arc<SourceFile>,
     name: String,
     profile: &Profile,
     definitions: &Definitions,
@@ -69,49 +69,34 @@ pub fn run_streamed<R>(
         definitions,
     );
     diagnostics.extend_from_slice(outline.diagnostics());
-    let file_name: Arc<str> = Arc::from(file.name());
-    let known_errors = error_sources(file, &file_name, &diagnostics);
-    let returns = outline.returns();
     let (sender, receiver) = sync_channel::<SourcePage>(PAGES_AHEAD);
-    // With its text, as `loader::compile` gives a program: the CSV trace
-    // reads block numbers there, computed jumps and `CALL BLOCK` search
-    // it.
-    let program = Program::streamed(name, Arc::clone(&file_name), Box::new(receiver), returns)
-        .with_text(Arc::from(src));
+    let program = Program::streamed(
+        name,
+        Arc::clone(file),
+        Box::new(receiver),
+        outline.returns(),
+    );
     let program = Arc::new(program);
+    let file_name = &program.file;
+    let known_errors = error_sources(file, file_name, &diagnostics);
     let (result, lowered) = std::thread::scope(|scope| {
         let pass2 = scope.spawn(|| {
             let mut pages = Pages {
                 sender: Some(sender),
+                file,
+                name: file_name,
+                diagnostics: Vec::new(),
             };
             // The errors pass 1 found go ahead of every page.
             pages.send(SourcePage {
                 instructions: Vec::new(),
                 errors: known_errors,
             });
-            let mut lowering = ChunkLowering::new(&outline, profile);
-            let mut diagnostics = Vec::new();
-            parse_chunks(src, &chunks, options.parse_workers, |parsed| {
-                // Pass 1 reported the parse diagnostics.
-                let Some(lowered) = lowering.lower(parsed.first_block, &parsed.blocks) else {
-                    return;
-                };
-                drop(parsed);
-                let errors = error_sources(file, &file_name, &lowered.diagnostics);
-                diagnostics.extend(lowered.diagnostics);
-                pages.send(SourcePage {
-                    instructions: lowered.instructions,
-                    errors,
-                });
+            let workers = options.parse_workers;
+            lower_chunks(src, &chunks, workers, &outline, profile, |lowered| {
+                pages.lowered(lowered);
             });
-            let last = lowering.finish();
-            let errors = error_sources(file, &file_name, &last.diagnostics);
-            diagnostics.extend(last.diagnostics);
-            pages.send(SourcePage {
-                instructions: last.instructions,
-                errors,
-            });
-            diagnostics
+            pages.diagnostics
         });
         let result = run(Arc::clone(&program));
         // A run that stopped early leaves pages unread: pass 2 must not
@@ -127,12 +112,26 @@ pub fn run_streamed<R>(
     (result, diagnostics)
 }
 
-/// The pages pass 2 sends, while the run takes them.
-struct Pages {
+/// The pages pass 2 sends, while the run takes them, and the lowering's
+/// diagnostics.
+struct Pages<'a> {
     sender: Option<SyncSender<SourcePage>>,
+    file: &'a SourceFile,
+    name: &'a Arc<str>,
+    diagnostics: Vec<Diagnostic>,
 }
 
-impl Pages {
+impl Pages<'_> {
+    /// Sends a lowered chunk, with the places of its errors.
+    fn lowered(&mut self, chunk: LoweredChunk) {
+        let errors = error_sources(self.file, self.name, &chunk.diagnostics);
+        self.diagnostics.extend(chunk.diagnostics);
+        self.send(SourcePage {
+            instructions: chunk.instructions,
+            errors,
+        });
+    }
+
     fn send(&mut self, page: SourcePage) {
         if let Some(sender) = &self.sender
             && sender.send(page).is_err()

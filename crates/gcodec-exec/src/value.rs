@@ -145,6 +145,30 @@ impl DataType {
         })
     }
 
+    /// The type sema declared a variable with, as [`parse`](Self::parse)
+    /// reads the text sema writes of it: a `STRING` without a constant
+    /// length holds [`MAX_STRING_LEN`] characters; `None` for a length of
+    /// 0 or above [`MAX_STRING_LEN`].
+    pub fn from_sema(ty: &gcodec_sema::DataType) -> Option<Self> {
+        use gcodec_sema::DataType as Sema;
+        Some(match *ty {
+            Sema::Int => Self::Int,
+            Sema::Real => Self::Real,
+            Sema::Bool => Self::Bool,
+            Sema::Char => Self::Char,
+            Sema::String { length: None } => Self::String {
+                max_len: MAX_STRING_LEN,
+            },
+            Sema::String { length: Some(n) } => Self::String {
+                max_len: u16::try_from(n)
+                    .ok()
+                    .filter(|n| (1..=MAX_STRING_LEN).contains(n))?,
+            },
+            Sema::Axis => Self::Axis,
+            Sema::Frame => Self::Frame,
+        })
+    }
+
     /// The value a variable of this type starts with: 0, 0.0, FALSE,
     /// CHAR 0, the empty string, no axis (an empty name), the neutral
     /// frame.
@@ -157,27 +181,6 @@ impl DataType {
             Self::String { .. } => RtValue::String(Arc::from("")),
             Self::Axis => RtValue::Axis(Arc::from("")),
             Self::Frame => RtValue::Frame(Arc::new(FrameValue::default())),
-        }
-    }
-
-    /// The type as messages write it (`STRING[12]`).
-    pub fn describe(self) -> String {
-        match self {
-            Self::String { max_len } => format!("STRING[{max_len}]"),
-            other => other.keyword().to_owned(),
-        }
-    }
-
-    /// The keyword (`STRING` without its length).
-    pub const fn keyword(self) -> &'static str {
-        match self {
-            Self::Int => "INT",
-            Self::Real => "REAL",
-            Self::Bool => "BOOL",
-            Self::Char => "CHAR",
-            Self::String { .. } => "STRING",
-            Self::Axis => "AXIS",
-            Self::Frame => "FRAME",
         }
     }
 }
@@ -236,17 +239,116 @@ impl FrameValue {
     /// One component by its keyword (`TR`, `FI`, `RT`, `SC`, `MI`, any
     /// case); `None` for another keyword.
     pub fn component(&self, axis: &str, component: &str) -> Option<f64> {
-        let a = self.axis(axis);
-        let c = component.to_ascii_uppercase();
-        Some(match c.as_str() {
-            "TR" => a.translation,
-            "FI" => a.fine,
-            "RT" => a.rotation,
-            "SC" => a.scale,
-            "MI" => f64::from(u8::from(a.mirror)),
-            _ => return None,
-        })
+        let component = Component::parse(component)?;
+        Some(component.of(self.axes.iter().find(|a| a.axis.eq_ignore_ascii_case(axis))))
     }
+
+    /// `$P_UIFR[n, axis, component]` read: the component named by the
+    /// index value `component` (an AXIS or STRING carrying the keyword).
+    pub(crate) fn component_of(&self, axis: &str, component: &RtValue) -> Result<f64, RunError> {
+        let name = component_name(component)?;
+        self.component(axis, name)
+            .ok_or_else(|| not_a_component(name))
+    }
+
+    /// `$P_UIFR[n, axis, component] = value`: sets the component named by
+    /// the index value `component` of `axis` (upper case; added with
+    /// neutral components when the frame has none for it) to `value`.
+    pub(crate) fn set_component(
+        &mut self,
+        axis: &str,
+        component: &RtValue,
+        value: &RtValue,
+    ) -> Result<(), RunError> {
+        let name = component_name(component)?;
+        let value = value.to_real()?;
+        let Some(component) = Component::parse(name) else {
+            return Err(not_a_component(&name.to_ascii_uppercase()));
+        };
+        let at = match self
+            .axes
+            .iter()
+            .position(|a| a.axis.eq_ignore_ascii_case(axis))
+        {
+            Some(at) => at,
+            None => {
+                self.axes.push(FrameAxis::neutral(axis));
+                self.axes.len() - 1
+            }
+        };
+        component.set(&mut self.axes[at], value);
+        Ok(())
+    }
+}
+
+/// A component of a frame for one axis, as `$P_UIFR[n, axis, component]`
+/// names it.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Component {
+    Tr,
+    Fi,
+    Rt,
+    Sc,
+    Mi,
+}
+
+impl Component {
+    /// The component with the keyword `text` (`TR`, `FI`, `RT`, `SC`,
+    /// `MI`, any case).
+    fn parse(text: &str) -> Option<Self> {
+        [
+            ("TR", Self::Tr),
+            ("FI", Self::Fi),
+            ("RT", Self::Rt),
+            ("SC", Self::Sc),
+            ("MI", Self::Mi),
+        ]
+        .into_iter()
+        .find(|(keyword, _)| keyword.eq_ignore_ascii_case(text))
+        .map(|(_, c)| c)
+    }
+
+    /// The component of `axis`; of [`FrameAxis::neutral`] (1 for `SC`, 0
+    /// for the others) when there is none.
+    fn of(self, axis: Option<&FrameAxis>) -> f64 {
+        let Some(a) = axis else {
+            return if self == Self::Sc { 1.0 } else { 0.0 };
+        };
+        match self {
+            Self::Tr => a.translation,
+            Self::Fi => a.fine,
+            Self::Rt => a.rotation,
+            Self::Sc => a.scale,
+            Self::Mi => f64::from(u8::from(a.mirror)),
+        }
+    }
+
+    /// Sets the component of `axis` (`MI`: mirrored when not 0).
+    fn set(self, axis: &mut FrameAxis, value: f64) {
+        match self {
+            Self::Tr => axis.translation = value,
+            Self::Fi => axis.fine = value,
+            Self::Rt => axis.rotation = value,
+            Self::Sc => axis.scale = value,
+            Self::Mi => axis.mirror = value != 0.0,
+        }
+    }
+}
+
+/// The keyword a `$P_UIFR` component index carries: an AXIS or STRING
+/// value.
+fn component_name(component: &RtValue) -> Result<&str, RunError> {
+    match component {
+        RtValue::Axis(c) | RtValue::String(c) => Ok(c),
+        v => Err(RunError::type_mismatch(v, "a frame component")),
+    }
+}
+
+fn not_a_component(name: &str) -> RunError {
+    RunError::new(
+        codes::TYPE_MISMATCH,
+        format!("`{name}` is not a frame component (TR, FI, RT, SC, MI)"),
+    )
 }
 
 /// A value at run time.
@@ -508,5 +610,79 @@ pub fn format_real(r: f64, out: &mut String) {
     if &out[start..] == "-0" {
         out.truncate(start);
         out.push('0');
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `from_sema` is the text round trip `parse(describe())` without the
+    /// text.
+    #[test]
+    fn from_sema_reads_sema_types_as_their_text_does() {
+        use gcodec_sema::DataType as Sema;
+        let mut types = vec![
+            Sema::Int,
+            Sema::Real,
+            Sema::Bool,
+            Sema::Char,
+            Sema::Axis,
+            Sema::Frame,
+            Sema::String { length: None },
+        ];
+        for n in [
+            0,
+            1,
+            2,
+            12,
+            199,
+            200,
+            201,
+            255,
+            256,
+            65_535,
+            65_536,
+            u32::MAX,
+        ] {
+            types.push(Sema::String { length: Some(n) });
+        }
+        for ty in types {
+            assert_eq!(
+                DataType::from_sema(&ty),
+                DataType::parse(&ty.describe()),
+                "{ty:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn frame_components_read_and_write_by_keyword() {
+        let mut f = FrameValue::default();
+        let set = |f: &mut FrameValue, c: &str, v: f64| {
+            f.set_component("X", &RtValue::string(c), &RtValue::Real(v))
+        };
+        assert_eq!(f.component("Q", "sc"), Some(1.0));
+        assert_eq!(f.component("Q", "Tr"), Some(0.0));
+        assert_eq!(f.component("Q", "XX"), None);
+        set(&mut f, "tr", 5.0).unwrap();
+        set(&mut f, "MI", 2.0).unwrap();
+        assert_eq!(f.axes.len(), 1);
+        assert_eq!(f.component("x", "TR"), Some(5.0));
+        assert_eq!(f.component("X", "mi"), Some(1.0));
+        assert_eq!(
+            set(&mut f, "xx", 1.0).unwrap_err().message,
+            "`XX` is not a frame component (TR, FI, RT, SC, MI)"
+        );
+        assert_eq!(
+            f.component_of("X", &RtValue::string("xx"))
+                .unwrap_err()
+                .message,
+            "`xx` is not a frame component (TR, FI, RT, SC, MI)"
+        );
+        assert_eq!(
+            f.component_of("X", &RtValue::Int(1)).unwrap_err().code,
+            codes::TYPE_MISMATCH
+        );
     }
 }

@@ -24,7 +24,6 @@
 use std::sync::Arc;
 
 use gcodec_ail::VarKind;
-use gcodec_profile::Profile;
 
 use crate::value::{DataType, RtValue, RunError, codes};
 
@@ -92,11 +91,6 @@ impl Variable {
             rank: dims.len() as u8,
             data: vec![ty.initial_value(); total],
         })
-    }
-
-    /// The declared type.
-    pub fn data_type(&self) -> DataType {
-        self.ty
     }
 
     /// The dimensions (empty for a single value).
@@ -343,12 +337,6 @@ impl Variables {
         }
     }
 
-    /// A store for a machine: [`DEFAULT_R_PARAMETERS`], since the profile
-    /// has no key for MD28050.
-    pub fn for_profile(_profile: &Profile) -> Self {
-        Self::new(DEFAULT_R_PARAMETERS)
-    }
-
     /// MD11120 `$MN_LUD_EXTENDED_SCOPE`: the main program's variables are
     /// seen from its subprograms (PUD). Off by default.
     pub fn set_lud_extended_scope(&mut self, on: bool) {
@@ -393,16 +381,6 @@ impl Variables {
         let result = f(self);
         self.depth = depth;
         result
-    }
-
-    /// Drops every level's variables and sets the R parameters to 0
-    /// (a reset); global data stay.
-    pub fn reset_program(&mut self) {
-        for table in &mut self.levels {
-            table.clear();
-        }
-        self.depth = 1;
-        self.r.fill(0.0);
     }
 
     /// Declares `name` (upper case, as AIL writes it) with its initial

@@ -89,7 +89,13 @@ fn every_main_program_runs_to_its_end_or_a_diagnosed_dependency() {
         let profile = Arc::new(machine_profile(&shown).1);
         let definitions = Arc::new(definitions(&corpus, &shown));
         let file = SourceFile::new(shown.clone(), std::fs::read(path).expect("read"));
-        let main = compile(program_name(path), &file, &profile, &definitions, false);
+        let main = compile(
+            program_name(path),
+            Arc::new(file),
+            &profile,
+            &definitions,
+            false,
+        );
         if main.has_errors {
             // The two programs the lowering test expects errors in.
             report.push_str(&format!("{shown}: not run (lowering errors)\n"));

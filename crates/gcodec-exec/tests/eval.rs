@@ -661,7 +661,7 @@ edges = [{ d = 1, length = 120.5, radius = 5.0 }]
 #[test]
 fn r_parameters_have_the_default_count() {
     let profile = builtin();
-    let mut vars = Variables::for_profile(&profile);
+    let mut vars = Variables::default();
     assert_eq!(vars.r_count(), 100);
     let target = r(99.0);
     assign(&mut vars, &mut builtin(), &target, &Value::Const(1.25)).unwrap();
@@ -855,7 +855,7 @@ fn run(src: &str) -> Variables {
 
 fn run_document(doc: &gcodec_ail::Document, profile: &Profile) -> Variables {
     let mut rt = profile.clone();
-    let mut vars = Variables::for_profile(profile);
+    let mut vars = Variables::default();
     let labels: HashMap<&str, usize> = doc
         .instructions
         .iter()

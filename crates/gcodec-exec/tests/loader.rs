@@ -97,8 +97,8 @@ fn a_program_next_to_the_caller_is_found() {
     assert!(!loaded.has_errors);
     assert!(loaded.diagnostics.is_empty(), "{:?}", loaded.diagnostics);
     assert_eq!(
-        loaded.program.text.as_deref(),
-        Some(&b"; next to MAIN.MPF\nG1 X1 F100\nM17\n"[..])
+        loaded.program.text(),
+        &b"; next to MAIN.MPF\nG1 X1 F100\nM17\n"[..]
     );
     // Not on the search path: only the caller's directory is searched.
     let error = load_err(&mut loader, "FAR", &caller());
@@ -265,7 +265,13 @@ fn the_controls_internal_file_names_hold_programs() {
     // Not called (a main program), the same file starts in the profile's
     // reset state, which settles the motion.
     let file = gcodec_source::SourceFile::read(&lib_dir().join("_N_INTERN_SPF")).expect("read");
-    let uncalled = compile("INTERN", &file, &profile(), &Definitions::new(), false);
+    let uncalled = compile(
+        "INTERN",
+        Arc::new(file),
+        &profile(),
+        &Definitions::new(),
+        false,
+    );
     assert_ne!(motions(&uncalled), [MotionKind::Modal]);
     assert_eq!(motions(&uncalled).len(), 1);
 }

@@ -8,8 +8,8 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use gcodec_exec::channel::{BlockObserver, Channel, RunOptions};
-use gcodec_exec::event::{BlockRow, CsvWriter, JsonlSink, TextSink};
+use gcodec_exec::channel::{Channel, RunOptions};
+use gcodec_exec::event::{CsvWriter, JsonlSink, TextSink};
 use gcodec_exec::loader::{FileLoader, SearchPath, compile, program_name};
 use gcodec_sema::Definitions;
 use gcodec_source::SourceFile;
@@ -24,21 +24,18 @@ enum Output {
     Csv,
 }
 
-struct Rows<'a>(&'a mut CsvWriter<Vec<u8>>);
-
-impl BlockObserver for Rows<'_> {
-    fn block(&mut self, row: &BlockRow) -> std::io::Result<()> {
-        self.0.row(row)
-    }
-}
-
-/// Runs a fixture; the lowering diagnostics, the events and the summary.
 fn run(path: &Path, output: Output) -> String {
     let text = std::fs::read_to_string(path).expect("fixture");
     let Setup { profile, options } = setup(path, &text);
     let file = SourceFile::new(path.to_string_lossy().replace('\\', "/"), text.as_bytes());
     let definitions = Arc::new(Definitions::new());
-    let main = compile(program_name(path), &file, &profile, &definitions, false);
+    let main = compile(
+        program_name(path),
+        Arc::new(file),
+        &profile,
+        &definitions,
+        false,
+    );
     assert!(
         !main.has_errors,
         "{} has lowering errors: {:#?}",
@@ -68,14 +65,10 @@ fn run(path: &Path, output: Output) -> String {
             Channel::new(profile, options, &mut loader, &mut sink).run(main.program)
         }
         Output::Csv => {
-            let axes = profile
-                .axes
-                .iter()
-                .map(|a| std::borrow::Cow::Owned(a.name.get_ref().to_ascii_uppercase()));
-            let mut csv = CsvWriter::new(Vec::new(), axes).expect("header");
+            let mut csv = CsvWriter::for_profile(Vec::new(), &profile).expect("header");
             let mut sink = gcodec_exec::event::CountingSink::default();
             let outcome = Channel::new(profile, options, &mut loader, &mut sink)
-                .with_observer(&mut Rows(&mut csv))
+                .with_observer(&mut csv)
                 .run(main.program);
             buffer = csv.into_inner().expect("rows");
             outcome
@@ -138,7 +131,7 @@ fn end_with_program_settings(file: &str, program: &str) -> gcodec_exec::event::P
     let text = std::fs::read(fixture(file)).expect("fixture");
     let source = SourceFile::new(file, text);
     let definitions = Arc::new(Definitions::new());
-    let main = compile("MAIN", &source, &profile, &definitions, false);
+    let main = compile("MAIN", Arc::new(source), &profile, &definitions, false);
     let mut loader = FileLoader::new(SearchPath::new(), Arc::clone(&profile), definitions);
     let mut sink = gcodec_exec::event::CountingSink::default();
     Channel::new(profile, options, &mut loader, &mut sink)

@@ -23,7 +23,7 @@ mod sema_common;
 use common::setup::{FIXTURES, Setup, setup};
 
 struct Case<'a> {
-    file: SourceFile,
+    file: Arc<SourceFile>,
     name: String,
     profile: Arc<Profile>,
     definitions: Arc<Definitions>,
@@ -60,7 +60,7 @@ fn run(case: &Case, main: Arc<gcodec_exec::program::Program>) -> String {
 fn check(case: &Case) -> bool {
     let whole = compile(
         case.name.clone(),
-        &case.file,
+        Arc::clone(&case.file),
         &case.profile,
         &case.definitions,
         false,
@@ -130,7 +130,10 @@ fn streamed_runs_write_the_events_of_whole_runs() {
         } = setup(path, &text);
         options.interrupt = None;
         let case = Case {
-            file: SourceFile::new(path.to_string_lossy().replace('\\', "/"), text.as_bytes()),
+            file: Arc::new(SourceFile::new(
+                path.to_string_lossy().replace('\\', "/"),
+                text.as_bytes(),
+            )),
             name: program_name(path),
             profile,
             definitions: Arc::new(Definitions::new()),
@@ -164,7 +167,10 @@ fn streamed_runs_write_the_events_of_whole_runs() {
         options.stop_at_m0 = false;
         options.max_steps = 200_000;
         let case = Case {
-            file: SourceFile::new(shown.clone(), std::fs::read(path).expect("read")),
+            file: Arc::new(SourceFile::new(
+                shown.clone(),
+                std::fs::read(path).expect("read"),
+            )),
             name: program_name(path),
             profile: Arc::new(profile),
             definitions: Arc::new(sema_common::machines::definitions(&corpus, &shown)),

@@ -198,14 +198,17 @@ pub struct ParsedChunk {
     /// Only the first chunk may hold the header and path lines.
     pub header: Option<Header>,
     pub path: Option<PathDirective>,
-    /// Lexical and syntax errors, in source order.
+    /// Lexical and syntax errors, in the order found: not sorted, since
+    /// whoever keeps them merges them with others and sorts once (by
+    /// span start, a stable sort, as [`parse_bytes`] does).
     pub diagnostics: Vec<Diagnostic>,
     /// The blocks holding a structure statement, by index in the program.
     pub structure_blocks: Vec<u32>,
 }
 
 /// Parses the lines of `chunk` of `src` as [`parse_bytes`] parses them in
-/// the whole file: the same blocks, spans and diagnostics.
+/// the whole file: the same blocks, spans and diagnostics (those sorted
+/// by span start, with a stable sort, once merged).
 pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
     let mut blocks: Vec<Block> = Vec::with_capacity(chunk.blocks);
     let segment = Segment {
@@ -221,15 +224,13 @@ pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
     // SAFETY: `run_segment` wrote every one of the `chunk.blocks` slots
     // (one block per line; `chunks` counted the lines).
     unsafe { blocks.set_len(chunk.blocks) };
-    let mut diagnostics = part.diagnostics;
-    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
     let first = chunk.first_block as u32;
     ParsedChunk {
         first_block: chunk.first_block,
         blocks,
         header: part.header,
         path: part.path,
-        diagnostics,
+        diagnostics: part.diagnostics,
         structure_blocks: part.structure_blocks.iter().map(|b| first + b).collect(),
     }
 }

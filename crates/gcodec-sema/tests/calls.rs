@@ -4,15 +4,13 @@
 use gcodec_ail::{JumpSearch, Op, Value};
 use gcodec_sema::{Lowered, lower};
 
-fn lower_src(src: &str) -> Lowered {
-    let parsed = gcodec_parser::parse_bytes("calls.mpf", src.as_bytes());
-    assert!(parsed.diagnostics.is_empty(), "{:#?}", parsed.diagnostics);
-    let profile = gcodec_profile::builtin().expect("built-in profile");
-    lower(&parsed.program, &profile)
-}
+mod common;
 
-fn codes(l: &Lowered) -> Vec<&'static str> {
-    l.diagnostics.iter().map(|d| d.code).collect()
+use common::{codes, motions, selections};
+
+fn lower_src(src: &str) -> Lowered {
+    let profile = gcodec_profile::builtin().expect("built-in profile");
+    common::lower_named("calls.mpf", &profile, src)
 }
 
 fn ops(l: &Lowered) -> Vec<&Op> {
@@ -353,17 +351,6 @@ fn a_frame_with_an_unknown_axis_is_rejected_not_a_reset() {
     assert!(!ops(&l).iter().any(|op| matches!(op, Op::Frame(_))));
 }
 
-/// The motion kinds of the document, in order.
-fn motions(l: &Lowered) -> Vec<gcodec_ail::MotionKind> {
-    ops(l)
-        .into_iter()
-        .filter_map(|op| match op {
-            Op::Motion { motion, .. } => Some(*motion),
-            _ => None,
-        })
-        .collect()
-}
-
 #[test]
 fn a_motion_after_paths_with_different_commands_is_decided_when_it_runs() {
     use gcodec_ail::MotionKind::*;
@@ -410,17 +397,6 @@ fn a_subprogram_starts_in_its_callers_state() {
 
 #[test]
 fn a_suppression_after_paths_with_different_offsets_leaves_the_selection_open() {
-    let selections = |l: &Lowered| -> Vec<Option<String>> {
-        ops(l)
-            .into_iter()
-            .filter_map(|op| match op {
-                Op::WorkOffset {
-                    group8_selected, ..
-                } => Some(group8_selected.clone()),
-                _ => None,
-            })
-            .collect()
-    };
     let l = lower_src("IF R1>0\nG54\nELSE\nG55\nENDIF\nG53 X0\nM30\n");
     assert_eq!(
         selections(&l),

@@ -3,17 +3,15 @@
 //! its instructions, before the end of a `REPEAT` section it closes.
 
 use gcodec_ail::{MotionKind, Op};
-use gcodec_sema::{Lowered, lower};
+use gcodec_sema::Lowered;
+
+mod common;
+
+use common::{codes, motions, selections};
 
 fn lower_src(src: &str) -> Lowered {
-    let parsed = gcodec_parser::parse_bytes("skip.mpf", src.as_bytes());
-    assert!(parsed.diagnostics.is_empty(), "{:#?}", parsed.diagnostics);
     let profile = gcodec_profile::builtin().expect("built-in profile");
-    lower(&parsed.program, &profile)
-}
-
-fn codes(l: &Lowered) -> Vec<&'static str> {
-    l.diagnostics.iter().map(|d| d.code).collect()
+    common::lower_named("skip.mpf", &profile, src)
 }
 
 /// The listing of line `line`, one instruction an entry, without line and
@@ -27,18 +25,6 @@ fn line(l: &Lowered, line: u32) -> Vec<String> {
             (at.parse() == Ok(line)).then(|| rest.trim_start_matches(|c: char| c.is_ascii_digit()))
         })
         .map(|rest| rest.trim().to_owned())
-        .collect()
-}
-
-/// The motion kinds, in order.
-fn motions(l: &Lowered) -> Vec<MotionKind> {
-    l.document
-        .instructions
-        .iter()
-        .filter_map(|i| match &i.op {
-            Op::Motion { motion, .. } => Some(*motion),
-            _ => None,
-        })
         .collect()
 }
 
@@ -268,18 +254,6 @@ fn what_a_skipped_block_sets_is_unknown_after_it() {
         ]
     );
     // The Group 8 selection likewise.
-    let selections = |l: &Lowered| -> Vec<Option<String>> {
-        l.document
-            .instructions
-            .iter()
-            .filter_map(|i| match &i.op {
-                Op::WorkOffset {
-                    group8_selected, ..
-                } => Some(group8_selected.clone()),
-                _ => None,
-            })
-            .collect()
-    };
     let l = lower_src("G54 X0\n/G55\nG53 X1\nM30\n");
     assert_eq!(
         selections(&l),

@@ -2,8 +2,10 @@
 //! by chunk again: the chunks' instructions, refined, are the document of
 //! lowering the whole program, and their diagnostics its diagnostics.
 
-use gcodec_parser::{chunks, parse_chunk};
-use gcodec_sema::{ChunkLowering, Definitions, lower_in_parts, outline_chunks, refine};
+use gcodec_parser::chunks;
+use gcodec_sema::{
+    ChunkLowering, Definitions, lower_chunks, lower_in_parts, outline_chunks, refine,
+};
 
 mod common;
 
@@ -25,20 +27,16 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
             "{name}: parse diagnostics differ in chunks of {lines}"
         );
         let mut diagnostics = outline.diagnostics().to_vec();
-        // Pass 2: the chunks parsed again and lowered in order.
-        let mut lowering = ChunkLowering::new(&outline, profile);
+        // Pass 2: the chunks parsed again and lowered in order, then the
+        // end.
         let mut document = gcodec_ail::Document::new();
-        for chunk in &chunks {
-            let parsed = parse_chunk(src, chunk);
-            let mut lowered = lowering
-                .lower(parsed.first_block, &parsed.blocks)
-                .expect("chunks in order");
+        let mut taken = 0;
+        lower_chunks(src, &chunks, workers, &outline, profile, |mut lowered| {
+            taken += 1;
             document.instructions.append(&mut lowered.instructions);
             diagnostics.append(&mut lowered.diagnostics);
-        }
-        let end = lowering.finish();
-        document.instructions.extend(end.instructions);
-        diagnostics.extend(end.diagnostics);
+        });
+        assert_eq!(taken, chunks.len() + 1, "{name}: chunks in order");
         refine(&mut document, profile, outline.is_subprogram());
         assert_eq!(
             whole.diagnostics, diagnostics,

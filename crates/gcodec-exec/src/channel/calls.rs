@@ -18,7 +18,7 @@ use crate::event::{
     SectionEvent,
 };
 use crate::loader::LoadRequest;
-use crate::program::Program;
+use crate::program::{Program, written_label};
 use crate::value::{RtValue, RunError};
 use crate::vars::Scope;
 
@@ -40,6 +40,33 @@ pub(super) struct ActiveCall {
     /// Whether the call opened a program level (a section of the calling
     /// program itself does not).
     own_level: bool,
+}
+
+impl ActiveCall {
+    /// The `call` event of the current pass.
+    fn event(&self) -> EventKind {
+        EventKind::Call(CallEvent {
+            target: self.target.clone(),
+            call_kind: self.kind,
+            pass: self.pass,
+            passes: self.passes,
+            section: self.section.clone(),
+            arguments: self.arguments.clone(),
+        })
+    }
+}
+
+/// The `call` event of a pass of a `REPEAT` section (the end is a label
+/// lowering made; the target names the section).
+fn repeat_event(target: &str, pass: u32, passes: u32) -> EventKind {
+    EventKind::Call(CallEvent {
+        target: target.to_owned(),
+        call_kind: CallKind::Repeat,
+        pass,
+        passes,
+        section: None,
+        arguments: Vec::new(),
+    })
 }
 
 /// One parameter's argument.
@@ -186,7 +213,7 @@ impl Channel<'_> {
                 Ok(n) => n.unwrap_or(0),
                 Err(e) => return Some(Err(e)),
             };
-            self.errors += 1;
+            self.count(EventSeverity::Error);
             let event = EventKind::Diagnostic(crate::event::DiagnosticEvent {
                 code: codes::CYCLE_ALARM.into(),
                 severity: EventSeverity::Error,
@@ -200,9 +227,9 @@ impl Channel<'_> {
         if !PREDEFINED_PROCEDURES.contains(&target) {
             return None;
         }
-        let message =
-            format!("the predefined procedure `{target}` has no effect in the simulation");
-        self.not_simulated(program, instruction, target, message);
+        self.not_simulated(program, instruction, target, || {
+            format!("the predefined procedure `{target}` has no effect in the simulation")
+        });
         Some(Ok(Flow::Next))
     }
 
@@ -228,8 +255,7 @@ impl Channel<'_> {
         }
         if call.modal {
             let modal = self.prepare_modal_call(program, instruction, &target, call)?;
-            self.state.modal_call_active = true;
-            self.modal_call = Some(modal);
+            self.state.modal_call = Some(modal);
             return Ok(Flow::Next);
         }
         let arguments = self.argument_values(call)?;
@@ -322,11 +348,7 @@ impl Channel<'_> {
                 for mut event in loaded.diagnostics {
                     event.source.level = level;
                     if let EventKind::Diagnostic(d) = &event.kind {
-                        match d.severity {
-                            EventSeverity::Error => self.errors += 1,
-                            EventSeverity::Warning => self.warnings += 1,
-                            EventSeverity::Advice => {}
-                        }
+                        self.count(d.severity);
                     }
                     self.emit(&event);
                 }
@@ -425,7 +447,7 @@ impl Channel<'_> {
 
     /// The modal call after a traversing block; the caller goes on at `pc`.
     pub(super) fn run_modal_call(&mut self, program: &Arc<Program>, pc: usize) -> Flow {
-        let Some(modal) = self.modal_call.clone() else {
+        let Some(modal) = self.state.modal_call.clone() else {
             return Flow::Next;
         };
         let instruction = match program
@@ -489,15 +511,7 @@ impl Channel<'_> {
         if let Some(top) = self.stack.last_mut() {
             top.pc = resume;
         }
-        let event = EventKind::Call(CallEvent {
-            target: active.target.clone(),
-            call_kind: active.kind,
-            pass: 1,
-            passes: active.passes,
-            section: active.section.clone(),
-            arguments: active.arguments.clone(),
-        });
-        self.emit_at(program, instruction, event);
+        self.emit_at(program, instruction, active.event());
         let program_level = self.program_level() + u32::from(active.own_level);
         if active.own_level {
             self.vars.push_level();
@@ -703,10 +717,12 @@ impl Channel<'_> {
         section: &RepeatSection,
     ) -> Result<Flow, RunError> {
         let missing = |label: &str| {
-            let name = label.split_once('@').map_or(label, |(n, _)| n);
             RunError::new(
                 codes::JUMP_TARGET,
-                format!("the section label `{name}` is not in the program"),
+                format!(
+                    "the section label `{}` is not in the program",
+                    written_label(label)
+                ),
             )
         };
         let start = program
@@ -725,25 +741,11 @@ impl Channel<'_> {
                     format!("`P={passes}`: a section runs at least once"),
                 )
             })?;
-        let target = section
-            .start
-            .split_once('@')
-            .map_or(section.start.as_str(), |(n, _)| n)
-            .to_owned();
+        let target = written_label(&section.start).to_owned();
         if let Some(top) = self.stack.last_mut() {
             top.pc = pc + 1;
         }
-        let event = EventKind::Call(CallEvent {
-            target: target.clone(),
-            call_kind: CallKind::Repeat,
-            pass: 1,
-            passes,
-            // The end is a label lowering made; the target names the
-            // section.
-            section: None,
-            arguments: Vec::new(),
-        });
-        self.emit_at(program, instruction, event);
+        self.emit_at(program, instruction, repeat_event(&target, 1, passes));
         let program_level = self.program_level();
         self.stack.push(Level {
             program: Arc::clone(program),
@@ -781,14 +783,7 @@ impl Channel<'_> {
         if *pass < *passes {
             *pass += 1;
             top.pc = *start;
-            let event = EventKind::Call(CallEvent {
-                target: target.clone(),
-                call_kind: CallKind::Repeat,
-                pass: *pass,
-                passes: *passes,
-                section: None,
-                arguments: Vec::new(),
-            });
+            let event = repeat_event(target, *pass, *passes);
             self.emit_at(&program, &instruction, event);
             return None;
         }
@@ -863,14 +858,7 @@ impl Channel<'_> {
         // is off the stack here).
         call.pass += 1;
         level.pc = call.start;
-        let event = EventKind::Call(CallEvent {
-            target: call.target.clone(),
-            call_kind: call.kind,
-            pass: call.pass,
-            passes: call.passes,
-            section: call.section.clone(),
-            arguments: call.arguments.clone(),
-        });
+        let event = call.event();
         call.bindings = bindings.clone();
         self.emit_at(program, &instruction, event);
         self.stack.push(level);

@@ -270,8 +270,9 @@ impl Channel<'_> {
             }
             other => {
                 let key = format!("address {other}");
-                let message = format!("`{other}=` has no effect in the simulation");
-                self.not_simulated(program, instruction, &key, message);
+                self.not_simulated(program, instruction, &key, || {
+                    format!("`{other}=` has no effect in the simulation")
+                });
             }
         }
         Ok(())
@@ -322,10 +323,10 @@ impl Channel<'_> {
             values.push(scaled(axis, eval::eval_real(&env, &v.value)?));
         }
         let plane = self.state.plane();
-        let axes = self.state.frame_axes.clone();
-        self.state
+        let state = &mut self.state;
+        state
             .programmable
-            .apply(&axes, op, &values, rpl, plane.into())
+            .apply(&state.frame_axes, op, &values, rpl, plane)
     }
 
     pub(super) fn tool_select(
@@ -362,10 +363,10 @@ impl Channel<'_> {
             timing: select.timing,
         });
         self.emit_at(program, instruction, event);
-        self.pending_substituted = resolved.as_ref().is_some_and(|(_, s)| *s);
-        // `T0` selects "no tool": pending as `None`.
-        self.state.pending_tool = resolved.map(|(t, _)| t);
-        self.pending_selected = true;
+        self.state.pending = Some(super::state::PendingTool {
+            substituted: resolved.as_ref().is_some_and(|(_, s)| *s),
+            tool: resolved.map(|(t, _)| t),
+        });
         Ok(())
     }
 
@@ -462,14 +463,12 @@ impl Channel<'_> {
         trigger: ToolChangeTrigger,
     ) -> Result<(), RunError> {
         let previous = self.state.active_tool.as_ref().map(|t| t.label.clone());
-        let (new, source, substituted) = if self.pending_selected {
-            let new = self.state.pending_tool.take();
-            self.pending_selected = false;
+        let (new, source, substituted) = if let Some(pending) = self.state.pending.take() {
             let source = match trigger {
                 ToolChangeTrigger::M6 => SelectionSource::PendingThenM6,
                 ToolChangeTrigger::TWord => SelectionSource::DirectTWord,
             };
-            (new, source, std::mem::take(&mut self.pending_substituted))
+            (pending.tool, source, pending.substituted)
         } else {
             match self.state.profile.tool_change.m6_without_pending_policy {
                 Policy::Error => {

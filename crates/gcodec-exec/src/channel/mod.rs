@@ -57,7 +57,7 @@ pub mod codes {
     /// A streamed run comes back to an instruction it forgot.
     pub const FORGOTTEN: &str = "gcodec::run::forgotten_instruction";
     /// A called program that is on no search path (alarm 14011).
-    pub const PROGRAM_NOT_FOUND: &str = "gcodec::run::program_not_found";
+    pub use crate::loader::PROGRAM_NOT_FOUND;
     /// A standard cycle or predefined procedure that is not on the search
     /// path: the call is reported, not run.
     pub const CYCLE_NOT_SIMULATED: &str = "gcodec::run::cycle_not_simulated";
@@ -148,6 +148,13 @@ pub trait BlockObserver {
     fn block(&mut self, row: &BlockRow) -> io::Result<()>;
 }
 
+/// The CSV trace: a row per block.
+impl<W: io::Write> BlockObserver for crate::event::CsvWriter<W> {
+    fn block(&mut self, row: &BlockRow) -> io::Result<()> {
+        self.row(row)
+    }
+}
+
 /// One level of the stack: a program (or a section of one) running.
 struct Level {
     program: Arc<Program>,
@@ -211,7 +218,6 @@ pub struct Channel<'r> {
     summary: RunSummary,
     block: BlockState,
     /// `MCALL NAME(…)`: the call made after every traversing block.
-    modal_call: Option<calls::ModalCall>,
     /// Things reported once per run (not-simulated addresses).
     reported: FxHashSet<String>,
     motion: motion::MotionScratch,
@@ -219,11 +225,6 @@ pub struct Channel<'r> {
     errors: u64,
     warnings: u64,
     output_error: Option<io::Error>,
-    /// A `T` selection waits for the change (seed 000); `T0` is a pending
-    /// selection of no tool.
-    pending_selected: bool,
-    /// Whether the pending selection is a substitute (a sister tool).
-    pending_substituted: bool,
     /// Where the active tool's figures are in the summary, once looked up
     /// (cleared by a tool change): not searched for every block.
     figures_slot: Option<usize>,
@@ -236,7 +237,8 @@ impl<'r> Channel<'r> {
         loader: &'r mut dyn ProgramLoader,
         sink: &'r mut dyn EventSink,
     ) -> Self {
-        let vars = Variables::for_profile(&profile);
+        // The profile has no key for MD28050 (the number of R parameters).
+        let vars = Variables::default();
         let state = MachineState::new(profile);
         let motion = motion::MotionScratch::new(&state);
         Self {
@@ -249,15 +251,12 @@ impl<'r> Channel<'r> {
             stack: Vec::new(),
             summary: RunSummary::default(),
             block: BlockState::default(),
-            modal_call: None,
             reported: FxHashSet::default(),
             motion,
             row: BlockRow::default(),
             errors: 0,
             warnings: 0,
             output_error: None,
-            pending_selected: false,
-            pending_substituted: false,
             figures_slot: None,
         }
     }
@@ -274,7 +273,7 @@ impl<'r> Channel<'r> {
     /// naming it).
     pub fn with_globals(mut self, definitions: &gcodec_sema::Definitions) -> Self {
         for variable in definitions.variables() {
-            let Some(ty) = crate::value::DataType::parse(&variable.data_type.describe()) else {
+            let Some(ty) = crate::value::DataType::from_sema(&variable.data_type) else {
                 continue;
             };
             let dims: Option<Vec<usize>> = variable
@@ -551,14 +550,11 @@ impl<'r> Channel<'r> {
         row.line = self.block.line;
         row.level = self.block.level;
         self.motion.workpiece_position(state);
-        row.positions.clear();
-        for (i, axis) in state.axes.iter().enumerate() {
-            row.positions.insert(
-                axis.name.clone(),
-                state.as_programmed(i, self.motion.wcs[i]),
-            );
+        motion::fill_map(&mut row.positions, state, &self.motion.wcs, true);
+        match (&mut row.tool, &state.active_tool) {
+            (Some(label), Some(tool)) => label.clone_from(&tool.label),
+            (label, tool) => *label = tool.as_ref().map(|t| t.label.clone()),
         }
-        row.tool = state.active_tool.as_ref().map(|t| t.label.clone());
         row.edge = state.edge;
         row.feed = state.feed;
         let master = state.master_spindle();
@@ -599,7 +595,7 @@ impl<'r> Channel<'r> {
                     .copied()
                     .unwrap_or(false);
                 if on {
-                    self.jump_to_label(program, pc, instruction, end)
+                    self.jump_to_label(program, pc, end)
                 } else {
                     Ok(Flow::Next)
                 }
@@ -610,12 +606,12 @@ impl<'r> Channel<'r> {
                     Some(c) => eval::eval_bool(&self.env(), c),
                 };
                 match jump {
-                    Ok(true) => self.jump_to_label(program, pc, instruction, target),
+                    Ok(true) => self.jump_to_label(program, pc, target),
                     Ok(false) => Ok(Flow::Next),
                     Err(e) => Err(e),
                 }
             }
-            Op::ComputedJump(jump) => self.computed_jump(program, pc, instruction, jump),
+            Op::ComputedJump(jump) => self.computed_jump(program, pc, jump),
             // The PLC never asks for the restart in the simulation.
             Op::GotoStart { condition } => match condition {
                 Some(c) => eval::eval_bool(&self.env(), c).map(|_| Flow::Next),
@@ -706,8 +702,7 @@ impl<'r> Channel<'r> {
             }
             Op::Call(call) => self.call(program, pc, instruction, call),
             Op::CancelModalCall => {
-                self.modal_call = None;
-                self.state.modal_call_active = false;
+                self.state.modal_call = None;
                 Ok(Flow::Next)
             }
             Op::RepeatSection(section) => self.repeat_section(program, pc, instruction, section),
@@ -731,18 +726,17 @@ impl<'r> Channel<'r> {
         &mut self,
         program: &Arc<Program>,
         pc: usize,
-        _instruction: &Instruction,
         target: &str,
     ) -> Result<Flow, RunError> {
         match program.jump_target(pc).or_else(|| program.label(target)) {
             Some(index) => Ok(Flow::Jump(index)),
-            None => {
-                let name = target.split_once('@').map_or(target, |(name, _)| name);
-                Err(RunError::new(
-                    codes::JUMP_TARGET,
-                    format!("the jump target `{name}` is not in the program"),
-                ))
-            }
+            None => Err(RunError::new(
+                codes::JUMP_TARGET,
+                format!(
+                    "the jump target `{}` is not in the program",
+                    crate::program::written_label(target)
+                ),
+            )),
         }
     }
 
@@ -750,7 +744,6 @@ impl<'r> Channel<'r> {
         &mut self,
         program: &Arc<Program>,
         pc: usize,
-        _instruction: &Instruction,
         jump: &gcodec_ail::ComputedJump,
     ) -> Result<Flow, RunError> {
         if let Some(c) = &jump.condition
@@ -799,9 +792,10 @@ impl<'r> Channel<'r> {
         code: &'static str,
     ) {
         if group == 7 && matches!(code, "G41" | "G42") {
-            self.not_simulated(program, instruction, "radius-compensation", "tool radius compensation (G41/G42) is not simulated: paths are the programmed contour"
-                    .into(),
-            );
+            self.not_simulated(program, instruction, "radius-compensation", || {
+                "tool radius compensation (G41/G42) is not simulated: paths are the programmed contour"
+                    .into()
+            });
         }
         let slot = &mut self.state.modal[usize::from(group) - 1];
         let previous = *slot;
@@ -879,20 +873,24 @@ impl<'r> Channel<'r> {
         message: String,
         help: Option<&'static str>,
     ) {
+        let diagnostic = DiagnosticEvent {
+            code: Cow::Borrowed(code),
+            severity,
+            message: Cow::Owned(message),
+            alarm: alarm_number(code),
+            help: help.map(Cow::Borrowed),
+        };
+        self.count(severity);
+        self.emit_at(program, instruction, EventKind::Diagnostic(diagnostic));
+    }
+
+    /// Counts a diagnostic the run reports.
+    fn count(&mut self, severity: EventSeverity) {
         match severity {
             EventSeverity::Error => self.errors += 1,
             EventSeverity::Warning => self.warnings += 1,
             EventSeverity::Advice => {}
         }
-        let alarm = alarm_number(code);
-        let event = EventKind::Diagnostic(DiagnosticEvent {
-            code: Cow::Borrowed(code),
-            severity,
-            message: Cow::Owned(message),
-            alarm,
-            help: help.map(Cow::Borrowed),
-        });
-        self.emit_at(program, instruction, event);
     }
 
     /// Advice, once per run for `key`, that a construct is not simulated.
@@ -901,7 +899,7 @@ impl<'r> Channel<'r> {
         program: &Arc<Program>,
         instruction: &Instruction,
         key: &str,
-        message: String,
+        message: impl FnOnce() -> String,
     ) {
         let code = codes::NOT_SIMULATED;
         self.once(
@@ -914,7 +912,8 @@ impl<'r> Channel<'r> {
         );
     }
 
-    /// A diagnostic reported once per run for `key`.
+    /// A diagnostic reported once per run for `key`; its message is only
+    /// made then (the blocks that would report it again are many).
     fn once(
         &mut self,
         program: &Arc<Program>,
@@ -922,10 +921,11 @@ impl<'r> Channel<'r> {
         key: &str,
         code: &'static str,
         severity: EventSeverity,
-        message: String,
+        message: impl FnOnce() -> String,
     ) {
-        if self.reported.insert(key.to_owned()) {
-            self.diagnostic_at(program, instruction, code, severity, message, None);
+        if !self.reported.contains(key) {
+            self.reported.insert(key.to_owned());
+            self.diagnostic_at(program, instruction, code, severity, message(), None);
         }
     }
 
@@ -974,7 +974,7 @@ impl<'r> Channel<'r> {
     /// called program's own motions do not call it again).
     fn modal_call_due(&self) -> bool {
         self.block.had_motion
-            && self.modal_call.is_some()
+            && self.state.modal_call.is_some()
             && !self.stack.iter().any(|l| match &l.kind {
                 LevelKind::Call(call) => call.kind == CallKind::Modal,
                 _ => false,

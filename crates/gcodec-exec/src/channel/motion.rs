@@ -99,13 +99,8 @@ impl Channel<'_> {
             .modal(1)
             .and_then(MotionKind::of_command)
             .unwrap_or(*motion);
-        {
-            let frame = self.state.total_frame();
-            let scratch = &mut self.motion;
-            self.state
-                .to_workpiece(&frame, &self.state.machine, &mut scratch.wcs);
-            scratch.target.copy_from_slice(&scratch.wcs);
-        }
+        self.motion.workpiece_position(&self.state);
+        self.motion.target.copy_from_slice(&self.motion.wcs);
         for target in targets {
             let axis = self.axis(&target.axis)?;
             self.set_target(axis, &target.value, target.mode)?;
@@ -126,13 +121,11 @@ impl Channel<'_> {
                 self.set_target(axis, &target.value, target.mode)?;
             }
             if details.spline.is_some() || details.transition.is_some() {
-                self.not_simulated(program, instruction, "motion-details", "spline weights, chamfers and roundings (`PW`, `PL`, `CHF`, `CHR`, `RND`) are not simulated: the path is the programmed straight or circular element".into(),
-                );
+                self.not_simulated(program, instruction, "motion-details", || "spline weights, chamfers and roundings (`PW`, `PL`, `CHF`, `CHR`, `RND`) are not simulated: the path is the programmed straight or circular element".into());
             }
         }
         if kind != MotionKind::Rapid && self.state.feed <= 0.0 {
-            self.once(program, instruction, "no-feed", super::codes::NO_FEED, crate::event::EventSeverity::Warning, "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into(),
-            );
+            self.once(program, instruction, "no-feed", super::codes::NO_FEED, crate::event::EventSeverity::Warning, || "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into());
         }
         let plane = self.state.plane();
         let start = point(&self.state, &self.motion.wcs);
@@ -159,15 +152,13 @@ impl Channel<'_> {
             }
             arc = Some(resolved);
         } else if !matches!(kind, MotionKind::Rapid | MotionKind::Linear) {
-            self.not_simulated(
-                program,
-                instruction,
-                kind_key(kind),
+            let modal = self.state.modal(1);
+            self.not_simulated(program, instruction, kind_key(kind), || {
                 format!(
                     "`{}` motions are simulated as straight lines to their end points",
-                    self.state.modal(1).unwrap_or("this")
-                ),
-            );
+                    modal.unwrap_or("this")
+                )
+            });
         }
         {
             let frame = self.state.total_frame();
@@ -222,7 +213,7 @@ impl Channel<'_> {
                 Some(a) => {
                     let mut centre = event.centre.take().unwrap_or_default();
                     centre.clear();
-                    let (h, v, _) = geometry::Plane::from(state.plane()).axes();
+                    let (h, v, _) = state.plane().axes();
                     for (i, info) in state.axes.iter().enumerate() {
                         if let Some(g) = info.geometry
                             && (g == h || g == v)
@@ -397,7 +388,7 @@ impl Channel<'_> {
         };
         let turns = circle.turns.as_ref().map(real).transpose()?.unwrap_or(0.0);
         geometry::resolve_arc(
-            plane.into(),
+            plane,
             start,
             end,
             &form,
@@ -470,7 +461,7 @@ fn distance(a: Point3, b: Point3) -> f64 {
 
 /// Refills an axis map with every axis of the channel: as programmed
 /// (`programmed`: inches, diameters) or in mm.
-fn fill_map(map: &mut AxisMap, state: &MachineState, values: &[f64], programmed: bool) {
+pub(super) fn fill_map(map: &mut AxisMap, state: &MachineState, values: &[f64], programmed: bool) {
     if map.len() != state.axes.len() {
         map.clear();
         for (i, info) in state.axes.iter().enumerate() {

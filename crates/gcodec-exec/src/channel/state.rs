@@ -2,7 +2,6 @@
 //! axis positions, frames and offsets, tool, feed and spindles. It answers
 //! the system variables a program reads ([`RuntimeInterface`]).
 
-use std::borrow::Cow;
 use std::cell::{Ref, RefCell};
 use std::sync::Arc;
 
@@ -10,7 +9,10 @@ use gcodec_profile::{AxisKind, Profile};
 use gcodec_sema::ggroups;
 use gcodec_sema::modal::{GROUP_COUNT, reset_defaults};
 
-use crate::eval::{RuntimeInterface, profile_system_variable};
+use crate::eval::{
+    RuntimeInterface, machine_axis_number, profile_offsets, profile_system_variable,
+    settable_offset,
+};
 use gcodec_ail::Suppression;
 
 use crate::event::{AxisName, Plane, SpindleState, WorkOffsetCode};
@@ -72,7 +74,8 @@ pub struct MachineState {
     /// This block's suppression.
     pub suppression: Option<Suppression>,
     pub active_tool: Option<ToolRef>,
-    pub pending_tool: Option<ToolRef>,
+    /// A `T` selection waiting for the change (seed 000).
+    pub pending: Option<PendingTool>,
     /// The active cutting edge (D); 0: none.
     pub edge: u32,
     /// The active edge's length, mm.
@@ -81,7 +84,7 @@ pub struct MachineState {
     pub feed: f64,
     pub spindles: Vec<Spindle>,
     /// `MCALL`: the modal call in force.
-    pub modal_call_active: bool,
+    pub(super) modal_call: Option<super::calls::ModalCall>,
     /// The last total frame with what it was made of, so that a motion
     /// does not chain frames (and allocate) unless one changed.
     frame_cache: RefCell<FrameCache>,
@@ -89,6 +92,9 @@ pub struct MachineState {
     neutral: Frame,
     /// Room for a position, reused.
     scratch: RefCell<Vec<f64>>,
+    /// Per Group 8 index whether the machine has that settable offset
+    /// (`work_offsets.supported_group8_offsets`).
+    supported_group8: [bool; 100],
 }
 
 struct FrameCache {
@@ -99,6 +105,15 @@ struct FrameCache {
     total: Frame,
 }
 
+/// A tool selection waiting for the change.
+#[derive(Clone, Debug)]
+pub struct PendingTool {
+    /// `None`: `T0`, a selection of no tool.
+    pub tool: Option<ToolRef>,
+    /// Whether it is a substitute (a sister tool).
+    pub substituted: bool,
+}
+
 impl MachineState {
     pub fn new(profile: Arc<Profile>) -> Self {
         let frame_axes = FrameAxes::from_profile(&profile);
@@ -107,7 +122,7 @@ impl MachineState {
             .iter()
             .enumerate()
             .map(|(i, a)| AxisInfo {
-                name: Cow::Owned(a.name.get_ref().to_ascii_uppercase()),
+                name: crate::event::axis_name(a.name.get_ref()),
                 rotary: a.kind == AxisKind::Rotary,
                 // X, Y, Z keep their slots (a lathe's X and Z are the
                 // first and third geometry axes).
@@ -117,7 +132,7 @@ impl MachineState {
             })
             .collect();
         let settable = (0..100)
-            .map(|index| settable_frame(&profile, &frame_axes, &axes, index))
+            .map(|index| settable_frame(&profile, &frame_axes, index))
             .collect();
         let modal = reset_defaults(&profile);
         let group8 = modal[7]
@@ -142,12 +157,12 @@ impl MachineState {
             group8,
             suppression: None,
             active_tool: None,
-            pending_tool: None,
+            pending: None,
             edge: 0,
             tool_length: 0.0,
             feed: 0.0,
             spindles,
-            modal_call_active: false,
+            modal_call: None,
             // A group 8 code no block selects: the first motion fills it.
             frame_cache: RefCell::new(FrameCache {
                 group8: WorkOffsetCode(0),
@@ -159,15 +174,15 @@ impl MachineState {
             neutral,
             frame_axes,
             scratch: RefCell::new(Vec::new()),
+            supported_group8: profile.work_offsets.supported_group8(),
             profile,
         }
     }
 
     /// The axis named `name` (any case).
     pub fn axis_index(&self, name: &str) -> Option<usize> {
-        self.axes
-            .iter()
-            .position(|a| a.name.eq_ignore_ascii_case(name))
+        self.frame_axes
+            .index_of(name)
             .or_else(|| machine_axis_number(name, self.axes.len()))
     }
 
@@ -209,12 +224,7 @@ impl MachineState {
 
     /// The infeed axis of the plane (where the tool length acts).
     pub fn infeed_axis(&self) -> Option<usize> {
-        let slot = match self.plane() {
-            Plane::G17 => 2,
-            Plane::G18 => 1,
-            Plane::G19 => 0,
-        };
-        self.frame_axes.geometry_axis(slot)
+        self.frame_axes.geometry_axis(self.plane().infeed())
     }
 
     /// The settable frame in force (`$P_IFRAME`): the selected offset's,
@@ -314,41 +324,12 @@ impl MachineState {
     }
 }
 
-/// `AX1`, `AX2`, …: machine axes by number.
-fn machine_axis_number(name: &str, count: usize) -> Option<usize> {
-    let bytes = name.as_bytes();
-    if bytes.len() > 2 && bytes[..2].eq_ignore_ascii_case(b"AX") {
-        let n: usize = name[2..].parse().ok()?;
-        return (1..=count).contains(&n).then(|| n - 1);
-    }
-    None
-}
-
 /// The settable frame `$P_UIFR[index]` as the profile's
 /// `work_offsets.values` give it (translations).
-fn settable_frame(
-    profile: &Profile,
-    frame_axes: &FrameAxes,
-    axes: &[AxisInfo],
-    index: usize,
-) -> Frame {
-    let values = profile
-        .work_offsets
-        .values
-        .iter()
-        .find(|(code, _)| gcodec_profile::group8_index(code.get_ref()) == Some(index as u8))
-        .map(|(_, values)| {
-            values
-                .iter()
-                .filter_map(|(axis, v)| {
-                    let i = axes
-                        .iter()
-                        .position(|a| a.name.eq_ignore_ascii_case(axis.get_ref()))?;
-                    Some((i, *v))
-                })
-                .collect::<Vec<_>>()
-        })
-        .unwrap_or_default();
+fn settable_frame(profile: &Profile, frame_axes: &FrameAxes, index: usize) -> Frame {
+    let values: Vec<(usize, f64)> = profile_offsets(profile, index)
+        .filter_map(|(axis, v)| Some((frame_axes.index_of(axis)?, v)))
+        .collect();
     Frame::translation(frame_axes, &values).unwrap_or_else(|_| Frame::neutral(frame_axes))
 }
 
@@ -364,6 +345,11 @@ impl MachineState {
                 format!("`{name}[{axis}]`: the machine has no axis `{axis}`"),
             )
         })
+    }
+
+    /// The settable offset `$P_UIFR[n]` reads: one the machine has.
+    fn supported_settable(&self, n: i32) -> Result<usize, RunError> {
+        settable_offset(n, |i| i < self.settable.len() && self.supported_group8[i])
     }
 
     fn frame_value(&self, frame: &Frame) -> RtValue {
@@ -393,53 +379,32 @@ impl RuntimeInterface for MachineState {
                 self.active_tool.as_ref().map_or(0, |t| t.number as i32),
             )),
             ("$P_TOOLP", []) => Ok(RtValue::Int(
-                self.pending_tool.as_ref().map_or(0, |t| t.number as i32),
+                self.pending
+                    .as_ref()
+                    .and_then(|p| p.tool.as_ref())
+                    .map_or(0, |t| t.number as i32),
             )),
             ("$P_TOOL", []) => Ok(RtValue::Int(self.edge as i32)),
             ("$P_F", []) => Ok(RtValue::Real(self.feed)),
             ("$P_S", []) => Ok(RtValue::Real(
                 self.master_spindle().map_or(0.0, |s| s.speed),
             )),
-            ("$P_MC", []) => Ok(RtValue::Bool(self.modal_call_active)),
+            ("$P_MC", []) => Ok(RtValue::Bool(self.modal_call.is_some())),
             ("$P_UIFRNUM", []) => Ok(RtValue::Int(i32::from(self.group8_index()))),
             ("$P_PFRAME", []) => Ok(self.frame_value(&self.programmable)),
             ("$P_IFRAME", []) => Ok(self.frame_value(self.active_settable())),
             ("$P_ACTFRAME", []) => Ok(self.frame_value(&self.total_frame())),
             ("$P_UIFR", [n]) => {
-                let n = n.to_int()?;
-                let frame = usize::try_from(n)
-                    .ok()
-                    .and_then(|i| self.settable.get(i))
-                    .filter(|_| {
-                        self.profile.work_offsets.supported_group8()[n.clamp(0, 99) as usize]
-                    })
-                    .ok_or_else(|| {
-                        RunError::new(
-                            codes::INDEX_OUT_OF_RANGE,
-                            format!("`$P_UIFR[{n}]`: the machine has no settable offset {n}"),
-                        )
-                    })?;
-                Ok(self.frame_value(frame))
+                let slot = self.supported_settable(n.to_int()?)?;
+                Ok(self.frame_value(&self.settable[slot]))
             }
             ("$P_UIFR", [n, axis, component]) => {
-                let RtValue::Frame(frame) = self.system_variable(name, std::slice::from_ref(n))?
-                else {
-                    return Err(RunError::type_mismatch(n, "FRAME"));
-                };
+                let slot = self.supported_settable(n.to_int()?)?;
+                let frame = self.settable[slot].to_value(&self.frame_axes);
                 let axis = self.axis_argument(name, axis)?;
-                let component = match component {
-                    RtValue::Axis(c) | RtValue::String(c) => c.clone(),
-                    v => return Err(RunError::type_mismatch(v, "a frame component")),
-                };
                 frame
-                    .component(&self.axes[axis].name, &component)
+                    .component_of(&self.axes[axis].name, component)
                     .map(RtValue::Real)
-                    .ok_or_else(|| {
-                        RunError::new(
-                            codes::TYPE_MISMATCH,
-                            format!("`{component}` is not a frame component (TR, FI, RT, SC, MI)"),
-                        )
-                    })
             }
             ("$P_GG", [n]) => {
                 let n = n.to_int()?;
@@ -490,38 +455,16 @@ impl RuntimeInterface for MachineState {
                     return Err(RunError::type_mismatch(value, "FRAME"));
                 };
                 let frame = Frame::from_value(&self.frame_axes, f)?;
-                match usize::try_from(n)
-                    .ok()
-                    .and_then(|i| self.settable.get_mut(i))
-                {
-                    Some(slot) => {
-                        *slot = frame;
-                        Ok(())
-                    }
-                    None => Err(RunError::new(
-                        codes::INDEX_OUT_OF_RANGE,
-                        format!("`$P_UIFR[{n}]`: the machine has no settable offset {n}"),
-                    )),
-                }
+                let slot = settable_offset(n, |i| i < self.settable.len())?;
+                self.settable[slot] = frame;
+                Ok(())
             }
             ("$P_UIFR", [n, axis, component]) => {
-                let n = n.to_int()?;
-                let Some(slot) = usize::try_from(n).ok().filter(|&i| i < self.settable.len())
-                else {
-                    return Err(RunError::new(
-                        codes::INDEX_OUT_OF_RANGE,
-                        format!("`$P_UIFR[{n}]`: the machine has no settable offset {n}"),
-                    ));
-                };
-                let axis_index = self.axis_argument(name, axis)?;
-                let mut frame_value = self.settable[slot].to_value(&self.frame_axes);
-                let axis_name = self.axes[axis_index].name.to_string();
-                let component = match component {
-                    RtValue::Axis(c) | RtValue::String(c) => c.to_ascii_uppercase(),
-                    v => return Err(RunError::type_mismatch(v, "a frame component")),
-                };
-                set_component(&mut frame_value, &axis_name, &component, value.to_real()?)?;
-                self.settable[slot] = Frame::from_value(&self.frame_axes, &frame_value)?;
+                let slot = settable_offset(n.to_int()?, |i| i < self.settable.len())?;
+                let axis = self.axis_argument(name, axis)?;
+                let mut frame = self.settable[slot].to_value(&self.frame_axes);
+                frame.set_component(&self.axes[axis].name, component, value)?;
+                self.settable[slot] = Frame::from_value(&self.frame_axes, &frame)?;
                 Ok(())
             }
             _ => Err(RunError::new(
@@ -538,39 +481,4 @@ impl RuntimeInterface for MachineState {
     fn chain_frames(&self, lhs: &FrameValue, rhs: &FrameValue) -> Result<FrameValue, RunError> {
         chain_values(&self.frame_axes, lhs, rhs)
     }
-}
-
-/// Writes one component (`TR`, `FI`, `RT`, `SC`, `MI`) of `axis`.
-fn set_component(
-    frame: &mut FrameValue,
-    axis: &str,
-    component: &str,
-    value: f64,
-) -> Result<(), RunError> {
-    let at = match frame
-        .axes
-        .iter()
-        .position(|a| a.axis.eq_ignore_ascii_case(axis))
-    {
-        Some(at) => at,
-        None => {
-            frame.axes.push(crate::value::FrameAxis::neutral(axis));
-            frame.axes.len() - 1
-        }
-    };
-    let slot = &mut frame.axes[at];
-    match component {
-        "TR" => slot.translation = value,
-        "FI" => slot.fine = value,
-        "RT" => slot.rotation = value,
-        "SC" => slot.scale = value,
-        "MI" => slot.mirror = value != 0.0,
-        _ => {
-            return Err(RunError::new(
-                codes::TYPE_MISMATCH,
-                format!("`{component}` is not a frame component (TR, FI, RT, SC, MI)"),
-            ));
-        }
-    }
-    Ok(())
 }

@@ -24,34 +24,33 @@ pub(super) struct Signature {
     span: Span,
 }
 
-/// Adds the signatures of the `PROC`s and `EXTERN`s of `block` to those of
-/// its program, by name in upper case. The later declaration of a name
-/// wins, as a later `EXTERN` replaces an earlier one on the control.
-pub(super) fn add_signatures(block: &ast::Block, found: &mut HashMap<String, Signature>) {
-    for statement in block.statements.iter() {
-        let (name, signature) = match &statement.kind {
-            StatementKind::Proc(proc) => (
-                &proc.name,
-                Signature {
-                    params: proc
-                        .params
-                        .iter()
-                        .map(|p| (Some(p.name.to_string()), p.by_reference))
-                        .collect(),
-                    span: proc.name_span,
-                },
-            ),
-            StatementKind::Extern(decl) => (
-                &decl.name,
-                Signature {
-                    params: decl.params.iter().map(|p| (None, p.by_reference)).collect(),
-                    span: statement.span,
-                },
-            ),
-            _ => continue,
-        };
-        found.insert(name.to_ascii_uppercase().to_string(), signature);
-    }
+/// Adds the signature of `statement`, a `PROC` or `EXTERN` (else nothing
+/// is added), to those of its program, by name in upper case. The later
+/// declaration of a name wins, as a later `EXTERN` replaces an earlier one
+/// on the control.
+pub(super) fn add_signature(statement: &ast::Statement, found: &mut HashMap<String, Signature>) {
+    let (name, signature) = match &statement.kind {
+        StatementKind::Proc(proc) => (
+            &proc.name,
+            Signature {
+                params: proc
+                    .params
+                    .iter()
+                    .map(|p| (Some(p.name.to_string()), p.by_reference))
+                    .collect(),
+                span: proc.name_span,
+            },
+        ),
+        StatementKind::Extern(decl) => (
+            &decl.name,
+            Signature {
+                params: decl.params.iter().map(|p| (None, p.by_reference)).collect(),
+                span: statement.span,
+            },
+        ),
+        _ => return,
+    };
+    found.insert(name.to_ascii_uppercase().to_string(), signature);
 }
 
 impl Lowering<'_> {
@@ -126,7 +125,7 @@ impl Lowering<'_> {
     /// Arguments against a declared signature: not more than it has, and
     /// a variable for each `VAR` parameter (the callee writes to it).
     fn check_arguments(&mut self, upper: &str, args: &[Option<ast::Expr>], span: Span) {
-        let Some(signature) = self.signatures.get(upper) else {
+        let Some(signature) = self.outline.signatures.get(upper) else {
             return;
         };
         let declared = signature.span;

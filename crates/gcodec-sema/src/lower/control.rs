@@ -111,7 +111,8 @@ impl<'a> Lowering<'a> {
         role: Role,
     ) -> Option<&'a ast::ControlStructure> {
         let structures = &self.outline.structures;
-        self.flow
+        self.outline
+            .flow
             .roles(index)
             .iter()
             .find(|(s, r)| *r == role && structures[*s].kind == kind)
@@ -325,7 +326,7 @@ impl<'a> Lowering<'a> {
         } else {
             "REPEAT"
         };
-        match self.flow.repeat_section(index) {
+        match self.outline.flow.repeat_section(index) {
             Some(Ok(section)) => plan.tail.push((
                 Op::RepeatSection(Box::new(gcodec_ail::RepeatSection {
                     start: section.start.clone(),
@@ -369,7 +370,7 @@ impl<'a> Lowering<'a> {
             return plan.tail.push((Op::GotoStart { condition }, span));
         };
         let search = Search::of(jump.goto);
-        match self.flow.resolve(index, search, target) {
+        match self.outline.flow.resolve(index, search, target) {
             Resolved::Label(target) => plan.tail.push((Op::Jump { target, condition }, span)),
             Resolved::Computed => {
                 let ast::JumpTarget::Expr(expr) = target else {

@@ -12,7 +12,6 @@
 //! label after all of it, before the end of a `REPEAT` section it closes.
 
 use std::borrow::Cow;
-use std::collections::HashMap;
 use std::sync::Arc;
 
 use gcodec_ail::{
@@ -24,7 +23,6 @@ use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
 use gcodec_source::{Diagnostic, Span};
 
 use crate::definitions::Definitions;
-use crate::flow::Flow;
 use crate::{ggroups, mfunc};
 use outline::Outline;
 
@@ -79,6 +77,16 @@ pub fn lower_in_parts(
     parts: usize,
 ) -> Lowered {
     let outline = outline::outline(program, profile, definitions);
+    lower_outlined(program, profile, &outline, parts)
+}
+
+/// [`lower_in_parts`] with the program's `outline` built.
+fn lower_outlined(
+    program: &Program,
+    profile: &Profile,
+    outline: &Outline<'_>,
+    parts: usize,
+) -> Lowered {
     let mut diagnostics = outline.diagnostics().to_vec();
     let subprogram = outline.subprogram;
     let blocks = program.blocks.len();
@@ -86,9 +94,8 @@ pub fn lower_in_parts(
     let ranges: Vec<std::ops::Range<usize>> = (0..parts)
         .map(|k| blocks * k / parts..blocks * (k + 1) / parts)
         .collect();
-    // About one instruction per statement, plus labels, jumps and modal
-    // changes: reserving avoids copying a large vector. The first part
-    // reserves for all, since the others are appended to it.
+    // Reserving avoids copying a large vector (`capacity`). The first
+    // part reserves for all, since the others are appended to it.
     let statements: Vec<usize> = ranges
         .iter()
         .map(|r| {
@@ -101,11 +108,7 @@ pub fn lower_in_parts(
     let total: usize = statements.iter().sum();
     let lower_part = |k: usize, range: std::ops::Range<usize>| {
         let reserve = if k == 0 { total } else { statements[k] };
-        let mut lowering = Lowering::new(&outline, profile, reserve, k > 0);
-        if k == 0 && subprogram {
-            // A subprogram starts in its caller's state.
-            lowering.forget_modal_state();
-        }
+        let mut lowering = Lowering::new(outline, profile, reserve, k > 0);
         for index in range {
             lowering.block(index, &program.blocks[index]);
         }
@@ -141,7 +144,7 @@ pub fn lower_in_parts(
         // A case the parts cannot settle between them (a modal call in
         // force across a boundary, an inherited thread or OEM command):
         // lower in one run.
-        return lower_in_parts(program, profile, definitions, 1);
+        return lower_outlined(program, profile, outline, 1);
     }
     let mut parts = lowered.into_iter();
     let Some(mut first) = parts.next() else {
@@ -386,13 +389,18 @@ fn direction(kind: GotoKind) -> &'static str {
     }
 }
 
+/// Room for the instructions of about `statements` statements: about one
+/// instruction per statement, plus labels, jumps and modal changes.
+fn capacity(statements: usize) -> usize {
+    statements * 5 / 4 + 16
+}
+
 /// The state carried from block to block.
 struct Lowering<'a> {
     outline: &'a Outline<'a>,
     profile: &'a Profile,
     /// Where the block being lowered starts (columns count from there).
     block_start: u32,
-    file: Arc<str>,
     document: Document,
     diagnostics: Vec<Diagnostic>,
     /// Modal code of each G group (index = group − 1) as far as the
@@ -412,15 +420,8 @@ struct Lowering<'a> {
     /// (indices into `document.instructions`), settled by [`stitch`].
     pending_motions: Vec<usize>,
     pending_offsets: Vec<usize>,
-    flow: &'a Flow,
-    /// `mcode_class_overrides` by M value.
-    m_overrides: &'a HashMap<u32, gcodec_ail::MClass>,
     /// The Group 8 indices the machine has.
     group8_supported: [bool; 100],
-    /// The `PROC` and `EXTERN` signatures of the program, by name.
-    signatures: &'a HashMap<String, calls::Signature>,
-    /// The names the program may use, by section (`variables.rs`).
-    names: &'a variables::Names<'a>,
 }
 
 /// An `S` word: spindle number, computed spindle number (`S[SPINU]=`),
@@ -508,7 +509,9 @@ impl BlockPlan {
 impl<'a> Lowering<'a> {
     /// The lowering of a part of `program` with room for the instructions
     /// of about `statements` statements; `inherits` for a part after the
-    /// first, which starts in the state the part before it ends in.
+    /// first, which starts in the state the part before it ends in. The
+    /// first part of a subprogram starts in its caller's state: the
+    /// motion command and the Group 8 selection are unknown.
     fn new(
         outline: &'a Outline<'a>,
         profile: &'a Profile,
@@ -518,7 +521,9 @@ impl<'a> Lowering<'a> {
         let mut modal = crate::modal::reset_defaults(profile);
         let mut group8 =
             gcodec_profile::group8_index(profile.work_offsets.default_group8_offset.get_ref());
-        if inherits {
+        // A part after the first starts in the state the part before it
+        // ends in, a subprogram in its caller's: neither is known here.
+        if inherits || outline.subprogram {
             modal[0] = None;
             group8 = None;
         }
@@ -526,9 +531,8 @@ impl<'a> Lowering<'a> {
             outline,
             profile,
             block_start: 0,
-            file: Arc::clone(&outline.file),
             document: Document {
-                instructions: Vec::with_capacity(statements * 5 / 4 + 16),
+                instructions: Vec::with_capacity(capacity(statements)),
                 ..Document::new()
             },
             diagnostics: Vec::new(),
@@ -539,17 +543,13 @@ impl<'a> Lowering<'a> {
             group8_inherited: inherits,
             pending_motions: Vec::new(),
             pending_offsets: Vec::new(),
-            flow: &outline.flow,
-            m_overrides: &outline.m_overrides,
             group8_supported: profile.work_offsets.supported_group8(),
-            signatures: &outline.signatures,
-            names: &outline.names,
         }
     }
 
     fn source_at(&self, block: usize, span: Span) -> Source {
         Source {
-            file: self.file.clone(),
+            file: Arc::clone(&self.outline.file),
             line: block as u32 + 1,
             col: span.start.saturating_sub(self.block_start) + 1,
             span: ByteRange {
@@ -588,9 +588,9 @@ impl<'a> Lowering<'a> {
 
     /// The program's end, after its last block.
     fn end(&mut self) {
-        let (start, end) = self.outline.last_block;
+        let (index, start, end) = self.outline.last_block;
         self.block_start = start;
-        let source = self.source_at(self.outline.blocks.max(1) - 1, Span::new(end, end));
+        let source = self.source_at(index, Span::new(end, end));
         self.document.instructions.push(Instruction {
             op: Op::End,
             source,
@@ -615,8 +615,7 @@ impl<'a> Lowering<'a> {
         }
         let mut plan = BlockPlan::default();
         // Most blocks play no part in control flow: one lookup says so.
-        let flow: &'a Flow = self.flow;
-        let facts = flow.block(index);
+        let facts = self.outline.flow.block(index);
         if let Some(facts) = facts {
             self.check_structure_block(facts, block);
             self.structure_parts(facts, block, &mut plan);

@@ -37,11 +37,9 @@ pub struct Outline<'d> {
     pub(super) subprogram: bool,
     /// Where the program's first statement is (`PROC` must be it).
     pub(super) first_statement: Option<Span>,
-    /// How many blocks (lines) the program has.
-    pub(super) blocks: usize,
-    /// The start and end of its last block: the program's end instruction
-    /// sits there.
-    pub(super) last_block: (u32, u32),
+    /// The index, start and end of its last block (0s for a program
+    /// without blocks): the program's end instruction sits there.
+    pub(super) last_block: (usize, u32, u32),
     /// What outlining found wrong (names defined twice or too late) and
     /// advice on labels defined twice.
     diagnostics: Vec<Diagnostic>,
@@ -87,8 +85,7 @@ pub struct OutlineBuilder<'d> {
     /// The first statement of the program, once seen, and whether it is
     /// `PROC`.
     first_statement: Option<(Span, bool)>,
-    blocks: usize,
-    last_block: (u32, u32),
+    last_block: (usize, u32, u32),
 }
 
 impl<'d> OutlineBuilder<'d> {
@@ -103,8 +100,7 @@ impl<'d> OutlineBuilder<'d> {
             signatures: HashMap::new(),
             for_variables: FxHashMap::default(),
             first_statement: None,
-            blocks: 0,
-            last_block: (0, 0),
+            last_block: (0, 0, 0),
         }
     }
 
@@ -118,22 +114,22 @@ impl<'d> OutlineBuilder<'d> {
             if block.statements.is_empty() {
                 continue;
             }
-            calls::add_signatures(block, &mut self.signatures);
             self.first_statement.get_or_insert_with(|| {
                 let first = &block.statements[0];
                 (first.span, matches!(first.kind, StatementKind::Proc(_)))
             });
-            if let Some(f) = block.statements.iter().find_map(|st| match &st.kind {
-                StatementKind::For(f) => Some(f),
-                _ => None,
-            }) {
-                self.for_variables
-                    .insert(index as u32, values::variable(&f.var));
+            for statement in &block.statements {
+                calls::add_signature(statement, &mut self.signatures);
+                // The loop variable of the block's first `FOR`.
+                if let StatementKind::For(f) = &statement.kind {
+                    self.for_variables
+                        .entry(index as u32)
+                        .or_insert_with(|| values::variable(&f.var));
+                }
             }
         }
         if let Some(last) = blocks.last() {
-            self.blocks = first + blocks.len();
-            self.last_block = (last.span.start, last.span.end);
+            self.last_block = (first + blocks.len() - 1, last.span.start, last.span.end);
         }
     }
 
@@ -155,7 +151,6 @@ impl<'d> OutlineBuilder<'d> {
             names,
             signatures: self.signatures,
             m_overrides: self.m_overrides,
-            blocks: self.blocks,
             last_block: self.last_block,
             diagnostics,
         }

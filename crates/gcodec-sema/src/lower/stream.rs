@@ -7,14 +7,42 @@
 //! program in one part gives, before the modal refinement (`refine`): a
 //! motion after a join says `modal`, which the executor settles from its
 //! own state. A test checks this for every fixture and corpus program.
+//! [`lower_chunks`] is pass 2 of a streamed run, after
+//! [`super::outline::outline_chunks`].
 
 use gcodec_ail::Instruction;
 use gcodec_parser::ast::Block;
 use gcodec_profile::Profile;
 use gcodec_source::Diagnostic;
 
-use super::Lowering;
 use super::outline::Outline;
+use super::{Lowering, capacity};
+
+/// Lowers the program `src` chunk by chunk against its `outline` (pass 2
+/// of a streamed run): the chunks are parsed on `workers` threads
+/// ([`gcodec_parser::parse_chunks`]), lowered in order by one
+/// [`ChunkLowering`] and each tree dropped right after; `each` takes the
+/// instructions of every chunk, then those of [`ChunkLowering::finish`]
+/// (the end). `chunks` are consecutive from the first block, as
+/// [`gcodec_parser::chunks`] cuts them: a chunk out of order is left out.
+/// The parse diagnostics are not repeated: pass 1 reported them.
+pub fn lower_chunks(
+    src: &[u8],
+    chunks: &[gcodec_parser::Chunk],
+    workers: usize,
+    outline: &Outline<'_>,
+    profile: &Profile,
+    mut each: impl FnMut(LoweredChunk),
+) {
+    let mut lowering = ChunkLowering::new(outline, profile);
+    gcodec_parser::parse_chunks(src, chunks, workers, |parsed| {
+        if let Some(lowered) = lowering.lower(parsed.first_block, &parsed.blocks) {
+            drop(parsed);
+            each(lowered);
+        }
+    });
+    each(lowering.finish());
+}
 
 /// A lowering fed with the blocks of a program in order.
 pub struct ChunkLowering<'a> {
@@ -34,11 +62,7 @@ impl<'a> ChunkLowering<'a> {
     /// Lowers the program `outline` describes for the machine `profile`
     /// describes.
     pub fn new(outline: &'a Outline<'a>, profile: &'a Profile) -> Self {
-        let mut lowering = Lowering::new(outline, profile, 0, false);
-        if outline.subprogram {
-            // A subprogram starts in its caller's state.
-            lowering.forget_modal_state();
-        }
+        let lowering = Lowering::new(outline, profile, 0, false);
         Self { lowering, next: 0 }
     }
 
@@ -53,7 +77,7 @@ impl<'a> ChunkLowering<'a> {
         self.lowering
             .document
             .instructions
-            .reserve(statements * 5 / 4 + 16);
+            .reserve(capacity(statements));
         for (offset, block) in blocks.iter().enumerate() {
             self.lowering.block(first + offset, block);
         }

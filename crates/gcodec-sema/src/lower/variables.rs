@@ -512,7 +512,7 @@ impl Lowering<'_> {
     }
 
     fn check_user_variable(&mut self, var: &ast::VarRef) {
-        let resolved = self.names.resolve(&var.name, var.span.start);
+        let resolved = self.outline.names.resolve(&var.name, var.span.start);
         let mut components_from = usize::MAX;
         match resolved {
             Resolved::Variable(shape) => {
@@ -659,7 +659,7 @@ impl Lowering<'_> {
             ast::VarKind::RParameter => Some(DataType::Real),
             ast::VarKind::System => sysvars::lookup(&var.name)
                 .and_then(|v| types::system_variable_type(v, var.indices.len())),
-            ast::VarKind::Name => match self.names.resolve(&var.name, var.span.start) {
+            ast::VarKind::Name => match self.outline.names.resolve(&var.name, var.span.start) {
                 Resolved::Variable(shape) => shape.element_type(var.indices.len()),
                 Resolved::Axis if var.indices.is_empty() => Some(DataType::Axis),
                 _ => None,
@@ -886,7 +886,8 @@ impl Lowering<'_> {
         if target.kind != ast::VarKind::Name {
             return None;
         }
-        let Resolved::Variable(shape) = self.names.resolve(&target.name, target.span.start) else {
+        let Resolved::Variable(shape) = self.outline.names.resolve(&target.name, target.span.start)
+        else {
             return None;
         };
         if shape.rank == 0 {
@@ -913,7 +914,7 @@ impl Lowering<'_> {
             sysvars::lookup(&redef.name).is_some()
         } else {
             !matches!(
-                self.names.resolve(&redef.name, span.start),
+                self.outline.names.resolve(&redef.name, span.start),
                 Resolved::Undefined | Resolved::Later(_)
             )
         };

@@ -42,7 +42,7 @@ impl Lowering<'_> {
                     &value,
                     span,
                     self.profile,
-                    self.m_overrides,
+                    &self.outline.m_overrides,
                     &mut self.diagnostics,
                 ) {
                     plan.m_functions.push(m);

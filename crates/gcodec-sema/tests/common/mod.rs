@@ -33,7 +33,16 @@ pub fn machine(sections: &str) -> gcodec_profile::Profile {
 
 /// Lowers `src` (which must parse cleanly) for `profile`.
 pub fn lower_with(profile: &gcodec_profile::Profile, src: &str) -> gcodec_sema::Lowered {
-    let parsed = gcodec_parser::parse_bytes("test.mpf", src.as_bytes());
+    lower_named("test.mpf", profile, src)
+}
+
+/// [`lower_with`], the program in the file `file`.
+pub fn lower_named(
+    file: &str,
+    profile: &gcodec_profile::Profile,
+    src: &str,
+) -> gcodec_sema::Lowered {
+    let parsed = gcodec_parser::parse_bytes(file, src.as_bytes());
     assert!(
         parsed.diagnostics.is_empty(),
         "{src}: {:#?}",
@@ -70,6 +79,34 @@ pub fn errors(lowered: &gcodec_sema::Lowered) -> Vec<&'static str> {
         .iter()
         .filter(|d| d.is_error())
         .map(|d| d.code)
+        .collect()
+}
+
+/// The motion kinds, in order.
+pub fn motions(lowered: &gcodec_sema::Lowered) -> Vec<gcodec_ail::MotionKind> {
+    lowered
+        .document
+        .instructions
+        .iter()
+        .filter_map(|i| match &i.op {
+            gcodec_ail::Op::Motion { motion, .. } => Some(*motion),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The Group 8 selection of each work offset instruction, in order.
+pub fn selections(lowered: &gcodec_sema::Lowered) -> Vec<Option<String>> {
+    lowered
+        .document
+        .instructions
+        .iter()
+        .filter_map(|i| match &i.op {
+            gcodec_ail::Op::WorkOffset {
+                group8_selected, ..
+            } => Some(group8_selected.clone()),
+            _ => None,
+        })
         .collect()
 }
 
