@@ -58,7 +58,8 @@ pub struct RunArgs {
     /// Stop after this many blocks (a guard against endless loops).
     #[arg(long, value_name = "N", default_value_t = 10_000_000)]
     pub max_steps: u64,
-    /// Go on after `M0` (and `M1`) instead of ending the run there.
+    /// Go on after `M0` (and `M1`) instead of ending the run there (as the
+    /// profile's `[program] stop_at_m0 = false` does).
     #[arg(long)]
     pub no_stop: bool,
     /// The operator's optional-stop switch: `M1` stops like `M0`.
@@ -158,7 +159,9 @@ pub fn run(args: RunArgs) -> u8 {
         run_options.skip_levels = levels;
     }
     run_options.max_steps = args.max_steps;
-    run_options.stop_at_m0 = !args.no_stop;
+    if args.no_stop {
+        run_options.stop_at_m0 = false;
+    }
     run_options.optional_stop = args.optional_stop;
     let interrupt = Arc::new(AtomicBool::new(false));
     {

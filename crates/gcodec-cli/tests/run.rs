@@ -185,6 +185,32 @@ fn a_block_with_errors_the_run_does_not_reach_is_reported_not_run() {
 }
 
 #[test]
+fn a_profile_that_does_not_stop_at_m0_is_followed_without_no_stop() {
+    let default = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../profiles/default.toml"),
+    )
+    .expect("default profile");
+    let profile = temp_file(
+        "run-stop-profile",
+        "no_stop.toml",
+        &default.replace("[program]\n", "[program]\nstop_at_m0 = false\n"),
+    );
+    let file = temp_file("run-stop-profile", "m0.mpf", "G1 X1 F100\nM0\nG1 X2\nM30\n");
+    let run = |profile: Option<&PathBuf>| {
+        let mut args = vec!["run".as_ref(), file.as_os_str()];
+        if let Some(p) = profile {
+            args.extend(["--profile".as_ref(), p.as_os_str()]);
+        }
+        let out = gcodec(args);
+        assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+        events(&out).last().expect("end")["reason"].clone()
+    };
+    // The built-in profile stops at M0; this one goes on to M30.
+    assert_eq!(run(None), "stopped");
+    assert_eq!(run(Some(&profile)), "m30");
+}
+
+#[test]
 fn bad_options_are_usage_errors() {
     let file = temp_file("run-usage", "ok.mpf", "M30\n");
     for args in [
