@@ -9,7 +9,10 @@ use std::process::ExitCode;
 use clap::Parser;
 
 /// mimalloc: about a third of a large lowering went to glibc's malloc and
-/// free.
+/// free. Built without transparent huge pages (the `no_thp` feature): a
+/// fault on a huge page zeroes 2 MiB however little of it is used, which
+/// cost a sixth of a streamed run of the 1,000,000-block program and
+/// doubled its peak memory (docs/performance.md).
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 

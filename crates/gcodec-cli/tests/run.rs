@@ -163,6 +163,29 @@ fn a_run_stops_with_an_alarm_at_the_first_block_with_errors_it_reaches() {
 }
 
 #[test]
+fn a_jump_finds_the_number_of_a_block_with_a_syntax_error_and_stops_there() {
+    // `N20 X=` cannot be read, but its number can: the jump goes there
+    // (not to the later `N20`), and the run stops at the error.
+    let file = temp_file(
+        "run-errors-jump",
+        "jump.mpf",
+        "G1 X1 F100\nGOTOF N20\nN10 X2\nN20 X=\nN20 X3\nM30\n",
+    );
+    let out = gcodec(["run".as_ref(), file.as_os_str()]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    let err = stderr(&out);
+    assert!(
+        err.contains("error[gcodec::run::block_with_errors]"),
+        "{err}"
+    );
+    assert!(err.contains("jump.mpf:4:"), "{err}");
+    let events = events(&out);
+    assert_eq!(events.last().expect("end")["reason"], "alarm");
+    let motions: Vec<_> = events.iter().filter(|e| e["event"] == "motion").collect();
+    assert_eq!(motions.len(), 1, "{events:?}");
+}
+
+#[test]
 fn a_block_with_errors_the_run_does_not_reach_is_reported_not_run() {
     let file = temp_file(
         "run-errors-skipped",

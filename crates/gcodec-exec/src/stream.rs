@@ -2,13 +2,14 @@
 //! neither its syntax tree nor all its instructions are ever held
 //! (docs/ARCHITECTURE.md, gcodec-exec, "The streamed run").
 //!
-//! Pass 1 parses the program chunk by chunk into its outline (structures,
-//! jump targets, names, signatures), dropping each tree. Pass 2, on a
-//! second thread, parses each chunk again, lowers it against the outline
-//! and hands its instructions to the run as a page through a bounded
-//! channel; it lowers to the end even when the run stops early, so every
-//! diagnostic is reported. A block with errors stops the run with an
-//! alarm when the run reaches it (SPEC §11.9).
+//! Pass 1 skims the program chunk by chunk into its outline (structures,
+//! jump targets, names, signatures), parsing only the blocks the outline
+//! reads something of and dropping each tree. Pass 2, on a second
+//! thread, parses each chunk, lowers it against the outline and hands its
+//! instructions to the run as a page through a bounded channel; it lowers
+//! to the end even when the run stops early, so every diagnostic is
+//! reported. A block with errors stops the run with an alarm when the run
+//! reaches it (SPEC §11.9).
 
 use std::sync::Arc;
 use std::sync::mpsc::{SyncSender, sync_channel};
@@ -60,7 +61,7 @@ pub fn run_streamed<R>(
 ) -> (R, Vec<Diagnostic>) {
     let src = file.bytes();
     let chunks = chunks(src, options.page_lines.max(1));
-    let (outline, mut diagnostics) = outline_chunks(
+    let (outline, structure_diagnostics) = outline_chunks(
         file.name(),
         src,
         &chunks,
@@ -68,7 +69,7 @@ pub fn run_streamed<R>(
         profile,
         definitions,
     );
-    diagnostics.extend_from_slice(outline.diagnostics());
+    let outline_diagnostics = outline.diagnostics();
     let (sender, receiver) = sync_channel::<SourcePage>(PAGES_AHEAD);
     let program = Program::streamed(
         name,
@@ -78,13 +79,17 @@ pub fn run_streamed<R>(
     );
     let program = Arc::new(program);
     let file_name = &program.file;
-    let known_errors = error_sources(file, file_name, &diagnostics);
+    // Pass 1's errors are known before the run starts.
+    let mut known_errors = error_sources(file, file_name, &structure_diagnostics);
+    known_errors.extend(error_sources(file, file_name, outline_diagnostics));
+    known_errors.sort_by_key(|e| (e.line, e.col));
     let (result, lowered) = std::thread::scope(|scope| {
         let pass2 = scope.spawn(|| {
             let mut pages = Pages {
                 sender: Some(sender),
                 file,
                 name: file_name,
+                parse_diagnostics: Vec::new(),
                 diagnostics: Vec::new(),
             };
             // The errors pass 1 found go ahead of every page.
@@ -96,7 +101,7 @@ pub fn run_streamed<R>(
             lower_chunks(src, &chunks, workers, &outline, profile, |lowered| {
                 pages.lowered(lowered);
             });
-            pages.diagnostics
+            (pages.parse_diagnostics, pages.diagnostics)
         });
         let result = run(Arc::clone(&program));
         // A run that stopped early leaves pages unread: pass 2 must not
@@ -107,24 +112,36 @@ pub fn run_streamed<R>(
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
         (result, lowered)
     });
-    diagnostics.extend(lowered);
+    // In the order the whole program's parse and lowering give them: a
+    // stable sort keeps the parser's ahead of the outline's and the
+    // lowering's at one place.
+    let (parse_diagnostics, lowering_diagnostics) = lowered;
+    let mut diagnostics = parse_diagnostics;
+    diagnostics.extend(structure_diagnostics);
+    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    diagnostics.extend_from_slice(outline_diagnostics);
+    diagnostics.extend(lowering_diagnostics);
     diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
     (result, diagnostics)
 }
 
-/// The pages pass 2 sends, while the run takes them, and the lowering's
-/// diagnostics.
+/// The pages pass 2 sends, while the run takes them, and the parser's
+/// and the lowering's diagnostics.
 struct Pages<'a> {
     sender: Option<SyncSender<SourcePage>>,
     file: &'a SourceFile,
     name: &'a Arc<str>,
+    parse_diagnostics: Vec<Diagnostic>,
     diagnostics: Vec<Diagnostic>,
 }
 
 impl Pages<'_> {
     /// Sends a lowered chunk, with the places of its errors.
     fn lowered(&mut self, chunk: LoweredChunk) {
-        let errors = error_sources(self.file, self.name, &chunk.diagnostics);
+        let mut errors = error_sources(self.file, self.name, &chunk.parse_diagnostics);
+        errors.extend(error_sources(self.file, self.name, &chunk.diagnostics));
+        errors.sort_by_key(|e| (e.line, e.col));
+        self.parse_diagnostics.extend(chunk.parse_diagnostics);
         self.diagnostics.extend(chunk.diagnostics);
         self.send(SourcePage {
             instructions: chunk.instructions,

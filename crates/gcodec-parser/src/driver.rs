@@ -69,20 +69,25 @@ const PARALLEL_MIN_BYTES: usize = 4 << 20;
 /// reference for tests that the split does not change the result.
 #[doc(hidden)]
 pub fn parse_bytes_in_segments(name: &str, src: &[u8], threads: usize) -> Parse {
-    parse_segments(name, src, true, split(src, threads.max(1)))
+    parse_segments(name, src, Reading::Whole, split(src, threads.max(1)))
 }
 
 fn parse_with(name: &str, src: &[u8], fast_path: bool) -> Parse {
+    let reading = if fast_path {
+        Reading::Whole
+    } else {
+        Reading::GrammarOnly
+    };
     // Asking for the core count reads cgroup limits: only large files ask.
     let threads = if src.len() < PARALLEL_MIN_BYTES {
         1
     } else {
         std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
     };
-    parse_segments(name, src, fast_path, split(src, threads))
+    parse_segments(name, src, reading, split(src, threads))
 }
 
-fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment>) -> Parse {
+fn parse_segments(name: &str, src: &[u8], reading: Reading, segments: Vec<Segment>) -> Parse {
     // One block per line: the program's blocks are allocated once, and each
     // segment fills its own run of them, so no second copy of the tree is
     // ever alive (a merge would hold both at once).
@@ -98,14 +103,14 @@ fn parse_segments(name: &str, src: &[u8], fast_path: bool, segments: Vec<Segment
     let mut slots = runs(&mut blocks.spare_capacity_mut()[..total], &lines);
     let parts: Vec<Segmented> = if segments.len() == 1 {
         let slot = slots.pop().unwrap_or_default();
-        vec![run_segment(src, segments[0], slot, fast_path)]
+        vec![run_segment(src, segments[0], slot, reading)]
     } else {
         std::thread::scope(|scope| {
             let handles: Vec<_> = segments
                 .iter()
                 .zip(slots)
                 .map(|(&segment, slot)| {
-                    scope.spawn(move || run_segment(src, segment, slot, fast_path))
+                    scope.spawn(move || run_segment(src, segment, slot, reading))
                 })
                 .collect();
             handles
@@ -168,23 +173,29 @@ pub fn chunks(src: &[u8], lines: usize) -> Vec<Chunk> {
     let mut chunks = Vec::new();
     let mut start = 0;
     let mut first_block = 0;
-    while start < src.len() || chunks.is_empty() {
-        let mut end = start;
-        let mut count = 0;
-        while end < src.len() && count < lines {
-            end = src[end..]
-                .iter()
-                .position(|&b| b == b'\n')
-                .map_or(src.len(), |p| end + p + 1);
-            count += 1;
+    let mut count = 0;
+    for newline in memchr::memchr_iter(b'\n', src) {
+        count += 1;
+        if count == lines {
+            chunks.push(Chunk {
+                bytes: start..newline + 1,
+                first_block,
+                blocks: count,
+            });
+            first_block += count;
+            start = newline + 1;
+            count = 0;
         }
+    }
+    // The last lines, the last without a line end; a source without
+    // lines is one empty chunk.
+    if start < src.len() || chunks.is_empty() {
+        let blocks = count + usize::from(start < src.len() && src[src.len() - 1] != b'\n');
         chunks.push(Chunk {
-            bytes: start..end,
+            bytes: start..src.len(),
             first_block,
-            blocks: count,
+            blocks,
         });
-        first_block += count;
-        start = end;
     }
     chunks
 }
@@ -210,6 +221,31 @@ pub struct ParsedChunk {
 /// the whole file: the same blocks, spans and diagnostics (those sorted
 /// by span start, with a stable sort, once merged).
 pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
+    read_chunk(src, chunk, Reading::Whole)
+}
+
+/// Reads the lines of `chunk` of `src` for an outline of the program
+/// (pass 1 of a streamed run), much faster than [`parse_chunk`]: each
+/// block is the one [`parse_chunk`] gives, except a *plain* block after
+/// another plain block with statements, with only plain blocks between
+/// them in the chunk. That block keeps its span, skip mark and block
+/// number, and its statements and comment are left out.
+///
+/// A plain block holds no label, no keyword but the operators (`AND`,
+/// `DIV`, `TRUE`, …), no `M` word and no skip mark or block number the
+/// grammar must judge: only words, assignments, names, calls by name
+/// and expressions. So a block left out holds no structure, jump,
+/// definition, declaration or program end, and changes nothing a plain
+/// block with statements before it has not already set. The chunk's
+/// diagnostics are not given (`diagnostics` is empty): [`parse_chunk`]
+/// gives them.
+pub fn skim_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
+    let mut skimmed = read_chunk(src, chunk, Reading::Outline);
+    skimmed.diagnostics.clear();
+    skimmed
+}
+
+fn read_chunk(src: &[u8], chunk: &Chunk, reading: Reading) -> ParsedChunk {
     let mut blocks: Vec<Block> = Vec::with_capacity(chunk.blocks);
     let segment = Segment {
         start: chunk.bytes.start,
@@ -219,7 +255,7 @@ pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
         src,
         segment,
         &mut blocks.spare_capacity_mut()[..chunk.blocks],
-        true,
+        reading,
     );
     // SAFETY: `run_segment` wrote every one of the `chunk.blocks` slots
     // (one block per line; `chunks` counted the lines).
@@ -238,27 +274,38 @@ pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
 /// Parses `chunks` of `src` on `workers` threads and hands each parsed
 /// chunk to `each` in order. A worker parses at most one chunk ahead of
 /// the chunk `each` takes, so memory does not grow with the program.
-pub fn parse_chunks(
+pub fn parse_chunks(src: &[u8], chunks: &[Chunk], workers: usize, each: impl FnMut(ParsedChunk)) {
+    read_chunks(src, chunks, workers, parse_chunk, each);
+}
+
+/// [`skim_chunk`] of each of `chunks`, on `workers` threads, handed to
+/// `each` in order as [`parse_chunks`] does.
+pub fn skim_chunks(src: &[u8], chunks: &[Chunk], workers: usize, each: impl FnMut(ParsedChunk)) {
+    read_chunks(src, chunks, workers, skim_chunk, each);
+}
+
+fn read_chunks(
     src: &[u8],
     chunks: &[Chunk],
     workers: usize,
+    read: fn(&[u8], &Chunk) -> ParsedChunk,
     mut each: impl FnMut(ParsedChunk),
 ) {
     if workers <= 1 || chunks.len() <= 1 {
         for chunk in chunks {
-            each(parse_chunk(src, chunk));
+            each(read(src, chunk));
         }
         return;
     }
     std::thread::scope(|scope| {
-        // Worker `k` parses chunks `k`, `k + workers`, …; taking from the
+        // Worker `k` reads chunks `k`, `k + workers`, …; taking from the
         // workers in turn restores the order.
         let parsed: Vec<std::sync::mpsc::Receiver<ParsedChunk>> = (0..workers)
             .map(|k| {
                 let (sender, receiver) = std::sync::mpsc::sync_channel(1);
                 scope.spawn(move || {
                     for chunk in chunks.iter().skip(k).step_by(workers) {
-                        if sender.send(parse_chunk(src, chunk)).is_err() {
+                        if sender.send(read(src, chunk)).is_err() {
                             return;
                         }
                     }
@@ -346,11 +393,12 @@ fn run_segment(
     src: &[u8],
     segment: Segment,
     blocks: &mut [MaybeUninit<Block>],
-    fast_path: bool,
+    reading: Reading,
 ) -> Segmented {
     let mut driver = Driver {
         src,
-        fast_path,
+        reading,
+        settles: false,
         first_segment: segment.start == 0,
         blocks,
         filled: 0,
@@ -362,7 +410,11 @@ fn run_segment(
         tokens: Vec::with_capacity(1024),
         lines: Vec::with_capacity(CHUNK_LINES),
     };
-    driver.run(segment);
+    if reading == Reading::Outline {
+        driver.run_outline(segment);
+    } else {
+        driver.run(segment);
+    }
     debug_assert_eq!(driver.filled, driver.blocks.len(), "one block per line");
     // Should a segment ever hold fewer blocks than lines, the rest are
     // empty blocks: every slot is written either way.
@@ -388,10 +440,25 @@ struct Line {
     broken: bool,
 }
 
+/// How the driver reads each line.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Reading {
+    /// With the block grammar only: the reference the fast path is
+    /// tested against.
+    GrammarOnly,
+    /// With the fast path where it applies, else the grammar.
+    Whole,
+    /// As [`skim_chunk`] reads it: a plain line after a block that
+    /// settles is not lexed beyond its skip mark and number.
+    Outline,
+}
+
 struct Driver<'s, 'b> {
     src: &'s [u8],
-    /// Off only in tests that compare the fast path with the grammar.
-    fast_path: bool,
+    reading: Reading,
+    /// The last block parsed settles what an outline reads (see
+    /// [`skim_chunk`]).
+    settles: bool,
     /// Only the segment at the start of the file may hold the header.
     first_segment: bool,
     /// Slots for this segment's blocks, one per line, written in order:
@@ -409,6 +476,61 @@ struct Driver<'s, 'b> {
 }
 
 impl<'s> Driver<'s, '_> {
+    /// Reads `segment` for an outline (see [`skim_chunk`]): a plain line
+    /// after a block that settles becomes a block of its span, skip mark
+    /// and number; every other line is parsed, one at a time, since
+    /// whether it settles decides how the next is read.
+    fn run_outline(&mut self, segment: Segment) {
+        let src = self.src;
+        let mut start = segment.start;
+        while start < segment.end {
+            let end = memchr::memchr(b'\n', &src[start..segment.end])
+                .map_or(segment.end, |p| start + p + 1);
+            let text_end = if src[end - 1] == b'\n' { end - 1 } else { end };
+            let left_out = (self.settles && is_plain(&src[start..text_end]))
+                .then(|| self.plain_block(start, text_end))
+                .flatten();
+            match left_out {
+                Some(block) => {
+                    // A plain block leaves `settles` as it was.
+                    if let Some(slot) = self.blocks.get_mut(self.filled) {
+                        slot.write(block);
+                        self.filled += 1;
+                    }
+                }
+                None => self.run(Segment { start, end }),
+            }
+            start = end;
+        }
+    }
+
+    /// The block of the plain line `start..end`, lexed only as far as its
+    /// skip mark and block number; `None` where those are not plain.
+    fn plain_block(&self, start: usize, end: usize) -> Option<Block> {
+        let src = self.src;
+        // The prefix is at most `/`, a level, `N`, a number and a `=`.
+        let mut tokens = [(TokenKind::Error, SimpleSpan::from(0..0)); 5];
+        let mut count = 0;
+        for token in Lexer::new(&src[start..end])
+            .filter(|t| kept(t.kind))
+            .take(5)
+        {
+            let (s, e) = (start + token.start as usize, start + token.end as usize);
+            tokens[count] = (token.kind, SimpleSpan::from(s..e));
+            count += 1;
+        }
+        let prefix = fast::prefix(&tokens[..count], &Ctx { src })?;
+        Some(Block {
+            span: Span::new(start as u32, trim_cr(src, start as u32, end as u32)),
+            skip: prefix.skip.map(Box::new),
+            number: prefix.number,
+            label: None,
+            statements: Box::default(),
+            comment: None,
+            depth: 0,
+        })
+    }
+
     fn run(&mut self, segment: Segment) {
         let src = self.src;
         let base = segment.start as u32;
@@ -492,7 +614,9 @@ impl<'s> Driver<'s, '_> {
         let mut tokens = std::mem::take(&mut self.tokens);
         {
             let ctx = Ctx { src: self.src };
-            let parser = grammar::block(ctx);
+            // Built only when a block needs it: most take the fast path,
+            // and reading for an outline flushes line by line.
+            let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
             for line in &lines {
                 let block = self.parse_line(line, &tokens[line.tokens.clone()], &ctx, &parser);
                 self.content_seen |=
@@ -504,6 +628,7 @@ impl<'s> Driver<'s, '_> {
                 {
                     self.structure_blocks.push(self.filled as u32);
                 }
+                self.settles = settles(&block);
                 if let Some(slot) = self.blocks.get_mut(self.filled) {
                     slot.write(block);
                     self.filled += 1;
@@ -516,13 +641,16 @@ impl<'s> Driver<'s, '_> {
         self.tokens = tokens;
     }
 
-    fn parse_line<'t>(
+    fn parse_line<'t, P>(
         &mut self,
         line: &Line,
         tokens: &'t [Spanned],
         ctx: &Ctx<'_>,
-        parser: &impl chumsky::Parser<'t, grammar::In<'t>, grammar::BlockBody, grammar::Ex>,
-    ) -> Block {
+        parser: &impl std::ops::Deref<Target = P>,
+    ) -> Block
+    where
+        P: chumsky::Parser<'t, grammar::In<'t>, grammar::BlockBody, grammar::Ex>,
+    {
         let mut end = line.end;
         if end > line.start && self.src[end as usize - 1] == b'\r' {
             end -= 1;
@@ -546,7 +674,7 @@ impl<'s> Driver<'s, '_> {
             self.note_header(Span::new(s, e));
         }
         if line.broken || tokens.is_empty() {
-            return block;
+            return with_prefix(block, tokens, ctx);
         }
         if let Some(op) = too_many_operators(tokens) {
             self.diagnostics.push(
@@ -559,7 +687,7 @@ impl<'s> Driver<'s, '_> {
                     "split the calculation over several blocks using intermediate variables",
                 ),
             );
-            return block;
+            return with_prefix(block, tokens, ctx);
         }
         if let Some(deep) = too_deep(tokens) {
             self.diagnostics.push(
@@ -570,9 +698,9 @@ impl<'s> Driver<'s, '_> {
                 .with_label(ctx.span(deep), "this bracket is too deep")
                 .with_help("split the expression using intermediate variables"),
             );
-            return block;
+            return with_prefix(block, tokens, ctx);
         }
-        if self.fast_path {
+        if self.reading != Reading::GrammarOnly {
             if let Some(body) = fast::block(tokens, ctx) {
                 block.skip = body.skip.map(Box::new);
                 block.number = body.number;
@@ -594,7 +722,10 @@ impl<'s> Driver<'s, '_> {
                 block.label = body.label.map(Box::new);
                 block.statements = self.checked(body.statements);
             }
-            (_, Some(error)) => self.diagnostics.push(syntax_diagnostic(error, ctx)),
+            (_, Some(error)) => {
+                self.diagnostics.push(syntax_diagnostic(error, ctx));
+                block = with_prefix(block, tokens, ctx);
+            }
             (None, None) => {}
         }
         block
@@ -693,6 +824,191 @@ impl<'s> Driver<'s, '_> {
             }
         }
     }
+}
+
+/// `block`, whose statements could not be read, with the skip mark, block
+/// number and label its tokens open with, as the grammar reads them
+/// (SPEC §7): a jump to the number or label finds the block (and the run
+/// stops there, at the error), as the control's search finds it.
+fn with_prefix(mut block: Block, tokens: &[Spanned], ctx: &Ctx<'_>) -> Block {
+    use TokenKind as T;
+    let Some(prefix) = fast::prefix(tokens, ctx) else {
+        return block;
+    };
+    block.skip = prefix.skip.map(Box::new);
+    block.number = prefix.number;
+    let mut rest = &tokens[prefix.rest..];
+    if block.number.is_none()
+        && let [(T::Colon, colon), (T::Number, n), after @ ..] = rest
+    {
+        let Ok(value) = ctx.text(*n).parse::<u64>() else {
+            return block;
+        };
+        block.number = Some(BlockNumber {
+            span: ctx.span(SimpleSpan::from(colon.start..n.end)),
+            main: true,
+            value,
+        });
+        rest = after;
+    }
+    if let [(T::Ident, name), (T::Colon, colon), ..] = rest {
+        block.label = Some(Box::new(LabelDef {
+            span: ctx.span(SimpleSpan::from(name.start..colon.end)),
+            name: CompactString::from(ctx.text(*name)),
+        }));
+    }
+    block
+}
+
+/// Whether a block settles what an outline reads (see [`skim_chunk`]): it
+/// has statements, and none of them defines, declares or ends anything.
+fn settles(block: &Block) -> bool {
+    !block.statements.is_empty()
+        && block.statements.iter().all(|s| match &s.kind {
+            StatementKind::Def(_)
+            | StatementKind::Redef(_)
+            | StatementKind::Define(_)
+            | StatementKind::Proc(_)
+            | StatementKind::EndProc
+            | StatementKind::Extern(_)
+            | StatementKind::Ret(_) => false,
+            StatementKind::Word(w) => w.address() != "M",
+            _ => true,
+        })
+}
+
+/// Whether `line` (without its line end) is plain (see [`skim_chunk`]),
+/// judged from its bytes alone: a label, keyword, `M` word, string or
+/// system variable shows in the bytes before its first `;`. A keyword is
+/// a whole run of letters there, since the lexer starts a name only after
+/// a byte that is no letter and ends it only before one.
+pub(crate) fn is_plain(line: &[u8]) -> bool {
+    let code = memchr::memchr(b';', line).map_or(line, |p| &line[..p]);
+    let mut i = 0;
+    while i < code.len() {
+        match PLAIN_BYTES[usize::from(code[i])] {
+            Plain::Yes => i += 1,
+            Plain::Name => {
+                let start = i;
+                while i < code.len() && PLAIN_BYTES[usize::from(code[i])] == Plain::Name {
+                    i += 1;
+                }
+                let plain = match &code[start..i] {
+                    [b'M' | b'm' | b'_'] => false,
+                    [_] => true,
+                    name => is_plain_name(name),
+                };
+                if !plain {
+                    return false;
+                }
+            }
+            // A point belongs to a number: `1.5`, `.5`, `1.`.
+            Plain::Point => {
+                let digit = |j: usize| code.get(j).is_some_and(u8::is_ascii_digit);
+                if !(i > 0 && digit(i - 1) || digit(i + 1)) {
+                    return false;
+                }
+                i += 1;
+            }
+            Plain::No => return false,
+        }
+    }
+    true
+}
+
+/// What a byte is to [`is_plain`].
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Plain {
+    /// A digit, blank or operator.
+    Yes,
+    /// A letter or `_`: part of a name or keyword.
+    Name,
+    /// `.`: plain in a number.
+    Point,
+    /// A label's `:`, a string, a system variable, a header, or a byte
+    /// that starts no token.
+    No,
+}
+
+const PLAIN_BYTES: [Plain; 256] = {
+    let mut table = [Plain::No; 256];
+    let mut b = 0;
+    while b < 256 {
+        let c = b as u8;
+        table[b] = if c.is_ascii_alphabetic() || c == b'_' {
+            Plain::Name
+        } else if c == b'.' {
+            Plain::Point
+        } else if c.is_ascii_digit()
+            || matches!(
+                c,
+                b' ' | b'\t'
+                    | b'\r'
+                    | 0x0b
+                    | 0x0c
+                    | b'&'
+                    | b'='
+                    | b'<'
+                    | b'>'
+                    | b'+'
+                    | b'-'
+                    | b'*'
+                    | b'/'
+                    | b'('
+                    | b')'
+                    | b'['
+                    | b']'
+                    | b','
+            )
+        {
+            Plain::Yes
+        } else {
+            Plain::No
+        };
+        b += 1;
+    }
+    table
+};
+
+/// Whether a run of two or more letters is a name or an operator, not a
+/// keyword of statements.
+fn is_plain_name(name: &[u8]) -> bool {
+    use TokenKind as T;
+    let mut tokens = Lexer::new(name);
+    let Some(token) = tokens.next() else {
+        return false;
+    };
+    token.end as usize == name.len()
+        && matches!(
+            token.kind,
+            T::Ident
+                | T::Div
+                | T::Mod
+                | T::And
+                | T::Or
+                | T::Xor
+                | T::Not
+                | T::BAnd
+                | T::BOr
+                | T::BXor
+                | T::BNot
+                | T::True
+                | T::False
+        )
+}
+
+/// Whether the driver keeps a token of `kind` for the grammar.
+fn kept(kind: TokenKind) -> bool {
+    !matches!(
+        kind,
+        TokenKind::Whitespace
+            | TokenKind::Newline
+            | TokenKind::Comment
+            | TokenKind::Header
+            | TokenKind::Error
+            | TokenKind::BadQuoted
+            | TokenKind::UnclosedString
+    )
 }
 
 /// The end of a to-end-of-line token without the CR of a CRLF line end.

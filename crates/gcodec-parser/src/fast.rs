@@ -28,6 +28,45 @@ use crate::grammar::{
 /// Parses `tokens` if every statement of the block has one of the shapes
 /// above.
 pub(crate) fn block(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBody> {
+    let Prefix {
+        skip,
+        number,
+        rest: i,
+    } = prefix(tokens, g)?;
+    // A structure keyword standing alone (`ENDIF`, `ELSE`, `LOOP`, …).
+    if let [(kind, span)] = &tokens[i..] {
+        // Alone on its block, `REPEAT` opens a REPEAT … UNTIL structure.
+        let alone =
+            structure_keyword(*kind).or((*kind == T::Repeat).then_some(StatementKind::Repeat));
+        let Some(kind) = alone else {
+            return statements_from(tokens, i, g, skip, number);
+        };
+        return Some(BlockBody {
+            skip,
+            number,
+            label: None,
+            statements: vec![Statement {
+                span: g.span(*span),
+                kind,
+            }],
+        });
+    }
+    statements_from(tokens, i, g, skip, number)
+}
+
+/// The skip mark and block number a block opens with.
+pub(crate) struct Prefix {
+    pub skip: Option<SkipLevel>,
+    pub number: Option<BlockNumber>,
+    /// The index of the first token after them.
+    pub rest: usize,
+}
+
+/// The skip mark (`/`, `/0` … `/9`) and block number (`N10`) `tokens`
+/// open with, as the grammar reads them; `None` where the grammar must
+/// judge them: a skip level or block number that is not a plain whole
+/// number, or a block number followed by `=`.
+pub(crate) fn prefix(tokens: &[Spanned], g: &Ctx<'_>) -> Option<Prefix> {
     let mut i = 0;
     let mut skip = None;
     if let Some((T::Slash, slash)) = tokens.first() {
@@ -37,6 +76,15 @@ pub(crate) fn block(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBody> {
                 skip = Some(SkipLevel {
                     span: g.span(SimpleSpan::from(slash.start..n.end)),
                     level,
+                });
+                i = 2;
+            }
+            // The grammar takes a number after a blank into the mark,
+            // as level 0.
+            Some((T::Number, _)) => {
+                skip = Some(SkipLevel {
+                    span: g.span(*slash),
+                    level: 0,
                 });
                 i = 2;
             }
@@ -64,25 +112,11 @@ pub(crate) fn block(tokens: &[Spanned], g: &Ctx<'_>) -> Option<BlockBody> {
             i += 2;
         }
     }
-    // A structure keyword standing alone (`ENDIF`, `ELSE`, `LOOP`, …).
-    if let [(kind, span)] = &tokens[i..] {
-        // Alone on its block, `REPEAT` opens a REPEAT … UNTIL structure.
-        let alone =
-            structure_keyword(*kind).or((*kind == T::Repeat).then_some(StatementKind::Repeat));
-        let Some(kind) = alone else {
-            return statements_from(tokens, i, g, skip, number);
-        };
-        return Some(BlockBody {
-            skip,
-            number,
-            label: None,
-            statements: vec![Statement {
-                span: g.span(*span),
-                kind,
-            }],
-        });
-    }
-    statements_from(tokens, i, g, skip, number)
+    Some(Prefix {
+        skip,
+        number,
+        rest: i,
+    })
 }
 
 /// The statements from token `i` on.

@@ -29,6 +29,8 @@ fn edge_cases_parse_the_same_either_way() {
         "/ N10 X1",
         "/3 N10 X1",
         "/12 X1",
+        "/ 5 N10 X1",
+        "/ 5",
         "N10",
         "N10=5",
         "X1=5",

@@ -28,13 +28,7 @@ impl SourceFile {
         }
         let mut line_starts = Vec::with_capacity(bytes.len() / 24 + 1);
         line_starts.push(0);
-        line_starts.extend(
-            bytes
-                .iter()
-                .enumerate()
-                .filter(|&(_, &b)| b == b'\n')
-                .map(|(i, _)| i as u32 + 1),
-        );
+        line_starts.extend(memchr::memchr_iter(b'\n', &bytes).map(|i| i as u32 + 1));
         Self {
             name: name.into(),
             path: None,

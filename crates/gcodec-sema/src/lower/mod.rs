@@ -399,6 +399,12 @@ fn capacity(statements: usize) -> usize {
 struct Lowering<'a> {
     outline: &'a Outline<'a>,
     profile: &'a Profile,
+    /// The file name every instruction's source holds. A streamed run
+    /// gives each chunk a copy of its own ([`stream::ChunkLowering`]):
+    /// the run drops a chunk's instructions on another thread, and
+    /// counting references to one shared name from both threads at once
+    /// cost more than lowering the instructions.
+    file: Arc<str>,
     /// Where the block being lowered starts (columns count from there).
     block_start: u32,
     document: Document,
@@ -422,6 +428,8 @@ struct Lowering<'a> {
     pending_offsets: Vec<usize>,
     /// The Group 8 indices the machine has.
     group8_supported: [bool; 100],
+    /// The emptied plan of the block before (see [`BlockPlan::emptied`]).
+    plan: BlockPlan,
 }
 
 /// An `S` word: spindle number, computed spindle number (`S[SPINU]=`),
@@ -497,6 +505,21 @@ struct BlockPlan {
 }
 
 impl BlockPlan {
+    /// A plan for the next block: nothing of this one, but the room of
+    /// the vectors most blocks fill.
+    fn emptied(mut self) -> Self {
+        fn kept<T>(v: &mut Vec<T>) -> Vec<T> {
+            let mut v = std::mem::take(v);
+            v.clear();
+            v
+        }
+        Self {
+            g_codes: kept(&mut self.g_codes),
+            targets: kept(&mut self.targets),
+            ..Self::default()
+        }
+    }
+
     fn add_target(&mut self, target: AxisValue, span: Span) {
         self.target_span.get_or_insert(span);
         if self.targets.iter().any(|t| t.axis == target.axis) {
@@ -530,6 +553,7 @@ impl<'a> Lowering<'a> {
         Self {
             outline,
             profile,
+            file: Arc::clone(&outline.file),
             block_start: 0,
             document: Document {
                 instructions: Vec::with_capacity(capacity(statements)),
@@ -544,12 +568,13 @@ impl<'a> Lowering<'a> {
             pending_motions: Vec::new(),
             pending_offsets: Vec::new(),
             group8_supported: profile.work_offsets.supported_group8(),
+            plan: BlockPlan::default(),
         }
     }
 
     fn source_at(&self, block: usize, span: Span) -> Source {
         Source {
-            file: Arc::clone(&self.outline.file),
+            file: Arc::clone(&self.file),
             line: block as u32 + 1,
             col: span.start.saturating_sub(self.block_start) + 1,
             span: ByteRange {
@@ -613,7 +638,9 @@ impl<'a> Lowering<'a> {
                 .with_help("split the block; the limit is `max_block_length` in the profile"),
             );
         }
-        let mut plan = BlockPlan::default();
+        // The plan of the block before, emptied: its vectors keep their
+        // room, so the commonest blocks allocate nothing to plan.
+        let mut plan = std::mem::take(&mut self.plan);
         // Most blocks play no part in control flow: one lookup says so.
         let facts = self.outline.flow.block(index);
         if let Some(facts) = facts {
@@ -635,7 +662,8 @@ impl<'a> Lowering<'a> {
             .as_deref()
             .filter(|_| facts.is_none_or(|f| f.roles.is_empty()))
             .map(|skip| self.begin_skip(index, skip));
-        self.emit_block(index, block, plan);
+        self.emit_block(index, block, &mut plan);
+        self.plan = plan.emptied();
         if let Some(skip) = skip {
             self.end_skip(index, skip);
         }
@@ -689,7 +717,7 @@ impl<'a> Lowering<'a> {
         self.diagnostics.push(not_lowered(span, what));
     }
 
-    fn emit_block(&mut self, index: usize, block: &Block, mut plan: BlockPlan) {
+    fn emit_block(&mut self, index: usize, block: &Block, plan: &mut BlockPlan) {
         let tail = std::mem::take(&mut plan.tail);
         // Work offset: the Group 8 selection and the block's suppression.
         let group8 = plan.g_codes.iter().find(|(g, _, _)| *g == 8);
@@ -728,7 +756,7 @@ impl<'a> Lowering<'a> {
             .iter()
             .find(|(g, c, _)| *g == 2 && *c == "G4")
             .map(|(_, _, s)| *s)
-            .map(|g4| (self.dwell(block, g4, &mut plan), g4));
+            .map(|g4| (self.dwell(block, g4, plan), g4));
         for &(group, code, span) in &plan.g_codes {
             if group == 8 || dwell.is_some() && code == "G4" {
                 continue;
@@ -767,7 +795,7 @@ impl<'a> Lowering<'a> {
         } else {
             None
         };
-        if let Some((value, span)) = plan.feed {
+        if let Some((value, span)) = plan.feed.take() {
             self.emit(index, span, Op::Feed { value });
         }
         for (spindle, spindle_expr, speed, span) in std::mem::take(&mut plan.spindle) {
@@ -781,7 +809,7 @@ impl<'a> Lowering<'a> {
                 },
             );
         }
-        for (op, span) in plan.tools {
+        for (op, span) in std::mem::take(&mut plan.tools) {
             let direct = matches!(
                 op,
                 Op::ToolSelect(ref t) if t.timing == gcodec_ail::ToolTiming::Immediate
@@ -797,7 +825,7 @@ impl<'a> Lowering<'a> {
                 );
             }
         }
-        if let Some((edge, span)) = plan.edge {
+        if let Some((edge, span)) = plan.edge.take() {
             self.emit(index, span, Op::CuttingEdge { edge });
         }
         for (op, span) in std::mem::take(&mut plan.after_edge) {

@@ -168,10 +168,15 @@ pub fn outline<'d>(
     builder.finish(program.structures.clone())
 }
 
-/// The outline of the program `src` (named `file`), parsed chunk by chunk
+/// The outline of the program `src` (named `file`), read chunk by chunk
 /// on `workers` threads with each chunk's tree dropped after it (pass 1
-/// of a streamed run), and the parse diagnostics in source order (the
-/// outline's own are in [`Outline::diagnostics`]).
+/// of a streamed run), and the diagnostics of pairing its structures, in
+/// source order (the outline's own are in [`Outline::diagnostics`]).
+///
+/// The chunks are skimmed ([`gcodec_parser::skim_chunk`]): most blocks
+/// are not parsed, since none of what the outline reads is in them. So
+/// the lexical and syntax diagnostics are not found here: pass 2
+/// ([`super::stream::lower_chunks`]) gives them.
 pub fn outline_chunks<'d>(
     file: &str,
     src: &[u8],
@@ -183,8 +188,7 @@ pub fn outline_chunks<'d>(
     let mut builder = OutlineBuilder::new(file, profile, definitions);
     let mut pairing = gcodec_parser::Pairing::default();
     let mut diagnostics = Vec::new();
-    gcodec_parser::parse_chunks(src, chunks, workers, |mut parsed| {
-        diagnostics.append(&mut parsed.diagnostics);
+    gcodec_parser::skim_chunks(src, chunks, workers, |mut parsed| {
         pairing.feed(
             &mut parsed.blocks,
             parsed.first_block,

@@ -10,6 +10,8 @@
 //! [`lower_chunks`] is pass 2 of a streamed run, after
 //! [`super::outline::outline_chunks`].
 
+use std::sync::Arc;
+
 use gcodec_ail::Instruction;
 use gcodec_parser::ast::Block;
 use gcodec_profile::Profile;
@@ -25,7 +27,8 @@ use super::{Lowering, capacity};
 /// instructions of every chunk, then those of [`ChunkLowering::finish`]
 /// (the end). `chunks` are consecutive from the first block, as
 /// [`gcodec_parser::chunks`] cuts them: a chunk out of order is left out.
-/// The parse diagnostics are not repeated: pass 1 reported them.
+/// Each chunk comes with its parse diagnostics, which pass 1, skimming,
+/// did not find.
 pub fn lower_chunks(
     src: &[u8],
     chunks: &[gcodec_parser::Chunk],
@@ -36,8 +39,8 @@ pub fn lower_chunks(
 ) {
     let mut lowering = ChunkLowering::new(outline, profile);
     gcodec_parser::parse_chunks(src, chunks, workers, |parsed| {
-        if let Some(lowered) = lowering.lower(parsed.first_block, &parsed.blocks) {
-            drop(parsed);
+        if let Some(mut lowered) = lowering.lower(parsed.first_block, &parsed.blocks) {
+            lowered.parse_diagnostics = parsed.diagnostics;
             each(lowered);
         }
     });
@@ -55,7 +58,11 @@ pub struct ChunkLowering<'a> {
 #[derive(Debug, Default)]
 pub struct LoweredChunk {
     pub instructions: Vec<Instruction>,
+    /// What lowering found wrong.
     pub diagnostics: Vec<Diagnostic>,
+    /// The chunk's lexical and syntax errors ([`lower_chunks`] only: a
+    /// [`ChunkLowering`] is given parsed blocks).
+    pub parse_diagnostics: Vec<Diagnostic>,
 }
 
 impl<'a> ChunkLowering<'a> {
@@ -73,6 +80,8 @@ impl<'a> ChunkLowering<'a> {
         if first != self.next {
             return None;
         }
+        // The chunk's own copy of the file name (see `Lowering::file`).
+        self.lowering.file = Arc::from(&*self.lowering.outline.file);
         let statements: usize = blocks.iter().map(|b| b.statements.len()).sum();
         self.lowering
             .document
@@ -96,6 +105,7 @@ impl<'a> ChunkLowering<'a> {
         LoweredChunk {
             instructions: std::mem::take(&mut self.lowering.document.instructions),
             diagnostics: std::mem::take(&mut self.lowering.diagnostics),
+            parse_diagnostics: Vec::new(),
         }
     }
 }

@@ -1,0 +1,47 @@
+//! A block whose statements cannot be read keeps the skip mark, block
+//! number and label it opens with, where the grammar reads them plainly
+//! (SPEC §7): a jump to the number or label still finds the block.
+
+use gcodec_parser::parse_bytes;
+
+/// The skip level, number (main or not), and label of the one block of
+/// `src`, which must be an error without statements.
+fn prefix_of(src: &str) -> (Option<u8>, Option<(bool, u64)>, Option<String>) {
+    let parsed = parse_bytes("recovery.mpf", src.as_bytes());
+    assert!(parsed.has_errors(), "{src}");
+    let block = &parsed.program.blocks[0];
+    assert!(block.statements.is_empty(), "{src}: {block:?}");
+    (
+        block.skip.as_ref().map(|s| s.level),
+        block.number.as_ref().map(|n| (n.main, n.value)),
+        block.label.as_ref().map(|l| l.name.to_string()),
+    )
+}
+
+#[test]
+fn blocks_with_errors_keep_a_plain_prefix() {
+    // A syntax error, a lexical error, too many operators, too deep.
+    assert_eq!(prefix_of("N10 G1 X="), (None, Some((false, 10)), None));
+    assert_eq!(prefix_of("/ N20 X1 ?"), (Some(0), Some((false, 20)), None));
+    assert_eq!(prefix_of("/3 N30 X1 ä"), (Some(3), Some((false, 30)), None));
+    let long = format!("N40 R1=1{}", "+1".repeat(1001));
+    assert_eq!(prefix_of(&long), (None, Some((false, 40)), None));
+    let deep = format!("N50 R1={}1{}", "(".repeat(65), ")".repeat(65));
+    assert_eq!(prefix_of(&deep), (None, Some((false, 50)), None));
+    // Main block numbers and labels.
+    assert_eq!(prefix_of(":60 X="), (None, Some((true, 60)), None));
+    let label = Some("LBL".to_string());
+    assert_eq!(prefix_of("LBL: X="), (None, None, label.clone()));
+    assert_eq!(
+        prefix_of("/ N70 LBL: X="),
+        (Some(0), Some((false, 70)), label)
+    );
+}
+
+#[test]
+fn a_prefix_the_grammar_must_judge_is_not_kept() {
+    assert_eq!(prefix_of("N10.5 X="), (None, None, None));
+    assert_eq!(prefix_of("/12 N10 X1"), (None, None, None));
+    assert_eq!(prefix_of("N99999999999999999999 X="), (None, None, None));
+    assert_eq!(prefix_of(":10.5 LBL: X="), (None, None, None));
+}
