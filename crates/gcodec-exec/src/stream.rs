@@ -5,11 +5,11 @@
 //! Pass 1 skims the program chunk by chunk into its outline (structures,
 //! jump targets, names, signatures), parsing only the blocks the outline
 //! reads something of and dropping each tree. Pass 2, on a second
-//! thread, parses each chunk, lowers it against the outline and hands its
-//! instructions to the run as a page through a bounded channel; it lowers
-//! to the end even when the run stops early, so every diagnostic is
-//! reported. A block with errors stops the run with an alarm when the run
-//! reaches it (SPEC §11.9).
+//! thread, has each chunk parsed and lowered against the outline by the
+//! workers and hands its instructions to the run as a page through a
+//! bounded channel; it lowers to the end even when the run stops early,
+//! so every diagnostic is reported. A block with errors stops the run
+//! with an alarm when the run reaches it (SPEC §11.9).
 
 use std::sync::Arc;
 use std::sync::mpsc::{SyncSender, sync_channel};
@@ -27,8 +27,8 @@ use crate::program::{Program, SourcePage};
 pub struct StreamOptions {
     /// Lines per chunk, and so per page of instructions.
     pub page_lines: usize,
-    /// Threads that parse chunks ahead of the outline (pass 1) and of
-    /// the lowering (pass 2).
+    /// Threads that skim chunks for the outline (pass 1), and that parse
+    /// and lower chunks (pass 2).
     pub parse_workers: usize,
 }
 

@@ -272,40 +272,43 @@ fn read_chunk(src: &[u8], chunk: &Chunk, reading: Reading) -> ParsedChunk {
 }
 
 /// Parses `chunks` of `src` on `workers` threads and hands each parsed
-/// chunk to `each` in order. A worker parses at most one chunk ahead of
-/// the chunk `each` takes, so memory does not grow with the program.
+/// chunk to `each` in order ([`map_chunks`]).
 pub fn parse_chunks(src: &[u8], chunks: &[Chunk], workers: usize, each: impl FnMut(ParsedChunk)) {
-    read_chunks(src, chunks, workers, parse_chunk, each);
+    map_chunks(chunks, workers, |chunk| parse_chunk(src, chunk), each);
 }
 
 /// [`skim_chunk`] of each of `chunks`, on `workers` threads, handed to
-/// `each` in order as [`parse_chunks`] does.
+/// `each` in order ([`map_chunks`]).
 pub fn skim_chunks(src: &[u8], chunks: &[Chunk], workers: usize, each: impl FnMut(ParsedChunk)) {
-    read_chunks(src, chunks, workers, skim_chunk, each);
+    map_chunks(chunks, workers, |chunk| skim_chunk(src, chunk), each);
 }
 
-fn read_chunks(
-    src: &[u8],
-    chunks: &[Chunk],
+/// Does `work` on each of `chunks` on `workers` threads and hands the
+/// results to `each` in the chunks' order. A worker works at most one
+/// chunk ahead of the chunk `each` takes, so memory does not grow with
+/// the program.
+pub fn map_chunks<'c, T: Send>(
+    chunks: &'c [Chunk],
     workers: usize,
-    read: fn(&[u8], &Chunk) -> ParsedChunk,
-    mut each: impl FnMut(ParsedChunk),
+    work: impl Fn(&'c Chunk) -> T + Sync,
+    mut each: impl FnMut(T),
 ) {
     if workers <= 1 || chunks.len() <= 1 {
         for chunk in chunks {
-            each(read(src, chunk));
+            each(work(chunk));
         }
         return;
     }
+    let work = &work;
     std::thread::scope(|scope| {
-        // Worker `k` reads chunks `k`, `k + workers`, …; taking from the
-        // workers in turn restores the order.
-        let parsed: Vec<std::sync::mpsc::Receiver<ParsedChunk>> = (0..workers)
+        // Worker `k` works on chunks `k`, `k + workers`, …; taking from
+        // the workers in turn restores the order.
+        let done: Vec<std::sync::mpsc::Receiver<T>> = (0..workers)
             .map(|k| {
                 let (sender, receiver) = std::sync::mpsc::sync_channel(1);
                 scope.spawn(move || {
                     for chunk in chunks.iter().skip(k).step_by(workers) {
-                        if sender.send(read(src, chunk)).is_err() {
+                        if sender.send(work(chunk)).is_err() {
                             return;
                         }
                     }
@@ -315,10 +318,10 @@ fn read_chunks(
             .collect();
         for index in 0..chunks.len() {
             // A worker that panicked ends the run; the scope re-raises it.
-            let Ok(chunk) = parsed[index % workers].recv() else {
+            let Ok(result) = done[index % workers].recv() else {
                 break;
             };
-            each(chunk);
+            each(result);
         }
     });
 }

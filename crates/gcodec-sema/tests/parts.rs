@@ -48,6 +48,10 @@ fn state_across_part_boundaries_is_settled() {
     assert_parts_agree("skips.mpf", src.as_bytes(), &profile);
     let subprogram = "X1\nG54\nX2\nG53 X3\nM17\n";
     assert_parts_agree("SUB.SPF", subprogram.as_bytes(), &profile);
+    // An arc without circle data under an inherited `G2`: one run reports
+    // it, so the parts must too.
+    let arcs = "G2 X1 Y1 CR=5 F100\nX2 Y2\nX3 Y3 CR=5\nG3 X4 Y4 I1\nX5 Y5\nM30\n";
+    assert_parts_agree("arcs.mpf", arcs.as_bytes(), &profile);
 }
 
 #[test]

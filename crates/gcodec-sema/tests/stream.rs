@@ -16,40 +16,49 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
     let parsed = gcodec_parser::parse_bytes(name, src);
     let definitions = Definitions::new();
     let whole = lower_in_parts(&parsed.program, profile, &definitions, 1);
-    // Chunks parsed on one thread, and on three taking turns.
-    for (lines, workers) in [(1, 3), (3, 1), (64, 3)] {
+    for lines in [1, 3, 64] {
         let chunks = chunks(src, lines);
-        // Pass 1: the outline, the chunks skimmed and their trees dropped
-        // chunk by chunk.
-        let (outline, structure_diagnostics) =
-            outline_chunks(name, src, &chunks, workers, profile, &definitions);
-        let mut diagnostics = outline.diagnostics().to_vec();
-        // Pass 2: the chunks parsed and lowered in order, then the end.
-        let mut document = gcodec_ail::Document::new();
-        let mut parse_diagnostics = Vec::new();
-        let mut taken = 0;
-        lower_chunks(src, &chunks, workers, &outline, profile, |mut lowered| {
-            taken += 1;
-            document.instructions.append(&mut lowered.instructions);
-            diagnostics.append(&mut lowered.diagnostics);
-            parse_diagnostics.append(&mut lowered.parse_diagnostics);
-        });
-        assert_eq!(taken, chunks.len() + 1, "{name}: chunks in order");
-        parse_diagnostics.extend(structure_diagnostics);
-        parse_diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
-        assert_eq!(
-            parsed.diagnostics, parse_diagnostics,
-            "{name}: parse diagnostics differ in chunks of {lines}"
-        );
-        refine(&mut document, profile, outline.is_subprogram());
-        assert_eq!(
-            whole.diagnostics, diagnostics,
-            "{name}: diagnostics differ in chunks of {lines}"
-        );
-        assert!(
-            whole.document == document,
-            "{name}: instructions differ in chunks of {lines}"
-        );
+        // Chunks lowered in order on one thread, and as parts on three
+        // workers taking turns: the same instructions before refinement.
+        let mut in_order = None;
+        for workers in [1, 3] {
+            // Pass 1: the outline, the chunks skimmed and their trees
+            // dropped chunk by chunk.
+            let (outline, structure_diagnostics) =
+                outline_chunks(name, src, &chunks, workers, profile, &definitions);
+            let mut diagnostics = outline.diagnostics().to_vec();
+            // Pass 2: the chunks parsed and lowered, then the end.
+            let mut document = gcodec_ail::Document::new();
+            let mut parse_diagnostics = Vec::new();
+            let mut taken = 0;
+            lower_chunks(src, &chunks, workers, &outline, profile, |mut lowered| {
+                taken += 1;
+                document.instructions.append(&mut lowered.instructions);
+                diagnostics.append(&mut lowered.diagnostics);
+                parse_diagnostics.append(&mut lowered.parse_diagnostics);
+            });
+            let place = format!("{name}, chunks of {lines}, {workers} workers");
+            assert_eq!(taken, chunks.len() + 1, "{place}: chunks in order");
+            parse_diagnostics.extend(structure_diagnostics);
+            parse_diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+            assert_eq!(
+                parsed.diagnostics, parse_diagnostics,
+                "{place}: parse diagnostics differ"
+            );
+            match &in_order {
+                None => in_order = Some(document.clone()),
+                Some(first) => assert!(
+                    *first == document,
+                    "{place}: instructions differ from one worker's"
+                ),
+            }
+            refine(&mut document, profile, outline.is_subprogram());
+            assert_eq!(
+                whole.diagnostics, diagnostics,
+                "{place}: diagnostics differ"
+            );
+            assert!(whole.document == document, "{place}: instructions differ");
+        }
     }
 }
 
@@ -89,6 +98,13 @@ fn flow_names_and_calls_across_chunks() {
     assert_streamed_agrees("SUB.SPF", procedure.as_bytes(), &profile);
     let unclosed = "IF R1>0\nX1\nWHILE 1\nX2\n\nENDIF\nELSE\n";
     assert_streamed_agrees("unclosed.mpf", unclosed.as_bytes(), &profile);
+    // State across chunk ends that parts cannot settle between them: a
+    // modal call in force, `G34` reading `F`, an arc without circle data
+    // under an inherited `G2`, an OEM motion command.
+    let carried = "G55 G0 X0\nX1\nG53 X2\nG1 X3 F100\nMCALL CYCLE81(1,2,3)\nX4\nX5\nMCALL\n\
+                   G34 Z-10 K2 F0.1\nZ-20 K2 F0.1\nG2 X1 Y1 CR=5\nX2 Y2\nX3 Y3 CR=5\nG0 X0\n\
+                   /G1 X1\nX2\n/3 G56\nG53 X3\nM30\n";
+    assert_streamed_agrees("carried.mpf", carried.as_bytes(), &profile);
 }
 
 #[test]

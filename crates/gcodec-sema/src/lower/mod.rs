@@ -173,58 +173,98 @@ fn lower_outlined(
 /// in the state the part before them ends in: the motion command and the
 /// Group 8 selection. False if a part needs more than that.
 fn stitch(parts: &mut [Lowering<'_>]) -> bool {
-    let Some(first) = parts.first() else {
+    let Some((first, rest)) = parts.split_first_mut() else {
         return true;
     };
-    if parts.len() > 1 && parts[..parts.len() - 1].iter().any(|p| p.modal_call) {
-        return false;
+    let mut carry = first.carry(Carry::default());
+    for part in rest {
+        if !part.settle(carry) {
+            return false;
+        }
+        carry = part.carry(carry);
     }
-    let (mut group1, mut group8) = (first.modal[0], first.group8);
-    for part in &mut parts[1..] {
-        // Unknown before the part: the motions stay `modal`, as in one run.
-        if let (false, Some(code)) = (part.pending_motions.is_empty(), group1) {
-            // One run would have reported the command or read `F` as
-            // the lead change of G34/G35.
+    true
+}
+
+/// What a part of a lowering leaves to the part after it, where that part
+/// was lowered as inheriting ([`Lowering::new`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Carry {
+    /// The motion command (group 1), `None` where unknown.
+    group1: Option<&'static str>,
+    /// The Group 8 selection, `None` where unknown.
+    group8: Option<u8>,
+    /// `MCALL NAME` is in force.
+    modal_call: bool,
+}
+
+impl Lowering<'_> {
+    /// The state after this part, given `before`, the state before it.
+    fn carry(&self, before: Carry) -> Carry {
+        Carry {
+            group1: if self.group1_inherited {
+                before.group1
+            } else {
+                self.modal[0]
+            },
+            group8: if self.group8_inherited {
+                before.group8
+            } else {
+                self.group8
+            },
+            modal_call: self.modal_call,
+        }
+    }
+
+    /// Settles what this part, lowered as inheriting, left open, given the
+    /// state before it: the motions and work offsets that read the
+    /// inherited motion command and Group 8 selection. False where that
+    /// is not all one run would have done differently: a modal call in
+    /// force before the part, a motion under an inherited command that is
+    /// not lowered, a thread reading `F` as its lead change, or an arc
+    /// without circle data (one run reports it). The part must then be
+    /// lowered again, continuing from `before`.
+    fn settle(&mut self, before: Carry) -> bool {
+        if before.modal_call {
+            return false;
+        }
+        if let (false, Some(code)) = (self.pending_motions.is_empty(), before.group1) {
             let Some(kind) =
                 MotionKind::of_command(code).filter(|_| !matches!(code, "G34" | "G35"))
             else {
                 return false;
             };
-            for &i in &part.pending_motions {
+            for &i in &self.pending_motions {
                 if let Op::Motion {
                     motion,
                     circle,
                     details,
                     ..
-                } = &mut part.document.instructions[i].op
+                } = &mut self.document.instructions[i].op
                 {
+                    let no_circle = circle.as_ref().is_none_or(|c| {
+                        c.centre.is_empty() && c.radius.is_none() && c.opening_angle.is_none()
+                    });
+                    if matches!(kind, MotionKind::ArcCw | MotionKind::ArcCcw) && no_circle {
+                        return false;
+                    }
                     settle_motion(motion, circle, details, kind);
                 }
             }
         }
-        let selected = group8
+        let selected = before
+            .group8
             .and_then(gcodec_profile::group8_code)
             .map(|code| code.to_ascii_lowercase());
-        for &i in &part.pending_offsets {
+        for &i in &self.pending_offsets {
             if let Op::WorkOffset {
                 group8_selected, ..
-            } = &mut part.document.instructions[i].op
+            } = &mut self.document.instructions[i].op
             {
                 group8_selected.clone_from(&selected);
             }
         }
-        continue_with(part, &mut group1, &mut group8);
-    }
-    true
-}
-
-/// The state after `part`, given the state before it.
-fn continue_with(part: &Lowering<'_>, group1: &mut Option<&'static str>, group8: &mut Option<u8>) {
-    if !part.group1_inherited {
-        *group1 = part.modal[0];
-    }
-    if !part.group8_inherited {
-        *group8 = part.group8;
+        true
     }
 }
 
@@ -399,11 +439,12 @@ fn capacity(statements: usize) -> usize {
 struct Lowering<'a> {
     outline: &'a Outline<'a>,
     profile: &'a Profile,
-    /// The file name every instruction's source holds. A streamed run
-    /// gives each chunk a copy of its own ([`stream::ChunkLowering`]):
-    /// the run drops a chunk's instructions on another thread, and
-    /// counting references to one shared name from both threads at once
-    /// cost more than lowering the instructions.
+    /// The file name every instruction's source holds: a copy of the
+    /// outline's per lowering, and per chunk in a streamed run
+    /// ([`stream::ChunkLowering`]). The run drops a chunk's instructions
+    /// on another thread, and counting references to one shared name
+    /// from several threads at once cost more than lowering the
+    /// instructions.
     file: Arc<str>,
     /// Where the block being lowered starts (columns count from there).
     block_start: u32,
@@ -553,7 +594,7 @@ impl<'a> Lowering<'a> {
         Self {
             outline,
             profile,
-            file: Arc::clone(&outline.file),
+            file: Arc::from(&*outline.file),
             block_start: 0,
             document: Document {
                 instructions: Vec::with_capacity(capacity(statements)),
@@ -570,6 +611,16 @@ impl<'a> Lowering<'a> {
             group8_supported: profile.work_offsets.supported_group8(),
             plan: BlockPlan::default(),
         }
+    }
+
+    /// A lowering that continues a program after a part whose end state
+    /// is `carry`, as one run over the parts before would be there.
+    fn resumed(outline: &'a Outline<'a>, profile: &'a Profile, carry: Carry) -> Self {
+        let mut lowering = Self::new(outline, profile, 0, false);
+        lowering.modal[0] = carry.group1;
+        lowering.group8 = carry.group8;
+        lowering.modal_call = carry.modal_call;
+        lowering
     }
 
     fn source_at(&self, block: usize, span: Span) -> Source {

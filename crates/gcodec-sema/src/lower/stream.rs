@@ -18,17 +18,23 @@ use gcodec_profile::Profile;
 use gcodec_source::Diagnostic;
 
 use super::outline::Outline;
-use super::{Lowering, capacity};
+use super::{Carry, Lowering, capacity};
 
 /// Lowers the program `src` chunk by chunk against its `outline` (pass 2
-/// of a streamed run): the chunks are parsed on `workers` threads
-/// ([`gcodec_parser::parse_chunks`]), lowered in order by one
-/// [`ChunkLowering`] and each tree dropped right after; `each` takes the
-/// instructions of every chunk, then those of [`ChunkLowering::finish`]
-/// (the end). `chunks` are consecutive from the first block, as
-/// [`gcodec_parser::chunks`] cuts them: a chunk out of order is left out.
-/// Each chunk comes with its parse diagnostics, which pass 1, skimming,
-/// did not find.
+/// of a streamed run); `each` takes the instructions of every chunk, then
+/// those of the program's end. `chunks` are consecutive from the first
+/// block, as [`gcodec_parser::chunks`] cuts them: a chunk out of order is
+/// left out. Each chunk comes with its parse diagnostics, which pass 1,
+/// skimming, did not find.
+///
+/// On one worker the chunks are parsed and lowered in order by one
+/// [`ChunkLowering`]. On more, each worker parses and lowers its chunks
+/// ([`gcodec_parser::map_chunks`]), each as a part that starts in the
+/// state the chunk before it ends in, as [`super::lower_in_parts`] lowers
+/// its parts; the parts are settled here in order, and a part that cannot
+/// be settled (`Lowering::settle`) is lowered again here, continuing from
+/// the chunk before. So a chunk's tree is lowered on the core that parsed
+/// it, and the result is the same as on one worker.
 pub fn lower_chunks(
     src: &[u8],
     chunks: &[gcodec_parser::Chunk],
@@ -37,14 +43,60 @@ pub fn lower_chunks(
     profile: &Profile,
     mut each: impl FnMut(LoweredChunk),
 ) {
-    let mut lowering = ChunkLowering::new(outline, profile);
-    gcodec_parser::parse_chunks(src, chunks, workers, |parsed| {
-        if let Some(mut lowered) = lowering.lower(parsed.first_block, &parsed.blocks) {
-            lowered.parse_diagnostics = parsed.diagnostics;
-            each(lowered);
+    if workers <= 1 {
+        let mut lowering = ChunkLowering::new(outline, profile);
+        gcodec_parser::parse_chunks(src, chunks, 1, |parsed| {
+            if let Some(mut lowered) = lowering.lower(parsed.first_block, &parsed.blocks) {
+                lowered.parse_diagnostics = parsed.diagnostics;
+                each(lowered);
+            }
+        });
+        each(lowering.finish());
+        return;
+    }
+    let lower_part = |chunk: &gcodec_parser::Chunk, lowering: &mut Lowering<'_>| {
+        let parsed = gcodec_parser::parse_chunk(src, chunk);
+        for (offset, block) in parsed.blocks.iter().enumerate() {
+            lowering.block(parsed.first_block + offset, block);
         }
+        parsed.diagnostics
+    };
+    let mut next = 0;
+    let mut carry: Option<Carry> = None;
+    gcodec_parser::map_chunks(
+        chunks,
+        workers,
+        |chunk| {
+            let mut lowering = Lowering::new(outline, profile, chunk.blocks, chunk.first_block > 0);
+            let parse_diagnostics = lower_part(chunk, &mut lowering);
+            (chunk, lowering, parse_diagnostics)
+        },
+        |(chunk, mut lowering, mut parse_diagnostics)| {
+            if chunk.first_block != next {
+                return;
+            }
+            next = chunk.first_block + chunk.blocks;
+            if let Some(before) = carry
+                && !lowering.settle(before)
+            {
+                lowering = Lowering::resumed(outline, profile, before);
+                parse_diagnostics = lower_part(chunk, &mut lowering);
+            }
+            carry = Some(lowering.carry(carry.unwrap_or_default()));
+            each(LoweredChunk {
+                instructions: lowering.document.instructions,
+                diagnostics: lowering.diagnostics,
+                parse_diagnostics,
+            });
+        },
+    );
+    let mut end = Lowering::new(outline, profile, 0, false);
+    end.end();
+    each(LoweredChunk {
+        instructions: end.document.instructions,
+        diagnostics: end.diagnostics,
+        parse_diagnostics: Vec::new(),
     });
-    each(lowering.finish());
 }
 
 /// A lowering fed with the blocks of a program in order.
