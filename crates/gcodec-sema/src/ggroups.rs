@@ -729,6 +729,22 @@ pub fn lookup(code: &str) -> Option<(u8, u8)> {
     Some((group, index))
 }
 
+/// [`lookup`] of `G<n>`: the commonest word of all, so the numbered
+/// commands below [`NUMBERED_G`] are read from a table by number, with no
+/// text to write and no search.
+pub fn lookup_g(n: u64) -> Option<(u8, u8)> {
+    static BY_NUMBER: std::sync::OnceLock<Vec<Option<(u8, u8)>>> = std::sync::OnceLock::new();
+    let table =
+        BY_NUMBER.get_or_init(|| (0..NUMBERED_G).map(|n| lookup(&format!("G{n}"))).collect());
+    match usize::try_from(n).ok().and_then(|i| table.get(i)) {
+        Some(found) => *found,
+        None => lookup(&format!("G{n}")),
+    }
+}
+
+/// Every numbered G command of the control is below this.
+const NUMBERED_G: u64 = 1000;
+
 /// Length of the longest member name (`DYNSEMIFIN`); anything longer
 /// cannot match, which bounds the normalisation buffer.
 const MAX_NAME_LEN: usize = 10;
@@ -1275,6 +1291,22 @@ mod tests {
     fn index_of(group_number: u8, name: &str) -> usize {
         let members = group(group_number).unwrap().members;
         members.iter().position(|m| *m == name).unwrap() + 1
+    }
+
+    #[test]
+    fn numbered_g_commands_are_found_by_number_as_by_name() {
+        for n in (0..2 * NUMBERED_G).chain([u64::MAX]) {
+            assert_eq!(lookup_g(n), lookup(&format!("G{n}")), "G{n}");
+        }
+        // Every numbered member is below the table's end.
+        for g in G_GROUPS {
+            for m in g.members {
+                if let Some(n) = m.strip_prefix('G').and_then(|d| d.parse::<u64>().ok()) {
+                    assert!(n < NUMBERED_G, "{m}");
+                    assert!(lookup_g(n).is_some(), "{m}");
+                }
+            }
+        }
     }
 
     #[test]

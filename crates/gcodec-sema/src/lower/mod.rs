@@ -402,16 +402,6 @@ pub(crate) fn by_policy(error: bool, code: &'static str, message: String) -> Dia
     }
 }
 
-/// `G<n>` for a G word's value, written into `buf`: no allocation and no
-/// float formatting for the commonest word of all.
-fn g_code_text(n: f64, buf: &mut [u8; 24]) -> &str {
-    use std::io::Write as _;
-    let mut rest = &mut buf[..];
-    let _ = write!(rest, "G{}", n as u64);
-    let len = 24 - rest.len();
-    std::str::from_utf8(&buf[..len]).unwrap_or("G")
-}
-
 /// An address as an AIL axis name: single letters without allocating.
 fn axis_name(address: &str) -> Cow<'static, str> {
     match address.as_bytes() {

@@ -14,7 +14,7 @@ use crate::{ggroups, mfunc, tools, values};
 use super::addresses::{EXTENSION_NOT_ALLOWED, UNSUPPORTED_G};
 use super::{
     BlockPlan, G_GROUP_CONFLICT, INVALID_VALUE, Lowering, UNKNOWN_ADDRESS, UNKNOWN_G,
-    UNSUPPORTED_OFFSET, axis_name, g_code_text,
+    UNSUPPORTED_OFFSET, axis_name,
 };
 
 const COMPUTED_G: &str = "gcodec::lower::computed_g";
@@ -278,19 +278,17 @@ impl Lowering<'_> {
         match word.extension() {
             None => match values::whole_number(value) {
                 Some(n) if n >= 0.0 => {
-                    let mut buf = [0; 24];
-                    let code = g_code_text(n, &mut buf);
                     if let Some(target) = self.legacy_alias(n) {
                         if let Some((group, index)) = ggroups::lookup(&target) {
                             return self.g_code(group, index, span, plan);
                         }
                     }
-                    match ggroups::lookup(code) {
+                    match ggroups::lookup_g(n as u64) {
                         Some((group, index)) => self.g_code(group, index, span, plan),
                         None => self.diagnostics.push(
                             Diagnostic::error(
                                 UNKNOWN_G,
-                                format!("`{code}` is not a G command of the control"),
+                                format!("`G{}` is not a G command of the control", n as u64),
                             )
                             .with_label(span, "unknown G command"),
                         ),
