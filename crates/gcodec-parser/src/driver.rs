@@ -511,6 +511,28 @@ impl<'s> Driver<'s, '_> {
     /// skip mark and block number; `None` where those are not plain.
     fn plain_block(&self, start: usize, end: usize) -> Option<Block> {
         let src = self.src;
+        let block = |skip: Option<SkipLevel>, number| Block {
+            span: Span::new(start as u32, trim_cr(src, start as u32, end as u32)),
+            skip: skip.map(Box::new),
+            number,
+            label: None,
+            statements: Box::default(),
+            comment: None,
+            depth: 0,
+        };
+        match simple_number(&src[start..end]) {
+            Some(Simple::Nothing) => return Some(block(None, None)),
+            Some(Simple::Number { at, len, value }) => {
+                let span = Span::new((start + at) as u32, (start + at + len) as u32);
+                let number = BlockNumber {
+                    span,
+                    main: false,
+                    value,
+                };
+                return Some(block(None, Some(number)));
+            }
+            None => {}
+        }
         // The prefix is at most `/`, a level, `N`, a number and a `=`.
         let mut tokens = [(TokenKind::Error, SimpleSpan::from(0..0)); 5];
         let mut count = 0;
@@ -523,15 +545,7 @@ impl<'s> Driver<'s, '_> {
             count += 1;
         }
         let prefix = fast::prefix(&tokens[..count], &Ctx { src })?;
-        Some(Block {
-            span: Span::new(start as u32, trim_cr(src, start as u32, end as u32)),
-            skip: prefix.skip.map(Box::new),
-            number: prefix.number,
-            label: None,
-            statements: Box::default(),
-            comment: None,
-            depth: 0,
-        })
+        Some(block(prefix.skip, prefix.number))
     }
 
     fn run(&mut self, segment: Segment) {
@@ -972,6 +986,57 @@ const PLAIN_BYTES: [Plain; 256] = {
     }
     table
 };
+
+/// How a plain line opens, read from its bytes where that is plain to
+/// see (else [`Driver::plain_block`] lexes it).
+enum Simple {
+    /// Neither a skip mark nor a block number: the first byte after the
+    /// blanks starts neither `/` nor `N`.
+    Nothing,
+    /// `N<digits>`, ended by a blank, `;` or the line's end, and not
+    /// followed by `=`: at `at`, `len` bytes long.
+    Number { at: usize, len: usize, value: u64 },
+}
+
+/// The common openings of a plain line, as the lexer and
+/// [`fast::prefix`] read them; `None` for any other.
+fn simple_number(line: &[u8]) -> Option<Simple> {
+    let blank = |b: u8| matches!(b, b' ' | b'\t' | b'\r' | 0x0b | 0x0c | b'&');
+    let at = line.iter().position(|&b| !blank(b)).unwrap_or(line.len());
+    match line.get(at) {
+        Some(b'N' | b'n') => {}
+        Some(b'/') => return None,
+        _ => return Some(Simple::Nothing),
+    }
+    let digits = line[at + 1..]
+        .iter()
+        .take_while(|b| b.is_ascii_digit())
+        .count();
+    let after = at + 1 + digits;
+    // A point or exponent would continue the number; a letter after `N`
+    // makes a name.
+    if digits == 0 || !line.get(after).is_none_or(|&b| blank(b) || b == b';') {
+        return None;
+    }
+    let next = line[after..]
+        .iter()
+        .position(|&b| !blank(b))
+        .map(|p| after + p);
+    if let Some(p) = next
+        && line[p] == b'='
+        && line.get(p + 1) != Some(&b'=')
+    {
+        return None;
+    }
+    let value = line[at + 1..after].iter().try_fold(0u64, |n, &d| {
+        n.checked_mul(10)?.checked_add(u64::from(d - b'0'))
+    })?;
+    Some(Simple::Number {
+        at,
+        len: 1 + digits,
+        value,
+    })
+}
 
 /// Whether a run of two or more letters is a name or an operator, not a
 /// keyword of statements.

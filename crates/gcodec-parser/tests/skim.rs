@@ -160,6 +160,18 @@ fn edge_cases_skim_as_they_parse() {
         "N380 X3",
         "N390 X4 ä",
         "N400 X5",
+        "N410 =5",
+        "N420==5",
+        "N430;c",
+        "N440&X1",
+        "n450\tX1",
+        "N460E3",
+        "N470EX2 X1",
+        "N480X1",
+        "   N490",
+        "N X1",
+        "NX1=2",
+        "N0000000000000000000000001 X1",
     ];
     let src = lines.join("\n");
     for chunk_lines in [1, 2, 3, 1024] {
