@@ -227,18 +227,20 @@ pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
 /// Reads the lines of `chunk` of `src` for an outline of the program
 /// (pass 1 of a streamed run), much faster than [`parse_chunk`]: each
 /// block is the one [`parse_chunk`] gives, except a *plain* block after
-/// another plain block with statements, with only plain blocks between
-/// them in the chunk. That block keeps its span, skip mark and block
-/// number, and its statements and comment are left out.
+/// a block that *settles*, with only such plain blocks between them in
+/// the chunk. That block keeps its span, skip mark and block number, and
+/// its statements and comment are left out.
 ///
 /// A plain block holds no label, no keyword but the operators (`AND`,
 /// `DIV`, `TRUE`, …), no `M` word and no skip mark or block number the
 /// grammar must judge: only words, assignments, names, calls by name
-/// and expressions. So a block left out holds no structure, jump,
-/// definition, declaration or program end, and changes nothing a plain
-/// block with statements before it has not already set. The chunk's
-/// diagnostics are not given (`diagnostics` is empty): [`parse_chunk`]
-/// gives them.
+/// and expressions. A block settles when it has statements and none of
+/// them defines, declares or ends anything (`DEF`, `REDEF`, `DEFINE`,
+/// `PROC`, `EXTERN`, `ENDPROC`, `RET`, an `M` word). So a block left out
+/// holds no structure, jump, definition, declaration or program end, and
+/// changes nothing the settling block before it has not already set. The
+/// chunk's diagnostics are not given (`diagnostics` is empty):
+/// [`parse_chunk`] gives them.
 pub fn skim_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
     let mut skimmed = read_chunk(src, chunk, Reading::Outline);
     skimmed.diagnostics.clear();

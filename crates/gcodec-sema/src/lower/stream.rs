@@ -54,11 +54,11 @@ pub fn lower_chunks(
         each(lowering.finish());
         return;
     }
+    // Parses `chunk` and lowers it with `lowering`; gives its parse
+    // diagnostics.
     let lower_part = |chunk: &gcodec_parser::Chunk, lowering: &mut Lowering<'_>| {
         let parsed = gcodec_parser::parse_chunk(src, chunk);
-        for (offset, block) in parsed.blocks.iter().enumerate() {
-            lowering.block(parsed.first_block + offset, block);
-        }
+        lower_blocks(lowering, parsed.first_block, &parsed.blocks);
         parsed.diagnostics
     };
     let mut next = 0;
@@ -67,7 +67,7 @@ pub fn lower_chunks(
         chunks,
         workers,
         |chunk| {
-            let mut lowering = Lowering::new(outline, profile, chunk.blocks, chunk.first_block > 0);
+            let mut lowering = Lowering::new(outline, profile, 0, chunk.first_block > 0);
             let parse_diagnostics = lower_part(chunk, &mut lowering);
             (chunk, lowering, parse_diagnostics)
         },
@@ -97,6 +97,16 @@ pub fn lower_chunks(
         diagnostics: end.diagnostics,
         parse_diagnostics: Vec::new(),
     });
+}
+
+/// Lowers `blocks`, the program's blocks from index `first` on, with
+/// room made for their instructions at once.
+fn lower_blocks(lowering: &mut Lowering<'_>, first: usize, blocks: &[Block]) {
+    let statements: usize = blocks.iter().map(|b| b.statements.len()).sum();
+    lowering.document.instructions.reserve(capacity(statements));
+    for (offset, block) in blocks.iter().enumerate() {
+        lowering.block(first + offset, block);
+    }
 }
 
 /// A lowering fed with the blocks of a program in order.
@@ -134,14 +144,7 @@ impl<'a> ChunkLowering<'a> {
         }
         // The chunk's own copy of the file name (see `Lowering::file`).
         self.lowering.file = Arc::from(&*self.lowering.outline.file);
-        let statements: usize = blocks.iter().map(|b| b.statements.len()).sum();
-        self.lowering
-            .document
-            .instructions
-            .reserve(capacity(statements));
-        for (offset, block) in blocks.iter().enumerate() {
-            self.lowering.block(first + offset, block);
-        }
+        lower_blocks(&mut self.lowering, first, blocks);
         self.next = first + blocks.len();
         Some(self.take())
     }
