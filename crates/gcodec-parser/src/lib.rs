@@ -1,6 +1,6 @@
 //! Parser and syntax tree for SINUMERIK part programs.
 //!
-//! Parsing never fails: [`parse`] always returns a [`Program`] together with
+//! Parsing never fails: [`parse`] always returns a [`Program`](ast::Program) together with
 //! the diagnostics found on the way. A malformed block yields one diagnostic
 //! and parsing resumes at the next block; an unclosed control structure
 //! names both its opener and where its end was expected.

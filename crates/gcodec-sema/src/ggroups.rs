@@ -730,7 +730,7 @@ pub fn lookup(code: &str) -> Option<(u8, u8)> {
 }
 
 /// [`lookup`] of `G<n>`: the commonest word of all, so the numbered
-/// commands below [`NUMBERED_G`] are read from a table by number, with no
+/// commands below 1,000 are read from a table by number, with no
 /// text to write and no search.
 pub fn lookup_g(n: u64) -> Option<(u8, u8)> {
     static BY_NUMBER: std::sync::OnceLock<Vec<Option<(u8, u8)>>> = std::sync::OnceLock::new();

@@ -245,7 +245,7 @@ pub(crate) fn check_count(words: &[MWord], profile: &Profile, diagnostics: &mut 
 /// describes: its `mcode_class_overrides` first, then the predefined
 /// classes (seed 001); `None` for a value the machine does not know. For
 /// values computed when a block runs (lowering classifies constants with
-/// the overrides read once, [`overrides`]).
+/// the overrides read once, `overrides`).
 pub fn m_class(profile: &Profile, value: u32) -> Option<MClass> {
     profile
         .m_functions

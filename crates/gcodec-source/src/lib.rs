@@ -13,5 +13,5 @@ mod span;
 
 pub use diagnostic::{Diagnostic, Label, Severity};
 pub use render::{RenderOptions, render_diagnostics};
-pub use source::{SourceFile, decode};
+pub use source::{MAX_SOURCE_LEN, SourceFile, decode};
 pub use span::{Span, line_col, with_line_starts};
