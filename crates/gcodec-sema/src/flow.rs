@@ -38,8 +38,9 @@ pub(crate) enum Role {
 /// The control-flow facts of a program, computed before lowering.
 pub(crate) struct Flow {
     /// The blocks control flow touches (most blocks are not among them),
-    /// looked up once per block.
-    blocks: FxHashMap<usize, BlockFlow>,
+    /// by index, in order: lowering, going through the blocks in order,
+    /// reads them with a cursor (`Lowering::block_flow`).
+    blocks: Vec<(usize, BlockFlow)>,
     /// Blocks by label (upper case) and by block number, in order.
     labels: HashMap<String, Vec<usize>>,
     /// The span of each block's label, for diagnostics.
@@ -223,7 +224,7 @@ impl FlowBuilder {
             }
         }
         let mut flow = Flow {
-            blocks,
+            blocks: Vec::new(),
             labels,
             label_spans,
             numbers,
@@ -239,7 +240,7 @@ impl FlowBuilder {
         // Every jump's target block carries its label.
         for (i, kind, target) in &jumps {
             if let Some(to) = flow.search(*i, *kind, target) {
-                flow.add_target(to, label_name(target, to));
+                add_target(&mut blocks, to, label_name(target, to));
                 if to <= *i {
                     returns.push((to, *i));
                 }
@@ -251,8 +252,8 @@ impl FlowBuilder {
                 // The section's passes go back to its start, and back to
                 // the `REPEAT` after them.
                 returns.push(((*start).min(*i), (*end).max(*i)));
-                flow.add_target(*start, label_name(&repeat.start, *start));
-                flow.blocks
+                add_target(&mut blocks, *start, label_name(&repeat.start, *start));
+                blocks
                     .entry(*end)
                     .or_default()
                     .section_ends
@@ -286,14 +287,24 @@ impl FlowBuilder {
                 .collect();
             named.sort_by_key(|(block, is_number, _)| (*block, *is_number));
             for (block, _, name) in named {
-                flow.add_target(block, name);
+                add_target(&mut blocks, block, name);
             }
         }
         if !computed_jumps && !calls_own_section {
             returns.sort_unstable();
             flow.returns = Some(returns);
         }
+        flow.blocks = blocks.into_iter().collect();
+        flow.blocks.sort_unstable_by_key(|(index, _)| *index);
         flow
+    }
+}
+
+/// Gives block `block` the jump target `name` (once).
+fn add_target(blocks: &mut FxHashMap<usize, BlockFlow>, block: usize, name: String) {
+    let names = &mut blocks.entry(block).or_default().targets;
+    if !names.contains(&name) {
+        names.push(name);
     }
 }
 
@@ -312,13 +323,6 @@ impl Flow {
     /// The span of the label of block `index`.
     pub(crate) fn label_span(&self, index: usize) -> Option<Span> {
         self.label_spans.get(&index).copied()
-    }
-
-    fn add_target(&mut self, block: usize, name: String) {
-        let names = &mut self.blocks.entry(block).or_default().targets;
-        if !names.contains(&name) {
-            names.push(name);
-        }
     }
 
     /// The first and last block of the section `REPEAT` in block `at`
@@ -364,7 +368,17 @@ impl Flow {
     /// What control flow says about block `index`; `None` for most
     /// blocks.
     pub(crate) fn block(&self, index: usize) -> Option<&BlockFlow> {
-        self.blocks.get(&index)
+        let at = self.blocks.partition_point(|(i, _)| *i < index);
+        self.blocks
+            .get(at)
+            .filter(|(i, _)| *i == index)
+            .map(|(_, f)| f)
+    }
+
+    /// What control flow says about the blocks it touches, by index, in
+    /// order.
+    pub(crate) fn blocks(&self) -> &[(usize, BlockFlow)] {
+        &self.blocks
     }
 
     /// The structures block `index` opens, splits or closes.

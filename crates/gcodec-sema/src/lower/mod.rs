@@ -23,6 +23,7 @@ use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
 use gcodec_source::{Diagnostic, Span};
 
 use crate::definitions::Definitions;
+use crate::flow::BlockFlow;
 use crate::{ggroups, mfunc};
 use outline::Outline;
 
@@ -459,8 +460,13 @@ struct Lowering<'a> {
     pending_offsets: Vec<usize>,
     /// The Group 8 indices the machine has.
     group8_supported: [bool; 100],
-    /// The emptied plan of the block before (see [`BlockPlan::emptied`]).
-    plan: BlockPlan,
+    /// The plan of the block before, emptied ([`BlockPlan::reset`]): one
+    /// plan serves every block, so that its room is reused and the large
+    /// struct is not built and moved per block.
+    plan: Option<Box<BlockPlan>>,
+    /// Where in the flow facts (`Flow::blocks`) the next block's are, at
+    /// the earliest: blocks are lowered in order.
+    flow_at: usize,
 }
 
 /// An `S` word: spindle number, computed spindle number (`S[SPINU]=`),
@@ -536,19 +542,64 @@ struct BlockPlan {
 }
 
 impl BlockPlan {
-    /// A plan for the next block: nothing of this one, but the room of
-    /// the vectors most blocks fill.
-    fn emptied(mut self) -> Self {
-        fn kept<T>(v: &mut Vec<T>) -> Vec<T> {
-            let mut v = std::mem::take(v);
-            v.clear();
-            v
-        }
-        Self {
-            g_codes: kept(&mut self.g_codes),
-            targets: kept(&mut self.targets),
-            ..Self::default()
-        }
+    /// Empties the plan for the next block, field by field: the vectors
+    /// keep their room, and the large struct is not built anew.
+    fn reset(&mut self) {
+        // Every field is named, so that a new one cannot be forgotten.
+        let Self {
+            g_codes,
+            suppressions,
+            feed,
+            spindle,
+            tools,
+            edge,
+            m_functions,
+            targets,
+            target_span,
+            circle,
+            circle_span,
+            other,
+            calls,
+            head,
+            tail,
+            indirect_g,
+            h_functions,
+            after_edge,
+            addresses,
+            address_keys,
+            indirect_targets,
+            motion_span,
+            spline,
+            spline_span,
+            transition,
+            repeated_axes,
+        } = self;
+        g_codes.clear();
+        suppressions.clear();
+        *feed = None;
+        spindle.clear();
+        tools.clear();
+        *edge = None;
+        m_functions.clear();
+        targets.clear();
+        *target_span = None;
+        *circle = Circle::default();
+        *circle_span = None;
+        other.clear();
+        calls.clear();
+        head.clear();
+        tail.clear();
+        indirect_g.clear();
+        h_functions.clear();
+        after_edge.clear();
+        addresses.clear();
+        address_keys.clear();
+        indirect_targets.clear();
+        *motion_span = None;
+        *spline = gcodec_ail::SplineData::default();
+        *spline_span = None;
+        *transition = None;
+        repeated_axes.clear();
     }
 
     fn add_target(&mut self, target: AxisValue, span: Span) {
@@ -599,7 +650,8 @@ impl<'a> Lowering<'a> {
             pending_motions: Vec::new(),
             pending_offsets: Vec::new(),
             group8_supported: profile.work_offsets.supported_group8(),
-            plan: BlockPlan::default(),
+            plan: None,
+            flow_at: 0,
         }
     }
 
@@ -611,6 +663,26 @@ impl<'a> Lowering<'a> {
         lowering.group8 = carry.group8;
         lowering.modal_call = carry.modal_call;
         lowering
+    }
+
+    /// What control flow says about block `index`, found from where the
+    /// block before's was: a step, where a hash lookup per block missed
+    /// the cache (a tenth of lowering).
+    fn block_flow(&mut self, index: usize) -> Option<&'a BlockFlow> {
+        let facts = self.outline.flow.blocks();
+        let before = |at: usize| facts.get(at).is_some_and(|(i, _)| *i < index);
+        if before(self.flow_at) {
+            self.flow_at += 1;
+        }
+        // A part starting elsewhere, or a block out of order: search.
+        let after = |at: usize| at > 0 && facts[at - 1].0 >= index;
+        if before(self.flow_at) || after(self.flow_at) {
+            self.flow_at = facts.partition_point(|(i, _)| *i < index);
+        }
+        facts
+            .get(self.flow_at)
+            .filter(|(i, _)| *i == index)
+            .map(|(_, f)| f)
     }
 
     fn source_at(&self, block: usize, span: Span) -> Source {
@@ -679,11 +751,9 @@ impl<'a> Lowering<'a> {
                 .with_help("split the block; the limit is `max_block_length` in the profile"),
             );
         }
-        // The plan of the block before, emptied: its vectors keep their
-        // room, so the commonest blocks allocate nothing to plan.
-        let mut plan = std::mem::take(&mut self.plan);
+        let mut plan = self.plan.take().unwrap_or_default();
         // Most blocks play no part in control flow: one lookup says so.
-        let facts = self.outline.flow.block(index);
+        let facts = self.block_flow(index);
         if let Some(facts) = facts {
             self.check_structure_block(facts, block);
             self.structure_parts(facts, block, &mut plan);
@@ -704,7 +774,8 @@ impl<'a> Lowering<'a> {
             .filter(|_| facts.is_none_or(|f| f.roles.is_empty()))
             .map(|skip| self.begin_skip(index, skip));
         self.emit_block(index, block, &mut plan);
-        self.plan = plan.emptied();
+        plan.reset();
+        self.plan = Some(plan);
         if let Some(skip) = skip {
             self.end_skip(index, skip);
         }
