@@ -647,7 +647,9 @@ impl<'s> Driver<'s, '_> {
                 {
                     self.structure_blocks.push(self.filled as u32);
                 }
-                self.settles = settles(&block);
+                if self.reading == Reading::Outline {
+                    self.settles = settles(&block);
+                }
                 if let Some(slot) = self.blocks.get_mut(self.filled) {
                     slot.write(block);
                     self.filled += 1;
