@@ -29,7 +29,7 @@ pub struct StreamOptions {
     pub page_lines: usize,
     /// Threads that skim chunks for the outline (pass 1), and that parse
     /// and lower chunks (pass 2).
-    pub parse_workers: usize,
+    pub workers: usize,
 }
 
 impl Default for StreamOptions {
@@ -38,7 +38,7 @@ impl Default for StreamOptions {
             // Measured on the 1,000,000-block program (docs/performance.md):
             // smaller pages hold less in flight at the same speed.
             page_lines: 1024,
-            parse_workers: 2,
+            workers: 2,
         }
     }
 }
@@ -65,7 +65,7 @@ pub fn run_streamed<R>(
         file.name(),
         src,
         &chunks,
-        options.parse_workers,
+        options.workers,
         profile,
         definitions,
     );
@@ -80,9 +80,11 @@ pub fn run_streamed<R>(
     let program = Arc::new(program);
     let file_name = &program.file;
     // Pass 1's errors are known before the run starts.
-    let mut known_errors = error_sources(file, file_name, &structure_diagnostics);
-    known_errors.extend(error_sources(file, file_name, outline_diagnostics));
-    known_errors.sort_by_key(|e| (e.line, e.col));
+    let known_errors = error_sources(
+        file,
+        file_name,
+        structure_diagnostics.iter().chain(outline_diagnostics),
+    );
     let (result, lowered) = std::thread::scope(|scope| {
         let pass2 = scope.spawn(|| {
             let mut pages = Pages {
@@ -97,7 +99,7 @@ pub fn run_streamed<R>(
                 instructions: Vec::new(),
                 errors: known_errors,
             });
-            let workers = options.parse_workers;
+            let workers = options.workers;
             lower_chunks(src, &chunks, workers, &outline, profile, |lowered| {
                 pages.lowered(lowered);
             });
@@ -138,9 +140,11 @@ struct Pages<'a> {
 impl Pages<'_> {
     /// Sends a lowered chunk, with the places of its errors.
     fn lowered(&mut self, chunk: LoweredChunk) {
-        let mut errors = error_sources(self.file, self.name, &chunk.parse_diagnostics);
-        errors.extend(error_sources(self.file, self.name, &chunk.diagnostics));
-        errors.sort_by_key(|e| (e.line, e.col));
+        let errors = error_sources(
+            self.file,
+            self.name,
+            chunk.parse_diagnostics.iter().chain(&chunk.diagnostics),
+        );
         self.parse_diagnostics.extend(chunk.parse_diagnostics);
         self.diagnostics.extend(chunk.diagnostics);
         self.send(SourcePage {
@@ -161,9 +165,13 @@ impl Pages<'_> {
 
 /// Where the errors among `diagnostics` are, in line order; an error
 /// without a place counts as one on the first line.
-fn error_sources(file: &SourceFile, name: &Arc<str>, diagnostics: &[Diagnostic]) -> Vec<Source> {
+fn error_sources<'d>(
+    file: &SourceFile,
+    name: &Arc<str>,
+    diagnostics: impl IntoIterator<Item = &'d Diagnostic>,
+) -> Vec<Source> {
     let mut errors: Vec<Source> = diagnostics
-        .iter()
+        .into_iter()
         .filter(|d| d.is_error())
         .map(|d| {
             let span = d.span().unwrap_or_default();

@@ -83,7 +83,7 @@ fn check(case: &Case) -> bool {
             &case.definitions,
             StreamOptions {
                 page_lines,
-                parse_workers: page_lines % 2 + 1,
+                workers: page_lines % 2 + 1,
             },
             |main| run(case, main),
         );

@@ -51,14 +51,14 @@ pub fn parse(file: &SourceFile) -> Parse {
 
 /// Parses bytes under a file name.
 pub fn parse_bytes(name: &str, src: &[u8]) -> Parse {
-    parse_with(name, src, true)
+    parse_with(name, src, Reading::Whole)
 }
 
 /// Parses with the grammar only, never the fast path for constant-word
 /// blocks: the reference the fast path is tested against.
 #[doc(hidden)]
 pub fn parse_bytes_with_grammar_only(name: &str, src: &[u8]) -> Parse {
-    parse_with(name, src, false)
+    parse_with(name, src, Reading::GrammarOnly)
 }
 
 /// Files at least this large are parsed on several threads, one segment of
@@ -72,12 +72,7 @@ pub fn parse_bytes_in_segments(name: &str, src: &[u8], threads: usize) -> Parse 
     parse_segments(name, src, Reading::Whole, split(src, threads.max(1)))
 }
 
-fn parse_with(name: &str, src: &[u8], fast_path: bool) -> Parse {
-    let reading = if fast_path {
-        Reading::Whole
-    } else {
-        Reading::GrammarOnly
-    };
+fn parse_with(name: &str, src: &[u8], reading: Reading) -> Parse {
     // Asking for the core count reads cgroup limits: only large files ask.
     let threads = if src.len() < PARALLEL_MIN_BYTES {
         1
@@ -342,8 +337,7 @@ fn runs<'a, T>(mut slots: &'a mut [T], lengths: &[usize]) -> Vec<&'a mut [T]> {
 
 /// Lines of `src`, counting a last line without a line end.
 fn line_count(src: &[u8]) -> usize {
-    src.iter().filter(|&&b| b == b'\n').count()
-        + usize::from(src.last().is_some_and(|&b| b != b'\n'))
+    memchr::memchr_iter(b'\n', src).count() + usize::from(src.last().is_some_and(|&b| b != b'\n'))
 }
 
 /// A byte range of whole lines.
@@ -961,25 +955,10 @@ const PLAIN_BYTES: [Plain; 256] = {
         } else if c == b'.' {
             Plain::Point
         } else if c.is_ascii_digit()
+            || is_blank(c)
             || matches!(
                 c,
-                b' ' | b'\t'
-                    | b'\r'
-                    | 0x0b
-                    | 0x0c
-                    | b'&'
-                    | b'='
-                    | b'<'
-                    | b'>'
-                    | b'+'
-                    | b'-'
-                    | b'*'
-                    | b'/'
-                    | b'('
-                    | b')'
-                    | b'['
-                    | b']'
-                    | b','
+                b'=' | b'<' | b'>' | b'+' | b'-' | b'*' | b'/' | b'(' | b')' | b'[' | b']' | b','
             )
         {
             Plain::Yes
@@ -990,6 +969,11 @@ const PLAIN_BYTES: [Plain; 256] = {
     }
     table
 };
+
+/// A byte the lexer reads as a blank (`TokenKind::Whitespace`).
+const fn is_blank(b: u8) -> bool {
+    matches!(b, b' ' | b'\t' | b'\r' | 0x0b | 0x0c | b'&')
+}
 
 /// How a plain line opens, read from its bytes where that is plain to
 /// see (else [`Driver::plain_block`] lexes it).
@@ -1005,8 +989,10 @@ enum Simple {
 /// The common openings of a plain line, as the lexer and
 /// [`fast::prefix`] read them; `None` for any other.
 fn simple_number(line: &[u8]) -> Option<Simple> {
-    let blank = |b: u8| matches!(b, b' ' | b'\t' | b'\r' | 0x0b | 0x0c | b'&');
-    let at = line.iter().position(|&b| !blank(b)).unwrap_or(line.len());
+    let at = line
+        .iter()
+        .position(|&b| !is_blank(b))
+        .unwrap_or(line.len());
     match line.get(at) {
         Some(b'N' | b'n') => {}
         Some(b'/') => return None,
@@ -1019,12 +1005,12 @@ fn simple_number(line: &[u8]) -> Option<Simple> {
     let after = at + 1 + digits;
     // A point or exponent would continue the number; a letter after `N`
     // makes a name.
-    if digits == 0 || !line.get(after).is_none_or(|&b| blank(b) || b == b';') {
+    if digits == 0 || !line.get(after).is_none_or(|&b| is_blank(b) || b == b';') {
         return None;
     }
     let next = line[after..]
         .iter()
-        .position(|&b| !blank(b))
+        .position(|&b| !is_blank(b))
         .map(|p| after + p);
     if let Some(p) = next
         && line[p] == b'='

@@ -18,9 +18,10 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
     let whole = lower_in_parts(&parsed.program, profile, &definitions, 1);
     for lines in [1, 3, 64] {
         let chunks = chunks(src, lines);
-        // Chunks lowered in order on one thread, and as parts on three
-        // workers taking turns: the same instructions before refinement.
-        let mut in_order = None;
+        // Chunks lowered as parts on one thread and on three workers
+        // taking turns: the instructions a `ChunkLowering` gives, in
+        // order, before refinement.
+        let in_order = in_order(name, src, &chunks, profile, &definitions);
         for workers in [1, 3] {
             // Pass 1: the outline, the chunks skimmed and their trees
             // dropped chunk by chunk.
@@ -45,13 +46,10 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
                 parsed.diagnostics, parse_diagnostics,
                 "{place}: parse diagnostics differ"
             );
-            match &in_order {
-                None => in_order = Some(document.clone()),
-                Some(first) => assert!(
-                    *first == document,
-                    "{place}: instructions differ from one worker's"
-                ),
-            }
+            assert!(
+                in_order == document,
+                "{place}: instructions differ from lowering in order"
+            );
             refine(&mut document, profile, outline.is_subprogram());
             assert_eq!(
                 whole.diagnostics, diagnostics,
@@ -60,6 +58,30 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
             assert!(whole.document == document, "{place}: instructions differ");
         }
     }
+}
+
+/// The instructions of `chunks` lowered in order by one `ChunkLowering`.
+fn in_order(
+    name: &str,
+    src: &[u8],
+    chunks: &[gcodec_parser::Chunk],
+    profile: &gcodec_profile::Profile,
+    definitions: &Definitions,
+) -> gcodec_ail::Document {
+    let (outline, _) = outline_chunks(name, src, chunks, 1, profile, definitions);
+    let mut lowering = ChunkLowering::new(&outline, profile);
+    let mut document = gcodec_ail::Document::new();
+    for chunk in chunks {
+        let parsed = gcodec_parser::parse_chunk(src, chunk);
+        let mut lowered = lowering
+            .lower(parsed.first_block, &parsed.blocks)
+            .expect("in order");
+        document.instructions.append(&mut lowered.instructions);
+    }
+    document
+        .instructions
+        .append(&mut lowering.finish().instructions);
+    document
 }
 
 #[test]

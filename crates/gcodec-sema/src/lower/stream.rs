@@ -27,14 +27,14 @@ use super::{Carry, Lowering, capacity};
 /// left out. Each chunk comes with its parse diagnostics, which pass 1,
 /// skimming, did not find.
 ///
-/// On one worker the chunks are parsed and lowered in order by one
-/// [`ChunkLowering`]. On more, each worker parses and lowers its chunks
-/// ([`gcodec_parser::map_chunks`]), each as a part that starts in the
-/// state the chunk before it ends in, as [`super::lower_in_parts`] lowers
-/// its parts; the parts are settled here in order, and a part that cannot
-/// be settled (`Lowering::settle`) is lowered again here, continuing from
-/// the chunk before. So a chunk's tree is lowered on the core that parsed
-/// it, and the result is the same as on one worker.
+/// Each of `workers` threads parses and lowers its chunks
+/// ([`gcodec_parser::map_chunks`]; on one, this thread), each as a part
+/// that starts in the state the chunk before it ends in, as
+/// [`super::lower_in_parts`] lowers its parts; the parts are settled here
+/// in order, and a part that cannot be settled (`Lowering::settle`) is
+/// lowered again here, continuing from the chunk before. So a chunk's
+/// tree is lowered on the core that parsed it, and the instructions are
+/// those a [`ChunkLowering`] gives.
 pub fn lower_chunks(
     src: &[u8],
     chunks: &[gcodec_parser::Chunk],
@@ -43,17 +43,6 @@ pub fn lower_chunks(
     profile: &Profile,
     mut each: impl FnMut(LoweredChunk),
 ) {
-    if workers <= 1 {
-        let mut lowering = ChunkLowering::new(outline, profile);
-        gcodec_parser::parse_chunks(src, chunks, 1, |parsed| {
-            if let Some(mut lowered) = lowering.lower(parsed.first_block, &parsed.blocks) {
-                lowered.parse_diagnostics = parsed.diagnostics;
-                each(lowered);
-            }
-        });
-        each(lowering.finish());
-        return;
-    }
     // Parses `chunk` and lowers it with `lowering`; gives its parse
     // diagnostics.
     let lower_part = |chunk: &gcodec_parser::Chunk, lowering: &mut Lowering<'_>| {
