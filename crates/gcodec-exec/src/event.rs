@@ -926,6 +926,93 @@ pub struct JsonlSink<W: Write> {
     out: Option<W>,
     /// Lines not yet written.
     buffer: Vec<u8>,
+    /// The last motion's `to`, as written.
+    last_to: AxisMapText,
+    /// The last event's file, as written.
+    last_file: FileText,
+}
+
+/// A file name and its JSON text: every event names its file, mostly the
+/// same one.
+#[derive(Default)]
+struct FileText {
+    file: Option<Arc<str>>,
+    text: Vec<u8>,
+}
+
+impl FileText {
+    fn write(&mut self, out: &mut Vec<u8>, file: &Arc<str>) {
+        if !self.file.as_ref().is_some_and(|f| Arc::ptr_eq(f, file)) {
+            self.text.clear();
+            write_str_json(&mut self.text, file);
+            self.file = Some(Arc::clone(file));
+        }
+        out.extend_from_slice(&self.text);
+    }
+}
+
+/// An axis map and its JSON text. A motion's `from` is the last motion's
+/// `to`, and its `to_machine` is its `to` while no offset or frame is
+/// active: their text is copied rather than written again (the numbers
+/// were most of the time spent writing motions).
+#[derive(Default)]
+struct AxisMapText {
+    /// The axes and the bits of their values.
+    axes: Vec<(AxisName, u64)>,
+    text: Vec<u8>,
+}
+
+impl AxisMapText {
+    /// Whether `map` holds the same axes and the same values, bit for bit
+    /// (`-0.0` is not `0.0`: their text differs).
+    fn holds(&self, map: &AxisMap) -> bool {
+        self.axes.len() == map.entries.len()
+            && self
+                .axes
+                .iter()
+                .zip(&map.entries)
+                .all(|((axis, bits), (other, value))| {
+                    *bits == value.to_bits() && same_name(axis, other)
+                })
+    }
+
+    /// Writes `map` to `out` and remembers it.
+    fn write(&mut self, out: &mut Vec<u8>, map: &AxisMap) {
+        let start = out.len();
+        write_axis_map_json(out, map);
+        self.text.clear();
+        self.text.extend_from_slice(&out[start..]);
+        // The names are the same from motion to motion: cloning an owned
+        // one each time would allocate.
+        self.axes.truncate(map.entries.len());
+        for (index, (axis, value)) in map.entries.iter().enumerate() {
+            match self.axes.get_mut(index) {
+                Some(slot) => {
+                    if !same_name(&slot.0, axis) {
+                        slot.0 = axis.clone();
+                    }
+                    slot.1 = value.to_bits();
+                }
+                None => self.axes.push((axis.clone(), value.to_bits())),
+            }
+        }
+    }
+
+    /// Writes `map` to `out`, copying the remembered text if it is the
+    /// same map.
+    fn write_if_same(&self, out: &mut Vec<u8>, map: &AxisMap) {
+        if self.holds(map) {
+            out.extend_from_slice(&self.text);
+        } else {
+            write_axis_map_json(out, map);
+        }
+    }
+}
+
+/// Axis names are mostly the same static strings: compare addresses
+/// first.
+fn same_name(a: &str, b: &str) -> bool {
+    std::ptr::eq(a, b) || a == b
 }
 
 /// The size at which [`JsonlSink`] hands its lines to the writer.
@@ -936,6 +1023,8 @@ impl<W: Write> JsonlSink<W> {
         Self {
             out: Some(writer),
             buffer: Vec::with_capacity(JSONL_BLOCK + 4096),
+            last_to: AxisMapText::default(),
+            last_file: FileText::default(),
         }
     }
 
@@ -975,10 +1064,12 @@ impl<W: Write> EventSink for JsonlSink<W> {
     fn event(&mut self, event: &Event) -> io::Result<()> {
         match &event.kind {
             EventKind::Motion(motion) => {
-                write_motion_json(&mut self.buffer, motion, &event.source);
+                write_motion_json(&mut self.buffer, motion, &mut self.last_to);
+                write_source_json(&mut self.buffer, &event.source, &mut self.last_file);
             }
             EventKind::ModalChange(change) => {
-                write_modal_change_json(&mut self.buffer, change, &event.source);
+                write_modal_change_json(&mut self.buffer, change);
+                write_source_json(&mut self.buffer, &event.source, &mut self.last_file);
             }
             _ => serde_json::to_writer(&mut self.buffer, event)?,
         }
@@ -997,15 +1088,16 @@ impl<W: Write> EventSink for JsonlSink<W> {
 
 /// A motion event as serde writes it: the same fields in the same order,
 /// numbers in the same shortest form.
-fn write_motion_json(out: &mut Vec<u8>, motion: &MotionEvent, source: &EventSource) {
+/// (without its source and closing brace).
+fn write_motion_json(out: &mut Vec<u8>, motion: &MotionEvent, last_to: &mut AxisMapText) {
     out.extend_from_slice(b"{\"event\":\"motion\",\"motion\":\"");
     out.extend_from_slice(motion_name(motion.motion).as_bytes());
     out.extend_from_slice(b"\",\"from\":");
-    write_axis_map_json(out, &motion.from);
+    last_to.write_if_same(out, &motion.from);
     out.extend_from_slice(b",\"to\":");
-    write_axis_map_json(out, &motion.to);
+    last_to.write(out, &motion.to);
     out.extend_from_slice(b",\"to_machine\":");
-    write_axis_map_json(out, &motion.to_machine);
+    last_to.write_if_same(out, &motion.to_machine);
     if let Some(centre) = &motion.centre {
         out.extend_from_slice(b",\"centre\":");
         write_axis_map_json(out, centre);
@@ -1039,12 +1131,11 @@ fn write_motion_json(out: &mut Vec<u8>, motion: &MotionEvent, source: &EventSour
     out.extend_from_slice(b",\"effective_suppression_mask\":\"");
     out.extend_from_slice(context.effective_suppression_mask.name().as_bytes());
     out.push(b'"');
-    write_source_json(out, source);
-    out.push(b'}');
 }
 
-/// A modal change as serde writes it (the second commonest event).
-fn write_modal_change_json(out: &mut Vec<u8>, change: &ModalChangeEvent, source: &EventSource) {
+/// A modal change as serde writes it (the second commonest event),
+/// without its source and closing brace.
+fn write_modal_change_json(out: &mut Vec<u8>, change: &ModalChangeEvent) {
     out.extend_from_slice(b"{\"event\":\"modal_change\",\"group\":");
     write_u64(out, u64::from(change.group));
     out.extend_from_slice(b",\"code\":");
@@ -1054,21 +1145,19 @@ fn write_modal_change_json(out: &mut Vec<u8>, change: &ModalChangeEvent, source:
         Some(previous) => write_str_json(out, previous),
         None => out.extend_from_slice(b"null"),
     }
-    write_source_json(out, source);
-    out.push(b'}');
 }
 
-/// `,"source":{…}`.
-fn write_source_json(out: &mut Vec<u8>, source: &EventSource) {
+/// `,"source":{…}}`: the event's source and the event's closing brace.
+fn write_source_json(out: &mut Vec<u8>, source: &EventSource, last_file: &mut FileText) {
     out.extend_from_slice(b",\"source\":{\"file\":");
-    write_str_json(out, &source.file);
+    last_file.write(out, &source.file);
     out.extend_from_slice(b",\"line\":");
     write_u64(out, u64::from(source.line));
     out.extend_from_slice(b",\"col\":");
     write_u64(out, u64::from(source.col));
     out.extend_from_slice(b",\"level\":");
     write_u64(out, u64::from(source.level));
-    out.push(b'}');
+    out.extend_from_slice(b"}}");
 }
 
 fn write_axis_map_json(out: &mut Vec<u8>, axes: &AxisMap) {
@@ -1123,24 +1212,43 @@ fn write_f64_json(out: &mut Vec<u8>, value: f64) {
 /// 1e9 an f64's spacing is far under 1e-4, so no other multiple of 1e-4
 /// reads back as the same value.
 fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> bool {
-    let scaled = (value * 1e4).round();
-    if !(value != 0.0 && value.abs() < 1e9 && scaled / 1e4 == value) {
+    let scaled = value * 1e4;
+    if !(value != 0.0 && value.abs() < 1e9) {
         return false;
     }
-    if value < 0.0 {
-        out.push(b'-');
+    // |scaled| < 1e13: exact in i64. Rounding half away from zero by hand
+    // (`f64::round` is a library call here); whatever it gives, the test
+    // below only lets an exact text through.
+    let rounded = (scaled + 0.5f64.copysign(scaled)) as i64;
+    if rounded as f64 / 1e4 != value {
+        return false;
     }
-    // |scaled| < 1e13: exact in u64.
-    let scaled = scaled.abs() as u64;
-    write_u64(out, scaled / 10_000);
-    match fraction_digit_bytes(scaled % 10_000, &mut [0; 4]) {
-        b"" if point_zero => out.extend_from_slice(b".0"),
+    // The whole text is built on the stack and copied once: several small
+    // copies per number cost more than the digits.
+    let mut text = [0u8; 24];
+    let mut len = 0;
+    if rounded < 0 {
+        text[0] = b'-';
+        len = 1;
+    }
+    let magnitude = rounded.unsigned_abs();
+    let mut whole = itoa::Buffer::new();
+    let whole = whole.format(magnitude / 10_000).as_bytes();
+    text[len..len + whole.len()].copy_from_slice(whole);
+    len += whole.len();
+    match fraction_digit_bytes(magnitude % 10_000, &mut [0; 4]) {
+        b"" if point_zero => {
+            text[len..len + 2].copy_from_slice(b".0");
+            len += 2;
+        }
         b"" => {}
         fraction => {
-            out.push(b'.');
-            out.extend_from_slice(fraction);
+            text[len] = b'.';
+            text[len + 1..len + 1 + fraction.len()].copy_from_slice(fraction);
+            len += 1 + fraction.len();
         }
     }
+    out.extend_from_slice(&text[..len]);
     true
 }
 
@@ -1163,27 +1271,8 @@ fn fraction_digit_bytes(fraction: u64, buffer: &mut [u8; 4]) -> &[u8] {
     &buffer[..used]
 }
 
-/// The decimal digits of `value`.
-fn u64_digits(value: u64, buffer: &mut [u8; 20]) -> &str {
-    std::str::from_utf8(u64_digit_bytes(value, buffer)).unwrap_or("")
-}
-
-/// [`u64_digits`] as bytes (no UTF-8 check, for the JSONL writer).
-fn u64_digit_bytes(mut value: u64, buffer: &mut [u8; 20]) -> &[u8] {
-    let mut start = buffer.len();
-    loop {
-        start -= 1;
-        buffer[start] = b'0' + (value % 10) as u8;
-        value /= 10;
-        if value == 0 {
-            break;
-        }
-    }
-    &buffer[start..]
-}
-
 fn write_u64(out: &mut Vec<u8>, value: u64) {
-    out.extend_from_slice(u64_digit_bytes(value, &mut [0; 20]));
+    out.extend_from_slice(itoa::Buffer::new().format(value).as_bytes());
 }
 
 /// `--format text`: a readable trace, one line an event:
@@ -1458,7 +1547,7 @@ impl fmt::Display for Num {
         if scaled < 0.0 {
             f.write_str("-")?;
         }
-        f.write_str(u64_digits(magnitude / 10_000, &mut [0; 20]))?;
+        f.write_str(itoa::Buffer::new().format(magnitude / 10_000))?;
         let mut fraction_buffer = [0; 4];
         let fraction = fraction_digits(magnitude % 10_000, &mut fraction_buffer);
         if !fraction.is_empty() {

@@ -50,7 +50,9 @@ enum Body {
 pub struct Page {
     /// The index of the first instruction in the program.
     base: usize,
-    instructions: Arc<[Instruction]>,
+    /// A vector rather than a slice: `Arc<[T]>` from a `Vec` copies every
+    /// instruction once more.
+    instructions: Arc<Vec<Instruction>>,
     /// Where the program has blocks with errors, by line, up to this
     /// page's last line (sorted): a run that reaches one stops there.
     errors: Arc<[Source]>,
@@ -60,7 +62,7 @@ impl Page {
     fn empty() -> Self {
         Self {
             base: 0,
-            instructions: Arc::from(Vec::new()),
+            instructions: Arc::new(Vec::new()),
             errors: Arc::from(Vec::new()),
         }
     }
@@ -116,11 +118,43 @@ pub trait PageSource: Send {
 pub struct SourcePage {
     /// The next instructions of the program; a page with none only
     /// carries errors.
-    pub instructions: Vec<Instruction>,
+    instructions: Vec<Instruction>,
     /// Where the blocks up to the page's last line that have errors are
     /// (where their first error is), in order; blocks without
     /// instructions included.
-    pub errors: Vec<Source>,
+    errors: Vec<Source>,
+    /// [`jump_marks`] of `instructions`.
+    marks: Vec<u32>,
+}
+
+impl SourcePage {
+    /// A page of `instructions` and the places of the `errors` up to its
+    /// last line. Its jump targets are found here, on the thread that
+    /// makes the page, rather than by the run.
+    pub fn new(instructions: Vec<Instruction>, errors: Vec<Source>) -> Self {
+        let marks = jump_marks(&instructions);
+        Self {
+            instructions,
+            errors,
+            marks,
+        }
+    }
+}
+
+/// The offsets of the labels, jumps and skipped blocks among
+/// `instructions`: what [`Labels`] indexes.
+fn jump_marks(instructions: &[Instruction]) -> Vec<u32> {
+    instructions
+        .iter()
+        .enumerate()
+        .filter(|(_, i)| {
+            matches!(
+                i.op,
+                Op::Label { .. } | Op::Jump { .. } | Op::SkipBlock { .. }
+            )
+        })
+        .map(|(offset, _)| offset as u32)
+        .collect()
 }
 
 impl PageSource for std::sync::mpsc::Receiver<SourcePage> {
@@ -143,8 +177,15 @@ struct Labels {
 }
 
 impl Labels {
-    fn add(&mut self, base: usize, instructions: &[Instruction]) {
-        for (offset, instruction) in instructions.iter().enumerate() {
+    /// Indexes the labels and jumps of `instructions`, the program's
+    /// from `base` on, at their `marks` ([`jump_marks`]).
+    fn add(&mut self, base: usize, instructions: &[Instruction], marks: &[u32]) {
+        let marked = || {
+            marks
+                .iter()
+                .filter_map(|&offset| Some((offset as usize, instructions.get(offset as usize)?)))
+        };
+        for (offset, instruction) in marked() {
             if let Op::Label { name } = &instruction.op {
                 let index = base + offset;
                 self.by_name.entry(name.clone()).or_insert(index);
@@ -153,7 +194,7 @@ impl Labels {
                 }
             }
         }
-        for (offset, instruction) in instructions.iter().enumerate() {
+        for (offset, instruction) in marked() {
             let target = match &instruction.op {
                 Op::Jump { target, .. } => target,
                 Op::SkipBlock { end, .. } => end,
@@ -238,11 +279,11 @@ impl Stream {
                 continue;
             }
             let base = self.received;
-            self.labels.add(base, &page.instructions);
+            self.labels.add(base, &page.instructions, &page.marks);
             self.received += page.instructions.len();
             self.pages.push_back(Page {
                 base,
-                instructions: Arc::from(page.instructions),
+                instructions: Arc::new(page.instructions),
                 errors: Arc::clone(&self.errors),
             });
             return true;
@@ -294,10 +335,14 @@ impl Program {
     /// The program `document` lowered from `source`; indexes its labels.
     pub fn new(name: impl Into<String>, source: Arc<SourceFile>, document: Document) -> Self {
         let mut labels = Labels::default();
-        labels.add(0, &document.instructions);
+        labels.add(
+            0,
+            &document.instructions,
+            &jump_marks(&document.instructions),
+        );
         let page = Page {
             base: 0,
-            instructions: Arc::from(document.instructions),
+            instructions: Arc::new(document.instructions),
             errors: Arc::from(Vec::new()),
         };
         Self::with_body(name, source, Body::Whole { page, labels })
@@ -617,15 +662,15 @@ mod tests {
                     col: 1,
                     span: ByteRange { start: 0, end: 0 },
                 };
-                SourcePage {
-                    instructions: vec![Instruction {
+                SourcePage::new(
+                    vec![Instruction {
                         source,
                         op: Op::Label {
                             name: format!("L@{line}"),
                         },
                     }],
-                    errors: Vec::new(),
-                }
+                    Vec::new(),
+                )
             })
         }
     }

@@ -15,7 +15,7 @@ use std::sync::Arc;
 use std::sync::mpsc::{SyncSender, sync_channel};
 
 use gcodec_ail::{ByteRange, Source};
-use gcodec_parser::chunks;
+use gcodec_parser::chunks_at;
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, LoweredChunk, lower_chunks, outline_chunks};
 use gcodec_source::{Diagnostic, SourceFile};
@@ -60,7 +60,7 @@ pub fn run_streamed<R>(
     run: impl FnOnce(Arc<Program>) -> R,
 ) -> (R, Vec<Diagnostic>) {
     let src = file.bytes();
-    let chunks = chunks(src, options.page_lines.max(1));
+    let chunks = chunks_at(file.line_starts(), src.len(), options.page_lines);
     let (outline, structure_diagnostics) = outline_chunks(
         file.name(),
         src,
@@ -95,10 +95,7 @@ pub fn run_streamed<R>(
                 diagnostics: Vec::new(),
             };
             // The errors pass 1 found go ahead of every page.
-            pages.send(SourcePage {
-                instructions: Vec::new(),
-                errors: known_errors,
-            });
+            pages.send(SourcePage::new(Vec::new(), known_errors));
             let workers = options.workers;
             lower_chunks(src, &chunks, workers, &outline, profile, |lowered| {
                 pages.lowered(lowered);
@@ -147,10 +144,7 @@ impl Pages<'_> {
         );
         self.parse_diagnostics.extend(chunk.parse_diagnostics);
         self.diagnostics.extend(chunk.diagnostics);
-        self.send(SourcePage {
-            instructions: chunk.instructions,
-            errors,
-        });
+        self.send(SourcePage::new(chunk.instructions, errors));
     }
 
     fn send(&mut self, page: SourcePage) {

@@ -652,6 +652,69 @@ fn hand_written_motion_json_is_what_serde_writes() {
     assert_eq!(written, expected);
 }
 
+/// The JSONL sink copies the text of a motion's `from` and `to_machine`
+/// when they are the last `to`, and of a file it just wrote: a run of
+/// motions whose maps and files are now the same, now not (another
+/// value, `-0.0` for `0.0`, another axis, an owned name, another file)
+/// must still be written exactly as serde writes each.
+#[test]
+fn repeated_maps_and_files_are_written_as_serde_writes_them() {
+    let files = [Arc::<str>::from("part.mpf"), Arc::from("dir\\sub \"1\".spf")];
+    let mut sink = JsonlSink::new(Vec::new());
+    let mut expected = String::new();
+    let mut to = AxisMap::from([("X", 0.0), ("Y", 1.5), ("Z", -2.0)]);
+    let mut state: u64 = 7;
+    for index in 0..2_000u32 {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        let pick = |shift: u32, n: u64| (state >> shift) % n;
+        let mut motion = arc_motion();
+        motion.from = to.clone();
+        if pick(10, 5) == 0 {
+            motion.from.insert(Cow::Borrowed("Y"), 99.0);
+        }
+        let value = (state >> 20) as f64 / 1e4;
+        let x = match pick(40, 4) {
+            0 => 0.0,
+            1 => -0.0,
+            _ => value,
+        };
+        to = match pick(44, 6) {
+            0 => AxisMap::from([("X", x), ("Y", 1.5)]),
+            1 => {
+                let mut map = AxisMap::from([("X", x), ("Y", 1.5)]);
+                map.insert(Cow::Owned("Z".into()), -2.0);
+                map
+            }
+            2 => AxisMap::from([("Y", 1.5), ("X", x), ("Z", -2.0)]),
+            _ => AxisMap::from([("X", x), ("Y", 1.5), ("Z", -2.0)]),
+        };
+        motion.to = to.clone();
+        motion.to_machine = to.clone();
+        if pick(50, 3) == 0 {
+            motion.to_machine.insert(Cow::Borrowed("X"), x + 100.0);
+        }
+        let event = Event {
+            kind: EventKind::Motion(motion),
+            source: EventSource {
+                file: Arc::clone(&files[(pick(55, 7) == 0) as usize]),
+                line: index,
+                col: 1,
+                level: 0,
+            },
+        };
+        expected.push_str(&serde_json::to_string(&event).expect("serialises"));
+        expected.push('\n');
+        sink.event(&event).expect("writes");
+    }
+    let written = String::from_utf8(sink.into_inner().expect("flushes")).expect("UTF-8");
+    for (line, (got, want)) in written.lines().zip(expected.lines()).enumerate() {
+        assert_eq!(got, want, "line {line}");
+    }
+    assert_eq!(written, expected);
+}
+
 #[test]
 fn hand_written_modal_change_json_is_what_serde_writes() {
     let mut sink = JsonlSink::new(Vec::new());

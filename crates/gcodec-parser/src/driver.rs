@@ -12,6 +12,7 @@ use gcodec_source::{Diagnostic, SourceFile, Span, decode};
 use crate::ast::*;
 use crate::error::SyntaxError;
 use crate::grammar::{self, Ctx, Spanned, decode_text};
+use crate::pipeline::map_chunks;
 use crate::{fast, structure};
 
 /// Deepest nesting of `(` and `[` accepted in one block. Deeper expressions
@@ -29,6 +30,11 @@ pub const MAX_OPERATORS_PER_BLOCK: usize = 1000;
 /// the token buffer, so the buffer is refilled per chunk rather than held
 /// for the whole file: memory stays proportional to the AST.
 const CHUNK_LINES: usize = 2048;
+
+/// The bytes of a segment whose tokens [`run_segment`] makes room for at
+/// the start (the flush comes after [`CHUNK_LINES`] lines, about 32 bytes
+/// each in real programs); longer segments grow the buffer.
+const FLUSH_BYTES_BOUND: usize = CHUNK_LINES * 64;
 
 /// The result of parsing: always a program, plus what was wrong with it.
 #[derive(Clone, Debug)]
@@ -164,32 +170,42 @@ pub struct Chunk {
 /// Cuts `src` into chunks of `lines` lines each (the last may be
 /// shorter). A source without lines is one empty chunk.
 pub fn chunks(src: &[u8], lines: usize) -> Vec<Chunk> {
+    let mut line_starts = vec![0];
+    line_starts.extend(memchr::memchr_iter(b'\n', src).map(|i| i as u32 + 1));
+    chunks_at(&line_starts, src.len(), lines)
+}
+
+/// [`chunks`] of a source of `len` bytes whose lines start at
+/// `line_starts` (0, then every offset after a `\n`, as
+/// [`gcodec_source::SourceFile::line_starts`] gives them): no second scan
+/// of the bytes, which on large files is a serial step before any thread
+/// starts.
+pub fn chunks_at(line_starts: &[u32], len: usize, lines: usize) -> Vec<Chunk> {
     let lines = lines.max(1);
-    let mut chunks = Vec::new();
+    // The offsets after each line end; the first line starts at 0.
+    let ends = line_starts.get(1..).unwrap_or_default();
+    let mut chunks = Vec::with_capacity(ends.len() / lines + 1);
     let mut start = 0;
     let mut first_block = 0;
-    let mut count = 0;
-    for newline in memchr::memchr_iter(b'\n', src) {
-        count += 1;
-        if count == lines {
-            chunks.push(Chunk {
-                bytes: start..newline + 1,
-                first_block,
-                blocks: count,
-            });
-            first_block += count;
-            start = newline + 1;
-            count = 0;
-        }
+    for full in ends.chunks_exact(lines) {
+        let end = full[lines - 1] as usize;
+        chunks.push(Chunk {
+            bytes: start..end,
+            first_block,
+            blocks: lines,
+        });
+        first_block += lines;
+        start = end;
     }
     // The last lines, the last without a line end; a source without
     // lines is one empty chunk.
-    if start < src.len() || chunks.is_empty() {
-        let blocks = count + usize::from(start < src.len() && src[src.len() - 1] != b'\n');
+    if start < len || chunks.is_empty() {
+        let ended = ends.len() % lines;
+        let unended = ends.last().map_or(0, |&e| e as usize) < len;
         chunks.push(Chunk {
-            bytes: start..src.len(),
+            bytes: start..len,
             first_block,
-            blocks,
+            blocks: ended + usize::from(unended),
         });
     }
     chunks
@@ -280,49 +296,6 @@ pub fn skim_chunks(src: &[u8], chunks: &[Chunk], workers: usize, each: impl FnMu
     map_chunks(chunks, workers, |chunk| skim_chunk(src, chunk), each);
 }
 
-/// Does `work` on each of `chunks` on `workers` threads and hands the
-/// results to `each` in the chunks' order. A worker works at most one
-/// chunk ahead of the chunk `each` takes, so memory does not grow with
-/// the program.
-pub fn map_chunks<'c, T: Send>(
-    chunks: &'c [Chunk],
-    workers: usize,
-    work: impl Fn(&'c Chunk) -> T + Sync,
-    mut each: impl FnMut(T),
-) {
-    if workers <= 1 || chunks.len() <= 1 {
-        for chunk in chunks {
-            each(work(chunk));
-        }
-        return;
-    }
-    let work = &work;
-    std::thread::scope(|scope| {
-        // Worker `k` works on chunks `k`, `k + workers`, …; taking from
-        // the workers in turn restores the order.
-        let done: Vec<std::sync::mpsc::Receiver<T>> = (0..workers)
-            .map(|k| {
-                let (sender, receiver) = std::sync::mpsc::sync_channel(1);
-                scope.spawn(move || {
-                    for chunk in chunks.iter().skip(k).step_by(workers) {
-                        if sender.send(work(chunk)).is_err() {
-                            return;
-                        }
-                    }
-                });
-                receiver
-            })
-            .collect();
-        for index in 0..chunks.len() {
-            // A worker that panicked ends the run; the scope re-raises it.
-            let Ok(result) = done[index % workers].recv() else {
-                break;
-            };
-            each(result);
-        }
-    });
-}
-
 /// `slots` cut into consecutive runs of the given lengths.
 fn runs<'a, T>(mut slots: &'a mut [T], lengths: &[usize]) -> Vec<&'a mut [T]> {
     lengths
@@ -406,7 +379,7 @@ fn run_segment(
         path: None,
         diagnostics: Vec::new(),
         structure_blocks: Vec::new(),
-        tokens: Vec::with_capacity(1024),
+        tokens: Vec::with_capacity(token_room(segment, reading)),
         lines: Vec::with_capacity(CHUNK_LINES),
     };
     if reading == Reading::Outline {
@@ -425,6 +398,17 @@ fn run_segment(
         path: driver.path,
         diagnostics: driver.diagnostics,
         structure_blocks: driver.structure_blocks,
+    }
+}
+
+/// Room for a segment's tokens up to its first flush. Lines of real
+/// programs hold a token per 4–6 bytes; growing the buffer from a fixed
+/// size copied it three times per chunk. An outline reads the lines it
+/// parses one at a time.
+fn token_room(segment: Segment, reading: Reading) -> usize {
+    match reading {
+        Reading::Outline => 64,
+        _ => (segment.end - segment.start).min(FLUSH_BYTES_BOUND) / 4 + 64,
     }
 }
 

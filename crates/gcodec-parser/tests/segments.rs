@@ -107,3 +107,29 @@ fn empty_and_tiny_inputs_in_many_segments() {
         assert_split_invariant(src, src.as_bytes());
     }
 }
+
+/// Chunks cover the source in order, `lines` lines each but the last,
+/// one block per line (a last line without a line end included).
+#[test]
+fn chunks_cover_every_line_once() {
+    for src in ["", "G1", "G1\n", "G1\nX2", "\n\n", "G1\r\nX2\n\nY3", "\n"] {
+        let src = src.as_bytes();
+        let newlines = src.iter().filter(|b| **b == b'\n').count();
+        let lines_in = newlines + usize::from(src.last().is_some_and(|b| *b != b'\n'));
+        for lines in 1..=4 {
+            let cut = chunks(src, lines);
+            let (mut at, mut block) = (0, 0);
+            for (i, chunk) in cut.iter().enumerate() {
+                assert_eq!(chunk.bytes.start, at, "{src:?} by {lines}: contiguous");
+                assert_eq!(chunk.first_block, block, "{src:?} by {lines}");
+                if i + 1 < cut.len() {
+                    assert_eq!(chunk.blocks, lines, "{src:?} by {lines}: full chunk");
+                }
+                at = chunk.bytes.end;
+                block += chunk.blocks;
+            }
+            assert_eq!(at, src.len(), "{src:?} by {lines}: every byte");
+            assert_eq!(block, lines_in, "{src:?} by {lines}: every line");
+        }
+    }
+}

@@ -277,13 +277,15 @@ impl FlowBuilder {
                 .flat_map(|(name, blocks)| {
                     blocks
                         .iter()
-                        .map(move |&b| (b, false, format!("{name}@{}", b + 1)))
+                        .map(move |&b| (b, false, line_label(name, b + 1, "")))
                 })
-                .chain(
-                    all_numbers
-                        .iter()
-                        .map(|&(value, b)| (b as usize, true, format!("N{value}@{}", b + 1))),
-                )
+                .chain(all_numbers.iter().map(|&(value, b)| {
+                    (
+                        b as usize,
+                        true,
+                        line_label(&number_text(value), b as usize + 1, ""),
+                    )
+                }))
                 .collect();
             named.sort_by_key(|(block, is_number, _)| (*block, *is_number));
             for (block, _, name) in named {
@@ -435,24 +437,57 @@ pub(crate) fn structure_label(kind: StructureKind, open_line: usize, part: &str)
         StructureKind::Loop => "LOOP",
         StructureKind::Repeat => "REPEAT",
     };
-    format!("{keyword}@{open_line}.{part}")
+    line_label(keyword, open_line, part)
+}
+
+/// `{name}@{line}`, then `.{part}` unless `part` is empty. Built by hand:
+/// lowering names a label or a jump for every structure part, and
+/// `format!` cost more than the rest of such a block.
+pub(crate) fn line_label(name: &str, line: usize, part: &str) -> String {
+    let mut label = String::with_capacity(name.len() + part.len() + 12);
+    label.push_str(name);
+    push_line(&mut label, line, part);
+    label
+}
+
+/// `@{line}`, then `.{part}` unless `part` is empty.
+fn push_line(label: &mut String, line: usize, part: &str) {
+    label.push('@');
+    label.push_str(itoa::Buffer::new().format(line));
+    if !part.is_empty() {
+        label.push('.');
+        label.push_str(part);
+    }
 }
 
 /// The label of the jump target in block `to`: `LBL@12`, `N100@40`.
 fn label_name(target: &JumpTarget, to: usize) -> String {
-    format!("{}@{}", target_text(target), to + 1)
+    let mut label = target_text(target);
+    push_line(&mut label, to + 1, "");
+    label
 }
 
 fn target_text(target: &JumpTarget) -> String {
     match target {
         JumpTarget::Label { name, .. } => name.to_ascii_uppercase().to_string(),
-        JumpTarget::BlockNumber { value, .. } => format!("N{value}"),
+        JumpTarget::BlockNumber { value, .. } => number_text(*value),
         JumpTarget::Expr(_) => "<computed>".to_owned(),
     }
+}
+
+/// `N{value}`.
+pub(crate) fn number_text(value: u64) -> String {
+    let mut digits = itoa::Buffer::new();
+    let digits = digits.format(value);
+    // Room for the `@{line}` a label adds.
+    let mut text = String::with_capacity(digits.len() + 13);
+    text.push('N');
+    text.push_str(digits);
+    text
 }
 
 /// The label after the last block of the section of the `REPEAT` in
 /// block `at`.
 fn section_end_label(at: usize) -> String {
-    format!("SECTION@{}.end", at + 1)
+    line_label("SECTION", at + 1, "end")
 }

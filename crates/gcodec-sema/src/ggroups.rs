@@ -717,9 +717,24 @@ pub fn member(number: u8, index: u8) -> Option<&'static str> {
 /// rewritten (`WALCS01` is not `WALCS1`), since those are identifiers, not
 /// address + value.
 ///
-/// Runs for every G word of every block, so it normalises into a stack
-/// buffer and binary-searches a sorted table instead of scanning the groups.
+/// Runs for every G word of every block and every modal change a run
+/// executes: `G<digits>` is read from [`lookup_g`]'s table, other names
+/// are normalised into a stack buffer and binary-searched in a sorted
+/// table.
 pub fn lookup(code: &str) -> Option<(u8, u8)> {
+    match code.as_bytes() {
+        [b'G' | b'g', digits @ ..]
+            if (1..=3).contains(&digits.len()) && digits.iter().all(u8::is_ascii_digit) =>
+        {
+            let n = digits.iter().fold(0, |n, d| n * 10 + u64::from(d - b'0'));
+            lookup_g(n)
+        }
+        _ => search(code),
+    }
+}
+
+/// [`lookup`] by binary search.
+fn search(code: &str) -> Option<(u8, u8)> {
     let mut buf = [0u8; MAX_NAME_LEN];
     let key = normalise(code.as_bytes(), &mut buf)?;
     let at = LOOKUP
@@ -735,10 +750,10 @@ pub fn lookup(code: &str) -> Option<(u8, u8)> {
 pub fn lookup_g(n: u64) -> Option<(u8, u8)> {
     static BY_NUMBER: std::sync::OnceLock<Vec<Option<(u8, u8)>>> = std::sync::OnceLock::new();
     let table =
-        BY_NUMBER.get_or_init(|| (0..NUMBERED_G).map(|n| lookup(&format!("G{n}"))).collect());
+        BY_NUMBER.get_or_init(|| (0..NUMBERED_G).map(|n| search(&format!("G{n}"))).collect());
     match usize::try_from(n).ok().and_then(|i| table.get(i)) {
         Some(found) => *found,
-        None => lookup(&format!("G{n}")),
+        None => search(&format!("G{n}")),
     }
 }
 
@@ -1296,7 +1311,10 @@ mod tests {
     #[test]
     fn numbered_g_commands_are_found_by_number_as_by_name() {
         for n in (0..2 * NUMBERED_G).chain([u64::MAX]) {
-            assert_eq!(lookup_g(n), lookup(&format!("G{n}")), "G{n}");
+            let name = format!("G{n}");
+            assert_eq!(lookup_g(n), search(&name), "{name}");
+            assert_eq!(lookup(&name), search(&name), "{name}");
+            assert_eq!(lookup(&format!("g00{n}")), search(&name), "{name}");
         }
         // Every numbered member is below the table's end.
         for g in G_GROUPS {

@@ -7,6 +7,7 @@
 //! a consumer never has to re-read the file to point at a construct.
 
 mod diagnostic;
+mod lines;
 mod render;
 mod source;
 mod span;

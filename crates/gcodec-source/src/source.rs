@@ -1,6 +1,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::Span;
+use crate::lines::{line_starts, read_with_lines};
 
 /// One part program as read from disk: its name and its bytes.
 #[derive(Clone, Debug)]
@@ -26,9 +27,7 @@ impl SourceFile {
             // Spans are u32: keep the addressable prefix rather than wrap.
             bytes.truncate(MAX_SOURCE_LEN);
         }
-        let mut line_starts = Vec::with_capacity(bytes.len() / 24 + 1);
-        line_starts.push(0);
-        line_starts.extend(memchr::memchr_iter(b'\n', &bytes).map(|i| i as u32 + 1));
+        let line_starts = line_starts(&bytes);
         Self {
             name: name.into(),
             path: None,
@@ -39,16 +38,13 @@ impl SourceFile {
 
     /// Reads a file from disk.
     pub fn read(path: &Path) -> std::io::Result<Self> {
-        let bytes = std::fs::read(path)?;
-        if bytes.len() > MAX_SOURCE_LEN {
-            return Err(std::io::Error::new(
-                std::io::ErrorKind::InvalidData,
-                format!("file is larger than {MAX_SOURCE_LEN} bytes"),
-            ));
-        }
-        let mut file = Self::new(path.display().to_string(), bytes);
-        file.path = Some(path.to_path_buf());
-        Ok(file)
+        let (bytes, line_starts) = read_with_lines(path, MAX_SOURCE_LEN)?;
+        Ok(Self {
+            name: path.display().to_string(),
+            path: Some(path.to_path_buf()),
+            bytes,
+            line_starts,
+        })
     }
 
     /// The name used in diagnostics and dumps (the path as given).

@@ -205,7 +205,7 @@ impl Lowering<'_> {
     fn section_bound(&mut self, bound: &JumpTarget) -> Value {
         let text = match bound {
             JumpTarget::Label { name, .. } => name.to_ascii_uppercase().to_string(),
-            JumpTarget::BlockNumber { value, .. } => format!("N{value}"),
+            JumpTarget::BlockNumber { value, .. } => crate::flow::number_text(*value),
             JumpTarget::Expr(e) => {
                 self.check_variables(e);
                 return values::value(e);

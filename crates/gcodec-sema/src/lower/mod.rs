@@ -491,7 +491,7 @@ struct OpenSkip {
 /// `SKIP@<line>.end`, like the other labels lowering makes up (`@` and `.`
 /// keep it apart from the program's own labels, `SKIP@12` for `SKIP:`).
 fn skip_label(index: usize) -> String {
-    format!("SKIP@{}.end", index + 1)
+    crate::flow::line_label("SKIP", index + 1, "end")
 }
 
 /// What one block says, collected before instructions are emitted.

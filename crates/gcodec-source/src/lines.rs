@@ -1,0 +1,186 @@
+//! A source's line table, and reading a large file with it.
+//!
+//! Reading the file and finding its lines are the steps of a run before
+//! any other thread starts (a streamed run cuts its chunks from the line
+//! table), so on large files both are split over two threads: each reads
+//! its half of the file and finds the lines in it.
+
+use std::fs::File;
+use std::io::{self, Read};
+use std::path::Path;
+
+/// Sources from this size on are read and have their lines found on two
+/// threads.
+const PARALLEL_FROM: usize = 1 << 22;
+
+/// The offset of every line's start: 0, then every offset after a `\n`.
+pub(crate) fn line_starts(bytes: &[u8]) -> Vec<u32> {
+    if bytes.len() < PARALLEL_FROM {
+        let mut starts = vec![0];
+        push_line_starts(bytes, 0, &mut starts);
+        return starts;
+    }
+    let middle = bytes.len() / 2;
+    let (first, second) = bytes.split_at(middle);
+    in_halves(
+        |starts| {
+            push_line_starts(first, 0, starts);
+            Ok(())
+        },
+        |starts| {
+            push_line_starts(second, middle, starts);
+            Ok(())
+        },
+        bytes.len(),
+    )
+    // Finding lines does not fail.
+    .unwrap_or_default()
+}
+
+/// The bytes of the file at `path` and their [`line_starts`]; an
+/// `InvalidData` error if it is longer than `max_len`.
+pub(crate) fn read_with_lines(path: &Path, max_len: usize) -> io::Result<(Vec<u8>, Vec<u32>)> {
+    let too_large = || {
+        io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!("file is larger than {max_len} bytes"),
+        )
+    };
+    let mut file = File::open(path)?;
+    let metadata = file.metadata()?;
+    // A regular file's length is known; a pipe's or a device's is not.
+    let len = usize::try_from(metadata.len()).unwrap_or(usize::MAX);
+    if metadata.is_file() && len > max_len {
+        return Err(too_large());
+    }
+    #[cfg(unix)]
+    if metadata.is_file()
+        && len >= PARALLEL_FROM
+        && let Some(read) = read_in_halves(&file, len)?
+    {
+        return Ok(read);
+    }
+    let mut bytes = Vec::new();
+    file.read_to_end(&mut bytes)?;
+    if bytes.len() > max_len {
+        return Err(too_large());
+    }
+    let starts = line_starts(&bytes);
+    Ok((bytes, starts))
+}
+
+/// Reads the `len` bytes of `file`, each half on its own thread, finding
+/// the lines as it goes; `None` if the file grew meanwhile (the caller
+/// then reads it whole).
+#[cfg(unix)]
+fn read_in_halves(file: &File, len: usize) -> io::Result<Option<(Vec<u8>, Vec<u32>)>> {
+    use std::os::unix::fs::FileExt;
+    let mut bytes = vec![0; len];
+    let middle = len / 2;
+    let (first, second) = bytes.split_at_mut(middle);
+    let starts = in_halves(
+        |starts| {
+            file.read_exact_at(first, 0)?;
+            push_line_starts(first, 0, starts);
+            Ok(())
+        },
+        |starts| {
+            file.read_exact_at(second, middle as u64)?;
+            push_line_starts(second, middle, starts);
+            Ok(())
+        },
+        len,
+    )?;
+    let grew = file.read_at(&mut [0], len as u64)? > 0;
+    Ok((!grew).then_some((bytes, starts)))
+}
+
+/// The line table of a source of `len` bytes from its two halves: `first`
+/// runs on this thread, `second` on another, each pushing the line
+/// starts of its half.
+fn in_halves(
+    first: impl FnOnce(&mut Vec<u32>) -> io::Result<()>,
+    second: impl FnOnce(&mut Vec<u32>) -> io::Result<()> + Send,
+    len: usize,
+) -> io::Result<Vec<u32>> {
+    let mut starts = Vec::with_capacity(len / 24 + 1);
+    starts.push(0);
+    let rest = std::thread::scope(|scope| {
+        let rest = scope.spawn(|| {
+            let mut rest = Vec::with_capacity(len / 48 + 1);
+            second(&mut rest).map(|()| rest)
+        });
+        let own = first(&mut starts);
+        let rest = rest
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        own.and(rest)
+    })?;
+    starts.extend_from_slice(&rest);
+    Ok(starts)
+}
+
+/// Pushes the offset after each `\n` of `part`, which starts at `base`.
+fn push_line_starts(part: &[u8], base: usize, starts: &mut Vec<u32>) {
+    starts.extend(memchr::memchr_iter(b'\n', part).map(|i| (base + i) as u32 + 1));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A large source, with a line end just before, at or after the
+    /// middle where it is split.
+    fn large_sources() -> Vec<Vec<u8>> {
+        let mut base = Vec::new();
+        while base.len() < PARALLEL_FROM + 100 {
+            base.extend_from_slice(b"N10 G1 X1 Y2\r\n");
+        }
+        base.push(b'Z');
+        let middle = base.len() / 2;
+        [middle - 1, middle, middle + 1]
+            .into_iter()
+            .map(|at| {
+                let mut bytes = base.clone();
+                bytes[at] = b'\n';
+                bytes
+            })
+            .collect()
+    }
+
+    fn one_scan(bytes: &[u8]) -> Vec<u32> {
+        let mut expected = vec![0];
+        expected.extend(
+            (0..bytes.len())
+                .filter(|&i| bytes[i] == b'\n')
+                .map(|i| i as u32 + 1),
+        );
+        expected
+    }
+
+    /// The table found on two threads is the one a plain scan gives.
+    #[test]
+    fn line_starts_of_a_large_source_are_those_of_one_scan() {
+        for bytes in large_sources() {
+            assert_eq!(line_starts(&bytes), one_scan(&bytes));
+        }
+    }
+
+    /// A large file read in halves has its bytes and the table of one
+    /// scan; a file over the limit is refused.
+    #[test]
+    fn a_large_file_is_read_whole_with_its_lines() {
+        let dir = std::env::temp_dir().join(format!("gcodec-lines-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        for (i, bytes) in large_sources().into_iter().enumerate() {
+            let path = dir.join(format!("large{i}.mpf"));
+            std::fs::write(&path, &bytes).unwrap();
+            let (read, starts) = read_with_lines(&path, usize::MAX).unwrap();
+            assert!(read == bytes, "the bytes of {}", path.display());
+            assert_eq!(starts, one_scan(&bytes));
+            let refused = read_with_lines(&path, bytes.len() - 1).unwrap_err();
+            assert_eq!(refused.kind(), io::ErrorKind::InvalidData);
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
