@@ -659,7 +659,10 @@ fn hand_written_motion_json_is_what_serde_writes() {
 /// must still be written exactly as serde writes each.
 #[test]
 fn repeated_maps_and_files_are_written_as_serde_writes_them() {
-    let files = [Arc::<str>::from("part.mpf"), Arc::from("dir\\sub \"1\".spf")];
+    let files = [
+        Arc::<str>::from("part.mpf"),
+        Arc::from("dir\\sub \"1\".spf"),
+    ];
     let mut sink = JsonlSink::new(Vec::new());
     let mut expected = String::new();
     let mut to = AxisMap::from([("X", 0.0), ("Y", 1.5), ("Z", -2.0)]);
