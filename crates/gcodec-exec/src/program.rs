@@ -12,6 +12,7 @@ use std::ops::Deref;
 use std::sync::{Arc, Mutex, PoisonError};
 
 use gcodec_ail::{Document, Instruction, JumpSearch, Op, Source};
+use gcodec_sema::SpentBin;
 use gcodec_source::SourceFile;
 use rustc_hash::FxHashMap;
 
@@ -56,6 +57,8 @@ pub struct Page {
     /// Where the program has blocks with errors, by line, up to this
     /// page's last line (sorted): a run that reaches one stops there.
     errors: Arc<[Source]>,
+    /// Where the instructions go when the page is forgotten.
+    spent: Option<SpentBin>,
 }
 
 impl Page {
@@ -64,6 +67,7 @@ impl Page {
             base: 0,
             instructions: Arc::new(Vec::new()),
             errors: Arc::from(Vec::new()),
+            spent: None,
         }
     }
 
@@ -125,6 +129,7 @@ pub struct SourcePage {
     errors: Vec<Source>,
     /// [`jump_marks`] of `instructions`.
     marks: Vec<u32>,
+    spent: Option<SpentBin>,
 }
 
 impl SourcePage {
@@ -137,7 +142,16 @@ impl SourcePage {
             instructions,
             errors,
             marks,
+            spent: None,
         }
+    }
+
+    /// The page, whose instructions are given back to `spent` once the
+    /// run has forgotten them (to be freed by the thread that allocated
+    /// them).
+    pub fn given_back_to(mut self, spent: Option<SpentBin>) -> Self {
+        self.spent = spent;
+        self
     }
 }
 
@@ -285,6 +299,7 @@ impl Stream {
                 base,
                 instructions: Arc::new(page.instructions),
                 errors: Arc::clone(&self.errors),
+                spent: page.spent,
             });
             return true;
         }
@@ -315,7 +330,14 @@ impl Stream {
         while forgettable + 1 < at && self.pages[forgettable].last_line() < keep_from {
             forgettable += 1;
         }
-        self.pages.drain(..forgettable);
+        for page in self.pages.drain(..forgettable) {
+            // Only a page nothing else holds can be given back whole.
+            if let Some(spent) = page.spent
+                && let Ok(instructions) = Arc::try_unwrap(page.instructions)
+            {
+                spent.give_back(instructions);
+            }
+        }
     }
 
     /// Pulls pages until `found` says yes or the source ends.
@@ -344,6 +366,7 @@ impl Program {
             base: 0,
             instructions: Arc::new(document.instructions),
             errors: Arc::from(Vec::new()),
+            spent: None,
         };
         Self::with_body(name, source, Body::Whole { page, labels })
     }

@@ -144,7 +144,7 @@ impl Pages<'_> {
         );
         self.parse_diagnostics.extend(chunk.parse_diagnostics);
         self.diagnostics.extend(chunk.diagnostics);
-        self.send(SourcePage::new(chunk.instructions, errors));
+        self.send(SourcePage::new(chunk.instructions, errors).given_back_to(chunk.spent));
     }
 
     fn send(&mut self, page: SourcePage) {

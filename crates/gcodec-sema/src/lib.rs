@@ -42,6 +42,7 @@ mod values;
 
 pub use definitions::Definitions;
 pub use lower::outline::{Outline, OutlineBuilder, outline, outline_chunks};
+pub use lower::spent::SpentBin;
 pub use lower::stream::{ChunkLowering, LoweredChunk, lower_chunks};
 pub use lower::{Lowered, lower, lower_in_parts, lower_with, refine};
 pub use mfunc::m_class;

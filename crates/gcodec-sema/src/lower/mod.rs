@@ -32,6 +32,7 @@ mod calls;
 mod control;
 mod frames;
 pub(crate) mod outline;
+pub(crate) mod spent;
 mod statements;
 pub(crate) mod stream;
 mod variables;

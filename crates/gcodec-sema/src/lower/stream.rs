@@ -18,6 +18,7 @@ use gcodec_profile::Profile;
 use gcodec_source::Diagnostic;
 
 use super::outline::Outline;
+use super::spent::SpentBin;
 use super::{Carry, Lowering, capacity};
 
 /// Lowers the program `src` chunk by chunk against its `outline` (pass 2
@@ -56,11 +57,19 @@ pub fn lower_chunks(
         chunks,
         workers,
         |chunk| {
+            // What the run is done with is freed here, where it was
+            // allocated (see `spent.rs`).
+            SpentBin::free_this_threads();
             let mut lowering = Lowering::new(outline, profile, 0, chunk.first_block > 0);
             let parse_diagnostics = lower_part(chunk, &mut lowering);
-            (chunk, lowering, parse_diagnostics)
+            (
+                chunk,
+                lowering,
+                parse_diagnostics,
+                SpentBin::of_this_thread(),
+            )
         },
-        |(chunk, mut lowering, mut parse_diagnostics)| {
+        |(chunk, mut lowering, mut parse_diagnostics, mut spent)| {
             if chunk.first_block != next {
                 return;
             }
@@ -70,12 +79,14 @@ pub fn lower_chunks(
             {
                 lowering = Lowering::resumed(outline, profile, before);
                 parse_diagnostics = lower_part(chunk, &mut lowering);
+                spent = SpentBin::of_this_thread();
             }
             carry = Some(lowering.carry(carry.unwrap_or_default()));
             each(LoweredChunk {
                 instructions: lowering.document.instructions,
                 diagnostics: lowering.diagnostics,
                 parse_diagnostics,
+                spent: Some(spent),
             });
         },
     );
@@ -85,6 +96,7 @@ pub fn lower_chunks(
         instructions: end.document.instructions,
         diagnostics: end.diagnostics,
         parse_diagnostics: Vec::new(),
+        spent: None,
     });
 }
 
@@ -114,6 +126,9 @@ pub struct LoweredChunk {
     /// The chunk's lexical and syntax errors ([`lower_chunks`] only: a
     /// [`ChunkLowering`] is given parsed blocks).
     pub parse_diagnostics: Vec<Diagnostic>,
+    /// Where to give the instructions back when done with them: the bin
+    /// of the thread that allocated them ([`lower_chunks`] only).
+    pub spent: Option<SpentBin>,
 }
 
 impl<'a> ChunkLowering<'a> {
@@ -150,6 +165,7 @@ impl<'a> ChunkLowering<'a> {
             instructions: std::mem::take(&mut self.lowering.document.instructions),
             diagnostics: std::mem::take(&mut self.lowering.diagnostics),
             parse_diagnostics: Vec::new(),
+            spent: None,
         }
     }
 }
