@@ -380,12 +380,29 @@ impl Rotation {
 ///
 /// A frame belongs to the [`FrameAxes`] it was made for: its vectors are
 /// indexed like them.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Frame {
     axes: Vec<AxisPart>,
     rotation: Rotation,
     /// Per geometry slot its axis index (copied from the [`FrameAxes`]).
     slots: [Option<usize>; 3],
+    /// Which value this is: a new frame gets a new one, a clone keeps it.
+    /// A frame is only changed while it is made (its fields are private,
+    /// and `apply` replaces it whole), so frames of one id are equal.
+    id: u64,
+}
+
+/// Frames are equal by their contents, whatever their ids.
+impl PartialEq for Frame {
+    fn eq(&self, other: &Self) -> bool {
+        self.axes == other.axes && self.rotation == other.rotation && self.slots == other.slots
+    }
+}
+
+/// A fresh [`Frame::id`].
+fn frame_id() -> u64 {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
 }
 
 impl Frame {
@@ -395,7 +412,14 @@ impl Frame {
             axes: vec![AxisPart::NEUTRAL; axes.len()],
             rotation: Rotation::NONE,
             slots: axes.axis_of,
+            id: frame_id(),
         }
+    }
+
+    /// Whether `other` is equal to this frame, at once when it is a clone
+    /// of it (a motion asks twice whether the frames changed).
+    pub fn same_as(&self, other: &Frame) -> bool {
+        self.id == other.id || self == other
     }
 
     /// Whether every component is neutral (all translations 0, all angles
@@ -607,6 +631,7 @@ impl Frame {
             axes,
             rotation: self.rotation.then(&inner.rotation.mirrored(mirror)),
             slots: self.slots,
+            id: frame_id(),
         }
     }
 
@@ -646,6 +671,7 @@ impl Frame {
             axes,
             rotation: self.rotation.inverse().mirrored(mirror),
             slots: self.slots,
+            id: frame_id(),
         }
     }
 
@@ -1071,6 +1097,31 @@ mod tests {
 
     fn close(a: f64, b: f64) {
         assert!((a - b).abs() < 1e-12, "got {a}, expected {b}");
+    }
+
+    /// A clone is the same frame at once; frames made apart are the same
+    /// when their contents are, and a changed frame is another.
+    #[test]
+    fn frames_are_the_same_by_id_or_by_contents() {
+        let axes = FrameAxes::new([("X", true), ("Y", true), ("Z", true)]);
+        let plane = Plane::G17;
+        let mut shifted = Frame::neutral(&axes);
+        shifted
+            .apply(&axes, FrameOp::Trans, &[(0, 5.0)], None, plane)
+            .unwrap();
+        let clone = shifted.clone();
+        assert!(clone.same_as(&shifted) && clone.id == shifted.id);
+        let mut again = Frame::neutral(&axes);
+        again
+            .apply(&axes, FrameOp::Trans, &[(0, 5.0)], None, plane)
+            .unwrap();
+        assert!(again.id != shifted.id && again.same_as(&shifted));
+        let mut moved = clone.clone();
+        moved
+            .apply(&axes, FrameOp::ATrans, &[(1, 1.0)], None, plane)
+            .unwrap();
+        assert!(!moved.same_as(&clone) && moved.id != clone.id);
+        assert!(!Frame::neutral(&axes).same_as(&shifted));
     }
 
     #[test]

@@ -246,8 +246,8 @@ impl MachineState {
             let c = self.frame_cache.borrow();
             c.group8 == self.group8
                 && c.suppressed == suppressed
-                && c.settable == *settable
-                && c.programmable == self.programmable
+                && c.settable.same_as(settable)
+                && c.programmable.same_as(&self.programmable)
         };
         if !fresh {
             let total = if suppressed {
