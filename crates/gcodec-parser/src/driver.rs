@@ -882,17 +882,18 @@ fn settles(block: &Block) -> bool {
 /// a whole run of letters there, since the lexer starts a name only after
 /// a byte that is no letter and ends it only before one.
 pub(crate) fn is_plain(line: &[u8]) -> bool {
-    let code = memchr::memchr(b';', line).map_or(line, |p| &line[..p]);
+    // The line ends at the comment's `;`, found in the same pass.
     let mut i = 0;
-    while i < code.len() {
-        match PLAIN_BYTES[usize::from(code[i])] {
+    while i < line.len() {
+        match PLAIN_BYTES[usize::from(line[i])] {
             Plain::Yes => i += 1,
+            Plain::Comment => return true,
             Plain::Name => {
                 let start = i;
-                while i < code.len() && PLAIN_BYTES[usize::from(code[i])] == Plain::Name {
+                while i < line.len() && PLAIN_BYTES[usize::from(line[i])] == Plain::Name {
                     i += 1;
                 }
-                let plain = match &code[start..i] {
+                let plain = match &line[start..i] {
                     [b'M' | b'm' | b'_'] => false,
                     [_] => true,
                     name => is_plain_name(name),
@@ -903,7 +904,7 @@ pub(crate) fn is_plain(line: &[u8]) -> bool {
             }
             // A point belongs to a number: `1.5`, `.5`, `1.`.
             Plain::Point => {
-                let digit = |j: usize| code.get(j).is_some_and(u8::is_ascii_digit);
+                let digit = |j: usize| line.get(j).is_some_and(u8::is_ascii_digit);
                 if !(i > 0 && digit(i - 1) || digit(i + 1)) {
                     return false;
                 }
@@ -924,6 +925,8 @@ enum Plain {
     Name,
     /// `.`: plain in a number.
     Point,
+    /// `;`: the rest is a comment.
+    Comment,
     /// A label's `:`, a string, a system variable, a header, or a byte
     /// that starts no token.
     No,
@@ -938,6 +941,8 @@ const PLAIN_BYTES: [Plain; 256] = {
             Plain::Name
         } else if c == b'.' {
             Plain::Point
+        } else if c == b';' {
+            Plain::Comment
         } else if c.is_ascii_digit()
             || is_blank(c)
             || matches!(

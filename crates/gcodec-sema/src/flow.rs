@@ -131,6 +131,11 @@ pub(crate) struct FlowBuilder {
 }
 
 impl FlowBuilder {
+    /// Makes room for the block numbers of `blocks` more blocks.
+    pub(crate) fn reserve(&mut self, blocks: usize) {
+        self.numbers.reserve(blocks);
+    }
+
     /// Takes in block `index` of the program.
     pub(crate) fn block(&mut self, index: usize, block: &Block) {
         for statement in block.statements.iter() {

@@ -104,6 +104,13 @@ impl<'d> OutlineBuilder<'d> {
         }
     }
 
+    /// Makes room for what `blocks` more blocks may bring (most blocks
+    /// have a number, which the outline keeps): fed a chunk at a time,
+    /// the vectors would grow and be copied over and over.
+    pub fn reserve(&mut self, blocks: usize) {
+        self.flow.reserve(blocks);
+    }
+
     /// Takes in the next blocks of the program, the first of them block
     /// `first` (0-based).
     pub fn feed(&mut self, first: usize, blocks: &[Block]) {
@@ -186,6 +193,7 @@ pub fn outline_chunks<'d>(
     definitions: &'d Definitions,
 ) -> (Outline<'d>, Vec<Diagnostic>) {
     let mut builder = OutlineBuilder::new(file, profile, definitions);
+    builder.reserve(chunks.iter().map(|c| c.blocks).sum());
     let mut pairing = gcodec_parser::Pairing::default();
     let mut diagnostics = Vec::new();
     gcodec_parser::skim_chunks(src, chunks, workers, |mut parsed| {
