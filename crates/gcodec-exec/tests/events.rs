@@ -613,10 +613,26 @@ fn awkward_numbers() -> Vec<f64> {
     values
 }
 
-#[test]
-fn hand_written_motion_json_is_what_serde_writes() {
+/// Writes `events` through a [`JsonlSink`] and checks every line against
+/// serde's.
+fn assert_written_as_serde_writes(events: &[Event]) {
     let mut sink = JsonlSink::new(Vec::new());
     let mut expected = String::new();
+    for event in events {
+        expected.push_str(&serde_json::to_string(event).expect("serialises"));
+        expected.push('\n');
+        sink.event(event).expect("writes");
+    }
+    let written = String::from_utf8(sink.into_inner().expect("flushes")).expect("UTF-8");
+    for (line, (got, want)) in written.lines().zip(expected.lines()).enumerate() {
+        assert_eq!(got, want, "line {line}");
+    }
+    assert_eq!(written, expected);
+}
+
+#[test]
+fn hand_written_motion_json_is_what_serde_writes() {
+    let mut events = Vec::new();
     let numbers = awkward_numbers();
     for (index, chunk) in numbers.chunks(3).enumerate() {
         let value = |i: usize| chunk.get(i).copied().unwrap_or(0.0);
@@ -641,15 +657,9 @@ fn hand_written_motion_json_is_what_serde_writes() {
             kind: EventKind::Motion(motion),
             source,
         };
-        expected.push_str(&serde_json::to_string(&event).expect("serialises"));
-        expected.push('\n');
-        sink.event(&event).expect("writes");
+        events.push(event);
     }
-    let written = String::from_utf8(sink.into_inner().expect("flushes")).expect("UTF-8");
-    for (line, (got, want)) in written.lines().zip(expected.lines()).enumerate() {
-        assert_eq!(got, want, "line {line}");
-    }
-    assert_eq!(written, expected);
+    assert_written_as_serde_writes(&events);
 }
 
 /// The JSONL sink copies the text of a motion's `from` and `to_machine`
@@ -663,8 +673,7 @@ fn repeated_maps_and_files_are_written_as_serde_writes_them() {
         Arc::<str>::from("part.mpf"),
         Arc::from("dir\\sub \"1\".spf"),
     ];
-    let mut sink = JsonlSink::new(Vec::new());
-    let mut expected = String::new();
+    let mut events = Vec::new();
     let mut to = AxisMap::from([("X", 0.0), ("Y", 1.5), ("Z", -2.0)]);
     let mut state: u64 = 7;
     for index in 0..2_000u32 {
@@ -707,21 +716,14 @@ fn repeated_maps_and_files_are_written_as_serde_writes_them() {
                 level: 0,
             },
         };
-        expected.push_str(&serde_json::to_string(&event).expect("serialises"));
-        expected.push('\n');
-        sink.event(&event).expect("writes");
+        events.push(event);
     }
-    let written = String::from_utf8(sink.into_inner().expect("flushes")).expect("UTF-8");
-    for (line, (got, want)) in written.lines().zip(expected.lines()).enumerate() {
-        assert_eq!(got, want, "line {line}");
-    }
-    assert_eq!(written, expected);
+    assert_written_as_serde_writes(&events);
 }
 
 #[test]
 fn hand_written_modal_change_json_is_what_serde_writes() {
-    let mut sink = JsonlSink::new(Vec::new());
-    let mut expected = String::new();
+    let mut events = Vec::new();
     let codes: [Cow<'static, str>; 4] = [
         Cow::Borrowed("G1"),
         Cow::Borrowed("DIAMON"),
@@ -747,13 +749,10 @@ fn hand_written_modal_change_json_is_what_serde_writes() {
                     level: 2,
                 },
             };
-            expected.push_str(&serde_json::to_string(&event).expect("serialises"));
-            expected.push('\n');
-            sink.event(&event).expect("writes");
+            events.push(event);
         }
     }
-    let written = String::from_utf8(sink.into_inner().expect("flushes")).expect("UTF-8");
-    assert_eq!(written, expected);
+    assert_written_as_serde_writes(&events);
 }
 
 #[test]
