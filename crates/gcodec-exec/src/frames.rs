@@ -98,20 +98,20 @@ impl FrameAxes {
         let mut axis_of = [None; 3];
         // A geometry axis named X, Y or Z takes its own slot …
         for &i in &geometry {
-            if let Some(s) = SLOT_NAMES.iter().position(|n| **n == *names[i]) {
-                if axis_of[s].is_none() {
-                    axis_of[s] = Some(i);
-                    slot_of[i] = Some(s);
-                }
+            if let Some(s) = SLOT_NAMES.iter().position(|n| **n == *names[i])
+                && axis_of[s].is_none()
+            {
+                axis_of[s] = Some(i);
+                slot_of[i] = Some(s);
             }
         }
         // … the others the free slots in ascending order.
         for &i in &geometry {
-            if slot_of[i].is_none() {
-                if let Some(s) = (0..3).find(|&s| axis_of[s].is_none()) {
-                    axis_of[s] = Some(i);
-                    slot_of[i] = Some(s);
-                }
+            if slot_of[i].is_none()
+                && let Some(s) = (0..3).find(|&s| axis_of[s].is_none())
+            {
+                axis_of[s] = Some(i);
+                slot_of[i] = Some(s);
             }
         }
         Self {
@@ -959,7 +959,7 @@ fn pairs(
     name: &str,
     args: &[Option<RtValue>],
 ) -> Result<Vec<(usize, f64)>, RunError> {
-    if args.len() % 2 != 0 {
+    if !args.len().is_multiple_of(2) {
         return Err(RunError::new(
             codes::ARGUMENT_COUNT,
             format!(

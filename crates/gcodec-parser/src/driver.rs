@@ -699,13 +699,13 @@ impl<'s> Driver<'s, '_> {
             );
             return with_prefix(block, tokens, ctx);
         }
-        if self.reading != Reading::GrammarOnly {
-            if let Some(body) = fast::block(tokens, ctx) {
-                block.skip = body.skip.map(Box::new);
-                block.number = body.number;
-                block.statements = self.checked(body.statements);
-                return block;
-            }
+        if self.reading != Reading::GrammarOnly
+            && let Some(body) = fast::block(tokens, ctx)
+        {
+            block.skip = body.skip.map(Box::new);
+            block.number = body.number;
+            block.statements = self.checked(body.statements);
+            return block;
         }
         let eoi = SimpleSpan::from(end as usize..end as usize);
         let (body, errors) = parser

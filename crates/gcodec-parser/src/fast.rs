@@ -98,19 +98,20 @@ pub(crate) fn prefix(tokens: &[Spanned], g: &Ctx<'_>) -> Option<Prefix> {
         }
     }
     let mut number = None;
-    if let (Some((T::Letter, l)), Some((T::Number, n))) = (tokens.get(i), tokens.get(i + 1)) {
-        if g.bytes(*l)[0].eq_ignore_ascii_case(&b'N') && n.start == l.end {
-            if matches!(tokens.get(i + 2), Some((T::Eq, _))) {
-                return None;
-            }
-            let value = whole_number(g.bytes(*n))?;
-            number = Some(BlockNumber {
-                span: g.span(SimpleSpan::from(l.start..n.end)),
-                main: false,
-                value,
-            });
-            i += 2;
+    if let (Some((T::Letter, l)), Some((T::Number, n))) = (tokens.get(i), tokens.get(i + 1))
+        && g.bytes(*l)[0].eq_ignore_ascii_case(&b'N')
+        && n.start == l.end
+    {
+        if matches!(tokens.get(i + 2), Some((T::Eq, _))) {
+            return None;
         }
+        let value = whole_number(g.bytes(*n))?;
+        number = Some(BlockNumber {
+            span: g.span(SimpleSpan::from(l.start..n.end)),
+            main: false,
+            value,
+        });
+        i += 2;
     }
     Some(Prefix {
         skip,

@@ -687,8 +687,8 @@ fn letter_statement<'t, 's: 't>(
                 }));
             }
             // `L123`, `L123(args)`: subprogram call by number.
-            if l == b'L' && sign.is_none() && bracket.is_none() && value.is_none() {
-                if let Some(n) = num {
+            if l == b'L' && sign.is_none() && bracket.is_none() && value.is_none()
+                && let Some(n) = num {
                     let digits = g.text(n);
                     if !digits.bytes().all(|b| b.is_ascii_digit()) {
                         return err(n, format!("`L{digits}` is not a program number"), "program numbers are whole numbers, e.g. `L123`");
@@ -702,7 +702,6 @@ fn letter_statement<'t, 's: 't>(
                         passes: None,
                     }));
                 }
-            }
             if call_args.is_some() {
                 return err(span, format!("unexpected `(` after address `{addr}`"), "`(` groups expressions after `=`, e.g. `X=(R1+2)*3`");
             }

@@ -161,15 +161,15 @@ fn check_axes(axes: &[Axis], out: &mut Vec<Diagnostic>) {
         }
     }
     let geometry = axes.iter().filter(|a| a.geometry).count();
-    if geometry > 3 {
-        if let Some(fourth) = axes.iter().filter(|a| a.geometry).nth(3) {
-            out.push(error(
-                OUT_OF_RANGE,
-                &fourth.name,
-                "a channel has at most three geometry axes".into(),
-                "the fourth",
-            ));
-        }
+    if geometry > 3
+        && let Some(fourth) = axes.iter().filter(|a| a.geometry).nth(3)
+    {
+        out.push(error(
+            OUT_OF_RANGE,
+            &fourth.name,
+            "a channel has at most three geometry axes".into(),
+            "the fourth",
+        ));
     }
     if let Some(second) = axes.iter().filter(|a| a.diameter).nth(1) {
         out.push(error(

@@ -545,10 +545,10 @@ impl StateTable {
         }
         let key = u64::from(id) << 32 | u64::from(code);
         let slot = (key.wrapping_mul(FX_SEED) >> (64 - STEP_BITS)) as usize;
-        if let Some(&(k, to)) = self.steps.get(slot) {
-            if k == key {
-                return to;
-            }
+        if let Some(&(k, to)) = self.steps.get(slot)
+            && k == key
+        {
+            return to;
         }
         let Some(mut state) = self.states.get(id as usize).cloned() else {
             return id;
@@ -876,10 +876,8 @@ impl<'d> Graph<'d> {
                 after_motion = false;
             }
             starts_block = !matches!(control, Control::Next);
-            if starts_block {
-                if let Some(last) = blocks.last_mut() {
-                    last.control = control;
-                }
+            if starts_block && let Some(last) = blocks.last_mut() {
+                last.control = control;
             }
         }
         let mut label_next = vec![u32::MAX; label_list.len()];

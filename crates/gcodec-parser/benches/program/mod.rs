@@ -145,7 +145,7 @@ fn statement_block(rng: &mut Lcg, out: &mut String, n: &mut u32, roll: u32, in_l
             rng.coord(out, 200);
             out.push_str(" Y");
             rng.coord(out, 200);
-            if roll % 3 != 0 {
+            if !roll.is_multiple_of(3) {
                 out.push_str(" Z");
                 rng.coord(out, 20);
             }
@@ -164,7 +164,11 @@ fn statement_block(rng: &mut Lcg, out: &mut String, n: &mut u32, roll: u32, in_l
         }
         // Arc by radius.
         65..=74 => {
-            out.push_str(if roll % 2 == 0 { "G2 X" } else { "G3 X" });
+            out.push_str(if roll.is_multiple_of(2) {
+                "G2 X"
+            } else {
+                "G3 X"
+            });
             rng.coord(out, 200);
             out.push_str(" Y");
             rng.coord(out, 200);
@@ -196,7 +200,7 @@ fn statement_block(rng: &mut Lcg, out: &mut String, n: &mut u32, roll: u32, in_l
             };
         }
     }
-    if roll % 2 == 0 {
+    if roll.is_multiple_of(2) {
         out.push_str(" ; ");
         out.push_str(COMMENTS[rng.below(COMMENTS.len() as u32) as usize]);
     }

@@ -416,12 +416,11 @@ impl Lowering<'_> {
                 | Role::Setting { axis: true, .. }
                 | Role::Setting { spindle: true, .. }
         );
-        if !takes_extension {
-            if let Some(ext) = extension {
-                let at = match ext {
-                    Extension::Number { span, .. } | Extension::Index { span, .. } => *span,
-                };
-                return self.diagnostics.push(
+        if !takes_extension && let Some(ext) = extension {
+            let at = match ext {
+                Extension::Number { span, .. } | Extension::Index { span, .. } => *span,
+            };
+            return self.diagnostics.push(
                     Diagnostic::error(
                         EXTENSION_NOT_ALLOWED,
                         format!("`{address}` takes no address extension"),
@@ -431,7 +430,6 @@ impl Lowering<'_> {
                         "extensions are for axes, I J K, S, SPOS, SPOSA, M, H and T (reference §2.2); axial addresses take an axis in brackets (`FA[X]=`)",
                     ),
                 );
-            }
         }
         match role {
             Role::Setting {

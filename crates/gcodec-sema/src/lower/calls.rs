@@ -76,21 +76,21 @@ impl Lowering<'_> {
                 ));
             }
         }
-        if upper == "MSG" {
-            if let Some(args) = &call.args {
-                let text = match args.as_slice() {
-                    [] => Some(Value::Expr(Box::new(gcodec_ail::Expr::String {
-                        value: String::new(),
-                    }))),
-                    [Some(text)] | [Some(text), _] => {
-                        self.check_variables(text);
-                        Some(Value::Expr(Box::new(values::tree(text))))
-                    }
-                    _ => None,
-                };
-                if let Some(text) = text {
-                    return plan.other.push((Op::Message { text }, span));
+        if upper == "MSG"
+            && let Some(args) = &call.args
+        {
+            let text = match args.as_slice() {
+                [] => Some(Value::Expr(Box::new(gcodec_ail::Expr::String {
+                    value: String::new(),
+                }))),
+                [Some(text)] | [Some(text), _] => {
+                    self.check_variables(text);
+                    Some(Value::Expr(Box::new(values::tree(text))))
                 }
+                _ => None,
+            };
+            if let Some(text) = text {
+                return plan.other.push((Op::Message { text }, span));
             }
         }
         // A subprogram, cycle or predefined procedure: the executor finds

@@ -307,16 +307,16 @@ impl<'a> Lowering<'a> {
                     self.check_variables(expr);
                 }
                 let (passes, _) = values::word_value(&value);
-                if let Value::Const(n) = passes {
-                    if n < 1.0 || n.fract() != 0.0 {
-                        self.diagnostics.push(
-                            Diagnostic::error(
-                                INVALID_VALUE,
-                                "`P` of a `REPEAT` is a whole number of passes, at least 1",
-                            )
-                            .with_label(p.span, "not a whole number ≥ 1"),
-                        );
-                    }
+                if let Value::Const(n) = passes
+                    && (n < 1.0 || n.fract() != 0.0)
+                {
+                    self.diagnostics.push(
+                        Diagnostic::error(
+                            INVALID_VALUE,
+                            "`P` of a `REPEAT` is a whole number of passes, at least 1",
+                        )
+                        .with_label(p.span, "not a whole number ≥ 1"),
+                    );
                 }
                 passes
             }

@@ -835,11 +835,11 @@ impl<'a> Lowering<'a> {
         // Work offset: the Group 8 selection and the block's suppression.
         let group8 = plan.g_codes.iter().find(|(g, _, _)| *g == 8);
         let suppression = self.suppression(&plan.suppressions);
-        if let Some((_, code, _)) = group8 {
-            if let Some(selected) = gcodec_profile::group8_index(code) {
-                self.group8 = Some(selected);
-                self.group8_inherited = false;
-            }
+        if let Some((_, code, _)) = group8
+            && let Some(selected) = gcodec_profile::group8_index(code)
+        {
+            self.group8 = Some(selected);
+            self.group8_inherited = false;
         }
         if group8.is_some() || suppression.is_some() {
             let span = group8

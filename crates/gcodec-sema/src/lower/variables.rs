@@ -847,10 +847,10 @@ impl Lowering<'_> {
                         self.check_value(ty, &target.name, item);
                     }
                 }
-                if let Some((shape, start)) = self.list_target(target, *at) {
-                    if let Some(total) = shape.elements() {
-                        self.check_count(&target.name, items.len() as u64, start, total, *at);
-                    }
+                if let Some((shape, start)) = self.list_target(target, *at)
+                    && let Some(total) = shape.elements()
+                {
+                    self.check_count(&target.name, items.len() as u64, start, total, *at);
                 }
                 Op::AssignList(Box::new(gcodec_ail::AssignList {
                     target: values::variable(target),
