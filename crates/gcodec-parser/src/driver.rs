@@ -831,7 +831,16 @@ impl<'s> Driver<'s, '_> {
 /// stops there, at the error), as the control's search finds it.
 fn with_prefix(mut block: Block, tokens: &[Spanned], ctx: &Ctx<'_>) -> Block {
     use TokenKind as T;
-    let Some(prefix) = fast::prefix(tokens, ctx) else {
+    let prefix = fast::prefix(tokens, ctx).or_else(|| {
+        // A skip mark in error (`/ 5`, `/12`): what follows still counts.
+        let [(T::Slash, _), (T::Number, _), after @ ..] = tokens else {
+            return None;
+        };
+        let mut prefix = fast::prefix(after, ctx)?;
+        prefix.rest += 2;
+        Some(prefix)
+    });
+    let Some(prefix) = prefix else {
         return block;
     };
     block.skip = prefix.skip.map(Box::new);

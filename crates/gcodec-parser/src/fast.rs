@@ -65,7 +65,8 @@ pub(crate) struct Prefix {
 /// The skip mark (`/`, `/0` … `/9`) and block number (`N10`) `tokens`
 /// open with, as the grammar reads them; `None` where the grammar must
 /// judge them: a skip level or block number that is not a plain whole
-/// number, or a block number followed by `=`.
+/// number, a number after a blank after `/` (`/ 5`, an error), or a block
+/// number followed by `=`.
 pub(crate) fn prefix(tokens: &[Spanned], g: &Ctx<'_>) -> Option<Prefix> {
     let mut i = 0;
     let mut skip = None;
@@ -79,15 +80,8 @@ pub(crate) fn prefix(tokens: &[Spanned], g: &Ctx<'_>) -> Option<Prefix> {
                 });
                 i = 2;
             }
-            // The grammar takes a number after a blank into the mark,
-            // as level 0.
-            Some((T::Number, _)) => {
-                skip = Some(SkipLevel {
-                    span: g.span(*slash),
-                    level: 0,
-                });
-                i = 2;
-            }
+            // A number after a blank is an error the grammar reports.
+            Some((T::Number, _)) => return None,
             _ => {
                 skip = Some(SkipLevel {
                     span: g.span(*slash),

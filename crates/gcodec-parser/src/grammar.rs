@@ -1584,13 +1584,22 @@ pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody
                 .or_not(),
         )
         .try_map(
-            move |(slash, level): (SimpleSpan, Option<SimpleSpan>), span: SimpleSpan| match level
-                .filter(|n: &SimpleSpan| n.start == slash.end)
-            {
+            move |(slash, level): (SimpleSpan, Option<SimpleSpan>), span: SimpleSpan| match level {
                 None => Ok(SkipLevel {
                     span: g.span(slash),
                     level: 0,
                 }),
+                // `/ 5`: level 0 or 5? Nothing documents the control's
+                // reading, and the two skip under different switches.
+                Some(n) if n.start != slash.end => Err(SyntaxError::custom(
+                    span,
+                    "gcodec::parse::separated_skip_level",
+                    format!(
+                        "a blank between the skip mark `/` and the number `{}`",
+                        g.text(n)
+                    ),
+                    Some("write the level against the mark (`/5`), or `/` alone for level 0"),
+                )),
                 Some(n) => match g.text(n).parse::<u8>() {
                     Ok(level) if level <= 9 => Ok(SkipLevel {
                         span: g.span(span),

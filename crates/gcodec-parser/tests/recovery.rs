@@ -41,7 +41,39 @@ fn blocks_with_errors_keep_a_plain_prefix() {
 #[test]
 fn a_prefix_the_grammar_must_judge_is_not_kept() {
     assert_eq!(prefix_of("N10.5 X="), (None, None, None));
-    assert_eq!(prefix_of("/12 N10 X1"), (None, None, None));
     assert_eq!(prefix_of("N99999999999999999999 X="), (None, None, None));
     assert_eq!(prefix_of(":10.5 LBL: X="), (None, None, None));
+}
+
+/// A skip mark in error is not kept, the number after it is.
+#[test]
+fn a_skip_mark_in_error_drops_only_itself() {
+    assert_eq!(prefix_of("/12 N10 X1"), (None, Some((false, 10)), None));
+    assert_eq!(prefix_of("/ 5 N20 X1"), (None, Some((false, 20)), None));
+    assert_eq!(prefix_of("/ 5"), (None, None, None));
+}
+
+/// `/ 5`: a blank between the mark and a number is an error at the mark
+/// and the number, not level 0 with the number dropped (SPEC §3).
+#[test]
+fn a_blank_between_the_skip_mark_and_its_level_is_an_error() {
+    for (src, end) in [("/ 5 N10 G1 X1", 3), ("/  7", 4), ("N1\n/ 0 X1", 3)] {
+        let parsed = parse_bytes("skip.mpf", src.as_bytes());
+        let codes: Vec<_> = parsed.diagnostics.iter().map(|d| d.code).collect();
+        assert_eq!(codes, ["gcodec::parse::separated_skip_level"], "{src}");
+        let span = parsed.diagnostics[0].span().expect("a place");
+        let start = src.rfind('/').unwrap() as u32;
+        assert_eq!((span.start, span.end), (start, start + end), "{src}");
+    }
+    // Against the mark it is a level; a blank after a level is fine.
+    for src in ["/5 N10 G1 X1", "/ N10 X1", "/5 7"] {
+        let parsed = parse_bytes("skip.mpf", src.as_bytes());
+        assert!(
+            parsed
+                .diagnostics
+                .iter()
+                .all(|d| d.code != "gcodec::parse::separated_skip_level"),
+            "{src}"
+        );
+    }
 }
