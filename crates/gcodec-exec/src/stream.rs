@@ -112,12 +112,11 @@ pub fn run_streamed<R>(
         (result, lowered)
     });
     // In the order the whole program's parse and lowering give them: a
-    // stable sort keeps the parser's ahead of the outline's and the
-    // lowering's at one place.
+    // stable sort keeps the parser's ahead of the pairing's, the
+    // outline's and the lowering's at one place.
     let (parse_diagnostics, lowering_diagnostics) = lowered;
     let mut diagnostics = parse_diagnostics;
     diagnostics.extend(structure_diagnostics);
-    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
     diagnostics.extend_from_slice(outline_diagnostics);
     diagnostics.extend(lowering_diagnostics);
     diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));

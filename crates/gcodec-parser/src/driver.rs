@@ -170,9 +170,7 @@ pub struct Chunk {
 /// Cuts `src` into chunks of `lines` lines each (the last may be
 /// shorter). A source without lines is one empty chunk.
 pub fn chunks(src: &[u8], lines: usize) -> Vec<Chunk> {
-    let mut line_starts = vec![0];
-    line_starts.extend(memchr::memchr_iter(b'\n', src).map(|i| i as u32 + 1));
-    chunks_at(&line_starts, src.len(), lines)
+    chunks_at(&gcodec_source::line_starts(src), src.len(), lines)
 }
 
 /// [`chunks`] of a source of `len` bytes whose lines start at
@@ -626,7 +624,7 @@ impl<'s> Driver<'s, '_> {
                     self.structure_blocks.push(self.filled as u32);
                 }
                 if self.reading == Reading::Outline {
-                    self.settles = settles(&block);
+                    self.settles = block_settles(&block);
                 }
                 if let Some(slot) = self.blocks.get_mut(self.filled) {
                     slot.write(block);
@@ -870,7 +868,7 @@ fn with_prefix(mut block: Block, tokens: &[Spanned], ctx: &Ctx<'_>) -> Block {
 
 /// Whether a block settles what an outline reads (see [`skim_chunk`]): it
 /// has statements, and none of them defines, declares or ends anything.
-fn settles(block: &Block) -> bool {
+pub fn block_settles(block: &Block) -> bool {
     !block.statements.is_empty()
         && block.statements.iter().all(|s| match &s.kind {
             StatementKind::Def(_)
@@ -1016,9 +1014,7 @@ fn simple_number(line: &[u8]) -> Option<Simple> {
     {
         return None;
     }
-    let value = line[at + 1..after].iter().try_fold(0u64, |n, &d| {
-        n.checked_mul(10)?.checked_add(u64::from(d - b'0'))
-    })?;
+    let value = fast::whole_number(&line[at + 1..after])?;
     Some(Simple::Number {
         at,
         len: 1 + digits,
@@ -1035,22 +1031,16 @@ fn is_plain_name(name: &[u8]) -> bool {
         return false;
     };
     token.end as usize == name.len()
-        && matches!(
-            token.kind,
-            T::Ident
-                | T::Div
-                | T::Mod
-                | T::And
-                | T::Or
-                | T::Xor
-                | T::Not
-                | T::BAnd
-                | T::BOr
-                | T::BXor
-                | T::BNot
-                | T::True
-                | T::False
-        )
+        && (matches!(token.kind, T::Ident | T::True | T::False) || is_word_operator(token.kind))
+}
+
+/// An operator spelt as a word: `DIV`, `MOD`, `AND`, … `B_NOT`.
+fn is_word_operator(kind: TokenKind) -> bool {
+    use TokenKind as T;
+    matches!(
+        kind,
+        T::Div | T::Mod | T::And | T::Or | T::Xor | T::Not | T::BAnd | T::BOr | T::BXor | T::BNot
+    )
 }
 
 /// Whether the driver keeps a token of `kind` for the grammar.
@@ -1109,18 +1099,9 @@ fn too_many_operators(tokens: &[Spanned]) -> Option<SimpleSpan> {
                     .is_some_and(|(k, s)| *k == T::Number && s.start == span.end);
                 !(after_letter && before_number)
             }
+            kind if is_word_operator(*kind) => true,
             T::Star
             | T::Slash
-            | T::Div
-            | T::Mod
-            | T::And
-            | T::Or
-            | T::Xor
-            | T::Not
-            | T::BAnd
-            | T::BOr
-            | T::BXor
-            | T::BNot
             | T::Concat
             | T::EqEq
             | T::Ne

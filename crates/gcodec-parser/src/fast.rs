@@ -344,7 +344,7 @@ fn value(c: &mut Cursor<'_, '_>) -> Option<Expr> {
 
 /// The value of a block number or R-parameter number: digits only, as
 /// `str::parse::<u64>` reads them, `None` if it does not fit.
-fn whole_number(digits: &[u8]) -> Option<u64> {
+pub(crate) fn whole_number(digits: &[u8]) -> Option<u64> {
     if digits.is_empty() {
         return None;
     }

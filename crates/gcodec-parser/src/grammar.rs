@@ -687,21 +687,25 @@ fn letter_statement<'t, 's: 't>(
                 }));
             }
             // `L123`, `L123(args)`: subprogram call by number.
-            if l == b'L' && sign.is_none() && bracket.is_none() && value.is_none()
-                && let Some(n) = num {
-                    let digits = g.text(n);
-                    if !digits.bytes().all(|b| b.is_ascii_digit()) {
-                        return err(n, format!("`L{digits}` is not a program number"), "program numbers are whole numbers, e.g. `L123`");
-                    }
-                    return Ok(LetterStatement::Call(Call {
-                        target: CallTarget::Number {
-                            span: g.span(SimpleSpan::from(letter.start..n.end)),
-                            digits: digits.into(),
-                        },
-                        args: call_args,
-                        passes: None,
-                    }));
+            if l == b'L'
+                && sign.is_none()
+                && bracket.is_none()
+                && value.is_none()
+                && let Some(n) = num
+            {
+                let digits = g.text(n);
+                if !digits.bytes().all(|b| b.is_ascii_digit()) {
+                    return err(n, format!("`L{digits}` is not a program number"), "program numbers are whole numbers, e.g. `L123`");
                 }
+                return Ok(LetterStatement::Call(Call {
+                    target: CallTarget::Number {
+                        span: g.span(SimpleSpan::from(letter.start..n.end)),
+                        digits: digits.into(),
+                    },
+                    args: call_args,
+                    passes: None,
+                }));
+            }
             if call_args.is_some() {
                 return err(span, format!("unexpected `(` after address `{addr}`"), "`(` groups expressions after `=`, e.g. `X=(R1+2)*3`");
             }

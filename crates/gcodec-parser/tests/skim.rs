@@ -10,26 +10,9 @@ mod common;
 #[allow(dead_code)]
 mod program;
 
-use gcodec_parser::ast::{Block, StatementKind};
-use gcodec_parser::{chunks, parse_chunk, skim_chunk};
+use gcodec_parser::ast::StatementKind;
+use gcodec_parser::{block_settles, chunks, parse_chunk, skim_chunk};
 use proptest::prelude::*;
-
-/// Whether a block settles what an outline reads: it has statements, and
-/// none defines, declares or ends anything.
-fn settles(block: &Block) -> bool {
-    !block.statements.is_empty()
-        && block.statements.iter().all(|s| match &s.kind {
-            StatementKind::Def(_)
-            | StatementKind::Redef(_)
-            | StatementKind::Define(_)
-            | StatementKind::Proc(_)
-            | StatementKind::EndProc
-            | StatementKind::Extern(_)
-            | StatementKind::Ret(_) => false,
-            StatementKind::Word(w) => w.address() != "M",
-            _ => true,
-        })
-}
 
 /// Whether a statement is one a left-out block may hold.
 fn may_be_left_out(kind: &StatementKind) -> bool {
@@ -59,7 +42,7 @@ fn assert_skim_agrees(name: &str, src: &[u8], lines: usize) -> usize {
                 // parsed or left out, and either way leaves the state as
                 // it was.
                 if !whole.statements.is_empty() || whole.label.is_some() {
-                    settled = settles(whole);
+                    settled = block_settles(whole);
                 }
                 continue;
             }

@@ -139,3 +139,23 @@ fn fixtures_and_corpus_lower_the_same_streamed() {
         assert_streamed_agrees(&path.display().to_string(), &bytes, &profile);
     }
 }
+
+/// A chunk lowered on a worker goes back to that worker's bin when spent;
+/// one lowered again where the parts are settled (a modal call in force
+/// before it) has no bin, so the settling thread, which never frees its
+/// own, does not hold chunk after chunk until pass 2 ends.
+#[test]
+fn only_chunks_lowered_on_a_worker_carry_a_bin() {
+    let profile = gcodec_profile::builtin().unwrap();
+    let definitions = Definitions::new();
+    let src = b"G1 X1 F100\nMCALL CYCLE81(10,0,1,-5)\nX2\nX3\nX4\nMCALL\nX5\nX6\nX7\nM30\n";
+    let chunks = chunks(src, 2);
+    let (outline, _) = outline_chunks("mcall.mpf", src, &chunks, 2, &profile, &definitions);
+    let mut bins = Vec::new();
+    lower_chunks(src, &chunks, 2, &outline, &profile, |lowered| {
+        bins.push(lowered.spent.is_some());
+    });
+    // Lines 3–4 and 5–6 follow a chunk that ends with `MCALL CYCLE81` in
+    // force, so they are lowered again; the end has no bin.
+    assert_eq!(bins, [true, false, false, true, true, false]);
+}

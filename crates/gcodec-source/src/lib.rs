@@ -13,6 +13,7 @@ mod source;
 mod span;
 
 pub use diagnostic::{Diagnostic, Label, Severity};
+pub use lines::line_starts;
 pub use render::{RenderOptions, render_diagnostics};
 pub use source::{MAX_SOURCE_LEN, SourceFile, decode};
 pub use span::{Span, line_col, with_line_starts};

@@ -13,8 +13,9 @@ use std::path::Path;
 /// threads.
 const PARALLEL_FROM: usize = 1 << 22;
 
-/// The offset of every line's start: 0, then every offset after a `\n`.
-pub(crate) fn line_starts(bytes: &[u8]) -> Vec<u32> {
+/// The offset of every line's start: 0, then every offset after a `\n`
+/// (the table [`crate::SourceFile::line_starts`] holds).
+pub fn line_starts(bytes: &[u8]) -> Vec<u32> {
     if bytes.len() < PARALLEL_FROM {
         let mut starts = vec![0];
         push_line_starts(bytes, 0, &mut starts);
@@ -22,7 +23,7 @@ pub(crate) fn line_starts(bytes: &[u8]) -> Vec<u32> {
     }
     let middle = bytes.len() / 2;
     let (first, second) = bytes.split_at(middle);
-    in_halves(
+    let found = in_halves::<std::convert::Infallible>(
         |starts| {
             push_line_starts(first, 0, starts);
             Ok(())
@@ -32,9 +33,9 @@ pub(crate) fn line_starts(bytes: &[u8]) -> Vec<u32> {
             Ok(())
         },
         bytes.len(),
-    )
-    // Finding lines does not fail.
-    .unwrap_or_default()
+    );
+    let Ok(starts) = found;
+    starts
 }
 
 /// The bytes of the file at `path` and their [`line_starts`]; an
@@ -78,7 +79,7 @@ fn read_in_halves(file: &File, len: usize) -> io::Result<Option<(Vec<u8>, Vec<u3
     let mut bytes = vec![0; len];
     let middle = len / 2;
     let (first, second) = bytes.split_at_mut(middle);
-    let starts = in_halves(
+    let starts = in_halves::<io::Error>(
         |starts| {
             file.read_exact_at(first, 0)?;
             push_line_starts(first, 0, starts);
@@ -98,11 +99,11 @@ fn read_in_halves(file: &File, len: usize) -> io::Result<Option<(Vec<u8>, Vec<u3
 /// The line table of a source of `len` bytes from its two halves: `first`
 /// runs on this thread, `second` on another, each pushing the line
 /// starts of its half.
-fn in_halves(
-    first: impl FnOnce(&mut Vec<u32>) -> io::Result<()>,
-    second: impl FnOnce(&mut Vec<u32>) -> io::Result<()> + Send,
+fn in_halves<E: Send>(
+    first: impl FnOnce(&mut Vec<u32>) -> Result<(), E>,
+    second: impl FnOnce(&mut Vec<u32>) -> Result<(), E> + Send,
     len: usize,
-) -> io::Result<Vec<u32>> {
+) -> Result<Vec<u32>, E> {
     let mut starts = Vec::with_capacity(len / 24 + 1);
     starts.push(0);
     let rest = std::thread::scope(|scope| {

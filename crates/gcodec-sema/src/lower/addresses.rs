@@ -421,15 +421,15 @@ impl Lowering<'_> {
                 Extension::Number { span, .. } | Extension::Index { span, .. } => *span,
             };
             return self.diagnostics.push(
-                    Diagnostic::error(
-                        EXTENSION_NOT_ALLOWED,
-                        format!("`{address}` takes no address extension"),
-                    )
-                    .with_label(at, "extension")
-                    .with_help(
-                        "extensions are for axes, I J K, S, SPOS, SPOSA, M, H and T (reference §2.2); axial addresses take an axis in brackets (`FA[X]=`)",
-                    ),
-                );
+                Diagnostic::error(
+                    EXTENSION_NOT_ALLOWED,
+                    format!("`{address}` takes no address extension"),
+                )
+                .with_label(at, "extension")
+                .with_help(
+                    "extensions are for axes, I J K, S, SPOS, SPOSA, M, H and T (reference §2.2); axial addresses take an axis in brackets (`FA[X]=`)",
+                ),
+            );
         }
         match role {
             Role::Setting {

@@ -45,13 +45,15 @@ impl SpentBin {
 
     /// Frees what was given back to this thread's bin.
     pub(crate) fn free_this_threads() {
-        THIS_THREAD.with(|bin| bin.0.free());
+        THIS_THREAD.with(|bin| drop(bin.0.take(false)));
     }
 
-    fn free(&self) {
-        let spent =
-            std::mem::take(&mut self.0.lock().unwrap_or_else(PoisonError::into_inner).spent);
-        drop(spent);
+    /// Takes what waits in the bin (dropped by the caller, after the
+    /// lock), and closes the bin if `close`.
+    fn take(&self, close: bool) -> Vec<Vec<Instruction>> {
+        let mut bin = self.0.lock().unwrap_or_else(PoisonError::into_inner);
+        bin.open &= !close;
+        std::mem::take(&mut bin.spent)
     }
 }
 
@@ -60,12 +62,7 @@ struct ThreadBin(SpentBin);
 
 impl Drop for ThreadBin {
     fn drop(&mut self) {
-        let spent = {
-            let mut bin = self.0.0.lock().unwrap_or_else(PoisonError::into_inner);
-            bin.open = false;
-            std::mem::take(&mut bin.spent)
-        };
-        drop(spent);
+        drop(self.0.take(true));
     }
 }
 

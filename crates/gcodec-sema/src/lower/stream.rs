@@ -62,12 +62,8 @@ pub fn lower_chunks(
             SpentBin::free_this_threads();
             let mut lowering = Lowering::new(outline, profile, 0, chunk.first_block > 0);
             let parse_diagnostics = lower_part(chunk, &mut lowering);
-            (
-                chunk,
-                lowering,
-                parse_diagnostics,
-                SpentBin::of_this_thread(),
-            )
+            let spent = Some(SpentBin::of_this_thread());
+            (chunk, lowering, parse_diagnostics, spent)
         },
         |(chunk, mut lowering, mut parse_diagnostics, mut spent)| {
             if chunk.first_block != next {
@@ -79,14 +75,16 @@ pub fn lower_chunks(
             {
                 lowering = Lowering::resumed(outline, profile, before);
                 parse_diagnostics = lower_part(chunk, &mut lowering);
-                spent = SpentBin::of_this_thread();
+                // Lowered on this thread, which frees its bin only when it
+                // works a chunk itself: the run frees these.
+                spent = None;
             }
             carry = Some(lowering.carry(carry.unwrap_or_default()));
             each(LoweredChunk {
                 instructions: lowering.document.instructions,
                 diagnostics: lowering.diagnostics,
                 parse_diagnostics,
-                spent: Some(spent),
+                spent,
             });
         },
     );
@@ -127,7 +125,9 @@ pub struct LoweredChunk {
     /// [`ChunkLowering`] is given parsed blocks).
     pub parse_diagnostics: Vec<Diagnostic>,
     /// Where to give the instructions back when done with them: the bin
-    /// of the thread that allocated them ([`lower_chunks`] only).
+    /// of the worker that allocated them ([`lower_chunks`] only; not for
+    /// a chunk lowered again on the thread that settles the parts, which
+    /// would hold them until pass 2 ends).
     pub spent: Option<SpentBin>,
 }
 

@@ -279,9 +279,10 @@ impl Lowering<'_> {
             None => match values::whole_number(value) {
                 Some(n) if n >= 0.0 => {
                     if let Some(target) = self.legacy_alias(n)
-                        && let Some((group, index)) = ggroups::lookup(&target) {
-                            return self.g_code(group, index, span, plan);
-                        }
+                        && let Some((group, index)) = ggroups::lookup(&target)
+                    {
+                        return self.g_code(group, index, span, plan);
+                    }
                     match ggroups::lookup_g(n as u64) {
                         Some((group, index)) => self.g_code(group, index, span, plan),
                         None => self.diagnostics.push(
