@@ -84,8 +84,6 @@ pub mod codes {
     pub const NO_FEED: &str = "gcodec::run::no_feed";
     /// `SETAL(n)`: the program raised a cycle alarm.
     pub const CYCLE_ALARM: &str = "gcodec::run::cycle_alarm";
-    /// Writing the events failed.
-    pub const OUTPUT: &str = "gcodec::run::output";
 }
 
 /// How a run goes.
