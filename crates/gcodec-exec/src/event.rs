@@ -659,7 +659,7 @@ pub enum ProgramEndReason {
 /// A problem found while running.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 pub struct DiagnosticEvent {
-    /// Stable code, `gcodec::exec::name`.
+    /// Stable code, `gcodec::AREA::NAME`.
     pub code: Cow<'static, str>,
     pub severity: EventSeverity,
     /// One sentence saying what is wrong.

@@ -198,7 +198,7 @@ fn every_kind() -> Vec<Event> {
         event(
             13,
             EventKind::Diagnostic(DiagnosticEvent {
-                code: "gcodec::exec::missing_jump_target".into(),
+                code: "gcodec::run::jump_target_not_found".into(),
                 severity: EventSeverity::Error,
                 message: "jump target `END` not found".into(),
                 alarm: Some(14080),
