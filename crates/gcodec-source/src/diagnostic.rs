@@ -16,6 +16,17 @@ pub enum Severity {
     Error,
 }
 
+impl Severity {
+    /// The name used in JSON and in messages: `error`, `warning`, `advice`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Advice => "advice",
+            Self::Warning => "warning",
+            Self::Error => "error",
+        }
+    }
+}
+
 /// A labelled span inside a diagnostic.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Label {
@@ -27,11 +38,11 @@ pub struct Label {
 
 /// A problem found in a part program, a profile or the environment.
 ///
-/// `code` is stable (`gcodec::area::name`): tools and CI scripts may match on
+/// `code` is stable (`gcodec::AREA::NAME`): tools and CI scripts may match on
 /// it. The first label is the primary one.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Diagnostic {
-    /// Stable code, `gcodec::area::name`.
+    /// Stable code, `gcodec::AREA::NAME`.
     pub code: &'static str,
     /// Error, warning or advice.
     pub severity: Severity,
