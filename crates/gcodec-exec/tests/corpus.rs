@@ -12,11 +12,11 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use gcodec_driver::{FileLoader, ProgramKind, SearchPath, compile, program_name};
 use gcodec_exec::channel::{Channel, RunOptions};
 use gcodec_exec::event::{
     CountingSink, Event, EventKind, EventSeverity, EventSink, ProgramEndReason,
 };
-use gcodec_exec::loader::{FileLoader, SearchPath, compile, program_name};
 use gcodec_source::SourceFile;
 
 #[path = "../../gcodec-sema/tests/common/mod.rs"]
@@ -89,13 +89,9 @@ fn every_main_program_runs_to_its_end_or_a_diagnosed_dependency() {
         let profile = Arc::new(machine_profile(&shown).1);
         let definitions = Arc::new(definitions(&corpus, &shown));
         let file = SourceFile::new(shown.clone(), std::fs::read(path).expect("read"));
-        let main = compile(
-            program_name(path),
-            Arc::new(file),
-            &profile,
-            &definitions,
-            false,
-        );
+        let kind = ProgramKind::of_file(file.name());
+        let main =
+            compile(Arc::new(file), kind, &profile, &definitions).into_loaded(program_name(path));
         if main.has_errors {
             // The two programs the lowering test expects errors in.
             report.push_str(&format!("{shown}: not run (lowering errors)\n"));
@@ -111,7 +107,7 @@ fn every_main_program_runs_to_its_end_or_a_diagnosed_dependency() {
         // is shown relative to it.
         let outcome = with_dir(&corpus, || {
             Channel::new(profile, options, &mut loader, &mut sink)
-                .with_globals(&definitions)
+                .with_globals(&gcodec_driver::globals(&definitions))
                 .run(main.program)
         })
         .expect("events go to memory");

@@ -846,11 +846,15 @@ fn strings_have_their_length_and_characters() {
 /// other instructions are skipped.
 fn run(src: &str) -> Variables {
     let profile = builtin();
-    let parsed = gcodec_parser::parse_bytes("test.mpf", src.as_bytes());
-    assert!(parsed.diagnostics.is_empty(), "{:#?}", parsed.diagnostics);
-    let lowered = gcodec_sema::lower(&parsed.program, &profile);
-    assert!(!lowered.has_errors(), "{:#?}", lowered.diagnostics);
-    run_document(&lowered.document, &profile)
+    let compiled = compile_main("test.mpf", src, &profile);
+    assert!(!compiled.has_errors(), "{:#?}", compiled.diagnostics);
+    run_document(&compiled.document, &profile)
+}
+
+fn compile_main(name: &str, src: &str, profile: &Profile) -> gcodec_driver::Compiled {
+    let definitions = gcodec_driver::Definitions::new();
+    let kind = gcodec_driver::ProgramKind::Main;
+    gcodec_driver::compile_text(name, src, kind, profile, &definitions)
 }
 
 fn run_document(doc: &gcodec_ail::Document, profile: &Profile) -> Variables {
@@ -994,10 +998,9 @@ fn a_long_loop_computes_exactly() {
     // (docs/performance.md), not here.
     let profile = builtin();
     let src = "WHILE R1 < 100000\nR1 = R1 + 1\nR2 = R2 + R1 * 0.5 - SIN(30)\nENDWHILE\nM30\n";
-    let parsed = gcodec_parser::parse_bytes("loop.mpf", src.as_bytes());
-    let lowered = gcodec_sema::lower(&parsed.program, &profile);
-    assert!(!lowered.has_errors());
-    let vars = run_document(&lowered.document, &profile);
+    let compiled = compile_main("loop.mpf", src, &profile);
+    assert!(!compiled.has_errors());
+    let vars = run_document(&compiled.document, &profile);
     assert_eq!(vars.r(1), Ok(100_000.0));
     // Σ (k/2 − 1/2) for k = 1 … 10⁵ = (10⁵·(10⁵+1)/2 − 10⁵)/2.
     assert_eq!(vars.r(2), Ok(2_499_975_000.0));

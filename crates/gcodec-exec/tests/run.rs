@@ -8,10 +8,10 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use gcodec_driver::Definitions;
+use gcodec_driver::{FileLoader, ProgramKind, SearchPath, compile, program_name};
 use gcodec_exec::channel::{Channel, RunOptions};
 use gcodec_exec::event::{CsvWriter, JsonlSink, TextSink};
-use gcodec_exec::loader::{FileLoader, SearchPath, compile, program_name};
-use gcodec_sema::Definitions;
 use gcodec_source::SourceFile;
 
 mod common;
@@ -29,13 +29,8 @@ fn run(path: &Path, output: Output) -> String {
     let Setup { profile, options } = setup(path, &text);
     let file = SourceFile::new(path.to_string_lossy().replace('\\', "/"), text.as_bytes());
     let definitions = Arc::new(Definitions::new());
-    let main = compile(
-        program_name(path),
-        Arc::new(file),
-        &profile,
-        &definitions,
-        false,
-    );
+    let main = compile(Arc::new(file), ProgramKind::Main, &profile, &definitions)
+        .into_loaded(program_name(path));
     assert!(
         !main.has_errors,
         "{} has lowering errors: {:#?}",
@@ -131,7 +126,8 @@ fn end_with_program_settings(file: &str, program: &str) -> gcodec_exec::event::P
     let text = std::fs::read(fixture(file)).expect("fixture");
     let source = SourceFile::new(file, text);
     let definitions = Arc::new(Definitions::new());
-    let main = compile("MAIN", Arc::new(source), &profile, &definitions, false);
+    let main =
+        compile(Arc::new(source), ProgramKind::Main, &profile, &definitions).into_loaded("MAIN");
     let mut loader = FileLoader::new(SearchPath::new(), Arc::clone(&profile), definitions);
     let mut sink = gcodec_exec::event::CountingSink::default();
     Channel::new(profile, options, &mut loader, &mut sink)

@@ -7,12 +7,12 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use gcodec_driver::Definitions;
+use gcodec_driver::{FileLoader, ProgramKind, SearchPath, compile, program_name};
+use gcodec_driver::{StreamOptions, run_streamed};
 use gcodec_exec::channel::{Channel, RunOptions};
 use gcodec_exec::event::{EventKind, JsonlSink};
-use gcodec_exec::loader::{FileLoader, SearchPath, compile, program_name};
-use gcodec_exec::stream::{StreamOptions, run_streamed};
 use gcodec_profile::Profile;
-use gcodec_sema::Definitions;
 use gcodec_source::SourceFile;
 
 mod common;
@@ -46,7 +46,7 @@ fn run(case: &Case, main: Arc<gcodec_exec::program::Program>) -> String {
         &mut loader,
         &mut sink,
     )
-    .with_globals(&case.definitions)
+    .with_globals(&gcodec_driver::globals(&case.definitions))
     .run(main)
     .expect("events go to memory");
     drop(sink);
@@ -58,13 +58,14 @@ fn run(case: &Case, main: Arc<gcodec_exec::program::Program>) -> String {
 /// Compares the streamed runs of `case` with its whole run; `false` when
 /// the program has errors (a whole program with errors is not run).
 fn check(case: &Case) -> bool {
+    let kind = ProgramKind::of_file(case.file.name());
     let whole = compile(
-        case.name.clone(),
         Arc::clone(&case.file),
+        kind,
         &case.profile,
         &case.definitions,
-        false,
-    );
+    )
+    .into_loaded(case.name.clone());
     let whole_diagnostics: Vec<String> = whole
         .diagnostics
         .iter()
@@ -79,6 +80,7 @@ fn check(case: &Case) -> bool {
         let (events, diagnostics) = run_streamed(
             &case.file,
             case.name.clone(),
+            kind,
             &case.profile,
             &case.definitions,
             StreamOptions {

@@ -5,7 +5,8 @@
 mod common;
 
 use gcodec_parser::ast::Program;
-use gcodec_parser::{Pairing, chunks, parse_bytes_in_segments, parse_chunk};
+use gcodec_parser::{Pairing, parse_bytes_in_segments, parse_chunk};
+use gcodec_stream::chunks;
 
 /// Parses `src` chunk by chunk, pairing structures as the chunks come.
 fn parse_in_chunks(name: &str, src: &[u8], lines: usize) -> gcodec_parser::Parse {

@@ -11,7 +11,8 @@ mod common;
 mod program;
 
 use gcodec_parser::ast::StatementKind;
-use gcodec_parser::{block_settles, chunks, parse_chunk, skim_chunk};
+use gcodec_parser::{block_settles, parse_chunk, skim_chunk};
+use gcodec_stream::chunks;
 use proptest::prelude::*;
 
 /// Whether a statement is one a left-out block may hold.

@@ -1,5 +1,5 @@
 //! Times the two passes of a streamed run over a program (a development
-//! aid for the streaming work; docs/ARCHITECTURE.md, gcodec-exec): pass 1
+//! aid for the streaming work; docs/ARCHITECTURE.md, "Streaming"): pass 1
 //! parses every chunk and builds the outline, dropping each tree; pass 2
 //! parses every chunk again and lowers it, dropping each chunk's
 //! instructions. One thread; the CLI's allocator and settings.
@@ -7,8 +7,10 @@
 //! `stream_passes FILE [LINES_PER_CHUNK]`
 use std::time::{Duration, Instant};
 
-use gcodec_parser::{chunks, parse_chunk};
+use gcodec_parser::parse_chunk;
+use gcodec_sema::ProgramKind;
 use gcodec_sema::{ChunkLowering, Definitions, outline_chunks};
+use gcodec_stream::chunks;
 
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -30,7 +32,15 @@ fn main() {
     let t_chunks = t.elapsed();
 
     let t = Instant::now();
-    let (outline, _) = outline_chunks(&path, &src, &chunks, 1, &profile, &definitions);
+    let (outline, _) = outline_chunks(
+        &path,
+        ProgramKind::of_file(&path),
+        &src,
+        &chunks,
+        1,
+        &profile,
+        &definitions,
+    );
     let t_outline = t.elapsed();
 
     let t = Instant::now();

@@ -1,6 +1,6 @@
 //! A streamed run of a main program: it runs while it is lowered, and
 //! neither its syntax tree nor all its instructions are ever held
-//! (docs/ARCHITECTURE.md, gcodec-exec, "The streamed run").
+//! (docs/ARCHITECTURE.md, "Streaming").
 //!
 //! Pass 1 skims the program chunk by chunk into its outline (structures,
 //! jump targets, names, signatures), parsing only the blocks the outline
@@ -15,12 +15,11 @@ use std::sync::Arc;
 use std::sync::mpsc::{SyncSender, sync_channel};
 
 use gcodec_ail::{ByteRange, Source};
-use gcodec_parser::chunks_at;
+use gcodec_exec::program::{Program, SourcePage};
 use gcodec_profile::Profile;
-use gcodec_sema::{Definitions, LoweredChunk, lower_chunks, outline_chunks};
+use gcodec_sema::{Definitions, LoweredChunk, ProgramKind, lower_chunks, outline_chunks};
 use gcodec_source::{Diagnostic, SourceFile};
-
-use crate::program::{Program, SourcePage};
+use gcodec_stream::chunks_at;
 
 /// How a streamed run cuts its program.
 #[derive(Clone, Copy, Debug)]
@@ -47,13 +46,15 @@ impl Default for StreamOptions {
 /// the two threads not to wait on each other at every page.
 const PAGES_AHEAD: usize = 2;
 
-/// Runs the main program in `file` (called `name`) streamed: `run` gets
-/// the [`Program`] while pass 2 still lowers it. Returns what `run`
-/// returned and all the program's own diagnostics (parse, structure,
-/// outline, lowering) in source order.
+/// Runs the program in `file` (called `name`, started as `kind`:
+/// [`ProgramKind::Main`] but for a subprogram run on its own) streamed:
+/// `run` gets the [`Program`] while pass 2 still lowers it. Returns what
+/// `run` returned and all the program's own diagnostics (parse,
+/// structure, outline, lowering) in source order.
 pub fn run_streamed<R>(
     file: &Arc<SourceFile>,
     name: String,
+    kind: ProgramKind,
     profile: &Profile,
     definitions: &Definitions,
     options: StreamOptions,
@@ -63,6 +64,7 @@ pub fn run_streamed<R>(
     let chunks = chunks_at(file.line_starts(), src.len(), options.page_lines);
     let (outline, structure_diagnostics) = outline_chunks(
         file.name(),
+        kind,
         src,
         &chunks,
         options.workers,

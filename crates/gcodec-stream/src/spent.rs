@@ -1,5 +1,4 @@
-//! Freeing a streamed run's spent instructions on the thread that made
-//! them.
+//! Freeing what a streamed run has spent on the thread that made it.
 //!
 //! A streamed run lowers its chunks on worker threads and runs them on
 //! another; the run forgets a page once it is past it. Freed there, every
@@ -10,10 +9,15 @@
 //! chunk carries the [`SpentBin`] of the thread that lowered it; the run
 //! puts the page's instructions there, and that thread frees them before
 //! its next chunk, reusing the memory while it is still in its cache.
+//!
+//! A bin takes anything that can cross threads: one box per page is
+//! nothing beside the page.
 
+use std::any::Any;
 use std::sync::{Arc, Mutex, PoisonError};
 
-use gcodec_ail::Instruction;
+/// What a bin holds: any value that may be dropped on another thread.
+type Spent = Box<dyn Any + Send>;
 
 /// Where spent instructions wait for the thread that allocated them.
 /// Cloning shares the bin.
@@ -25,32 +29,33 @@ struct Bin {
     /// `false` once the thread has ended: what comes then is freed at
     /// once, by whoever gives it.
     open: bool,
-    spent: Vec<Vec<Instruction>>,
+    spent: Vec<Spent>,
 }
 
 impl SpentBin {
-    /// Gives `instructions` back to the thread that allocated them.
-    pub fn give_back(&self, instructions: Vec<Instruction>) {
+    /// Gives `spent` back to the thread that allocated it.
+    pub fn give_back<T: Send + 'static>(&self, spent: T) {
+        let spent: Spent = Box::new(spent);
         let mut bin = self.0.lock().unwrap_or_else(PoisonError::into_inner);
         if bin.open {
-            bin.spent.push(instructions);
+            bin.spent.push(spent);
         }
-        // Otherwise `instructions` is dropped here, after the lock.
+        // Otherwise `spent` is dropped here, after the lock.
     }
 
     /// The bin of this thread.
-    pub(crate) fn of_this_thread() -> SpentBin {
+    pub fn of_this_thread() -> SpentBin {
         THIS_THREAD.with(|bin| bin.0.clone())
     }
 
     /// Frees what was given back to this thread's bin.
-    pub(crate) fn free_this_threads() {
+    pub fn free_this_threads() {
         THIS_THREAD.with(|bin| drop(bin.0.take(false)));
     }
 
     /// Takes what waits in the bin (dropped by the caller, after the
     /// lock), and closes the bin if `close`.
-    fn take(&self, close: bool) -> Vec<Vec<Instruction>> {
+    fn take(&self, close: bool) -> Vec<Spent> {
         let mut bin = self.0.lock().unwrap_or_else(PoisonError::into_inner);
         bin.open &= !close;
         std::mem::take(&mut bin.spent)
@@ -76,18 +81,9 @@ thread_local! {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use gcodec_ail::{ByteRange, Op, Source};
 
-    fn instructions() -> Vec<Instruction> {
-        vec![Instruction {
-            op: Op::Label { name: "L@1".into() },
-            source: Source {
-                file: Arc::from("t.mpf"),
-                line: 1,
-                col: 1,
-                span: ByteRange { start: 0, end: 0 },
-            },
-        }]
+    fn instructions() -> Vec<String> {
+        vec!["L@1".to_owned()]
     }
 
     fn held(bin: &SpentBin) -> usize {

@@ -6,11 +6,10 @@
 use std::sync::Arc;
 use std::time::Instant;
 
+use gcodec_driver::{Definitions, FileLoader, ProgramKind, SearchPath};
 use gcodec_exec::channel::{Channel, RunOptions};
 use gcodec_exec::event::{CountingSink, JsonlSink};
-use gcodec_exec::loader::{FileLoader, SearchPath};
 use gcodec_exec::program::Program;
-use gcodec_sema::Definitions;
 use gcodec_source::SourceFile;
 
 #[global_allocator]
@@ -42,7 +41,12 @@ fn main() {
     let parsed = gcodec_parser::parse(&file);
     let t_parse = t.elapsed();
     let rss_parse = rss();
-    let lowered = gcodec_sema::lower_with(&parsed.program, &profile, &Definitions::new());
+    let lowered = gcodec_sema::lower_program(
+        &parsed.program,
+        ProgramKind::of_file(&path),
+        &profile,
+        &Definitions::new(),
+    );
     let t_lower = t.elapsed();
     let rss_lower = rss();
     std::mem::forget(parsed.program);
