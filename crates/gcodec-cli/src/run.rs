@@ -11,7 +11,7 @@ use gcodec_driver::event::{
     CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
 };
 use gcodec_driver::{RunReport, RunSetup, run_main};
-use gcodec_source::Diagnostic;
+use gcodec_source::{Diagnostic, codes};
 
 use crate::commands::{
     DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
@@ -223,7 +223,7 @@ fn output_error(e: &io::Error) -> u8 {
     if e.kind() == io::ErrorKind::BrokenPipe {
         return EXIT_CLEAN;
     }
-    let d = Diagnostic::error("gcodec::io::write", format!("cannot write the events: {e}"));
+    let d = Diagnostic::new(codes::io::WRITE, format!("cannot write the events: {e}"));
     let text = gcodec_source::render_diagnostics(&[d], None, Default::default());
     let _ = io::stderr().write_all(text.as_bytes());
     EXIT_USAGE

@@ -17,13 +17,12 @@ use std::sync::Arc;
 
 use gcodec_ail::{AssignList, BinaryOp, Declare, Expr, UnaryOp, Value, VarKind};
 use gcodec_profile::{Profile, ToolChangeMode};
+use gcodec_source::codes;
 
-use crate::value::{
-    DataType, FrameAxis, FrameValue, RtValue, RunError, char_text, codes, real_to_int,
-};
+use crate::value::{DataType, FrameAxis, FrameValue, RtValue, RunError, char_text, real_to_int};
 use crate::vars::{Init, Scope, Variables, undefined};
 
-/// Expressions nested deeper than this are [`codes::TOO_DEEP`]. The
+/// Expressions nested deeper than this are [`codes::run::EXPRESSION_TOO_DEEP`]. The
 /// parser's limits (64 brackets, 1000 operators a block) keep every
 /// lowered expression well below it; the bound protects the stack from
 /// hand-made AIL.
@@ -50,7 +49,7 @@ pub trait RuntimeInterface {
     }
 
     /// Writes a system variable. The default refuses
-    /// ([`codes::READ_ONLY`]).
+    /// ([`codes::run::READ_ONLY`]).
     fn set_system_variable(
         &mut self,
         name: &str,
@@ -58,14 +57,14 @@ pub trait RuntimeInterface {
         _value: &RtValue,
     ) -> Result<(), RunError> {
         Err(RunError::new(
-            codes::READ_ONLY,
+            codes::run::READ_ONLY,
             format!("the system variable `{name}` cannot be written here"),
         ))
     }
 
     /// A function that is not built into the evaluator (frame functions,
     /// tool management, user functions): `None` when the runtime does not
-    /// know it either ([`codes::UNKNOWN_FUNCTION`]).
+    /// know it either ([`codes::run::UNKNOWN_FUNCTION`]).
     fn function(
         &self,
         _name: &str,
@@ -77,7 +76,7 @@ pub trait RuntimeInterface {
     /// The frame chaining operator `:`. The default: not available.
     fn chain_frames(&self, _lhs: &FrameValue, _rhs: &FrameValue) -> Result<FrameValue, RunError> {
         Err(RunError::new(
-            codes::UNKNOWN_FUNCTION,
+            codes::run::UNKNOWN_FUNCTION,
             "frame chaining (`:`) is not available here",
         ))
     }
@@ -217,7 +216,7 @@ fn eval_at<C: EvalContext + ?Sized>(
 #[cold]
 fn too_deep() -> RunError {
     RunError::new(
-        codes::TOO_DEEP,
+        codes::run::EXPRESSION_TOO_DEEP,
         format!("the expression is nested deeper than {MAX_DEPTH} levels"),
     )
 }
@@ -294,7 +293,7 @@ fn int_indices<'b, C: EvalContext + ?Sized>(
 ) -> Result<&'b [i32], RunError> {
     if indices.len() > buf.len() {
         return Err(RunError::new(
-            codes::INDEX_COUNT,
+            codes::run::INDEX_COUNT,
             format!("{} indices: no variable has that many", indices.len()),
         ));
     }
@@ -446,7 +445,7 @@ fn int_result(i: i64) -> RtValue {
 
 fn operand_error(op: &str, v: &RtValue) -> RunError {
     RunError::new(
-        codes::TYPE_MISMATCH,
+        codes::run::TYPE_MISMATCH,
         format!("`{op}` does not take a {} operand", v.type_name()),
     )
 }
@@ -459,7 +458,7 @@ fn bit_operand(op: &str, v: &RtValue) -> Result<i32, RunError> {
 }
 
 fn division_by_zero(op: &str) -> RunError {
-    RunError::new(codes::DIVISION_BY_ZERO, format!("`{op}` by zero"))
+    RunError::new(codes::run::DIVISION_BY_ZERO, format!("`{op}` by zero"))
 }
 
 /// REAL equality within [`REAL_TOLERANCE`], relative.
@@ -602,7 +601,7 @@ fn compare(op: BinaryOp, a: &RtValue, b: &RtValue) -> Result<bool, RunError> {
         }
         _ => {
             return Err(RunError::new(
-                codes::TYPE_MISMATCH,
+                codes::run::TYPE_MISMATCH,
                 format!(
                     "`{sym}` cannot compare a {} with a {}",
                     a.type_name(),
@@ -651,7 +650,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
                 format!("{min} to {max}")
             };
             return Err(RunError::new(
-                codes::ARGUMENT_COUNT,
+                codes::run::ARGUMENT_COUNT,
                 format!("`{}` takes {expected} arguments, not {n}", self.name),
             ));
         }
@@ -666,7 +665,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
         match self.args.get(i) {
             Some(Some(e)) => eval_at(self.ctx, e, self.depth + 1),
             _ => Err(RunError::new(
-                codes::ARGUMENT_COUNT,
+                codes::run::ARGUMENT_COUNT,
                 format!("`{}` needs its argument {}", self.name, i + 1),
             )),
         }
@@ -709,7 +708,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
 
     fn wrong_type(&self, i: usize, v: &RtValue, wanted: &str) -> RunError {
         RunError::new(
-            codes::TYPE_MISMATCH,
+            codes::run::TYPE_MISMATCH,
             format!(
                 "argument {} of `{}` must be {wanted}, not a {}",
                 i + 1,
@@ -721,7 +720,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
 }
 
 fn domain(name: &str, x: f64, why: &str) -> RunError {
-    RunError::new(codes::DOMAIN, format!("`{name}({x})`: {why}"))
+    RunError::new(codes::run::DOMAIN, format!("`{name}({x})`: {why}"))
 }
 
 /// A result of degrees within 1e-12 of a whole number is that number
@@ -818,7 +817,7 @@ fn call<C: EvalContext + ?Sized>(
             let (y, x) = (a.real(0)?, a.real(1)?);
             if y == 0.0 && x == 0.0 {
                 return Err(RunError::new(
-                    codes::DOMAIN,
+                    codes::run::DOMAIN,
                     "`ATAN2(0, 0)`: no angle without a direction",
                 ));
             }
@@ -834,7 +833,7 @@ fn call<C: EvalContext + ?Sized>(
             let (lo, hi, x) = (a.real(0)?, a.real(1)?, a.real(2)?);
             if lo > hi {
                 return Err(RunError::new(
-                    codes::DOMAIN,
+                    codes::run::DOMAIN,
                     format!("`BOUND({lo}, {hi}, …)`: the minimum is above the maximum"),
                 ));
             }
@@ -866,7 +865,7 @@ fn call<C: EvalContext + ?Sized>(
             }
             parsed.map(RtValue::Real).ok_or_else(|| {
                 RunError::new(
-                    codes::INVALID_NUMBER,
+                    codes::run::INVALID_NUMBER,
                     format!("`NUMBER`: \"{s}\" is not a number"),
                 )
             })
@@ -879,7 +878,7 @@ fn call<C: EvalContext + ?Sized>(
                 Ok(RtValue::Axis(Arc::from(upper.as_str())))
             } else {
                 Err(RunError::new(
-                    codes::UNKNOWN_AXIS,
+                    codes::run::UNKNOWN_AXIS,
                     format!("`AXNAME`: \"{s}\" is not an axis of the machine"),
                 ))
             }
@@ -956,7 +955,7 @@ fn call<C: EvalContext + ?Sized>(
             }
             ctx.runtime().function(name, &values).unwrap_or_else(|| {
                 Err(RunError::new(
-                    codes::UNKNOWN_FUNCTION,
+                    codes::run::UNKNOWN_FUNCTION,
                     format!("`{name}` is not a function the executor knows"),
                 ))
             })
@@ -971,11 +970,11 @@ fn position(at: Option<usize>) -> RtValue {
 /// `SUBSTR(s, start, len)`: the characters from `start` (0-based) on,
 /// `len` of them or to the end; a part past the end is cut off (a start
 /// at or past the end gives the empty string). A negative start or length
-/// is [`codes::INDEX_OUT_OF_RANGE`].
+/// is [`codes::run::INDEX_OUT_OF_RANGE`].
 fn substr(s: &str, start: i32, len: Option<i32>) -> Result<RtValue, RunError> {
     let bad = |what: &str, v: i32| {
         RunError::new(
-            codes::INDEX_OUT_OF_RANGE,
+            codes::run::INDEX_OUT_OF_RANGE,
             format!("`SUBSTR`: the {what} {v} is negative"),
         )
     };
@@ -1081,20 +1080,20 @@ pub fn sprint(format: &str, values: &[RtValue]) -> Result<String, RunError> {
         let width: usize = width.parse::<usize>().unwrap_or(0).min(200);
         let Some(directive) = chars.next() else {
             return Err(RunError::new(
-                codes::FORMAT,
+                codes::run::FORMAT,
                 "`SPRINT`: the format ends in the middle of a directive",
             ));
         };
         let directive = directive.to_ascii_uppercase();
         if !"DFEGSCBX".contains(directive) {
             return Err(RunError::new(
-                codes::FORMAT,
+                codes::run::FORMAT,
                 format!("`SPRINT`: `%{directive}` is not a format directive"),
             ));
         }
         let Some(v) = next.next() else {
             return Err(RunError::new(
-                codes::ARGUMENT_COUNT,
+                codes::run::ARGUMENT_COUNT,
                 format!("`SPRINT`: no value for the directive `%{directive}`"),
             ));
         };
@@ -1184,7 +1183,7 @@ fn c_general(x: f64, precision: usize) -> String {
 /// * `$P_AXN1`…`$P_AXN3`: the geometry axes in channel order;
 /// * `$MC_TOOL_CHANGE_MODE`: 0 (`direct`) or 1 (`deferred_m6`).
 ///
-/// Any other variable is [`codes::SYSTEM_VARIABLE`] naming it.
+/// Any other variable is [`codes::run::SYSTEM_VARIABLE`] naming it.
 pub fn profile_system_variable(
     profile: Option<&Profile>,
     name: &str,
@@ -1196,7 +1195,7 @@ pub fn profile_system_variable(
     }
     let Some(profile) = profile else {
         return Err(RunError::new(
-            codes::SYSTEM_VARIABLE,
+            codes::run::SYSTEM_VARIABLE,
             format!("the system variable `{name}` has no value without a machine profile"),
         ));
     };
@@ -1223,7 +1222,7 @@ pub fn profile_system_variable(
                 .map(|a| RtValue::axis(a.name.get_ref()))
                 .ok_or_else(|| {
                     RunError::new(
-                        codes::SYSTEM_VARIABLE,
+                        codes::run::SYSTEM_VARIABLE,
                         format!("`{name}`: the machine has no geometry axis {}", n + 1),
                     )
                 })
@@ -1237,7 +1236,7 @@ pub fn profile_system_variable(
                 return tool_parameter(profile, name, k, indices);
             }
             Err(RunError::new(
-                codes::SYSTEM_VARIABLE,
+                codes::run::SYSTEM_VARIABLE,
                 format!(
                     "the system variable `{name}` has no value here: the machine profile does not give it"
                 ),
@@ -1256,7 +1255,7 @@ fn no_indices(name: &str, indices: &[RtValue]) -> Result<(), RunError> {
 
 fn sys_index_count(name: &str, expected: &str, given: usize) -> RunError {
     RunError::new(
-        codes::INDEX_COUNT,
+        codes::run::INDEX_COUNT,
         format!("`{name}` takes {expected} indices, not {given}"),
     )
 }
@@ -1298,7 +1297,7 @@ pub(crate) fn settable_offset(
         .filter(|&i| exists(i))
         .ok_or_else(|| {
             RunError::new(
-                codes::INDEX_OUT_OF_RANGE,
+                codes::run::INDEX_OUT_OF_RANGE,
                 format!("`$P_UIFR[{n}]`: the machine has no settable offset {n}"),
             )
         })
@@ -1335,7 +1334,7 @@ fn tool_parameter(
         .and_then(|t| profile.tool(t))
         .ok_or_else(|| {
             RunError::new(
-                codes::INDEX_OUT_OF_RANGE,
+                codes::run::INDEX_OUT_OF_RANGE,
                 format!("`{name}[{t},{d}]`: the tool table has no tool {t}"),
             )
         })?;
@@ -1344,13 +1343,13 @@ fn tool_parameter(
         .and_then(|d| tool.edge(d))
         .ok_or_else(|| {
             RunError::new(
-                codes::INDEX_OUT_OF_RANGE,
+                codes::run::INDEX_OUT_OF_RANGE,
                 format!("`{name}[{t},{d}]`: tool {t} has no cutting edge D{d}"),
             )
         })?;
     match k {
         1 => Err(RunError::new(
-            codes::SYSTEM_VARIABLE,
+            codes::run::SYSTEM_VARIABLE,
             format!("`{name}[{t},{d}]`: the tool type is not in the machine profile"),
         )),
         3 => Ok(RtValue::Real(edge.length)),
@@ -1370,7 +1369,7 @@ fn target_parts(target: &Expr) -> Result<(VarKind, &str, &[Expr]), RunError> {
             indices,
         } => Ok((*var_kind, name, indices)),
         _ => Err(RunError::new(
-            codes::TYPE_MISMATCH,
+            codes::run::TYPE_MISMATCH,
             "only a variable can be assigned to",
         )),
     }
@@ -1434,7 +1433,7 @@ pub fn assign_list(
     let (kind, name, indices) = target_parts(&list.target)?;
     if kind == VarKind::System && !(name.starts_with("$R") && is_r_system(name)) {
         return Err(RunError::new(
-            codes::TYPE_MISMATCH,
+            codes::run::TYPE_MISMATCH,
             format!("a list of values cannot be assigned to `{name}`"),
         ));
     }
@@ -1469,7 +1468,7 @@ fn repeat_values<C: EvalContext + ?Sized>(
             let n = eval_value(ctx, c)?.to_int()?;
             Some(usize::try_from(n).ok().filter(|&n| n >= 1).ok_or_else(|| {
                 RunError::new(
-                    codes::INDEX_OUT_OF_RANGE,
+                    codes::run::INDEX_OUT_OF_RANGE,
                     format!("`REP`: the count {n} is below 1"),
                 )
             })?)
@@ -1488,7 +1487,7 @@ pub fn declare(
 ) -> Result<(), RunError> {
     let ty = DataType::parse(&decl.data_type).ok_or_else(|| {
         RunError::new(
-            codes::INVALID_DECLARATION,
+            codes::run::INVALID_DECLARATION,
             format!("`{}` is not a type", decl.data_type),
         )
     })?;
@@ -1498,7 +1497,7 @@ pub fn declare(
         let n = eval_value(&env, d)?.to_int()?;
         dims.push(usize::try_from(n).ok().filter(|&n| n >= 1).ok_or_else(|| {
             RunError::new(
-                codes::INVALID_DECLARATION,
+                codes::run::INVALID_DECLARATION,
                 format!("`{}`: the dimension {n} is below 1", decl.name),
             )
         })?);

@@ -24,8 +24,9 @@
 use std::sync::Arc;
 
 use gcodec_ail::VarKind;
+use gcodec_source::codes;
 
-use crate::value::{DataType, RtValue, RunError, codes};
+use crate::value::{DataType, RtValue, RunError};
 
 /// The number of R parameters when nothing says otherwise (MD28050).
 pub const DEFAULT_R_PARAMETERS: usize = 100;
@@ -71,7 +72,7 @@ impl Variable {
     fn new(ty: DataType, dims: &[usize]) -> Result<Self, RunError> {
         if dims.len() > MAX_DIMENSIONS {
             return Err(RunError::new(
-                codes::INVALID_DECLARATION,
+                codes::run::INVALID_DECLARATION,
                 format!(
                     "{} dimensions: at most {MAX_DIMENSIONS} are allowed",
                     dims.len()
@@ -83,7 +84,7 @@ impl Variable {
         for (slot, &n) in d.iter_mut().zip(dims) {
             if n == 0 {
                 return Err(RunError::new(
-                    codes::INVALID_DECLARATION,
+                    codes::run::INVALID_DECLARATION,
                     "an array dimension must be at least 1",
                 ));
             }
@@ -92,7 +93,7 @@ impl Variable {
         }
         if total > MAX_ELEMENTS {
             return Err(RunError::new(
-                codes::INVALID_DECLARATION,
+                codes::run::INVALID_DECLARATION,
                 format!("an array of {total} elements is larger than {MAX_ELEMENTS}"),
             ));
         }
@@ -122,7 +123,7 @@ impl Variable {
             let ok = usize::try_from(index).ok().filter(|&x| x < dim);
             let Some(index) = ok else {
                 return Err(RunError::new(
-                    codes::INDEX_OUT_OF_RANGE,
+                    codes::run::INDEX_OUT_OF_RANGE,
                     format!(
                         "index {index} of `{name}` is outside 0…{} (dimension {})",
                         dim - 1,
@@ -142,7 +143,7 @@ impl Variable {
             ""
         };
         RunError::new(
-            codes::INDEX_COUNT,
+            codes::run::INDEX_COUNT,
             format!("`{name}` takes {} indices{extra}, not {given}", self.rank),
         )
     }
@@ -169,7 +170,7 @@ impl Variable {
                 .map(|&c| RtValue::Char(c))
                 .ok_or_else(|| {
                     RunError::new(
-                        codes::INDEX_OUT_OF_RANGE,
+                        codes::run::INDEX_OUT_OF_RANGE,
                         format!(
                             "character {at} of `{name}` is outside the string of {} characters",
                             s.len()
@@ -200,7 +201,7 @@ impl Variable {
             let at = indices[rank];
             let Some(i) = usize::try_from(at).ok().filter(|&i| i < s.len()) else {
                 return Err(RunError::new(
-                    codes::INDEX_OUT_OF_RANGE,
+                    codes::run::INDEX_OUT_OF_RANGE,
                     format!(
                         "character {at} of `{name}` is outside the string of {} characters",
                         s.len()
@@ -473,7 +474,7 @@ impl Variables {
 
     fn r_out_of_range(&self, index: i32) -> RunError {
         RunError::new(
-            codes::INDEX_OUT_OF_RANGE,
+            codes::run::INDEX_OUT_OF_RANGE,
             format!(
                 "R{index} is outside R0…R{} (MD28050 $MC_MM_NUM_R_PARAM)",
                 self.r.len().saturating_sub(1)
@@ -524,7 +525,7 @@ impl Variables {
     /// Writes consecutive elements from the one `start` names on (all
     /// indices, or none for the first element), in storage order; `None`
     /// leaves its element as it is. More values than elements from
-    /// `start` on is [`codes::INDEX_OUT_OF_RANGE`] and writes nothing.
+    /// `start` on is [`codes::run::INDEX_OUT_OF_RANGE`] and writes nothing.
     pub fn write_list(
         &mut self,
         kind: VarKind,
@@ -578,7 +579,7 @@ impl Variables {
         let first = usize::try_from(first).map_err(|_| self.r_out_of_range(first))?;
         if first.saturating_add(count) > self.r.len() {
             return Err(RunError::new(
-                codes::INDEX_OUT_OF_RANGE,
+                codes::run::INDEX_OUT_OF_RANGE,
                 format!(
                     "{count} values from R{first} on go past R{}",
                     self.r.len().saturating_sub(1)
@@ -600,7 +601,7 @@ fn r_start(start: &[i32]) -> Result<i32, RunError> {
 fn check_span(name: &str, first: usize, count: usize, len: usize) -> Result<(), RunError> {
     if first.saturating_add(count) > len {
         return Err(RunError::new(
-            codes::INDEX_OUT_OF_RANGE,
+            codes::run::INDEX_OUT_OF_RANGE,
             format!(
                 "{count} values from element {first} on go past the {len} elements of `{name}`"
             ),
@@ -611,14 +612,14 @@ fn check_span(name: &str, first: usize, count: usize, len: usize) -> Result<(), 
 
 fn r_index_count(given: usize) -> RunError {
     RunError::new(
-        codes::INDEX_COUNT,
+        codes::run::INDEX_COUNT,
         format!("an R parameter takes one index, not {given}"),
     )
 }
 
 pub(crate) fn undefined(name: &str) -> RunError {
     RunError::new(
-        codes::UNDEFINED_VARIABLE,
+        codes::run::UNDEFINED_VARIABLE,
         format!("`{name}` is not defined here"),
     )
 }

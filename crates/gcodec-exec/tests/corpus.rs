@@ -14,10 +14,8 @@ use std::sync::Arc;
 
 use gcodec_driver::{FileLoader, ProgramKind, SearchPath, compile, program_name};
 use gcodec_exec::channel::{Channel, RunOptions};
-use gcodec_exec::event::{
-    CountingSink, Event, EventKind, EventSeverity, EventSink, ProgramEndReason,
-};
-use gcodec_source::SourceFile;
+use gcodec_exec::event::{CountingSink, Event, EventKind, EventSink, ProgramEndReason};
+use gcodec_source::{Severity, SourceFile};
 
 #[path = "../../gcodec-sema/tests/common/mod.rs"]
 mod common;
@@ -42,7 +40,7 @@ struct Outcome {
 impl EventSink for Outcome {
     fn event(&mut self, event: &Event) -> std::io::Result<()> {
         if let EventKind::Diagnostic(d) = &event.kind
-            && d.severity == EventSeverity::Error
+            && d.severity == Severity::Error
         {
             self.last_error = Some((d.code.to_string(), event.source.line, d.message.to_string()));
         }

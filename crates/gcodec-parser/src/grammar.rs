@@ -9,7 +9,7 @@ use chumsky::pratt::{infix, left, prefix};
 use chumsky::prelude::*;
 use compact_str::CompactString;
 use gcodec_lexer::TokenKind as T;
-use gcodec_source::Span;
+use gcodec_source::{Span, codes};
 
 use crate::ast::*;
 use crate::error::SyntaxError;
@@ -52,10 +52,6 @@ impl<'s> Ctx<'s> {
         CompactString::from(self.text(s))
     }
 }
-
-const ERR_VALUE: &str = "gcodec::parse::invalid_value";
-const ERR_WORD: &str = "gcodec::parse::invalid_word";
-const ERR_NUMBER: &str = "gcodec::parse::invalid_number";
 
 /// Single-letter addresses that take a numeric extension (`X1=`, `M2=`, `S1=`).
 fn letter_takes_extension(c: u8) -> bool {
@@ -209,7 +205,7 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
             let value = number_value(text).unwrap_or_else(|| {
                 emitter.emit(SyntaxError::custom(
                     s,
-                    ERR_NUMBER,
+                    codes::parse::INVALID_NUMBER,
                     format!("number `{text}` is out of range"),
                     Some("REAL values range over about ±1.8·10^308"),
                 ));
@@ -239,7 +235,7 @@ pub(crate) fn expr<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> 
                     .map_err(|_| {
                         SyntaxError::custom(
                             s,
-                            ERR_NUMBER,
+                            codes::parse::INVALID_NUMBER,
                             format!("constant `{text}` is too large"),
                             None,
                         )
@@ -397,7 +393,7 @@ pub(crate) fn var_ref<'t, 's: 't>(
                     if !text.bytes().all(|b| b.is_ascii_digit()) {
                         return Err(SyntaxError::custom(
                             d,
-                            ERR_WORD,
+                            codes::parse::INVALID_WORD,
                             format!("R parameter number `{text}` is not an integer"),
                             None,
                         ));
@@ -423,7 +419,7 @@ pub(crate) fn var_ref<'t, 's: 't>(
                 }),
                 (_, Some(_), Some(_)) => Err(SyntaxError::custom(
                     span,
-                    ERR_WORD,
+                    codes::parse::INVALID_WORD,
                     format!(
                         "`{}` cannot be indexed: a numbered address takes no `[…]`",
                         g.text(SimpleSpan::from(letter.start..letter.end + 1))
@@ -434,7 +430,7 @@ pub(crate) fn var_ref<'t, 's: 't>(
                     // An axis name with a number (`X1`) inside an expression.
                     let text = g.text(d);
                     if !text.bytes().all(|b| b.is_ascii_digit()) {
-                        return Err(SyntaxError::custom(span, ERR_WORD, "a number cannot follow an address letter inside an expression", Some("write `=` values as expressions: `X=R1+5`; numbered axes need an integer, e.g. `X1`")));
+                        return Err(SyntaxError::custom(span, codes::parse::INVALID_WORD, "a number cannot follow an address letter inside an expression", Some("write `=` values as expressions: `X=R1+5`; numbered axes need an integer, e.g. `X1`")));
                     }
                     Ok(VarRef {
                         span: g.span(span),
@@ -582,7 +578,7 @@ fn letter_statement<'t, 's: 't>(
                 Some((eq, None)) => {
                     return Err(SyntaxError::custom(
                         SimpleSpan::from(eq.start..span.end.max(eq.end)),
-                        ERR_VALUE,
+                        codes::parse::INVALID_VALUE,
                         format!(
                             "`{}=` is not followed by a complete value",
                             g.text(SimpleSpan::from(letter.start..eq.start)).trim_end()
@@ -596,7 +592,7 @@ fn letter_statement<'t, 's: 't>(
             let l = g.bytes(letter)[0].to_ascii_uppercase();
             let addr = letter_str(l);
             let err = |s: SimpleSpan, msg: String, help: &'static str| {
-                Err(SyntaxError::custom(s, ERR_WORD, msg, Some(help)))
+                Err(SyntaxError::custom(s, codes::parse::INVALID_WORD, msg, Some(help)))
             };
             if let Some(s) = string {
                 return err(
@@ -634,7 +630,7 @@ fn letter_statement<'t, 's: 't>(
                     Initializer::Expr(e) => Ok(e),
                     _ => Err(SyntaxError::custom(
                         span,
-                        ERR_VALUE,
+                        codes::parse::INVALID_VALUE,
                         format!("address `{addr}` takes one value, not a list"),
                         None,
                     )),
@@ -644,7 +640,7 @@ fn letter_statement<'t, 's: 't>(
                 g.text(n).parse::<u32>().map_err(|_| {
                     SyntaxError::custom(
                         n,
-                        ERR_WORD,
+                        codes::parse::INVALID_WORD,
                         format!("`{}` is not a valid address extension", g.text(n)),
                         Some("an address extension is a whole number, e.g. `M2=3`, `X1=10`"),
                     )
@@ -817,7 +813,7 @@ fn jump_target<'t, 's: 't>(
                 }),
                 _ => Err(SyntaxError::custom(
                     span,
-                    ERR_WORD,
+                    codes::parse::INVALID_WORD,
                     "a jump target is a label, a block number `N…` or a string",
                     None,
                 )),
@@ -829,8 +825,14 @@ fn jump_target<'t, 's: 't>(
 /// A label or block number (REPEAT sections take no string expressions,
 /// which keeps `REPEAT A B P=3` unambiguous).
 fn section_target<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, JumpTarget, Ex> + Clone + 't {
-    let never = select! { T::Error => () }
-        .try_map(|_, s| Err::<Expr, _>(SyntaxError::custom(s, ERR_WORD, "unreachable", None)));
+    let never = select! { T::Error => () }.try_map(|_, s| {
+        Err::<Expr, _>(SyntaxError::custom(
+            s,
+            codes::parse::INVALID_WORD,
+            "unreachable",
+            None,
+        ))
+    });
     jump_target(g, never).labelled("label")
 }
 
@@ -853,14 +855,14 @@ fn jump<'t, 's: 't>(
         .try_map(|(goto, target), span| match (goto, &target) {
             (GotoKind::GotoS, Some(_)) => Err(SyntaxError::custom(
                 span,
-                ERR_WORD,
+                codes::parse::INVALID_WORD,
                 "`GOTOS` takes no target",
                 Some("GOTOS jumps back to the program start"),
             )),
             (GotoKind::GotoS, None) | (_, Some(_)) => Ok(Jump { goto, target }),
             (_, None) => Err(SyntaxError::custom(
                 span,
-                "gcodec::parse::missing_jump_target",
+                codes::parse::MISSING_JUMP_TARGET,
                 "jump without a target",
                 Some("name a label, a block number (`N100`) or a string expression"),
             )),
@@ -909,7 +911,7 @@ fn type_spec<'t, 's: 't>(
             }),
             (_, Some(_)) => Err(SyntaxError::custom(
                 span,
-                ERR_WORD,
+                codes::parse::INVALID_WORD,
                 "only STRING takes a length in `[…]`",
                 Some("array dimensions follow the variable name: `DEF REAL A[3]`"),
             )),
@@ -932,7 +934,7 @@ fn name_token<'t>() -> impl Parser<'t, In<'t>, SimpleSpan, Ex> + Clone + 't {
             Some(n) if n.start == l.end => Ok(span),
             Some(_) => Err(SyntaxError::custom(
                 span,
-                ERR_WORD,
+                codes::parse::INVALID_WORD,
                 "a name cannot contain a blank",
                 None,
             )),
@@ -1093,7 +1095,7 @@ fn extern_decl<'t, 's: 't>(
                         Some(_) => {
                             return Err(SyntaxError::custom(
                                 span,
-                                ERR_WORD,
+                                codes::parse::INVALID_WORD,
                                 "a STRING length is one number, e.g. `STRING[32]`",
                                 None,
                             ));
@@ -1105,7 +1107,7 @@ fn extern_decl<'t, 's: 't>(
                     if second.is_some() {
                         return Err(SyntaxError::custom(
                             span,
-                            ERR_WORD,
+                            codes::parse::INVALID_WORD,
                             "only STRING takes a length before its dimensions",
                             None,
                         ));
@@ -1167,7 +1169,7 @@ fn named_call<'t, 's: 't>(
             } else {
                 Err(SyntaxError::custom(
                     span,
-                    ERR_WORD,
+                    codes::parse::INVALID_WORD,
                     "expected a program name or `L` number",
                     None,
                 ))
@@ -1198,7 +1200,7 @@ fn passes_word<'t, 's: 't>(
         LetterStatement::Invalid => Ok(None),
         _ => Err(SyntaxError::custom(
             span,
-            ERR_WORD,
+            codes::parse::INVALID_WORD,
             "expected the number of passes `P=n`",
             None,
         )),
@@ -1318,7 +1320,7 @@ pub(crate) fn statements<'t, 's: 't>(
             if program.is_none() && section.is_none() {
                 Err(SyntaxError::custom(
                     span,
-                    ERR_WORD,
+                    codes::parse::INVALID_WORD,
                     "`CALL` needs a program name or `BLOCK … TO …`",
                     Some("write e.g. `CALL \"PART1\"`"),
                 ))
@@ -1370,7 +1372,7 @@ pub(crate) fn statements<'t, 's: 't>(
                     LetterStatement::Invalid => Ok(None),
                     _ => Err(SyntaxError::custom(
                         span,
-                        ERR_WORD,
+                        codes::parse::INVALID_WORD,
                         "frame instructions take axis words only",
                         Some("write e.g. `TRANS X10 Y5` in a block of its own"),
                     )),
@@ -1515,7 +1517,7 @@ fn named_word<'t, 's: 't>(
                     _ => {
                         return Err(SyntaxError::custom(
                             span,
-                            ERR_VALUE,
+                            codes::parse::INVALID_VALUE,
                             "a word takes one value, not a list",
                             None,
                         ));
@@ -1546,7 +1548,7 @@ fn named_address_word(
     let Initializer::Expr(e) = value else {
         return Some(Err(SyntaxError::custom(
             span,
-            ERR_VALUE,
+            codes::parse::INVALID_VALUE,
             format!("address `{}` takes one value, not a list", target.name),
             None,
         )));
@@ -1560,7 +1562,7 @@ fn named_address_word(
         _ => {
             return Some(Err(SyntaxError::custom(
                 span,
-                ERR_WORD,
+                codes::parse::INVALID_WORD,
                 format!("address `{}` takes one index", target.name),
                 None,
             )));
@@ -1597,7 +1599,7 @@ pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody
                 // reading, and the two skip under different switches.
                 Some(n) if n.start != slash.end => Err(SyntaxError::custom(
                     span,
-                    "gcodec::parse::separated_skip_level",
+                    codes::parse::SEPARATED_SKIP_LEVEL,
                     format!(
                         "a blank between the skip mark `/` and the number `{}`",
                         g.text(n)
@@ -1611,7 +1613,7 @@ pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody
                     }),
                     _ => Err(SyntaxError::custom(
                         span,
-                        "gcodec::parse::invalid_skip_level",
+                        codes::parse::INVALID_SKIP_LEVEL,
                         format!("skip level `/{}` is not 0 to 9", g.text(n)),
                         Some("skip levels are `/` and `/0` … `/9`"),
                     )),
@@ -1641,7 +1643,7 @@ pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody
                 .map_err(|_| {
                     SyntaxError::custom(
                         span,
-                        "gcodec::parse::invalid_block_number",
+                        codes::parse::INVALID_BLOCK_NUMBER,
                         format!("block number `N{}` is not a whole number", g.text(n)),
                         None,
                     )
@@ -1661,7 +1663,7 @@ pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody
                 .map_err(|_| {
                     SyntaxError::custom(
                         span,
-                        "gcodec::parse::invalid_block_number",
+                        codes::parse::INVALID_BLOCK_NUMBER,
                         format!("main block number `:{}` is not a whole number", g.text(n)),
                         None,
                     )

@@ -14,15 +14,10 @@
 //! defined twice (`gcodec::definitions::duplicate`).
 
 use gcodec_parser::ast::{self, StatementKind};
-use gcodec_source::{Diagnostic, SourceFile, Span};
+use gcodec_source::{Diagnostic, SourceFile, Span, codes};
 
 use crate::sysvars;
 use crate::types::{self, DataType, NameMap, constant_count};
-
-const NOT_A_DEFINITION: &str = "gcodec::definitions::not_a_definition";
-const DUPLICATE: &str = "gcodec::definitions::duplicate";
-pub(crate) const UNDEFINED_VARIABLE: &str = "gcodec::lower::undefined_variable";
-
 /// Where a global variable lives (`DEF NCK …`, `DEF CHAN …`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GlobalRange {
@@ -108,8 +103,8 @@ impl Definitions {
                 let definition = self.statement(program, statement, &mut diagnostics);
                 if !definition && !std::mem::replace(&mut reported, true) {
                     diagnostics.push(
-                        Diagnostic::error(
-                            NOT_A_DEFINITION,
+                        Diagnostic::new(
+                            codes::definitions::NOT_A_DEFINITION,
                             "a definition file holds only `DEF`, `DEFINE` and `REDEF`",
                         )
                         .with_label(statement.span, "not a definition")
@@ -154,8 +149,8 @@ impl Definitions {
                         span: var.span,
                     };
                     if let Some(first) = self.variables.insert_new(&var.name, global) {
-                        let mut d = Diagnostic::error(
-                            DUPLICATE,
+                        let mut d = Diagnostic::new(
+                            codes::definitions::DUPLICATE,
                             format!("`{}` is defined twice", var.name),
                         )
                         .with_label(var.span, "defined again here")
@@ -174,8 +169,8 @@ impl Definitions {
                 };
                 if self.macros.insert_new(&define.name, item).is_some() {
                     diagnostics.push(
-                        Diagnostic::error(
-                            DUPLICATE,
+                        Diagnostic::new(
+                            codes::definitions::DUPLICATE,
                             format!("the macro `{}` is defined twice", define.name),
                         )
                         .with_label(statement.span, "defined again here")
@@ -198,8 +193,8 @@ impl Definitions {
                     );
                 } else if !known {
                     diagnostics.push(
-                        Diagnostic::error(
-                            UNDEFINED_VARIABLE,
+                        Diagnostic::new(
+                            codes::lower::UNDEFINED_VARIABLE,
                             format!("`REDEF` of `{}`, which is not defined", redef.name),
                         )
                         .with_label(statement.span, "not defined before")

@@ -62,6 +62,41 @@ fn every_code_named_in_the_crates_is_registered() {
     );
 }
 
+/// No code is spelt out in the sources outside the registry: every
+/// diagnostic is built from a registry constant, so none is composed at
+/// run time or missing from it. Unit tests (after `#[cfg(test)]`) may
+/// compare with names.
+#[test]
+fn no_code_is_spelt_out_outside_the_registry() {
+    let registry = Path::new(REGISTRY_DIR)
+        .canonicalize()
+        .expect("the registry");
+    let crates = Path::new(WORKSPACE)
+        .join("crates")
+        .canonicalize()
+        .expect("crates/");
+    let mut spelt = Vec::new();
+    for path in files(&crates) {
+        let in_sources = path.components().any(|c| c.as_os_str() == "src");
+        if !in_sources || path.starts_with(&registry) || path.extension().is_none_or(|e| e != "rs")
+        {
+            continue;
+        }
+        let Ok(text) = std::fs::read_to_string(&path) else {
+            continue;
+        };
+        let code = text.split("#[cfg(test)]").next().unwrap_or("");
+        for line in code.lines().filter(|l| l.contains("\"gcodec::")) {
+            spelt.push(format!("{}: {}", path.display(), line.trim()));
+        }
+    }
+    assert!(
+        spelt.is_empty(),
+        "codes spelt out instead of taken from gcodec_source::codes:\n{}",
+        spelt.join("\n")
+    );
+}
+
 /// Every explanation file belongs to a registered code (a file whose name
 /// is misspelt would be documentation nobody reads).
 #[test]

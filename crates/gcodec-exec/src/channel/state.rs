@@ -8,6 +8,7 @@ use std::sync::Arc;
 use gcodec_profile::{AxisKind, Profile};
 use gcodec_sema::ggroups;
 use gcodec_sema::modal::{GROUP_COUNT, reset_defaults};
+use gcodec_source::codes;
 
 use crate::eval::{
     RuntimeInterface, machine_axis_number, profile_offsets, profile_system_variable,
@@ -17,7 +18,7 @@ use gcodec_ail::Suppression;
 
 use crate::event::{AxisName, Plane, SpindleState, WorkOffsetCode};
 use crate::frames::{Frame, FrameAxes, chain_values, frame_function};
-use crate::value::{FrameValue, RtValue, RunError, codes};
+use crate::value::{FrameValue, RtValue, RunError};
 
 /// One channel axis.
 #[derive(Clone, Debug)]
@@ -341,7 +342,7 @@ impl MachineState {
         };
         self.axis_index(&axis).ok_or_else(|| {
             RunError::new(
-                codes::UNKNOWN_AXIS,
+                codes::run::UNKNOWN_AXIS,
                 format!("`{name}[{axis}]`: the machine has no axis `{axis}`"),
             )
         })
@@ -369,7 +370,7 @@ impl RuntimeInterface for MachineState {
             match indices {
                 [axis] => self.axis_argument(name, axis),
                 _ => Err(RunError::new(
-                    codes::INDEX_COUNT,
+                    codes::run::INDEX_COUNT,
                     format!("`{name}` takes one axis index ({what})"),
                 )),
             }
@@ -411,7 +412,7 @@ impl RuntimeInterface for MachineState {
                 let group = u8::try_from(n).ok().filter(|g| (1..=64).contains(g));
                 let Some(group) = group else {
                     return Err(RunError::new(
-                        codes::INDEX_OUT_OF_RANGE,
+                        codes::run::INDEX_OUT_OF_RANGE,
                         format!("`$P_GG[{n}]`: there is no G group {n}"),
                     ));
                 };
@@ -468,7 +469,7 @@ impl RuntimeInterface for MachineState {
                 Ok(())
             }
             _ => Err(RunError::new(
-                codes::READ_ONLY,
+                codes::run::READ_ONLY,
                 format!("the system variable `{name}` cannot be written in the simulation"),
             )),
         }

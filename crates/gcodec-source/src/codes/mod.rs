@@ -29,7 +29,7 @@ use crate::Severity;
 pub use text::{explain, list, reference};
 
 /// One diagnostic code and its documentation.
-#[derive(Debug, PartialEq, Eq, Hash)]
+#[derive(PartialEq, Eq, Hash)]
 pub struct Code {
     name: &'static str,
     level: Severity,
@@ -89,6 +89,14 @@ impl Code {
 impl fmt::Display for Code {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name)
+    }
+}
+
+/// Debug-printed as its name in quotes, as the string it replaces was, so
+/// test output and debug dumps name codes the same way.
+impl fmt::Debug for Code {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Debug::fmt(self.name, f)
     }
 }
 
