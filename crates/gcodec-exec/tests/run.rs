@@ -16,7 +16,7 @@ use gcodec_source::SourceFile;
 
 mod common;
 
-use common::setup::{FIXTURES, Setup, setup};
+use common::setup::{FIXTURES, Setup, at_repo_root, setup};
 
 enum Output {
     Text,
@@ -82,6 +82,7 @@ fn run(path: &Path, output: Output) -> String {
 }
 
 fn fixture(name: &str) -> PathBuf {
+    at_repo_root();
     Path::new(FIXTURES).join(name)
 }
 

@@ -20,7 +20,7 @@ mod common;
 #[path = "../../gcodec-sema/tests/common/mod.rs"]
 mod sema_common;
 
-use common::setup::{FIXTURES, Setup, setup};
+use common::setup::{FIXTURES, Setup, at_repo_root, setup};
 
 struct Case<'a> {
     file: Arc<SourceFile>,
@@ -113,7 +113,9 @@ fn check(case: &Case) -> bool {
 
 #[test]
 fn streamed_runs_write_the_events_of_whole_runs() {
-    // The fixtures first: the corpus runs from the corpus directory.
+    // The fixtures first, from the repository root; the corpus runs from
+    // the corpus directory.
+    at_repo_root();
     let mut fixtures: Vec<PathBuf> = std::fs::read_dir(FIXTURES)
         .expect("fixtures")
         .map(|e| e.expect("entry").path())

@@ -6,7 +6,17 @@ use std::sync::Arc;
 
 use gcodec_exec::channel::RunOptions;
 
+/// The golden fixtures, relative to the repository root: the snapshots
+/// show files and searched directories so.
 pub const FIXTURES: &str = "tests/fixtures/run";
+
+/// Makes the repository root the current directory, where [`FIXTURES`]
+/// is. Every test of a binary that calls it wants the same directory, so
+/// tests running in parallel agree.
+pub fn at_repo_root() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    std::env::set_current_dir(root).expect("the repository root");
+}
 
 pub struct Setup {
     pub profile: Arc<gcodec_profile::Profile>,
