@@ -1,9 +1,7 @@
 //! The machines and definitions the programs of the shared corpus were
 //! written for, shared by the corpus tests of lowering
 //! (`gcodec-sema/tests/corpus.rs`) and running
-//! (`gcodec-exec/tests/corpus.rs`, which includes this file by path).
-
-#![allow(dead_code)]
+//! (`gcodec-exec/tests/corpus.rs`).
 
 /// The machine a part of the corpus was written for; the default profile
 /// for everything else. `tool.mpf` selects tools by name, so its machine
@@ -158,7 +156,7 @@ pub fn machine_profile(shown: &str) -> (&'static str, gcodec_profile::Profile) {
         .iter()
         .find(|(part, _)| shown.contains(part))
         .map_or("default.toml", |(_, p)| p);
-    let mut profile = super::profile(machine);
+    let mut profile = crate::profiles::profile(machine);
     if shown.contains("peer-cead/tool.mpf") {
         profile.tools.clear();
     }
