@@ -17,7 +17,7 @@ use gcodec_exec::loader::*;
 use gcodec_profile::Profile;
 
 fn fixtures() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/loader")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/fixtures/loader")
 }
 
 fn main_dir() -> PathBuf {
