@@ -9,7 +9,7 @@
 //! directly. This module recognises exactly these shapes and builds the same
 //! nodes the grammar would: expressions by precedence climbing over the
 //! grammar's own operator table ([`infix`] mirrors the pratt parser in
-//! `grammar::expr`), with numbers, R parameters, numbered axis names and
+//! `grammar::expressions`), with numbers, R parameters, numbered axis names and
 //! parentheses as operands. Anything else — names, calls, strings, brackets,
 //! lists, `L` calls, labels, any value the grammar would diagnose — returns
 //! `None` and the grammar parses the block. Its output is checked against
@@ -355,7 +355,7 @@ pub(crate) fn whole_number(digits: &[u8]) -> Option<u64> {
 }
 
 /// Binding power and operator of an infix token: the grammar's pratt
-/// table (`grammar::expr`), all levels left-associative.
+/// table (`grammar::expressions`), all levels left-associative.
 fn infix(kind: T) -> Option<(u8, BinaryOp)> {
     Some(match kind {
         T::Star => (11, BinaryOp::Mul),
