@@ -1,14 +1,16 @@
 //! Expressions: constants, variable references, function calls and
-//! parentheses as operands, combined by a pratt parser with Siemens
-//! precedence; and initializers, the right side of `=` (an expression, a list,
+//! parentheses as operands, combined by a pratt parser over the operator
+//! table; and initializers, the right side of `=` (an expression, a list,
 //! `SET(…)`, `REP(…)`).
 
 use chumsky::input::MapExtra;
 use chumsky::pratt::{infix, left, prefix};
 use chumsky::prelude::*;
+use chumsky::primitive::select;
 use gcodec_lexer::TokenKind as T;
 
 use super::numbers::number_value;
+use super::operators::{self, Associativity, Precedence};
 use super::{Ctx, ERR_NUMBER, ERR_WORD, Ex, In, args, decode_text, indices};
 use crate::ast::*;
 use crate::error::SyntaxError;
@@ -136,72 +138,55 @@ fn parenthesised<'t, 's: 't>(
         })
 }
 
-/// Operands joined by operators with Siemens precedence: one operator
-/// parser per precedence level, because after every operand the pratt
-/// loop tries each level once, and fewer levels mean fewer failed attempts
-/// on the hot path.
+/// Operands joined by the operators of [`operators`]: one operator parser
+/// per precedence class, because after every operand the pratt loop tries
+/// each once, and fewer classes mean fewer failed attempts on the hot path.
 fn with_operators<'t, 's: 't>(
     g: Ctx<'s>,
     atom: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
 ) -> impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't {
-    let bin = move |l: Expr, op: BinaryOp, r: Expr, e: &mut MapExtra<'t, '_, In<'t>, Ex>| Expr {
-        span: g.span(e.span()),
-        kind: ExprKind::Binary(Box::new(BinaryExpr { op, lhs: l, rhs: r })),
+    let binary =
+        move |lhs: Expr, op: BinaryOp, rhs: Expr, e: &mut MapExtra<'t, '_, In<'t>, Ex>| Expr {
+            span: g.span(e.span()),
+            kind: ExprKind::Binary(Box::new(BinaryExpr { op, lhs, rhs })),
+        };
+    let class = move |precedence: Precedence| {
+        let associativity = match precedence.associativity {
+            Associativity::Left => left(u16::from(precedence.power)),
+        };
+        let op = select(move |t: T, _| {
+            operators::binary_token(t)
+                .filter(|(_, class)| class.power == precedence.power)
+                .map(|(op, _)| op)
+        });
+        infix(associativity, op, binary)
     };
-    let un = move |op: UnaryOp, r: Expr, e: &mut MapExtra<'t, '_, In<'t>, Ex>| Expr {
-        span: g.span(e.span()),
-        kind: ExprKind::Unary {
-            op,
-            operand: Box::new(r),
+    let unary = prefix(
+        u16::from(operators::PREFIX_POWER),
+        select(|t: T, _| operators::unary_token(t)),
+        move |op: UnaryOp, operand: Expr, e: &mut MapExtra<'t, '_, In<'t>, Ex>| Expr {
+            span: g.span(e.span()),
+            kind: ExprKind::Unary {
+                op,
+                operand: Box::new(operand),
+            },
         },
-    };
+    );
+    // Destructured, so a class added to the table cannot be left out here.
+    let [c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10] = operators::PRECEDENCES;
     atom.pratt((
-        prefix(
-            12,
-            select! {
-                T::Minus => UnaryOp::Neg,
-                T::Plus => UnaryOp::Plus,
-                T::Not => UnaryOp::Not,
-                T::BNot => UnaryOp::BNot,
-                T::Concat => UnaryOp::ToString,
-            },
-            un,
-        ),
-        infix(
-            left(11),
-            select! {
-                T::Star => BinaryOp::Mul,
-                T::Slash => BinaryOp::Div,
-                T::Div => BinaryOp::IntDiv,
-                T::Mod => BinaryOp::Mod,
-            },
-            bin,
-        ),
-        infix(
-            left(10),
-            select! { T::Plus => BinaryOp::Add, T::Minus => BinaryOp::Sub },
-            bin,
-        ),
-        infix(left(9), select! { T::BAnd => BinaryOp::BAnd }, bin),
-        infix(left(8), select! { T::BXor => BinaryOp::BXor }, bin),
-        infix(left(7), select! { T::BOr => BinaryOp::BOr }, bin),
-        infix(left(6), select! { T::And => BinaryOp::And }, bin),
-        infix(left(5), select! { T::Xor => BinaryOp::Xor }, bin),
-        infix(left(4), select! { T::Or => BinaryOp::Or }, bin),
-        infix(left(3), select! { T::Concat => BinaryOp::Concat }, bin),
-        infix(
-            left(2),
-            select! {
-                T::EqEq => BinaryOp::Eq,
-                T::Ne => BinaryOp::Ne,
-                T::Lt => BinaryOp::Lt,
-                T::Gt => BinaryOp::Gt,
-                T::Le => BinaryOp::Le,
-                T::Ge => BinaryOp::Ge,
-            },
-            bin,
-        ),
-        infix(left(1), select! { T::Colon => BinaryOp::Chain }, bin),
+        unary,
+        class(c0),
+        class(c1),
+        class(c2),
+        class(c3),
+        class(c4),
+        class(c5),
+        class(c6),
+        class(c7),
+        class(c8),
+        class(c9),
+        class(c10),
     ))
 }
 

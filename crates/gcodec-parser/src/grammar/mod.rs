@@ -13,6 +13,7 @@ mod declarations;
 mod expressions;
 mod frames;
 mod numbers;
+pub(crate) mod operators;
 mod prefix;
 mod statements;
 mod sync;
