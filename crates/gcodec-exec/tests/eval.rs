@@ -112,11 +112,6 @@ fn builtin() -> Profile {
     gcodec_profile::builtin().expect("built-in profile")
 }
 
-fn machine(sections: &str) -> Profile {
-    let text = format!("[machine]\nname = \"test\"\ncontrol = \"840d_sl\"\n{sections}");
-    gcodec_profile::load(&text).unwrap_or_else(|d| panic!("{d:#?}"))
-}
-
 /// Evaluates with an empty store on the built-in profile.
 fn ev(e: &Expr) -> Result<RtValue, RunError> {
     let vars = Variables::default();
@@ -595,7 +590,7 @@ fn conversions_follow_the_control_table() {
 
 #[test]
 fn system_variables_from_the_profile() {
-    let profile = machine(
+    let profile = gcodec_testkit::machine(
         r#"
 [work_offsets]
 supported_group8_offsets = ["G500", "G54-G57"]
@@ -862,15 +857,9 @@ fn strings_have_their_length_and_characters() {
 /// other instructions are skipped.
 fn run(src: &str) -> Variables {
     let profile = builtin();
-    let compiled = compile_main("test.mpf", src, &profile);
-    assert!(!compiled.has_errors(), "{:#?}", compiled.diagnostics);
-    run_document(&compiled.document, &profile)
-}
-
-fn compile_main(name: &str, src: &str, profile: &Profile) -> gcodec_driver::Compiled {
-    let definitions = gcodec_driver::Definitions::new();
-    let kind = gcodec_driver::ProgramKind::Main;
-    gcodec_driver::compile_text(name, src, kind, profile, &definitions)
+    let lowered = gcodec_testkit::lower_clean("test.mpf", src.as_bytes(), &profile);
+    assert!(!lowered.has_errors(), "{:#?}", lowered.diagnostics);
+    run_document(&lowered.document, &profile)
 }
 
 fn run_document(doc: &gcodec_ail::Document, profile: &Profile) -> Variables {
@@ -1014,9 +1003,9 @@ fn a_long_loop_computes_exactly() {
     // (docs/performance.md), not here.
     let profile = builtin();
     let src = "WHILE R1 < 100000\nR1 = R1 + 1\nR2 = R2 + R1 * 0.5 - SIN(30)\nENDWHILE\nM30\n";
-    let compiled = compile_main("loop.mpf", src, &profile);
-    assert!(!compiled.has_errors());
-    let vars = run_document(&compiled.document, &profile);
+    let lowered = gcodec_testkit::lower_clean("loop.mpf", src.as_bytes(), &profile);
+    assert!(!lowered.has_errors());
+    let vars = run_document(&lowered.document, &profile);
     assert_eq!(vars.r(1), Ok(100_000.0));
     // Σ (k/2 − 1/2) for k = 1 … 10⁵ = (10⁵·(10⁵+1)/2 − 10⁵)/2.
     assert_eq!(vars.r(2), Ok(2_499_975_000.0));

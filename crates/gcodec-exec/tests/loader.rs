@@ -18,7 +18,7 @@ use gcodec_profile::Profile;
 use gcodec_source::Severity;
 
 fn fixtures() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/loader")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/fixtures/loader")
 }
 
 fn main_dir() -> PathBuf {

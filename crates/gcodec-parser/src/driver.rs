@@ -11,7 +11,7 @@ use gcodec_source::{Diagnostic, SourceFile, Span, codes, decode};
 
 use crate::ast::*;
 use crate::error::SyntaxError;
-use crate::grammar::{self, Ctx, Spanned, decode_text};
+use crate::grammar::{self, Ctx, Spanned, decode_text, operators};
 use crate::{fast, structure};
 use gcodec_stream::{Chunk, map_chunks};
 
@@ -977,16 +977,8 @@ fn is_plain_name(name: &[u8]) -> bool {
         return false;
     };
     token.end as usize == name.len()
-        && (matches!(token.kind, T::Ident | T::True | T::False) || is_word_operator(token.kind))
-}
-
-/// An operator spelt as a word: `DIV`, `MOD`, `AND`, … `B_NOT`.
-fn is_word_operator(kind: TokenKind) -> bool {
-    use TokenKind as T;
-    matches!(
-        kind,
-        T::Div | T::Mod | T::And | T::Or | T::Xor | T::Not | T::BAnd | T::BOr | T::BXor | T::BNot
-    )
+        && (matches!(token.kind, T::Ident | T::True | T::False)
+            || operators::is_word_operator(token.kind))
 }
 
 /// Whether the driver keeps a token of `kind` for the grammar.
@@ -1045,18 +1037,7 @@ fn too_many_operators(tokens: &[Spanned]) -> Option<SimpleSpan> {
                     .is_some_and(|(k, s)| *k == T::Number && s.start == span.end);
                 !(after_letter && before_number)
             }
-            kind if is_word_operator(*kind) => true,
-            T::Star
-            | T::Slash
-            | T::Concat
-            | T::EqEq
-            | T::Ne
-            | T::Lt
-            | T::Gt
-            | T::Le
-            | T::Ge
-            | T::Colon => true,
-            _ => false,
+            kind => operators::is_operator(*kind),
         };
         if is_operator {
             count += 1;

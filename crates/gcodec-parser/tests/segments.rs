@@ -2,8 +2,6 @@
 //! and a streamed run parses them in chunks with the structures paired as
 //! the chunks come: neither split may change the tree or the diagnostics.
 
-mod common;
-
 use gcodec_parser::ast::Program;
 use gcodec_parser::{Pairing, parse_bytes_in_segments, parse_chunk};
 use gcodec_stream::chunks;
@@ -77,7 +75,7 @@ fn assert_split_invariant(name: &str, src: &[u8]) {
 
 #[test]
 fn fixtures_and_corpus_parse_the_same_in_segments() {
-    common::each_program(assert_split_invariant);
+    gcodec_testkit::each_program(assert_split_invariant);
 }
 
 #[test]

@@ -4,8 +4,6 @@
 //! only words (no `M`), assignments, calls by name and frames, and follows
 //! a block that settles, with only left-out blocks between.
 
-mod common;
-
 #[path = "../benches/program/mod.rs"]
 #[allow(dead_code)]
 mod program;
@@ -77,7 +75,7 @@ fn assert_skim_agrees(name: &str, src: &[u8], lines: usize) -> usize {
 
 #[test]
 fn fixtures_and_corpus_skim_as_they_parse() {
-    common::each_program(|name, src| {
+    gcodec_testkit::each_program(|name, src| {
         for lines in [1, 7, 1024] {
             assert_skim_agrees(name, src, lines);
         }
