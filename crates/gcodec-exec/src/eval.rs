@@ -15,12 +15,11 @@
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-use gcodec_ail::{AssignList, BinaryOp, Declare, Expr, UnaryOp, Value, VarKind};
+use gcodec_ail::{AssignList, Declare, Expr, Value, VarKind};
+use gcodec_lang::{BinaryOp, DataType, UnaryOp};
 use gcodec_profile::{Profile, ToolChangeMode};
 
-use crate::value::{
-    DataType, FrameAxis, FrameValue, RtValue, RunError, char_text, codes, real_to_int,
-};
+use crate::value::{FrameAxis, FrameValue, RtValue, RunError, char_text, codes, real_to_int};
 use crate::vars::{Init, Scope, Variables, undefined};
 
 /// Expressions nested deeper than this are [`codes::TOO_DEEP`]. The
@@ -1486,12 +1485,14 @@ pub fn declare(
     decl: &Declare,
     scope: Scope,
 ) -> Result<(), RunError> {
-    let ty = DataType::parse(&decl.data_type).ok_or_else(|| {
-        RunError::new(
-            codes::INVALID_DECLARATION,
-            format!("`{}` is not a type", decl.data_type),
-        )
-    })?;
+    let ty = DataType::parse(&decl.data_type)
+        .filter(|ty| ty.is_declarable())
+        .ok_or_else(|| {
+            RunError::new(
+                codes::INVALID_DECLARATION,
+                format!("`{}` is not a type", decl.data_type),
+            )
+        })?;
     let env = Env::new(vars, rt);
     let mut dims = Vec::with_capacity(decl.dims.len());
     for d in &decl.dims {

@@ -29,9 +29,9 @@ use std::fmt;
 use std::io::{self, BufWriter, Write};
 use std::sync::Arc;
 
-pub use gcodec_ail::{
-    MClass, MTiming, MotionKind, SelectorKind, Suppression, ToolChangeTrigger, ToolTiming,
-};
+pub use gcodec_ail::{MTiming, SelectorKind, Suppression, ToolChangeTrigger, ToolTiming};
+use gcodec_lang::addresses::letter_str;
+pub use gcodec_lang::{MClass, MotionKind};
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::de::{MapAccess, Visitor};
 use serde::ser::SerializeMap;
@@ -45,9 +45,7 @@ pub type AxisName = Cow<'static, str>;
 /// a single letter borrowed.
 pub fn axis_name(name: &str) -> AxisName {
     match name.as_bytes() {
-        [b] if b.is_ascii_alphabetic() => {
-            Cow::Borrowed(gcodec_parser::ast::letter_str(b.to_ascii_uppercase()))
-        }
+        [b] if b.is_ascii_alphabetic() => Cow::Borrowed(letter_str(b.to_ascii_uppercase())),
         _ => Cow::Owned(name.to_ascii_uppercase()),
     }
 }

@@ -8,9 +8,10 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use gcodec_ail::{MotionKind, Op};
+use gcodec_ail::Op;
 use gcodec_exec::event::{EventKind, EventSeverity};
 use gcodec_exec::loader::*;
+use gcodec_lang::MotionKind;
 use gcodec_profile::Profile;
 use gcodec_sema::Definitions;
 

@@ -8,6 +8,8 @@ use chumsky::input::MappedInput;
 use chumsky::pratt::{infix, left, prefix};
 use chumsky::prelude::*;
 use compact_str::CompactString;
+use gcodec_lang::addresses::letter_str;
+use gcodec_lang::{BinaryOp, DimensionMode, UnaryOp};
 use gcodec_lexer::TokenKind as T;
 use gcodec_source::Span;
 
@@ -510,7 +512,7 @@ fn assigned_value(expr: Expr) -> WordValue {
     let kind = match kind {
         ExprKind::Call(mut call) if call.args.len() == 1 => {
             match (
-                DimensionKind::from_name(&call.name),
+                DimensionMode::from_name(&call.name),
                 call.args.pop().flatten(),
             ) {
                 (Some(kind), Some(inner)) => {

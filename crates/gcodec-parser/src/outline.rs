@@ -3,6 +3,7 @@
 use std::fmt::{self, Write};
 
 use crate::ast::*;
+use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_source::Span;
 
 /// Writes one line per non-empty block: line number, block number and

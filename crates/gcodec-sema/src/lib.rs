@@ -1,8 +1,9 @@
 //! The semantic stage: checks a parsed program against a machine profile
 //! and lowers it to AIL ([`lower`]).
 //!
-//! Built so far: the G-group registry ([`ggroups`], all 64 groups of the
-//! language reference §3.2); the system-variable registry ([`sysvars`]: the
+//! Built on the vocabulary of `gcodec_lang` (the 64 G groups of the
+//! language reference §3.2, M classes, data types, operators): the
+//! system-variable registry ([`sysvars`]: the
 //! names of the reference and of the corpus, with their index shapes; an
 //! unknown `$` name is an error, as on the control); lowering of G
 //! commands (unknown commands, two of one group, Group 8 against the
@@ -30,7 +31,6 @@
 
 pub mod definitions;
 mod flow;
-pub mod ggroups;
 mod lower;
 mod mfunc;
 pub mod modal;
@@ -45,6 +45,4 @@ pub use lower::outline::{Outline, OutlineBuilder, outline, outline_chunks};
 pub use lower::spent::SpentBin;
 pub use lower::stream::{ChunkLowering, LoweredChunk, lower_chunks};
 pub use lower::{Lowered, lower, lower_in_parts, lower_with, refine};
-pub use mfunc::m_class;
 pub use profile_check::check_profile;
-pub use types::DataType;

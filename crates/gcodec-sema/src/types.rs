@@ -1,102 +1,31 @@
-//! The data types of the NC language (reference §7.1), the conversions
-//! between them, and what is known about the types of built-in functions
-//! and system variables.
+//! The static types of expressions: the data type a declaration names,
+//! and what is known about the types of built-in functions and system
+//! variables.
 //!
 //! Also the case-insensitive name map the variable checks use: names are
 //! upper-cased into a stack buffer for each lookup, so a lookup allocates
 //! nothing.
 
+use gcodec_lang::DataType;
 use gcodec_parser::ast;
 use gcodec_source::{Diagnostic, Span};
 use rustc_hash::FxHashMap;
 
 use crate::sysvars::{self, IndexShape};
 
-/// A declared data type.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum DataType {
-    Int,
-    Real,
-    Bool,
-    Char,
-    /// `STRING[n]`; `length` is `None` where it is not a constant (or the
-    /// type of a computed string).
-    String {
-        length: Option<u32>,
-    },
-    Axis,
-    Frame,
-}
-
-impl DataType {
-    /// The type a `DEF` or a `PROC` parameter names; the length of
-    /// `STRING[n]` when it is a constant.
-    pub fn from_ast(kind: &ast::TypeKind) -> Self {
-        match kind {
-            ast::TypeKind::Int => DataType::Int,
-            ast::TypeKind::Real => DataType::Real,
-            ast::TypeKind::Bool => DataType::Bool,
-            ast::TypeKind::Char => DataType::Char,
-            ast::TypeKind::String { length } => DataType::String {
-                length: length.as_deref().and_then(constant_count),
-            },
-            ast::TypeKind::Axis => DataType::Axis,
-            ast::TypeKind::Frame => DataType::Frame,
-        }
-    }
-
-    /// The keyword (`STRING` without its length).
-    pub const fn keyword(self) -> &'static str {
-        match self {
-            DataType::Int => "INT",
-            DataType::Real => "REAL",
-            DataType::Bool => "BOOL",
-            DataType::Char => "CHAR",
-            DataType::String { .. } => "STRING",
-            DataType::Axis => "AXIS",
-            DataType::Frame => "FRAME",
-        }
-    }
-
-    /// The type as written in a message (`STRING[12]`).
-    pub fn describe(self) -> String {
-        match self {
-            DataType::String { length: Some(n) } => format!("STRING[{n}]"),
-            other => other.keyword().to_owned(),
-        }
-    }
-
-    /// Whether a value of type `self` may be assigned to a variable of
-    /// type `to`: the conversion table of the control (alarm 14096, "illegal
-    /// type conversion", Siemens diagnostics manual; reference §7.1).
-    ///
-    /// REAL, INT, BOOL and CHAR convert into each other; CHAR and STRING
-    /// into STRING; STRING into BOOL (empty is FALSE) and CHAR (one
-    /// character, checked by the caller for constants); AXIS and FRAME only
-    /// into themselves. Nothing numeric converts into STRING, AXIS or
-    /// FRAME.
-    pub fn converts_to(self, to: DataType) -> bool {
-        use DataType::*;
-        match (self, to) {
-            (Axis, Axis) | (Frame, Frame) => true,
-            (Axis | Frame, _) | (_, Axis | Frame) => false,
-            (String { .. }, Int | Real) => false,
-            (Int | Real | Bool, String { .. }) => false,
-            _ => true,
-        }
-    }
-
-    /// "a" or "an" before the keyword.
-    pub(crate) const fn article(self) -> &'static str {
-        match self {
-            DataType::Int | DataType::Axis => "an",
-            _ => "a",
-        }
-    }
-
-    /// INT or REAL.
-    pub const fn is_number(self) -> bool {
-        matches!(self, DataType::Int | DataType::Real)
+/// The type a `DEF` or a `PROC` parameter names; the length of
+/// `STRING[n]` when it is a constant.
+pub fn from_ast(kind: &ast::TypeKind) -> DataType {
+    match kind {
+        ast::TypeKind::Int => DataType::Int,
+        ast::TypeKind::Real => DataType::Real,
+        ast::TypeKind::Bool => DataType::Bool,
+        ast::TypeKind::Char => DataType::Char,
+        ast::TypeKind::String { length } => DataType::String {
+            length: length.as_deref().and_then(constant_count),
+        },
+        ast::TypeKind::Axis => DataType::Axis,
+        ast::TypeKind::Frame => DataType::Frame,
     }
 }
 
@@ -413,17 +342,6 @@ mod tests {
         assert_eq!(function_type("TRUNC"), Some(DataType::Real));
         assert_eq!(function_type("ABS"), Some(DataType::Real));
         assert_eq!(function_type("MYFUNC"), None);
-    }
-
-    #[test]
-    fn conversions_follow_the_control() {
-        use DataType::*;
-        let s = String { length: None };
-        assert!(Int.converts_to(Real) && Real.converts_to(Int) && Real.converts_to(Bool));
-        assert!(Char.converts_to(s) && s.converts_to(Bool) && s.converts_to(Char));
-        assert!(!s.converts_to(Real) && !Real.converts_to(s) && !Bool.converts_to(s));
-        assert!(!Real.converts_to(Axis) && !Axis.converts_to(Real) && Axis.converts_to(Axis));
-        assert!(!Frame.converts_to(Real) && Frame.converts_to(Frame) && !Int.converts_to(Frame));
     }
 
     #[test]

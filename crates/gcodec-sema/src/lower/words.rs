@@ -6,10 +6,11 @@
 use std::borrow::Cow;
 
 use gcodec_ail::{AxisValue, Suppression, Value};
+use gcodec_lang::ggroups;
 use gcodec_parser::ast::{self, Extension, Word};
 use gcodec_source::{Diagnostic, Span};
 
-use crate::{ggroups, mfunc, tools, values};
+use crate::{mfunc, tools, values};
 
 use super::addresses::{EXTENSION_NOT_ALLOWED, UNSUPPORTED_G};
 use super::{

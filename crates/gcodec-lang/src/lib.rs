@@ -1,0 +1,28 @@
+//! The SINUMERIK vocabulary: the names and closed sets of the NC language
+//! that every stage shares, defined once.
+//!
+//! The G groups and their commands ([`ggroups`]), the standard classes of
+//! M functions ([`mfunctions`]), the group count of the modal state
+//! ([`modal`]), the data types ([`types`]), the operators
+//! ([`operators`]), the dimension modes ([`dimension`]), the motion a
+//! group 1 command makes ([`motion`]) and the address letters
+//! ([`addresses`]). The syntax tree, the semantic stage, the AIL and the
+//! executor use these types, so no boundary converts one spelling of a
+//! word into another.
+//!
+//! Depends on no other gcodec crate: it sits below the profile and the AIL.
+
+pub mod addresses;
+pub mod dimension;
+pub mod ggroups;
+pub mod mfunctions;
+pub mod modal;
+pub mod motion;
+pub mod operators;
+pub mod types;
+
+pub use dimension::DimensionMode;
+pub use mfunctions::MClass;
+pub use motion::MotionKind;
+pub use operators::{BinaryOp, UnaryOp};
+pub use types::DataType;
