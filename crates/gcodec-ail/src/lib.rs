@@ -21,7 +21,8 @@ use std::borrow::Cow;
 use std::sync::Arc;
 
 pub use expr::{Expr, Value, VarKind};
-use gcodec_lang::{DimensionMode, MClass, MotionKind};
+use gcodec_lang::ggroups::GCommand;
+use gcodec_lang::{DataType, DimensionMode, MClass, MotionKind};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -110,9 +111,12 @@ pub enum Op {
     },
     /// A modal G command of any group but 8.
     ModalChange {
+        // `code`'s group, written out for readers of the JSON (a doc
+        // comment would change the schema).
         group: u8,
         /// The command in upper case (`G17`, `DIAMON`).
-        code: Cow<'static, str>,
+        #[schemars(with = "String")]
+        code: GCommand,
     },
     /// A traversing block.
     Motion {
@@ -259,7 +263,8 @@ pub struct Declare {
     pub name: String,
     /// `INT`, `REAL`, `BOOL`, `CHAR`, `STRING[n]` (`STRING` where the
     /// length is not a constant), `AXIS`, `FRAME`.
-    pub data_type: String,
+    #[schemars(with = "String")]
+    pub data_type: DataType,
     pub dims: Vec<Value>,
     /// One value per element in storage order (the last index runs
     /// fastest); an omitted value (`SET(1,,3)`) is `null` and, like the
@@ -729,7 +734,8 @@ pub struct Parameter {
     pub name: String,
     /// `INT`, `REAL`, `BOOL`, `CHAR`, `STRING[n]` (`STRING` where the
     /// length is not a constant), `AXIS`, `FRAME`.
-    pub data_type: String,
+    #[schemars(with = "String")]
+    pub data_type: DataType,
     /// `VAR`: the caller's variable itself, not a copy.
     pub by_reference: bool,
     pub dims: Vec<Value>,
@@ -751,7 +757,8 @@ pub struct External {
 #[serde(deny_unknown_fields)]
 pub struct ExternalParameter {
     /// As in [`Parameter::data_type`].
-    pub data_type: String,
+    #[schemars(with = "String")]
+    pub data_type: DataType,
     pub by_reference: bool,
     /// One entry per array dimension; empty ones (`REAL[,]`) are `null`.
     pub dims: Vec<Option<Value>>,

@@ -16,7 +16,7 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 
 use gcodec_ail::{AssignList, Declare, Expr, Value, VarKind};
-use gcodec_lang::{BinaryOp, DataType, UnaryOp};
+use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_profile::{Profile, ToolChangeMode};
 
 use crate::value::{FrameAxis, FrameValue, RtValue, RunError, char_text, codes, real_to_int};
@@ -1485,14 +1485,13 @@ pub fn declare(
     decl: &Declare,
     scope: Scope,
 ) -> Result<(), RunError> {
-    let ty = DataType::parse(&decl.data_type)
-        .filter(|ty| ty.is_declarable())
-        .ok_or_else(|| {
-            RunError::new(
-                codes::INVALID_DECLARATION,
-                format!("`{}` is not a type", decl.data_type),
-            )
-        })?;
+    let ty = decl.data_type;
+    if !ty.is_declarable() {
+        return Err(RunError::new(
+            codes::INVALID_DECLARATION,
+            format!("`{ty}` is not a type"),
+        ));
+    }
     let env = Env::new(vars, rt);
     let mut dims = Vec::with_capacity(decl.dims.len());
     for d in &decl.dims {

@@ -709,6 +709,58 @@ pub fn member(number: u8, index: u8) -> Option<&'static str> {
     (!name.is_empty()).then_some(name)
 }
 
+/// A G command by its place in the registry: the group and the 1-based
+/// index the control itself uses (what `$P_GG` returns). Two bytes, and
+/// its name is [`member`]; in JSON it is the name (`"G17"`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct GCommand {
+    group: u8,
+    index: u8,
+}
+
+impl GCommand {
+    /// The command at `group` and `index`; `None` where the registry has
+    /// none.
+    pub fn new(group: u8, index: u8) -> Option<Self> {
+        member(group, index).map(|_| Self { group, index })
+    }
+
+    /// The command named `code`, as [`lookup`] reads it.
+    pub fn named(code: &str) -> Option<Self> {
+        let (group, index) = lookup(code)?;
+        Some(Self { group, index })
+    }
+
+    pub const fn group(self) -> u8 {
+        self.group
+    }
+
+    pub const fn index(self) -> u8 {
+        self.index
+    }
+
+    /// The name as the registry spells it (`G17`, `DIAMON`).
+    pub fn name(self) -> &'static str {
+        // Every `GCommand` is made from a member, so the fallback is never
+        // taken.
+        member(self.group, self.index).unwrap_or("")
+    }
+}
+
+impl serde::Serialize for GCommand {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for GCommand {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let code = std::borrow::Cow::<'de, str>::deserialize(deserializer)?;
+        Self::named(&code)
+            .ok_or_else(|| serde::de::Error::custom(format_args!("`{code}` is not a G command")))
+    }
+}
+
 /// The (group number, 1-based index) of a G command, or `None` if `code` is
 /// not a member of any group.
 ///
@@ -1061,6 +1113,19 @@ mod tests {
             }
         }
         assert_eq!(checked, by_name().len());
+    }
+
+    #[test]
+    fn commands_are_written_by_name() {
+        let g17 = GCommand::named("g17").unwrap();
+        assert_eq!((g17.group(), g17.index(), g17.name()), (6, 1, "G17"));
+        assert_eq!(GCommand::new(6, 1), Some(g17));
+        assert_eq!(GCommand::new(3, 9), None);
+        assert_eq!(GCommand::new(65, 1), None);
+        assert_eq!(serde_json::to_string(&g17).unwrap(), "\"G17\"");
+        let back: GCommand = serde_json::from_str("\"G17\"").unwrap();
+        assert_eq!(back, g17);
+        assert!(serde_json::from_str::<GCommand>("\"G6\"").is_err());
     }
 
     #[test]

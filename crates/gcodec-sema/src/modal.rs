@@ -578,20 +578,17 @@ fn member_index(group: u8, code: &str) -> u8 {
     }
 }
 
-/// [`member_index`] behind two small direct-mapped caches, keyed by the
-/// code's address (lowering writes the registry's own `&'static str`s) and
-/// by its bytes (every member name but a few fits 8; `group8_selected` is
-/// an owned string). A document's codes are a few distinct strings, so the
-/// caches skip nearly every lookup.
+/// [`member_index`] behind a small direct-mapped cache keyed by the
+/// code's bytes (every Group 8 code fits 8): `group8_selected` is an owned
+/// string per instruction, and a document's are a few distinct codes, so
+/// the cache skips nearly every lookup.
 struct Lookups {
     /// (bytes, length, group, index); length `u8::MAX` is empty.
     slots: Box<[(u64, u8, u8, u8); LOOKUP_SLOTS]>,
-    /// (address, length, group, index); length `usize::MAX` is empty.
-    by_address: Box<[(usize, usize, u8, u8); LOOKUP_SLOTS]>,
 }
 
 /// The multiplier of FxHash: it spreads the keys of the direct-mapped
-/// caches over their slots.
+/// cache over its slots.
 const FX_SEED: u64 = 0x51_7c_c1_b7_27_22_0a_95;
 
 const LOOKUP_SLOTS: usize = 256;
@@ -600,26 +597,10 @@ impl Lookups {
     fn new() -> Self {
         Self {
             slots: Box::new([(0, u8::MAX, 0, 0); LOOKUP_SLOTS]),
-            by_address: Box::new([(0, usize::MAX, 0, 0); LOOKUP_SLOTS]),
         }
     }
 
     fn member_index(&mut self, group: u8, code: &str) -> u8 {
-        // By address first: that reads no string (each of which may be a
-        // cache miss of its own). Sound while the document is borrowed:
-        // two live strings at one address with one length are the same.
-        let (address, len) = (code.as_ptr() as usize, code.len());
-        let by_address = (address ^ (address >> 8) ^ usize::from(group)) % LOOKUP_SLOTS;
-        let slot = &self.by_address[by_address];
-        if (slot.0, slot.1, slot.2) == (address, len, group) {
-            return slot.3;
-        }
-        let index = self.member_index_by_content(group, code);
-        self.by_address[by_address] = (address, len, group, index);
-        index
-    }
-
-    fn member_index_by_content(&mut self, group: u8, code: &str) -> u8 {
         let bytes = code.as_bytes();
         if bytes.len() > 8 {
             return member_index(group, code);
@@ -723,9 +704,19 @@ impl<'d> Graph<'d> {
             let mut control = Control::Next;
             let mut event = None;
             match op {
-                Op::ModalChange { group, code: name } => {
+                Op::ModalChange {
+                    group,
+                    code: command,
+                } => {
                     if ggroups::is_modal(*group) {
-                        event = Some(code(SET, *group, lookups.member_index(*group, name)));
+                        // A command of another group (in a document read
+                        // from JSON) makes the group's command unknown.
+                        let index = if command.group() == *group {
+                            command.index()
+                        } else {
+                            0
+                        };
+                        event = Some(code(SET, *group, index));
                     }
                 }
                 Op::ModalChangeIndirect { group, index } => {

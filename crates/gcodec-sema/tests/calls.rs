@@ -248,13 +248,13 @@ fn a_procedure_keeps_its_signature() {
     };
     assert_eq!(p.name, "CONTOUR");
     assert_eq!(p.attributes, ["SBLOF", "DISPLOF"]);
-    let params: Vec<(&str, &str, bool, bool)> = p
+    let params: Vec<(&str, String, bool, bool)> = p
         .params
         .iter()
         .map(|q| {
             (
                 q.name.as_str(),
-                q.data_type.as_str(),
+                q.data_type.describe(),
                 q.by_reference,
                 q.default.is_some(),
             )
@@ -263,9 +263,9 @@ fn a_procedure_keeps_its_signature() {
     assert_eq!(
         params,
         [
-            ("X1", "REAL", false, false),
-            ("N", "INT", true, false),
-            ("D", "REAL", false, true)
+            ("X1", "REAL".to_owned(), false, false),
+            ("N", "INT".to_owned(), true, false),
+            ("D", "REAL".to_owned(), false, true)
         ]
     );
 }

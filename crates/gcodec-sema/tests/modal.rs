@@ -374,7 +374,7 @@ fn document(ops: Vec<(u32, Op)>) -> Document {
 fn modal(group: u8, code: &'static str) -> Op {
     Op::ModalChange {
         group,
-        code: code.into(),
+        code: gcodec_lang::ggroups::GCommand::named(code).expect("a G command"),
     }
 }
 
@@ -604,7 +604,7 @@ mod reference {
     fn transfer(state: &mut State, op: &Op) {
         match op {
             Op::ModalChange { group, code } if ggroups::is_modal(*group) => {
-                set(state, *group, member_index(*group, code));
+                set(state, *group, member_index(*group, code.name()));
             }
             Op::ModalChangeIndirect { group, index } if ggroups::is_modal(*group) => {
                 let index = match index {

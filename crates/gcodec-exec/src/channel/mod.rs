@@ -619,7 +619,9 @@ impl<'r> Channel<'r> {
                 None => Ok(Flow::Next),
             },
             Op::ModalChange { group, code } => {
-                self.modal_change(program, instruction, *group, code);
+                if ggroups::is_modal(*group) {
+                    self.set_modal(program, instruction, *group, code.index());
+                }
                 Ok(Flow::Next)
             }
             Op::ModalChangeIndirect { group, index } => {
@@ -766,22 +768,6 @@ impl<'r> Channel<'r> {
                 format!("the jump target `{target}` is not in the program"),
             )),
         }
-    }
-
-    fn modal_change(
-        &mut self,
-        program: &Arc<Program>,
-        instruction: &Instruction,
-        group: u8,
-        code: &str,
-    ) {
-        if !ggroups::is_modal(group) {
-            return;
-        }
-        let Some((_, index)) = ggroups::lookup(code) else {
-            return;
-        };
-        self.set_modal(program, instruction, group, index);
     }
 
     /// Puts the command at `index` of `group` in force; an index the

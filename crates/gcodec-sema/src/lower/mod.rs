@@ -18,10 +18,11 @@ use gcodec_ail::{
     AxisValue, ByteRange, Circle, Document, Instruction, MTiming, Op, Source, Suppression,
     SuppressionScope, ToolChangeTrigger, Value,
 };
+use gcodec_lang::MotionKind;
 use gcodec_lang::addresses::letter_str;
+use gcodec_lang::ggroups::{self, GCommand};
 use gcodec_lang::mfunctions::acts_after_motion;
 use gcodec_lang::motion::MOTION_GROUP;
-use gcodec_lang::{MotionKind, ggroups};
 use gcodec_parser::ast::{self, Block, GotoKind, Program};
 use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
 use gcodec_source::{Diagnostic, Span};
@@ -509,7 +510,7 @@ fn skip_label(index: usize) -> String {
 /// What one block says, collected before instructions are emitted.
 #[derive(Default)]
 struct BlockPlan {
-    g_codes: Vec<(u8, &'static str, Span)>,
+    g_codes: Vec<(GCommand, Span)>,
     suppressions: Vec<(Suppression, Span)>,
     feed: Option<(Value, Span)>,
     spindle: Vec<SpindleWord>,
@@ -844,17 +845,17 @@ impl<'a> Lowering<'a> {
     fn emit_block(&mut self, index: usize, block: &Block, plan: &mut BlockPlan) {
         let tail = std::mem::take(&mut plan.tail);
         // Work offset: the Group 8 selection and the block's suppression.
-        let group8 = plan.g_codes.iter().find(|(g, _, _)| *g == 8);
+        let group8 = plan.g_codes.iter().find(|(c, _)| c.group() == 8);
         let suppression = self.suppression(&plan.suppressions);
-        if let Some((_, code, _)) = group8
-            && let Some(selected) = gcodec_profile::group8_index(code)
+        if let Some((code, _)) = group8
+            && let Some(selected) = gcodec_profile::group8_index(code.name())
         {
             self.group8 = Some(selected);
             self.group8_inherited = false;
         }
         if group8.is_some() || suppression.is_some() {
             let span = group8
-                .map(|(_, _, s)| *s)
+                .map(|(_, s)| *s)
                 .or(plan.suppressions.first().map(|(_, s)| *s))
                 .unwrap_or(block.span);
             let selected = self
@@ -878,10 +879,11 @@ impl<'a> Lowering<'a> {
         let dwell = plan
             .g_codes
             .iter()
-            .find(|(g, c, _)| *g == 2 && *c == "G4")
-            .map(|(_, _, s)| *s)
+            .find(|(c, _)| c.group() == 2 && c.name() == "G4")
+            .map(|(_, s)| *s)
             .map(|g4| (self.dwell(block, g4, plan), g4));
-        for &(group, code, span) in &plan.g_codes {
+        for &(command, span) in &plan.g_codes {
+            let (group, code) = (command.group(), command.name());
             if group == 8 || dwell.is_some() && code == "G4" {
                 continue;
             }
@@ -897,7 +899,7 @@ impl<'a> Lowering<'a> {
                 span,
                 Op::ModalChange {
                     group,
-                    code: Cow::Borrowed(code),
+                    code: command,
                 },
             );
         }

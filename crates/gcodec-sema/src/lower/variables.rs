@@ -730,7 +730,7 @@ impl Lowering<'_> {
             plan.other.push((
                 Op::Declare(Box::new(gcodec_ail::Declare {
                     name: var.name.to_ascii_uppercase().to_string(),
-                    data_type: ty.describe(),
+                    data_type: ty,
                     dims: var.dims.iter().map(values::value).collect(),
                     init,
                     init_repeat,
