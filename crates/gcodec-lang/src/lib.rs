@@ -5,8 +5,11 @@
 //! M functions ([`mfunctions`]), the group count of the modal state
 //! ([`modal`]), the data types ([`types`]), the operators
 //! ([`operators`]), the dimension modes ([`dimension`]), the motion a
-//! group 1 command makes ([`motion`]) and the address letters
-//! ([`addresses`]). The syntax tree, the semantic stage, the AIL and the
+//! group 1 command makes ([`motion`]), the address letters
+//! ([`addresses`]), the system variables ([`sysvars`]), the built-in
+//! functions ([`functions`]) and the keywords ([`keywords`]). The tests
+//! check every table against the control's catalogue of names
+//! (`tests/catalogue.rs`). The syntax tree, the semantic stage, the AIL and the
 //! executor use these types, so no boundary converts one spelling of a
 //! word into another.
 //!
@@ -14,11 +17,14 @@
 
 pub mod addresses;
 pub mod dimension;
+pub mod functions;
 pub mod ggroups;
+pub mod keywords;
 pub mod mfunctions;
 pub mod modal;
 pub mod motion;
 pub mod operators;
+pub mod sysvars;
 pub mod types;
 
 pub use dimension::DimensionMode;

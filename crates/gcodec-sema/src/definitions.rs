@@ -17,8 +17,8 @@ use gcodec_lang::DataType;
 use gcodec_parser::ast::{self, StatementKind};
 use gcodec_source::{Diagnostic, SourceFile, Span};
 
-use crate::sysvars;
 use crate::types::{self, NameMap, constant_count};
+use gcodec_lang::sysvars;
 
 const NOT_A_DEFINITION: &str = "gcodec::definitions::not_a_definition";
 const DUPLICATE: &str = "gcodec::definitions::duplicate";

@@ -2,10 +2,9 @@
 //! and lowers it to AIL ([`lower`]).
 //!
 //! Built on the vocabulary of `gcodec_lang` (the 64 G groups of the
-//! language reference §3.2, M classes, data types, operators): the
-//! system-variable registry ([`sysvars`]: the
-//! names of the reference and of the corpus, with their index shapes; an
-//! unknown `$` name is an error, as on the control); lowering of G
+//! language reference §3.2, M classes, data types, operators, the system
+//! variables with their index shapes: an unknown `$` name is an error, as
+//! on the control): lowering of G
 //! commands (unknown commands, two of one group, Group 8 against the
 //! profile's offsets, G53/G153/SUPA with the duplicate policy), M functions (seed 001), tool selection and
 //! cutting edges (seed 000), feed, spindle speeds (spindle numbers against
@@ -35,7 +34,6 @@ mod lower;
 mod mfunc;
 pub mod modal;
 mod profile_check;
-pub mod sysvars;
 mod tools;
 pub mod types;
 mod values;

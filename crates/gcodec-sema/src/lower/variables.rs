@@ -33,9 +33,9 @@ use gcodec_profile::Profile;
 use gcodec_source::{Diagnostic, Span};
 
 use crate::definitions::{Definitions, UNDEFINED_VARIABLE, is_program_end};
-use crate::sysvars::{self, IndexShape};
 use crate::types::{self, Constant, NameMap, TYPE_MISMATCH, constant_count};
 use crate::values;
+use gcodec_lang::sysvars::{self, IndexShape};
 
 use super::{BlockPlan, INVALID_VALUE, Lowering, NOT_LOWERED, UNKNOWN_SYSTEM_VARIABLE};
 
@@ -623,7 +623,7 @@ impl Lowering<'_> {
             }),
             ast::ExprKind::Bool { .. } => Some(DataType::Bool),
             ast::ExprKind::Var { var } => self.var_type(var),
-            ast::ExprKind::Call(call) => types::function_type(&call.name),
+            ast::ExprKind::Call(call) => gcodec_lang::functions::function_type(&call.name),
             ast::ExprKind::Unary { op, operand } => match op {
                 UnaryOp::Neg | UnaryOp::Plus => self.expr_type(operand).filter(|t| t.is_number()),
                 UnaryOp::Not => Some(DataType::Bool),
