@@ -8,21 +8,21 @@
 //! full chumsky grammar on them costs several times more than reading them
 //! directly. This module recognises exactly these shapes and builds the same
 //! nodes the grammar would: expressions by precedence climbing over the
-//! grammar's own operator table ([`infix`] mirrors the pratt parser in
-//! `grammar::expr`), with numbers, R parameters, numbered axis names and
-//! parentheses as operands. Anything else — names, calls, strings, brackets,
-//! lists, `L` calls, labels, any value the grammar would diagnose — returns
-//! `None` and the grammar parses the block. Its output is checked against
+//! operator table the grammar's pratt parser reads (`grammar::operators`),
+//! with numbers, R parameters, numbered axis names and parentheses as
+//! operands. Anything else — names, calls, strings, brackets, lists, `L`
+//! calls, labels, any value the grammar would diagnose — returns `None`
+//! and the grammar parses the block. Its output is checked against
 //! the grammar's by `tests/fast_path.rs`, on the corpus, the fixtures and
 //! generated blocks.
 
 use chumsky::span::SimpleSpan;
 use compact_str::CompactString;
 use gcodec_lang::addresses::letter_str;
-use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_lexer::TokenKind as T;
 
 use crate::ast::*;
+use crate::grammar::operators::{self, Associativity};
 use crate::grammar::{
     BlockBody, Ctx, Spanned, is_named_address, number_bytes_value, structure_keyword,
 };
@@ -356,55 +356,16 @@ pub(crate) fn whole_number(digits: &[u8]) -> Option<u64> {
     })
 }
 
-/// Binding power and operator of an infix token: the grammar's pratt
-/// table (`grammar::expr`), all levels left-associative.
-fn infix(kind: T) -> Option<(u8, BinaryOp)> {
-    Some(match kind {
-        T::Star => (11, BinaryOp::Mul),
-        T::Slash => (11, BinaryOp::Div),
-        T::Div => (11, BinaryOp::IntDiv),
-        T::Mod => (11, BinaryOp::Mod),
-        T::Plus => (10, BinaryOp::Add),
-        T::Minus => (10, BinaryOp::Sub),
-        T::BAnd => (9, BinaryOp::BAnd),
-        T::BXor => (8, BinaryOp::BXor),
-        T::BOr => (7, BinaryOp::BOr),
-        T::And => (6, BinaryOp::And),
-        T::Xor => (5, BinaryOp::Xor),
-        T::Or => (4, BinaryOp::Or),
-        T::Concat => (3, BinaryOp::Concat),
-        T::EqEq => (2, BinaryOp::Eq),
-        T::Ne => (2, BinaryOp::Ne),
-        T::Lt => (2, BinaryOp::Lt),
-        T::Gt => (2, BinaryOp::Gt),
-        T::Le => (2, BinaryOp::Le),
-        T::Ge => (2, BinaryOp::Ge),
-        T::Colon => (1, BinaryOp::Chain),
-        _ => return None,
-    })
-}
-
-/// Binding power of the prefix operators, above every infix one.
-const PREFIX_POWER: u8 = 12;
-
 /// An expression whose operators all bind tighter than `min`. Recursion is
 /// bounded: the driver rejects blocks with more than
 /// [`crate::MAX_OPERATORS_PER_BLOCK`] operators or brackets nested deeper
 /// than [`crate::MAX_EXPRESSION_DEPTH`] before any parser runs.
 fn expr(c: &mut Cursor<'_, '_>, min: u8) -> Option<Expr> {
     let start = c.span_at(0)?.start;
-    let prefix = match c.kind()? {
-        T::Minus => Some(UnaryOp::Neg),
-        T::Plus => Some(UnaryOp::Plus),
-        T::Not => Some(UnaryOp::Not),
-        T::BNot => Some(UnaryOp::BNot),
-        T::Concat => Some(UnaryOp::ToString),
-        _ => None,
-    };
-    let mut lhs = match prefix {
+    let mut lhs = match operators::unary_token(c.kind()?) {
         Some(op) => {
             c.i += 1;
-            let operand = expr(c, PREFIX_POWER)?;
+            let operand = expr(c, operators::PREFIX_POWER)?;
             Expr {
                 span: c.span_from(start),
                 kind: ExprKind::Unary {
@@ -415,12 +376,18 @@ fn expr(c: &mut Cursor<'_, '_>, min: u8) -> Option<Expr> {
         }
         None => operand(c)?,
     };
-    while let Some((power, op)) = c.kind().and_then(infix) {
+    while let Some((op, precedence)) = c.kind().and_then(operators::binary_token) {
+        let power = precedence.power;
         if power <= min {
             break;
         }
         c.i += 1;
-        let rhs = expr(c, power)?;
+        // The right operand takes only tighter operators, so a chain of
+        // one class groups to the left.
+        let rhs_min = match precedence.associativity {
+            Associativity::Left => power,
+        };
+        let rhs = expr(c, rhs_min)?;
         lhs = Expr {
             span: c.span_from(start),
             kind: ExprKind::Binary(Box::new(BinaryExpr { op, lhs, rhs })),

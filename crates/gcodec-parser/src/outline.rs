@@ -3,7 +3,7 @@
 use std::fmt::{self, Write};
 
 use crate::ast::*;
-use gcodec_lang::{BinaryOp, UnaryOp};
+use crate::grammar::operators::{binary_operator, is_word, unary_operator};
 use gcodec_source::Span;
 
 /// Writes one line per non-empty block: line number, block number and
@@ -397,48 +397,21 @@ pub fn write_expr(e: &Expr, out: &mut impl Write) -> fmt::Result {
         }
         ExprKind::Unary { op, operand } => {
             out.write_char('(')?;
-            out.write_str(match op {
-                UnaryOp::Neg => "-",
-                UnaryOp::Plus => "+",
-                UnaryOp::Not => "NOT ",
-                UnaryOp::BNot => "B_NOT ",
-                UnaryOp::ToString => "<<",
-            })?;
+            let text = unary_operator(*op).text;
+            out.write_str(text)?;
+            // `(NOT R1)`: a word needs a blank before its operand.
+            if is_word(text) {
+                out.write_char(' ')?;
+            }
             write_expr(operand, out)?;
             out.write_char(')')
         }
         ExprKind::Binary(b) => {
             out.write_char('(')?;
             write_expr(&b.lhs, out)?;
-            write!(out, " {} ", binary_symbol(b.op))?;
+            write!(out, " {} ", binary_operator(b.op).text)?;
             write_expr(&b.rhs, out)?;
             out.write_char(')')
         }
-    }
-}
-
-fn binary_symbol(op: BinaryOp) -> &'static str {
-    use BinaryOp::*;
-    match op {
-        Mul => "*",
-        Div => "/",
-        IntDiv => "DIV",
-        Mod => "MOD",
-        Add => "+",
-        Sub => "-",
-        BAnd => "B_AND",
-        BXor => "B_XOR",
-        BOr => "B_OR",
-        And => "AND",
-        Xor => "XOR",
-        Or => "OR",
-        Concat => "<<",
-        Eq => "==",
-        Ne => "<>",
-        Lt => "<",
-        Gt => ">",
-        Le => "<=",
-        Ge => ">=",
-        Chain => ":",
     }
 }

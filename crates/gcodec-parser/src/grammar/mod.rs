@@ -1,0 +1,165 @@
+//! The chumsky grammar of one block: its prefix (skip mark, block number,
+//! label) and its statements, one module per family of constructs.
+//!
+//! The driver hands over the significant tokens of one line (blanks and the
+//! comment removed); adjacency, which matters in SINUMERIK (`X1=` versus
+//! `X1 A=`, `M5` versus `M 5`), is read from the byte spans. This module
+//! holds the block entry point, the source access every family uses and
+//! the small combinators they share.
+
+mod calls;
+mod control;
+mod declarations;
+mod expressions;
+mod frames;
+mod numbers;
+pub(crate) mod operators;
+mod prefix;
+mod statements;
+mod sync;
+mod words;
+
+use chumsky::input::MappedInput;
+use chumsky::prelude::*;
+use compact_str::CompactString;
+use gcodec_lexer::TokenKind as T;
+use gcodec_source::Span;
+
+pub(crate) use control::structure_keyword;
+pub(crate) use numbers::number_bytes_value;
+pub(crate) use words::is_named_address;
+
+use crate::ast::*;
+use crate::error::SyntaxError;
+
+pub(crate) type Spanned = (T, SimpleSpan);
+pub(crate) type In<'t> = MappedInput<'t, T, SimpleSpan, &'t [Spanned]>;
+pub(crate) type Ex = extra::Err<SyntaxError>;
+
+/// Everything a block holds besides its comment.
+#[derive(Debug)]
+pub(crate) struct BlockBody {
+    pub skip: Option<SkipLevel>,
+    pub number: Option<BlockNumber>,
+    pub label: Option<LabelDef>,
+    pub statements: Vec<Statement>,
+}
+
+/// Source access for the grammar's closures: the file bytes and the line
+/// the current block sits on.
+#[derive(Clone, Copy)]
+pub(crate) struct Ctx<'s> {
+    pub src: &'s [u8],
+}
+
+impl<'s> Ctx<'s> {
+    pub fn span(&self, s: SimpleSpan) -> Span {
+        Span::new(s.start as u32, s.end as u32)
+    }
+
+    pub fn bytes(&self, s: SimpleSpan) -> &'s [u8] {
+        &self.src[s.start..s.end]
+    }
+
+    /// Token text; tokens other than strings and comments are ASCII.
+    pub fn text(&self, s: SimpleSpan) -> &'s str {
+        std::str::from_utf8(self.bytes(s)).unwrap_or("")
+    }
+
+    fn name(&self, s: SimpleSpan) -> CompactString {
+        CompactString::from(self.text(s))
+    }
+}
+
+const ERR_VALUE: &str = "gcodec::parse::invalid_value";
+const ERR_WORD: &str = "gcodec::parse::invalid_word";
+const ERR_NUMBER: &str = "gcodec::parse::invalid_number";
+
+/// The block: skip mark, block number, label, then its statements.
+pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody, Ex> + 't {
+    prefix::skip_mark(g)
+        .or_not()
+        .then(choice((prefix::block_number(g), prefix::main_block_number(g))).or_not())
+        .then(prefix::label(g).or_not())
+        .then(statements::statements(g))
+        .map(|(((skip, number), label), statements)| BlockBody {
+            skip,
+            number,
+            label,
+            statements,
+        })
+}
+
+/// Program text decoded for display (see [`gcodec_source::decode`]); short
+/// UTF-8 text is stored inline, without a temporary `String`.
+pub(crate) fn decode_text(bytes: &[u8]) -> CompactString {
+    match std::str::from_utf8(bytes) {
+        Ok(text) => CompactString::from(text),
+        Err(_) => CompactString::from(gcodec_source::decode(bytes)),
+    }
+}
+
+/// `(a, , c)` argument list; omitted arguments are `None`, `()` is empty.
+fn args<'t>(
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Vec<Option<Expr>>, Ex> + Clone + 't {
+    expr.or_not()
+        .separated_by(just(T::Comma))
+        .collect::<Vec<_>>()
+        .map(|v| {
+            if v.len() == 1 && v[0].is_none() {
+                Vec::new()
+            } else {
+                v
+            }
+        })
+        .delimited_by(just(T::LParen), just(T::RParen))
+}
+
+/// `[a, b, c]` index list.
+fn indices<'t>(
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Vec<Expr>, Ex> + Clone + 't {
+    expr.separated_by(just(T::Comma))
+        .at_least(1)
+        .collect::<Vec<_>>()
+        .delimited_by(just(T::LBracket), just(T::RBracket))
+}
+
+/// A declared name: an identifier, or a letter with digits touching it
+/// (`R0`, `X1`; such names shadow addresses and are judged by later stages).
+fn name_token<'t>() -> impl Parser<'t, In<'t>, SimpleSpan, Ex> + Clone + 't {
+    let ident = select! { T::Ident => () }.map_with(|_, e| e.span());
+    let letter = select! { T::Letter => () }
+        .map_with(|_, e| e.span())
+        .then(
+            select! { T::Number => () }
+                .map_with(|_, e| e.span())
+                .or_not(),
+        )
+        .try_map(|(l, n): (SimpleSpan, Option<SimpleSpan>), span| match n {
+            None => Ok(l),
+            Some(n) if n.start == l.end => Ok(span),
+            Some(_) => Err(SyntaxError::custom(
+                span,
+                ERR_WORD,
+                "a name cannot contain a blank",
+                None,
+            )),
+        });
+    ident.or(letter)
+}
+
+/// A statement kind with the span it was read from; `None` stays `None`
+/// (a malformed statement whose error was emitted).
+fn spanned<'t, 's: 't>(
+    g: Ctx<'s>,
+    kind: impl Parser<'t, In<'t>, Option<StatementKind>, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, Option<Statement>, Ex> + Clone + 't {
+    kind.map_with(move |kind, e| {
+        kind.map(|kind| Statement {
+            span: g.span(e.span()),
+            kind,
+        })
+    })
+}
