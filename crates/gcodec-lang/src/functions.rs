@@ -2,6 +2,7 @@
 //! type of their results.
 
 use crate::DataType;
+use crate::names::compare_ignore_case;
 
 /// Built-in functions and their result types, sorted by name for binary
 /// search (a test keeps it so).
@@ -63,16 +64,9 @@ pub const FUNCTIONS: &[(&str, DataType)] = &[
 /// functions.
 pub fn function_type(name: &str) -> Option<DataType> {
     FUNCTIONS
-        .binary_search_by(|(entry, _)| compare_upper(entry, name))
+        .binary_search_by(|(entry, _)| compare_ignore_case(entry, name))
         .ok()
         .map(|i| FUNCTIONS[i].1)
-}
-
-/// Compares an upper-case table name with `key` as if `key` were upper case.
-fn compare_upper(upper: &str, key: &str) -> std::cmp::Ordering {
-    upper
-        .bytes()
-        .cmp(key.bytes().map(|b| b.to_ascii_uppercase()))
 }
 
 #[cfg(test)]

@@ -23,6 +23,7 @@ pub mod keywords;
 pub mod mfunctions;
 pub mod modal;
 pub mod motion;
+mod names;
 pub mod operators;
 pub mod sysvars;
 pub mod types;
