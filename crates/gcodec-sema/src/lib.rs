@@ -1,10 +1,10 @@
 //! The semantic stage: checks a parsed program against a machine profile
 //! and lowers it to AIL ([`lower`]).
 //!
-//! Built so far: the G-group registry ([`ggroups`], all 64 groups of the
-//! language reference §3.2); the system-variable registry ([`sysvars`]: the
-//! names of the reference and of the corpus, with their index shapes; an
-//! unknown `$` name is an error, as on the control); lowering of G
+//! Built on the vocabulary of `gcodec_lang` (the 64 G groups of the
+//! language reference §3.2, M classes, data types, operators, the system
+//! variables with their index shapes: an unknown `$` name is an error, as
+//! on the control): lowering of G
 //! commands (unknown commands, two of one group, Group 8 against the
 //! profile's offsets, G53/G153/SUPA with the duplicate policy), M functions (seed 001), tool selection and
 //! cutting edges (seed 000), feed, spindle speeds (spindle numbers against
@@ -30,12 +30,10 @@
 
 pub mod definitions;
 mod flow;
-pub mod ggroups;
 mod lower;
 mod mfunc;
 pub mod modal;
 mod profile_check;
-pub mod sysvars;
 mod tools;
 pub mod types;
 mod values;
@@ -44,6 +42,4 @@ pub use definitions::Definitions;
 pub use lower::outline::{Outline, OutlineBuilder, ProgramKind, outline, outline_chunks};
 pub use lower::stream::{ChunkLowering, LoweredChunk, lower_chunks};
 pub use lower::{Lowered, lower, lower_in_parts, lower_program, lower_with, refine};
-pub use mfunc::m_class;
 pub use profile_check::check_profile;
-pub use types::DataType;
