@@ -9,10 +9,9 @@
 
 use std::sync::Arc;
 
-use gcodec_exec::channel::{Channel, RunOptions};
-use gcodec_exec::event::{EventKind, VecSink};
-use gcodec_exec::loader::{MemoryLoader, compile};
-use gcodec_sema::Definitions;
+use gcodec_driver::event::{EventKind, VecSink};
+use gcodec_driver::{Definitions, MemoryLoader, ProgramKind, RunOptions, compile};
+use gcodec_exec::channel::Channel;
 use gcodec_source::SourceFile;
 use libfuzzer_sys::fuzz_target;
 
@@ -37,7 +36,8 @@ fuzz_target!(|data: &[u8]| {
     let file = Arc::new(SourceFile::new("fuzz.mpf", data));
     for profile in profiles() {
         let definitions = Arc::new(Definitions::new());
-        let main = compile("FUZZ", Arc::clone(&file), profile, &definitions, false);
+        let main = compile(Arc::clone(&file), ProgramKind::Main, profile, &definitions)
+            .into_loaded("FUZZ");
         let mut loader = MemoryLoader::new(Arc::clone(profile), Arc::clone(&definitions))
             .with_program("SUB.SPF", data);
         let mut options = RunOptions::for_profile(profile);

@@ -1,5 +1,6 @@
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use gcodec_source::{Diagnostic, RenderOptions, SourceFile, render_diagnostics};
@@ -144,39 +145,27 @@ pub fn run(cli: Cli) -> u8 {
     }
 }
 
-/// Reads and checks a profile (the built-in one for `None`): its form
-/// ([`gcodec_profile::load`]) and then its G codes against the G-group
-/// registry ([`gcodec_sema::check_profile`]), reporting the diagnostics of
-/// both against the profile's text; a bad or unreadable profile is exit
-/// code 2.
+/// Reads and checks a profile (the built-in one for `None`) in full
+/// ([`gcodec_driver::load_profile`]), reporting its diagnostics against
+/// the profile's text; a bad or unreadable profile is exit code 2.
 pub fn load_profile(
     path: Option<&Path>,
     options: DiagnosticOptions,
 ) -> Result<gcodec_profile::Profile, u8> {
     let file = match path {
         Some(path) => read(path, options)?,
-        None => SourceFile::new(gcodec_profile::BUILTIN_NAME, gcodec_profile::BUILTIN_TOML),
+        None => gcodec_driver::builtin_profile_file(),
     };
-    let Ok(text) = std::str::from_utf8(file.bytes()) else {
-        let d = Diagnostic::error(
-            "gcodec::profile::syntax",
-            format!("`{}` is not UTF-8 text", file.name()),
-        )
-        .with_help("TOML files are UTF-8");
-        report(&[d], None, options);
-        return Err(EXIT_USAGE);
-    };
-    let profile = gcodec_profile::load(text).map_err(|diagnostics| {
-        report(&diagnostics, Some(&file), options);
-        EXIT_USAGE
-    })?;
-    // The checks that need the G-group registry, against the same text.
-    let diagnostics = gcodec_sema::check_profile(&profile);
-    report(&diagnostics, Some(&file), options);
-    if diagnostics.iter().any(Diagnostic::is_error) {
-        return Err(EXIT_USAGE);
+    match gcodec_driver::load_profile(&file) {
+        Ok((profile, warnings)) => {
+            report(&warnings, Some(&file), options);
+            Ok(profile)
+        }
+        Err(error) => {
+            report(&error.diagnostics, Some(&file), options);
+            Err(EXIT_USAGE)
+        }
     }
-    Ok(profile)
 }
 
 fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 {
@@ -208,12 +197,7 @@ pub fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: Di
 
 /// Reads a file; an unreadable one is reported and is exit code 2.
 pub fn read(path: &Path, options: DiagnosticOptions) -> Result<SourceFile, u8> {
-    SourceFile::read(path).map_err(|e| {
-        let d = Diagnostic::error(
-            "gcodec::io::read",
-            format!("cannot read `{}`: {e}", path.display()),
-        )
-        .with_help("check the path and that the file is readable");
+    gcodec_driver::read_source(path).map_err(|d| {
         report(&[d], None, options);
         EXIT_USAGE
     })
@@ -229,7 +213,7 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
             exit = EXIT_USAGE;
             continue;
         };
-        let parsed = gcodec_parser::parse(&file);
+        let parsed = gcodec_driver::parse(&file);
         report(&parsed.diagnostics, Some(&file), options);
         if parsed.has_errors() && exit == EXIT_CLEAN {
             exit = EXIT_DIAGNOSTICS;
@@ -237,7 +221,7 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
         match format {
             Format::Text => {
                 let mut outline = FmtToIo::new(&mut out);
-                let _ = gcodec_parser::write_outline(&parsed.program, &mut outline);
+                let _ = gcodec_driver::write_outline(&parsed.program, &mut outline);
                 let _ = outline.finish();
             }
             Format::Json => json.push(parsed.program),
@@ -264,8 +248,8 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
 pub fn load_definitions(
     paths: &[PathBuf],
     options: DiagnosticOptions,
-) -> Result<gcodec_sema::Definitions, u8> {
-    let mut definitions = gcodec_sema::Definitions::new();
+) -> Result<gcodec_driver::Definitions, u8> {
+    let mut definitions = gcodec_driver::Definitions::new();
     let mut bad = false;
     for path in paths {
         let file = read(path, options)?;
@@ -299,18 +283,21 @@ fn lower(
         Ok(f) => f,
         Err(code) => return code,
     };
-    let (document, has_errors) = lower_file(&file, &profile, &definitions, options);
-    let mut exit = if has_errors {
+    let kind = gcodec_driver::ProgramKind::of_file(file.name());
+    let compiled = gcodec_driver::compile(Arc::new(file), kind, &profile, &definitions);
+    report(&compiled.diagnostics, Some(&compiled.file), options);
+    let mut exit = if compiled.has_errors() {
         EXIT_DIAGNOSTICS
     } else {
         EXIT_CLEAN
     };
+    let document = compiled.document;
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     let written = match format {
         Format::Text => {
             let mut listing = FmtToIo::new(&mut out);
-            let _ = gcodec_ail::write_listing(&document, &mut listing);
+            let _ = gcodec_driver::write_listing(&document, &mut listing);
             listing.finish()
         }
         Format::Json => serde_json::to_writer_pretty(&mut out, &document)
@@ -324,27 +311,6 @@ fn lower(
     // block by block would only delay the exit.
     std::mem::forget(document);
     exit
-}
-
-/// Parses and lowers `file`, renders every diagnostic of both stages in
-/// source order on stderr; the document and whether any is an error. The
-/// syntax tree is not freed (the process ends soon; freeing it block by
-/// block would only cost time).
-fn lower_file(
-    file: &SourceFile,
-    profile: &gcodec_profile::Profile,
-    definitions: &gcodec_sema::Definitions,
-    options: DiagnosticOptions,
-) -> (gcodec_ail::Document, bool) {
-    let parsed = gcodec_parser::parse(file);
-    let lowered = gcodec_sema::lower_with(&parsed.program, profile, definitions);
-    std::mem::forget(parsed.program);
-    let mut diagnostics = parsed.diagnostics;
-    diagnostics.extend(lowered.diagnostics);
-    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
-    report(&diagnostics, Some(file), options);
-    let has_errors = diagnostics.iter().any(Diagnostic::is_error);
-    (lowered.document, has_errors)
 }
 
 /// Writes formatted text straight to an `io::Write` (the listing of a

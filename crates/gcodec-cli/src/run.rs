@@ -7,12 +7,10 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::ValueEnum;
-use gcodec_exec::channel::{Channel, RunOptions};
-use gcodec_exec::event::{
+use gcodec_driver::event::{
     CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
 };
-use gcodec_exec::loader::{FileLoader, SearchPath, program_name};
-use gcodec_exec::stream::{StreamOptions, run_streamed};
+use gcodec_driver::{RunReport, RunSetup, run_main};
 use gcodec_source::Diagnostic;
 
 use crate::commands::{
@@ -150,11 +148,11 @@ pub fn run(args: RunArgs) -> u8 {
         Ok(f) => f,
         Err(code) => return code,
     };
-    let search = SearchPath::new()
-        .with_profile(&profile, profile_path)
-        .with_dirs(args.subprogram_paths.iter().cloned());
-    let mut loader = FileLoader::new(search, Arc::clone(&profile), Arc::clone(&definitions));
-    let mut run_options = RunOptions::for_profile(&profile);
+    let mut setup = RunSetup::new(profile);
+    setup.profile_file = profile_path.map(PathBuf::from);
+    setup.definitions = definitions;
+    setup.search_dirs = args.subprogram_paths.clone();
+    let run_options = &mut setup.options;
     if let Some(SkipLevels(levels)) = args.skip_levels {
         run_options.skip_levels = levels;
     }
@@ -176,30 +174,28 @@ pub fn run(args: RunArgs) -> u8 {
     }
     run_options.interrupt = Some(interrupt);
     let file = Arc::new(file);
-    let name = program_name(&args.file);
-    let stream = StreamOptions::default();
-    let (outcome, diagnostics) =
-        run_streamed(&file, name, &profile, &definitions, stream, |main| {
-            let out = io::stdout().lock();
-            let (events, mut rows): (Box<dyn EventSink>, _) = match args.format {
-                RunFormat::Jsonl => (Box::new(JsonlSink::new(out)), None),
-                RunFormat::Text => (Box::new(TextSink::new(out)), None),
-                RunFormat::Csv => (
-                    Box::new(Discard),
-                    Some(CsvWriter::for_profile(out, &profile)?),
-                ),
-            };
-            let mut sink = Diagnostics { inner: events };
-            let mut channel =
-                Channel::new(Arc::clone(&profile), run_options, &mut loader, &mut sink)
-                    .with_globals(&definitions);
-            if let Some(rows) = &mut rows {
-                channel = channel.with_observer(rows);
-            }
-            let outcome = channel.run(main)?;
-            rows.as_mut().map_or(Ok(()), CsvWriter::finish)?;
-            Ok(outcome)
-        });
+    let out = io::stdout().lock();
+    let (events, mut rows): (Box<dyn EventSink>, _) = match args.format {
+        RunFormat::Jsonl => (Box::new(JsonlSink::new(out)), None),
+        RunFormat::Text => (Box::new(TextSink::new(out)), None),
+        RunFormat::Csv => match CsvWriter::for_profile(out, &setup.profile) {
+            Ok(rows) => (Box::new(Discard) as Box<dyn EventSink>, Some(rows)),
+            Err(e) => return output_error(&e),
+        },
+    };
+    let mut sink = Diagnostics { inner: events };
+    let observer = rows.as_mut().map(|rows| rows as _);
+    let RunReport {
+        outcome,
+        diagnostics,
+    } = run_main(Arc::clone(&file), &setup, &mut sink, observer);
+    let outcome = outcome.and_then(|outcome| {
+        rows.as_mut().map_or(Ok(()), CsvWriter::finish)?;
+        Ok(outcome)
+    });
+    // The event stream is complete before anything else is written.
+    drop(sink);
+    drop(rows);
     // The program's own diagnostics, all of them, after the run that
     // went on while it was lowered.
     report(&diagnostics, Some(&*file), options);

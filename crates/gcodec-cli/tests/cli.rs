@@ -382,7 +382,7 @@ fn profile_check_reports_a_bad_profile_with_exit_2() {
     );
 }
 
-/// The checks against the G-group registry (`gcodec_sema::check_profile`)
+/// The checks against the G-group registry (`gcodec_driver::load_profile`)
 /// run wherever a profile is loaded, rendered against the profile's text.
 #[test]
 fn profile_check_runs_the_g_group_checks() {
@@ -440,9 +440,9 @@ fn the_built_in_profile_passes_the_g_group_checks() {
     let out = gcodec(["profile", "show"]);
     assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
     assert!(stderr(&out).is_empty(), "{}", stderr(&out));
-    let profile = gcodec_profile::builtin().expect("built-in profile");
-    let diagnostics = gcodec_sema::check_profile(&profile);
-    assert!(diagnostics.is_empty(), "{diagnostics:#?}");
+    let file = gcodec_driver::builtin_profile_file();
+    let (_, warnings) = gcodec_driver::load_profile(&file).expect("built-in profile");
+    assert!(warnings.is_empty(), "{warnings:#?}");
 }
 
 /// `profile show` prints the effective built-in profile; its TOML loads

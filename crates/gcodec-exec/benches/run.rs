@@ -19,12 +19,11 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use criterion::{Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
+use gcodec_driver::{Definitions, FileLoader, ProgramKind, SearchPath, compile_text};
 use gcodec_exec::channel::{Channel, RunOptions};
 use gcodec_exec::event::{CountingSink, EventSink, JsonlSink};
-use gcodec_exec::loader::{FileLoader, SearchPath};
 use gcodec_exec::program::Program;
 use gcodec_profile::Profile;
-use gcodec_sema::Definitions;
 
 // The allocator of the `gcodec` binary, configured as it configures it
 // (crates/gcodec-cli/src/main.rs), so that the figure is what users get.
@@ -37,12 +36,10 @@ mod program;
 
 /// Parses and lowers `src` (outside the timing).
 fn lowered(name: &str, src: &[u8], profile: &Profile) -> Arc<Program> {
-    let parsed = gcodec_parser::parse_bytes(name, src);
-    assert!(parsed.diagnostics.is_empty(), "{:?}", parsed.diagnostics);
-    let lowered = gcodec_sema::lower(&parsed.program, profile);
-    assert!(!lowered.has_errors(), "{:?}", lowered.diagnostics);
-    let source = Arc::new(gcodec_source::SourceFile::new(name, src));
-    Arc::new(Program::new("MAIN", source, lowered.document))
+    let definitions = Definitions::new();
+    let compiled = compile_text(name, src, ProgramKind::Main, profile, &definitions);
+    assert!(!compiled.has_errors(), "{:?}", compiled.diagnostics);
+    compiled.into_loaded("MAIN").program
 }
 
 /// One run of `program` to its end; the number of blocks executed.

@@ -15,6 +15,5 @@ pub mod frames;
 pub mod geometry;
 pub mod loader;
 pub mod program;
-pub mod stream;
 pub mod value;
 pub mod vars;

@@ -12,8 +12,8 @@ use std::ops::Deref;
 use std::sync::{Arc, Mutex, PoisonError};
 
 use gcodec_ail::{Document, Instruction, JumpSearch, Op, Source};
-use gcodec_sema::SpentBin;
 use gcodec_source::SourceFile;
+use gcodec_stream::SpentBin;
 use rustc_hash::FxHashMap;
 
 /// One program (main program, subprogram or cycle), lowered and ready to

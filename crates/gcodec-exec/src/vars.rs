@@ -47,6 +47,17 @@ pub enum Scope {
     Global,
 }
 
+/// A global variable of the definition files (GUD), as the channel
+/// declares it before a run ([`crate::channel::Channel::with_globals`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Global {
+    /// Upper case.
+    pub name: String,
+    pub data_type: DataType,
+    /// The array dimensions; empty for a single value.
+    pub dims: Vec<usize>,
+}
+
 /// One declared variable.
 #[derive(Clone, Debug)]
 pub struct Variable {

@@ -12,17 +12,18 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use gcodec_exec::channel::{Channel, RunOptions};
+use gcodec_driver::SearchPath;
+use gcodec_exec::channel::RunOptions;
 use gcodec_exec::event::{
     CountingSink, Event, EventKind, EventSeverity, EventSink, ProgramEndReason,
 };
-use gcodec_exec::loader::{FileLoader, SearchPath, compile, program_name};
 use gcodec_source::SourceFile;
+use gcodec_testkit::corpus::{definitions, machine_profile};
+use gcodec_testkit::{corpus_dir, programs};
 
-#[path = "../../gcodec-sema/tests/common/mod.rs"]
 mod common;
 
-use common::machines::{definitions, machine_profile};
+use common::runs::{RunSetup, compile_main, run_main};
 
 /// What may end a run early: what lies outside the corpus.
 const EXTERNAL: &[&str] = &[
@@ -53,7 +54,7 @@ impl EventSink for Outcome {
 /// The directories of the corpus that hold subprograms and cycles.
 fn subprogram_dirs(corpus: &Path) -> Vec<PathBuf> {
     let mut dirs = Vec::new();
-    for path in common::programs(corpus) {
+    for path in programs(corpus) {
         let spf = path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("spf"));
@@ -69,11 +70,11 @@ fn subprogram_dirs(corpus: &Path) -> Vec<PathBuf> {
 
 #[test]
 fn every_main_program_runs_to_its_end_or_a_diagnosed_dependency() {
-    let Some(corpus) = common::corpus_dir() else {
+    let Some(corpus) = corpus_dir() else {
         return;
     };
     let dirs = subprogram_dirs(&corpus);
-    let mains: Vec<PathBuf> = common::programs(&corpus)
+    let mains: Vec<PathBuf> = programs(&corpus)
         .into_iter()
         .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("mpf")))
         .collect();
@@ -85,36 +86,32 @@ fn every_main_program_runs_to_its_end_or_a_diagnosed_dependency() {
     let mut report = String::new();
     let mut failures = Vec::new();
     for path in &mains {
-        let shown = common::shown(&corpus, path);
+        let shown = gcodec_testkit::shown(&corpus, path);
         let profile = Arc::new(machine_profile(&shown).1);
         let definitions = Arc::new(definitions(&corpus, &shown));
-        let file = SourceFile::new(shown.clone(), std::fs::read(path).expect("read"));
-        let main = compile(
-            program_name(path),
-            Arc::new(file),
-            &profile,
-            &definitions,
-            false,
-        );
+        let file = Arc::new(SourceFile::new(
+            shown.clone(),
+            std::fs::read(path).expect("read"),
+        ));
+        let main = compile_main(&file, &profile, &definitions);
         if main.has_errors {
             // The two programs the lowering test expects errors in.
             report.push_str(&format!("{shown}: not run (lowering errors)\n"));
             continue;
         }
-        let search = SearchPath::new().with_dirs(dirs.iter().cloned());
-        let mut loader = FileLoader::new(search, Arc::clone(&profile), Arc::clone(&definitions));
         let mut options = RunOptions::for_profile(&profile);
         options.stop_at_m0 = false;
         options.max_steps = 200_000;
+        let run = RunSetup {
+            profile,
+            options,
+            definitions,
+            search: SearchPath::new().with_dirs(dirs.iter().cloned()),
+        };
         let mut sink = Outcome::default();
         // Runs resolve relative to the corpus: the main program's file name
         // is shown relative to it.
-        let outcome = with_dir(&corpus, || {
-            Channel::new(profile, options, &mut loader, &mut sink)
-                .with_globals(&definitions)
-                .run(main.program)
-        })
-        .expect("events go to memory");
+        let outcome = with_dir(&corpus, || run_main(main.program, run, &mut sink, None));
         let end = match (&outcome.reason, &sink.last_error) {
             (ProgramEndReason::Alarm, Some((code, line, message))) => {
                 if !EXTERNAL.contains(&code.as_str()) {

@@ -111,11 +111,6 @@ fn builtin() -> Profile {
     gcodec_profile::builtin().expect("built-in profile")
 }
 
-fn machine(sections: &str) -> Profile {
-    let text = format!("[machine]\nname = \"test\"\ncontrol = \"840d_sl\"\n{sections}");
-    gcodec_profile::load(&text).unwrap_or_else(|d| panic!("{d:#?}"))
-}
-
 /// Evaluates with an empty store on the built-in profile.
 fn ev(e: &Expr) -> Result<RtValue, RunError> {
     let vars = Variables::default();
@@ -579,7 +574,7 @@ fn conversions_follow_the_control_table() {
 
 #[test]
 fn system_variables_from_the_profile() {
-    let profile = machine(
+    let profile = gcodec_testkit::machine(
         r#"
 [work_offsets]
 supported_group8_offsets = ["G500", "G54-G57"]
@@ -846,9 +841,7 @@ fn strings_have_their_length_and_characters() {
 /// other instructions are skipped.
 fn run(src: &str) -> Variables {
     let profile = builtin();
-    let parsed = gcodec_parser::parse_bytes("test.mpf", src.as_bytes());
-    assert!(parsed.diagnostics.is_empty(), "{:#?}", parsed.diagnostics);
-    let lowered = gcodec_sema::lower(&parsed.program, &profile);
+    let lowered = gcodec_testkit::lower_clean("test.mpf", src.as_bytes(), &profile);
     assert!(!lowered.has_errors(), "{:#?}", lowered.diagnostics);
     run_document(&lowered.document, &profile)
 }
@@ -994,8 +987,7 @@ fn a_long_loop_computes_exactly() {
     // (docs/performance.md), not here.
     let profile = builtin();
     let src = "WHILE R1 < 100000\nR1 = R1 + 1\nR2 = R2 + R1 * 0.5 - SIN(30)\nENDWHILE\nM30\n";
-    let parsed = gcodec_parser::parse_bytes("loop.mpf", src.as_bytes());
-    let lowered = gcodec_sema::lower(&parsed.program, &profile);
+    let lowered = gcodec_testkit::lower_clean("loop.mpf", src.as_bytes(), &profile);
     assert!(!lowered.has_errors());
     let vars = run_document(&lowered.document, &profile);
     assert_eq!(vars.r(1), Ok(100_000.0));

@@ -9,13 +9,15 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use gcodec_ail::{MotionKind, Op};
+use gcodec_driver::Definitions;
+use gcodec_driver::loader::*;
+use gcodec_driver::{ProgramKind, compile};
 use gcodec_exec::event::{EventKind, EventSeverity};
 use gcodec_exec::loader::*;
 use gcodec_profile::Profile;
-use gcodec_sema::Definitions;
 
 fn fixtures() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/loader")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/fixtures/loader")
 }
 
 fn main_dir() -> PathBuf {
@@ -266,12 +268,12 @@ fn the_controls_internal_file_names_hold_programs() {
     // reset state, which settles the motion.
     let file = gcodec_source::SourceFile::read(&lib_dir().join("_N_INTERN_SPF")).expect("read");
     let uncalled = compile(
-        "INTERN",
         Arc::new(file),
+        ProgramKind::Main,
         &profile(),
         &Definitions::new(),
-        false,
-    );
+    )
+    .into_loaded("INTERN");
     assert_ne!(motions(&uncalled), [MotionKind::Modal]);
     assert_eq!(motions(&uncalled).len(), 1);
 }

@@ -7,20 +7,20 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use gcodec_exec::channel::{Channel, RunOptions};
+use gcodec_driver::Definitions;
+use gcodec_driver::{ProgramKind, SearchPath, program_name};
+use gcodec_driver::{StreamOptions, run_streamed};
+use gcodec_exec::channel::RunOptions;
 use gcodec_exec::event::{EventKind, JsonlSink};
-use gcodec_exec::loader::{FileLoader, SearchPath, compile, program_name};
-use gcodec_exec::stream::{StreamOptions, run_streamed};
 use gcodec_profile::Profile;
-use gcodec_sema::Definitions;
 use gcodec_source::SourceFile;
+use gcodec_testkit::Fixture;
+use gcodec_testkit::corpus::{definitions, machine_profile};
 
 mod common;
 
-#[path = "../../gcodec-sema/tests/common/mod.rs"]
-mod sema_common;
-
-use common::setup::{FIXTURES, Setup, setup};
+use common::runs::{RunSetup, compile_main, run_main};
+use common::setup::{Setup, at_repo_root, setup};
 
 struct Case<'a> {
     file: Arc<SourceFile>,
@@ -33,23 +33,14 @@ struct Case<'a> {
 
 /// The events and summary of a run of `main`.
 fn run(case: &Case, main: Arc<gcodec_exec::program::Program>) -> String {
-    let mut loader = FileLoader::new(
-        (case.search)(),
-        Arc::clone(&case.profile),
-        Arc::clone(&case.definitions),
-    );
+    let run = RunSetup {
+        profile: Arc::clone(&case.profile),
+        options: case.options.clone(),
+        definitions: Arc::clone(&case.definitions),
+        search: (case.search)(),
+    };
     let mut buffer = Vec::new();
-    let mut sink = JsonlSink::new(&mut buffer);
-    let outcome = Channel::new(
-        Arc::clone(&case.profile),
-        case.options.clone(),
-        &mut loader,
-        &mut sink,
-    )
-    .with_globals(&case.definitions)
-    .run(main)
-    .expect("events go to memory");
-    drop(sink);
+    let outcome = run_main(main, run, &mut JsonlSink::new(&mut buffer), None);
     let mut out = String::from_utf8(buffer).expect("UTF-8");
     out.push_str(&outcome.summary.to_string());
     out
@@ -58,13 +49,7 @@ fn run(case: &Case, main: Arc<gcodec_exec::program::Program>) -> String {
 /// Compares the streamed runs of `case` with its whole run; `false` when
 /// the program has errors (a whole program with errors is not run).
 fn check(case: &Case) -> bool {
-    let whole = compile(
-        case.name.clone(),
-        Arc::clone(&case.file),
-        &case.profile,
-        &case.definitions,
-        false,
-    );
+    let whole = compile_main(&case.file, &case.profile, &case.definitions);
     let whole_diagnostics: Vec<String> = whole
         .diagnostics
         .iter()
@@ -79,6 +64,7 @@ fn check(case: &Case) -> bool {
         let (events, diagnostics) = run_streamed(
             &case.file,
             case.name.clone(),
+            ProgramKind::of_file(case.file.name()),
             &case.profile,
             &case.definitions,
             StreamOptions {
@@ -113,8 +99,10 @@ fn check(case: &Case) -> bool {
 
 #[test]
 fn streamed_runs_write_the_events_of_whole_runs() {
-    // The fixtures first: the corpus runs from the corpus directory.
-    let mut fixtures: Vec<PathBuf> = std::fs::read_dir(FIXTURES)
+    // The fixtures first, from the repository root; the corpus runs from
+    // the corpus directory.
+    at_repo_root();
+    let mut fixtures: Vec<PathBuf> = std::fs::read_dir(gcodec_testkit::fixtures::root("run"))
         .expect("fixtures")
         .map(|e| e.expect("entry").path())
         .filter(|p| p.extension().is_some_and(|e| e == "mpf"))
@@ -123,17 +111,14 @@ fn streamed_runs_write_the_events_of_whole_runs() {
     assert!(fixtures.len() >= 10);
     let no_search = SearchPath::new;
     for path in &fixtures {
-        let text = std::fs::read_to_string(path).expect("fixture");
+        let fixture = Fixture::read("run", path);
         let Setup {
             profile,
             mut options,
-        } = setup(path, &text);
+        } = setup(&fixture);
         options.interrupt = None;
         let case = Case {
-            file: Arc::new(SourceFile::new(
-                path.to_string_lossy().replace('\\', "/"),
-                text.as_bytes(),
-            )),
+            file: Arc::new(fixture.file),
             name: program_name(path),
             profile,
             definitions: Arc::new(Definitions::new()),
@@ -142,10 +127,10 @@ fn streamed_runs_write_the_events_of_whole_runs() {
         };
         assert!(check(&case), "{} has errors", path.display());
     }
-    let Some(corpus) = sema_common::corpus_dir() else {
+    let Some(corpus) = gcodec_testkit::corpus_dir() else {
         return;
     };
-    let programs = sema_common::programs(&corpus);
+    let programs = gcodec_testkit::programs(&corpus);
     let mut dirs: Vec<PathBuf> = programs
         .iter()
         .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")))
@@ -161,8 +146,8 @@ fn streamed_runs_write_the_events_of_whole_runs() {
         .iter()
         .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("mpf")))
     {
-        let shown = sema_common::shown(&corpus, path);
-        let profile = sema_common::machines::machine_profile(&shown).1;
+        let shown = gcodec_testkit::shown(&corpus, path);
+        let profile = machine_profile(&shown).1;
         let mut options = RunOptions::for_profile(&profile);
         options.stop_at_m0 = false;
         options.max_steps = 200_000;
@@ -173,7 +158,7 @@ fn streamed_runs_write_the_events_of_whole_runs() {
             )),
             name: program_name(path),
             profile: Arc::new(profile),
-            definitions: Arc::new(sema_common::machines::definitions(&corpus, &shown)),
+            definitions: Arc::new(definitions(&corpus, &shown)),
             options,
             search: &search,
         };

@@ -19,14 +19,12 @@ mod error;
 mod fast;
 mod grammar;
 mod outline;
-mod pipeline;
 mod structure;
 
 pub use driver::{
-    Chunk, MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, ParsedChunk, block_settles,
-    chunks, chunks_at, parse, parse_bytes, parse_bytes_in_segments, parse_bytes_with_grammar_only,
-    parse_chunk, parse_chunks, skim_chunk, skim_chunks,
+    MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, ParsedChunk, block_settles, parse,
+    parse_bytes, parse_bytes_in_segments, parse_bytes_with_grammar_only, parse_chunk, parse_chunks,
+    skim_chunk, skim_chunks,
 };
 pub use outline::{write_expr, write_outline};
-pub use pipeline::map_chunks;
 pub use structure::Pairing;

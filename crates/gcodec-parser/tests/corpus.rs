@@ -5,8 +5,6 @@
 //! is absent the tests print a notice and pass, so the README's test command
 //! works in any clone.
 
-mod common;
-
 use std::path::Path;
 
 use gcodec_parser::parse;
@@ -21,10 +19,10 @@ fn is_syntax_check(path: &Path) -> bool {
 
 #[test]
 fn every_corpus_program_parses_without_errors() {
-    let Some(dir) = common::corpus_dir() else {
+    let Some(dir) = gcodec_testkit::corpus_dir() else {
         return;
     };
-    let files = common::programs(&dir);
+    let files = gcodec_testkit::programs(&dir);
     assert!(
         files.len() >= 50,
         "expected the whole corpus, found {} files",

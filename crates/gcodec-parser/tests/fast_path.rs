@@ -1,8 +1,6 @@
 //! The fast path must build exactly what the grammar builds, for every
 //! block it accepts, and leave every other block to the grammar.
 
-mod common;
-
 #[path = "../benches/program/mod.rs"]
 #[allow(dead_code)]
 mod program;
@@ -19,7 +17,7 @@ fn assert_same(name: &str, src: &[u8]) {
 
 #[test]
 fn fixtures_and_corpus_parse_the_same_either_way() {
-    common::each_program(assert_same);
+    gcodec_testkit::each_program(assert_same);
 }
 
 #[test]

@@ -77,3 +77,33 @@ fn a_blank_between_the_skip_mark_and_its_level_is_an_error() {
         );
     }
 }
+
+/// A file with several independent errors (the fixture
+/// `errors/several_errors.mpf`): every error is reported in one run, and
+/// the blocks between them still parse.
+#[test]
+fn several_errors_are_all_reported_and_parsing_resumes() {
+    let root = gcodec_testkit::fixtures::root("parse");
+    let fixture = gcodec_testkit::Fixture::read(
+        "parse",
+        &std::path::Path::new(&root).join("errors/several_errors.mpf"),
+    );
+    let file = &fixture.file;
+    let parsed = gcodec_parser::parse(file);
+    let mut error_lines: Vec<u32> = parsed
+        .diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .filter_map(|d| d.span().map(|s| file.line_col(s.start).0))
+        .collect();
+    error_lines.sort_unstable();
+    assert_eq!(error_lines, [3, 5, 6, 7, 8, 9]);
+    // The good blocks around the bad ones keep their statements.
+    for line in [2, 4, 10] {
+        let block = &parsed.program.blocks[line - 1];
+        assert!(
+            !block.statements.is_empty(),
+            "block on line {line} lost its statements"
+        );
+    }
+}

@@ -2,10 +2,9 @@
 //! and a streamed run parses them in chunks with the structures paired as
 //! the chunks come: neither split may change the tree or the diagnostics.
 
-mod common;
-
 use gcodec_parser::ast::Program;
-use gcodec_parser::{Pairing, chunks, parse_bytes_in_segments, parse_chunk};
+use gcodec_parser::{Pairing, parse_bytes_in_segments, parse_chunk};
+use gcodec_stream::chunks;
 
 /// Parses `src` chunk by chunk, pairing structures as the chunks come.
 fn parse_in_chunks(name: &str, src: &[u8], lines: usize) -> gcodec_parser::Parse {
@@ -76,7 +75,7 @@ fn assert_split_invariant(name: &str, src: &[u8]) {
 
 #[test]
 fn fixtures_and_corpus_parse_the_same_in_segments() {
-    common::each_program(assert_split_invariant);
+    gcodec_testkit::each_program(assert_split_invariant);
 }
 
 #[test]

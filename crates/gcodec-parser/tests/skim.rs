@@ -4,14 +4,13 @@
 //! only words (no `M`), assignments, calls by name and frames, and follows
 //! a block that settles, with only left-out blocks between.
 
-mod common;
-
 #[path = "../benches/program/mod.rs"]
 #[allow(dead_code)]
 mod program;
 
 use gcodec_parser::ast::StatementKind;
-use gcodec_parser::{block_settles, chunks, parse_chunk, skim_chunk};
+use gcodec_parser::{block_settles, parse_chunk, skim_chunk};
+use gcodec_stream::chunks;
 use proptest::prelude::*;
 
 /// Whether a statement is one a left-out block may hold.
@@ -76,7 +75,7 @@ fn assert_skim_agrees(name: &str, src: &[u8], lines: usize) -> usize {
 
 #[test]
 fn fixtures_and_corpus_skim_as_they_parse() {
-    common::each_program(|name, src| {
+    gcodec_testkit::each_program(|name, src| {
         for lines in [1, 7, 1024] {
             assert_skim_agrees(name, src, lines);
         }

@@ -1,14 +1,13 @@
 //! `SYNTAX_CHECK.SPF` from deathaxe/sublime-s840d annotates each line with
 //! the control's verdict. Each annotated line is parsed on its own.
 
-mod common;
-
 use std::path::PathBuf;
 
 use gcodec_parser::parse_bytes;
 
 fn syntax_check_file() -> Option<PathBuf> {
-    let path = common::corpus_dir()?.join("real/deathaxe+sublime-s840d/examples/SYNTAX_CHECK.SPF");
+    let path =
+        gcodec_testkit::corpus_dir()?.join("real/deathaxe+sublime-s840d/examples/SYNTAX_CHECK.SPF");
     path.is_file().then_some(path)
 }
 

@@ -41,10 +41,9 @@ pub mod types;
 mod values;
 
 pub use definitions::Definitions;
-pub use lower::outline::{Outline, OutlineBuilder, outline, outline_chunks};
-pub use lower::spent::SpentBin;
+pub use lower::outline::{Outline, OutlineBuilder, ProgramKind, outline, outline_chunks};
 pub use lower::stream::{ChunkLowering, LoweredChunk, lower_chunks};
-pub use lower::{Lowered, lower, lower_in_parts, lower_with, refine};
+pub use lower::{Lowered, lower, lower_in_parts, lower_program, lower_with, refine};
 pub use mfunc::m_class;
 pub use profile_check::check_profile;
 pub use types::DataType;

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 
 mod common;
 
-use common::machines::{definitions, machine_profile};
+use gcodec_testkit::corpus::{definitions, machine_profile};
 
 /// Errors the control raises too, in programs written for more lenient
 /// interpreters: `(file, line, code)`.

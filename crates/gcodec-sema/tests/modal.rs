@@ -546,11 +546,7 @@ fn a_hundred_thousand_blocks_keep_one_state_per_distinct_state() {
 fn every_fixture_and_corpus_program_is_analysed() {
     let profile = builtin();
     let mut reached = 0;
-    let mut paths = common::programs(&common::repo().join("tests/fixtures"));
-    paths.extend(common::programs(&common::repo().join("examples")));
-    if let Some(corpus) = common::corpus_dir() {
-        paths.extend(common::programs(&corpus));
-    }
+    let paths = common::all_programs();
     assert!(paths.len() >= 30, "{} programs", paths.len());
     for path in paths {
         let name = path.display().to_string();
@@ -820,11 +816,7 @@ fn check_against_reference(document: &Document, profile: &Profile, name: &str) {
 #[test]
 fn the_analysis_agrees_with_a_reference_on_programs() {
     let profile = builtin();
-    let mut paths = common::programs(&common::repo().join("tests/fixtures"));
-    paths.extend(common::programs(&common::repo().join("examples")));
-    if let Some(corpus) = common::corpus_dir() {
-        paths.extend(common::programs(&corpus));
-    }
+    let paths = common::all_programs();
     for path in paths {
         let name = path.display().to_string();
         let bytes = std::fs::read(&path).expect("readable");

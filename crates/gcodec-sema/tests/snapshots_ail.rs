@@ -1,44 +1,29 @@
-//! insta snapshots of the AIL: the seed features as the JSON document,
-//! and the example programs as listings with their diagnostics.
+//! insta snapshots of the AIL: the seed features (the lower fixture
+//! `seed_features.mpf`) as the JSON document, and the example programs
+//! as listings with their diagnostics. The listings of the lower fixtures
+//! are `fixtures.rs`'s.
 
 mod common;
 
-use std::path::PathBuf;
+use gcodec_source::SourceFile;
 
-fn repo(path: &str) -> PathBuf {
-    common::repo().join(path)
+/// The program at `path` (relative to the repository root), lowered for
+/// the shipped profile `profile`.
+fn lower_file(path: &str, profile: &str) -> (SourceFile, gcodec_sema::Lowered) {
+    let bytes = std::fs::read(common::repo().join(path)).expect("readable");
+    let file = SourceFile::new(path, bytes);
+    let lowered = gcodec_testkit::lower_clean(path, file.bytes(), &common::profile(profile));
+    (file, lowered)
 }
 
-fn lower_file(path: &str, profile: &str) -> gcodec_sema::Lowered {
-    let file = gcodec_source::SourceFile::read(&repo(path)).expect("readable");
-    let parsed = gcodec_parser::parse_bytes(path, file.bytes());
-    assert!(
-        parsed.diagnostics.is_empty(),
-        "{path}: {:#?}",
-        parsed.diagnostics
-    );
-    gcodec_sema::lower(&parsed.program, &common::profile(profile))
-}
-
-/// The listing, then one line per diagnostic: code and line.
 fn listing(path: &str, profile: &str) -> String {
-    let lowered = lower_file(path, profile);
-    let mut out = String::new();
-    gcodec_ail::write_listing(&lowered.document, &mut out).unwrap();
-    let file = gcodec_source::SourceFile::read(&repo(path)).unwrap();
-    for d in &lowered.diagnostics {
-        let line = d.span().map_or(0, |s| file.line_col(s.start).0);
-        out.push_str(&format!(
-            "{:?} {} at line {line}: {}\n",
-            d.severity, d.code, d.message
-        ));
-    }
-    out
+    let (file, lowered) = lower_file(path, profile);
+    common::listing(&file, &lowered)
 }
 
 #[test]
 fn seed_features_document() {
-    let lowered = lower_file("tests/fixtures/lower/seed_features.mpf", "default.toml");
+    let (_, lowered) = lower_file("tests/fixtures/lower/seed_features.mpf", "default.toml");
     assert!(lowered.diagnostics.is_empty(), "{:#?}", lowered.diagnostics);
     insta::assert_json_snapshot!(lowered.document);
 }
@@ -56,27 +41,4 @@ fn example_lathe_shaft() {
 #[test]
 fn example_chamfer_edge() {
     insta::assert_snapshot!(listing("examples/chamfer_edge.spf", "default.toml"));
-}
-
-/// One fixture per construct family, each with the profile of its machine.
-const FAMILIES: &[(&str, &str)] = &[
-    ("control_flow.mpf", "default.toml"),
-    ("calls.mpf", "default.toml"),
-    ("procedure.spf", "default.toml"),
-    ("addresses.mpf", "default.toml"),
-    ("variables.mpf", "default.toml"),
-    ("frames.mpf", "mill_5axis.toml"),
-];
-
-#[test]
-fn construct_families() {
-    for (file, profile) in FAMILIES {
-        let path = format!("tests/fixtures/lower/{file}");
-        let text = listing(&path, profile);
-        assert!(
-            !text.contains("Error ") && !text.contains("Warning "),
-            "{file}: the family fixtures lower cleanly:\n{text}"
-        );
-        insta::assert_snapshot!(format!("family_{file}").replace('.', "_"), text);
-    }
 }

@@ -2,10 +2,10 @@
 //! by chunk again: the chunks' instructions, refined, are the document of
 //! lowering the whole program, and their diagnostics its diagnostics.
 
-use gcodec_parser::chunks;
 use gcodec_sema::{
-    ChunkLowering, Definitions, lower_chunks, lower_in_parts, outline_chunks, refine,
+    ChunkLowering, Definitions, ProgramKind, lower_chunks, lower_in_parts, outline_chunks, refine,
 };
+use gcodec_stream::chunks;
 
 mod common;
 
@@ -25,8 +25,15 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
         for workers in [1, 3] {
             // Pass 1: the outline, the chunks skimmed and their trees
             // dropped chunk by chunk.
-            let (outline, structure_diagnostics) =
-                outline_chunks(name, src, &chunks, workers, profile, &definitions);
+            let (outline, structure_diagnostics) = outline_chunks(
+                name,
+                ProgramKind::of_file(name),
+                src,
+                &chunks,
+                workers,
+                profile,
+                &definitions,
+            );
             let mut diagnostics = outline.diagnostics().to_vec();
             // Pass 2: the chunks parsed and lowered, then the end.
             let mut document = gcodec_ail::Document::new();
@@ -64,11 +71,19 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
 fn in_order(
     name: &str,
     src: &[u8],
-    chunks: &[gcodec_parser::Chunk],
+    chunks: &[gcodec_stream::Chunk],
     profile: &gcodec_profile::Profile,
     definitions: &Definitions,
 ) -> gcodec_ail::Document {
-    let (outline, _) = outline_chunks(name, src, chunks, 1, profile, definitions);
+    let (outline, _) = outline_chunks(
+        name,
+        ProgramKind::of_file(name),
+        src,
+        chunks,
+        1,
+        profile,
+        definitions,
+    );
     let mut lowering = ChunkLowering::new(&outline, profile);
     let mut document = gcodec_ail::Document::new();
     for chunk in chunks {
@@ -90,7 +105,7 @@ fn chunks_out_of_order_are_refused() {
     let definitions = Definitions::new();
     let src = b"G1 X1 F100\nX2\nM30\n";
     let parsed = gcodec_parser::parse_bytes("order.mpf", src);
-    let outline = gcodec_sema::outline(&parsed.program, &profile, &definitions);
+    let outline = gcodec_sema::outline(&parsed.program, ProgramKind::Main, &profile, &definitions);
     let mut lowering = ChunkLowering::new(&outline, &profile);
     assert!(lowering.lower(1, &parsed.program.blocks[1..]).is_none());
     assert!(lowering.lower(0, &parsed.program.blocks[..1]).is_some());
@@ -150,7 +165,15 @@ fn only_chunks_lowered_on_a_worker_carry_a_bin() {
     let definitions = Definitions::new();
     let src = b"G1 X1 F100\nMCALL CYCLE81(10,0,1,-5)\nX2\nX3\nX4\nMCALL\nX5\nX6\nX7\nM30\n";
     let chunks = chunks(src, 2);
-    let (outline, _) = outline_chunks("mcall.mpf", src, &chunks, 2, &profile, &definitions);
+    let (outline, _) = outline_chunks(
+        "mcall.mpf",
+        ProgramKind::Main,
+        src,
+        &chunks,
+        2,
+        &profile,
+        &definitions,
+    );
     let mut bins = Vec::new();
     lower_chunks(src, &chunks, 2, &outline, &profile, |lowered| {
         bins.push(lowered.spent.is_some());

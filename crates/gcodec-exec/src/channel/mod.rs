@@ -45,7 +45,7 @@ use crate::geometry::CircleTolerance;
 use crate::loader::ProgramLoader;
 use crate::program::Program;
 use crate::value::RunError;
-use crate::vars::{Scope, Variables};
+use crate::vars::{Global, Scope, Variables};
 
 /// The stable codes of the channel's own diagnostics (expression errors
 /// keep theirs, [`crate::value::codes`]).
@@ -268,27 +268,17 @@ impl<'r> Channel<'r> {
     }
 
     /// Declares the global user data of definition files (GUD), each with
-    /// its type's initial value. A dimension that is not a constant is
-    /// left out (the variable is not declared; reading it is an error
-    /// naming it).
-    pub fn with_globals(mut self, definitions: &gcodec_sema::Definitions) -> Self {
-        for variable in definitions.variables() {
-            let Some(ty) = crate::value::DataType::from_sema(&variable.data_type) else {
-                continue;
-            };
-            let dims: Option<Vec<usize>> = variable
-                .dims
-                .iter()
-                .map(|d| d.map(|d| d as usize))
-                .collect();
-            let Some(dims) = dims else {
-                continue;
-            };
-            let name = variable.name.to_ascii_uppercase();
-            // A declaration the store rejects (too large) stays undeclared.
-            let _ = self
-                .vars
-                .declare(Scope::Global, &name, ty, &dims, crate::vars::Init::None);
+    /// its type's initial value. A declaration the store rejects (too
+    /// large) stays undeclared: reading it is an error naming it.
+    pub fn with_globals<'g>(mut self, globals: impl IntoIterator<Item = &'g Global>) -> Self {
+        for global in globals {
+            let _ = self.vars.declare(
+                Scope::Global,
+                &global.name,
+                global.data_type,
+                &global.dims,
+                crate::vars::Init::None,
+            );
         }
         self
     }

@@ -25,14 +25,13 @@ use gcodec_source::{Diagnostic, Span};
 use crate::definitions::Definitions;
 use crate::flow::BlockFlow;
 use crate::{ggroups, mfunc};
-use outline::Outline;
+use outline::{Outline, ProgramKind};
 
 mod addresses;
 mod calls;
 mod control;
 mod frames;
 pub(crate) mod outline;
-pub(crate) mod spent;
 mod statements;
 pub(crate) mod stream;
 mod variables;
@@ -59,13 +58,32 @@ pub fn lower(program: &Program, profile: &Profile) -> Lowered {
 }
 
 /// Lowers `program` for the machine `profile` describes; the program may
-/// use the global variables and macros of `definitions`.
+/// use the global variables and macros of `definitions`. It is started as
+/// its file name says ([`ProgramKind::of_file`]); [`lower_program`] takes
+/// the kind.
 pub fn lower_with(program: &Program, profile: &Profile, definitions: &Definitions) -> Lowered {
+    lower_program(
+        program,
+        ProgramKind::of_file(&program.file),
+        profile,
+        definitions,
+    )
+}
+
+/// Lowers `program`, started as `kind`, for the machine `profile`
+/// describes, with the global variables and macros of `definitions`.
+pub fn lower_program(
+    program: &Program,
+    kind: ProgramKind,
+    profile: &Profile,
+    definitions: &Definitions,
+) -> Lowered {
     let threads = std::thread::available_parallelism().map_or(1, usize::from);
     // Below this, a thread costs more than it saves.
     const BLOCKS_PER_PART: usize = 50_000;
     let parts = (program.blocks.len() / BLOCKS_PER_PART).clamp(1, threads);
-    lower_in_parts(program, profile, definitions, parts)
+    let outline = outline::outline(program, kind, profile, definitions);
+    lower_outlined(program, profile, &outline, parts)
 }
 
 /// [`lower_with`], the blocks split into `parts` runs lowered on threads of
@@ -78,7 +96,8 @@ pub fn lower_in_parts(
     definitions: &Definitions,
     parts: usize,
 ) -> Lowered {
-    let outline = outline::outline(program, profile, definitions);
+    let kind = ProgramKind::of_file(&program.file);
+    let outline = outline::outline(program, kind, profile, definitions);
     lower_outlined(program, profile, &outline, parts)
 }
 

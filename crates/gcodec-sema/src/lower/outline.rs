@@ -51,8 +51,8 @@ impl Outline<'_> {
         &self.diagnostics
     }
 
-    /// Whether the program starts in its caller's modal state: a `.SPF`
-    /// file, or one opening with `PROC`.
+    /// Whether the program starts in its caller's modal state: a
+    /// [`ProgramKind::Subprogram`], or one opening with `PROC`.
     pub fn is_subprogram(&self) -> bool {
         self.subprogram
     }
@@ -73,10 +73,34 @@ impl Outline<'_> {
     }
 }
 
+/// How a program starts: as the main program of a run or as one that a
+/// running program calls.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProgramKind {
+    /// Started by the operator: it starts in the machine's reset state
+    /// (the profile's modal defaults), unless it opens with `PROC`.
+    Main,
+    /// Called by another program: it starts in its caller's modal state,
+    /// which lowering cannot know.
+    Subprogram,
+}
+
+impl ProgramKind {
+    /// What `gcodec lower FILE` assumes: a subprogram for an `.SPF` file,
+    /// else a main program.
+    pub fn of_file(file: &str) -> Self {
+        let spf = std::path::Path::new(file)
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("spf"));
+        if spf { Self::Subprogram } else { Self::Main }
+    }
+}
+
 /// Builds an [`Outline`] from a program's blocks, fed in order (their
 /// depths set by the structure pairing), a run at a time.
 pub struct OutlineBuilder<'d> {
     file: Arc<str>,
+    kind: ProgramKind,
     m_overrides: HashMap<u32, MClass>,
     flow: FlowBuilder,
     names: variables::NameCollector<'d>,
@@ -89,11 +113,18 @@ pub struct OutlineBuilder<'d> {
 }
 
 impl<'d> OutlineBuilder<'d> {
-    /// An outline of the program in `file` for the machine `profile`
-    /// describes, with the global names of `definitions`.
-    pub fn new(file: &str, profile: &Profile, definitions: &'d Definitions) -> Self {
+    /// An outline of the program in `file`, started as `kind`, for the
+    /// machine `profile` describes, with the global names of
+    /// `definitions`.
+    pub fn new(
+        file: &str,
+        kind: ProgramKind,
+        profile: &Profile,
+        definitions: &'d Definitions,
+    ) -> Self {
         Self {
             file: Arc::from(file),
+            kind,
             m_overrides: mfunc::overrides(profile),
             flow: FlowBuilder::default(),
             names: variables::NameCollector::new(profile, definitions),
@@ -145,11 +176,9 @@ impl<'d> OutlineBuilder<'d> {
         let flow = self.flow.finish(&structures);
         let (names, mut diagnostics) = self.names.finish();
         diagnostics.extend(duplicate_labels(&flow));
-        let spf = std::path::Path::new(&*self.file)
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("spf"));
+        let called = self.kind == ProgramKind::Subprogram;
         Outline {
-            subprogram: spf || self.first_statement.is_some_and(|(_, proc)| proc),
+            subprogram: called || self.first_statement.is_some_and(|(_, proc)| proc),
             first_statement: self.first_statement.map(|(span, _)| span),
             file: self.file,
             structures,
@@ -167,10 +196,11 @@ impl<'d> OutlineBuilder<'d> {
 /// The outline of a whole parsed program.
 pub fn outline<'d>(
     program: &ast::Program,
+    kind: ProgramKind,
     profile: &Profile,
     definitions: &'d Definitions,
 ) -> Outline<'d> {
-    let mut builder = OutlineBuilder::new(&program.file, profile, definitions);
+    let mut builder = OutlineBuilder::new(&program.file, kind, profile, definitions);
     builder.feed(0, &program.blocks);
     builder.finish(program.structures.clone())
 }
@@ -186,13 +216,14 @@ pub fn outline<'d>(
 /// ([`super::stream::lower_chunks`]) gives them.
 pub fn outline_chunks<'d>(
     file: &str,
+    kind: ProgramKind,
     src: &[u8],
-    chunks: &[gcodec_parser::Chunk],
+    chunks: &[gcodec_stream::Chunk],
     workers: usize,
     profile: &Profile,
     definitions: &'d Definitions,
 ) -> (Outline<'d>, Vec<Diagnostic>) {
-    let mut builder = OutlineBuilder::new(file, profile, definitions);
+    let mut builder = OutlineBuilder::new(file, kind, profile, definitions);
     builder.reserve(chunks.iter().map(|c| c.blocks).sum());
     let mut pairing = gcodec_parser::Pairing::default();
     let mut diagnostics = Vec::new();

@@ -18,8 +18,8 @@ use gcodec_profile::Profile;
 use gcodec_source::Diagnostic;
 
 use super::outline::Outline;
-use super::spent::SpentBin;
 use super::{Carry, Lowering, capacity};
+use gcodec_stream::SpentBin;
 
 /// Lowers the program `src` chunk by chunk against its `outline` (pass 2
 /// of a streamed run); `each` takes the instructions of every chunk, then
@@ -29,7 +29,7 @@ use super::{Carry, Lowering, capacity};
 /// skimming, did not find.
 ///
 /// Each of `workers` threads parses and lowers its chunks
-/// ([`gcodec_parser::map_chunks`]; on one, this thread), each as a part
+/// ([`gcodec_stream::map_chunks`]; on one, this thread), each as a part
 /// that starts in the state the chunk before it ends in, as
 /// [`super::lower_in_parts`] lowers its parts; the parts are settled here
 /// in order, and a part that cannot be settled (`Lowering::settle`) is
@@ -38,7 +38,7 @@ use super::{Carry, Lowering, capacity};
 /// those a [`ChunkLowering`] gives.
 pub fn lower_chunks(
     src: &[u8],
-    chunks: &[gcodec_parser::Chunk],
+    chunks: &[gcodec_stream::Chunk],
     workers: usize,
     outline: &Outline<'_>,
     profile: &Profile,
@@ -46,14 +46,14 @@ pub fn lower_chunks(
 ) {
     // Parses `chunk` and lowers it with `lowering`; gives its parse
     // diagnostics.
-    let lower_part = |chunk: &gcodec_parser::Chunk, lowering: &mut Lowering<'_>| {
+    let lower_part = |chunk: &gcodec_stream::Chunk, lowering: &mut Lowering<'_>| {
         let parsed = gcodec_parser::parse_chunk(src, chunk);
         lower_blocks(lowering, parsed.first_block, &parsed.blocks);
         parsed.diagnostics
     };
     let mut next = 0;
     let mut carry: Option<Carry> = None;
-    gcodec_parser::map_chunks(
+    gcodec_stream::map_chunks(
         chunks,
         workers,
         |chunk| {

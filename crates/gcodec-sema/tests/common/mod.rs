@@ -1,35 +1,10 @@
-//! Helpers shared by the semantic stage's integration tests: the parser's
-//! (where the repository and the corpus are) plus the shipped profiles.
+//! Helpers shared by the semantic stage's integration tests; where the
+//! programs are, the shipped profiles and the compile set-up are
+//! `gcodec_testkit`'s.
 
 #![allow(dead_code, unused_imports)]
 
-#[path = "../../../gcodec-parser/tests/common/mod.rs"]
-mod parser_common;
-
-pub use parser_common::{all_programs, corpus_dir, programs, repo};
-
-pub mod machines;
-
-/// `path` as the corpus tests show it: relative to the corpus, with `/`.
-pub fn shown(corpus: &std::path::Path, path: &std::path::Path) -> String {
-    path.strip_prefix(corpus)
-        .unwrap_or(path)
-        .display()
-        .to_string()
-        .replace('\\', "/")
-}
-
-/// A shipped profile, by file name (`lathe_828d.toml`).
-pub fn profile(name: &str) -> gcodec_profile::Profile {
-    let text = std::fs::read_to_string(repo().join("profiles").join(name)).expect("profile");
-    gcodec_profile::load(&text).unwrap_or_else(|d| panic!("{name}: {d:#?}"))
-}
-
-/// A profile of the given TOML sections after a `[machine]` header.
-pub fn machine(sections: &str) -> gcodec_profile::Profile {
-    let text = format!("[machine]\nname = \"test\"\ncontrol = \"840d_sl\"\n{sections}");
-    gcodec_profile::load(&text).unwrap_or_else(|d| panic!("{d:#?}"))
-}
+pub use gcodec_testkit::{all_programs, corpus_dir, machine, profile, programs, repo, shown};
 
 /// Lowers `src` (which must parse cleanly) for `profile`.
 pub fn lower_with(profile: &gcodec_profile::Profile, src: &str) -> gcodec_sema::Lowered {
@@ -42,13 +17,7 @@ pub fn lower_named(
     profile: &gcodec_profile::Profile,
     src: &str,
 ) -> gcodec_sema::Lowered {
-    let parsed = gcodec_parser::parse_bytes(file, src.as_bytes());
-    assert!(
-        parsed.diagnostics.is_empty(),
-        "{src}: {:#?}",
-        parsed.diagnostics
-    );
-    gcodec_sema::lower(&parsed.program, profile)
+    gcodec_testkit::lower_clean(file, src.as_bytes(), profile)
 }
 
 /// The instructions of `kind`, as JSON without their source.
@@ -123,4 +92,19 @@ pub fn kinds(lowered: &gcodec_sema::Lowered) -> Vec<String> {
                 .to_owned()
         })
         .collect()
+}
+
+/// The listing of a lowered program, then one line per diagnostic: code
+/// and line.
+pub fn listing(file: &gcodec_source::SourceFile, lowered: &gcodec_sema::Lowered) -> String {
+    let mut out = String::new();
+    gcodec_ail::write_listing(&lowered.document, &mut out).unwrap();
+    for d in &lowered.diagnostics {
+        let line = d.span().map_or(0, |s| file.line_col(s.start).0);
+        out.push_str(&format!(
+            "{:?} {} at line {line}: {}\n",
+            d.severity, d.code, d.message
+        ));
+    }
+    out
 }

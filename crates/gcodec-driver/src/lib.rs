@@ -1,0 +1,33 @@
+//! The facade over gcodec's pipeline: everything that parses, lowers and
+//! runs a program goes through here, so that the stages are wired in one
+//! place.
+//!
+//! - [`compile`]: parse and lower one program, as a main program or a
+//!   subprogram ([`ProgramKind`]), against a profile and definitions.
+//! - [`load_profile`]: a machine profile checked in full (its form and
+//!   its G codes); [`Definitions`], the global names of definition files.
+//! - [`loader`]: the programs a running program calls, found on a search
+//!   path ([`FileLoader`]) or given as text ([`MemoryLoader`]).
+//! - [`run_main`]: a main program run as `gcodec run` runs it, streamed
+//!   ([`stream`]), its events handed to an [`event::EventSink`].
+//!
+//! The parts of the lower crates that are the facade's API too are
+//! re-exported: the syntax tree's outline and the AIL listing, the run's
+//! options, events and sinks.
+
+pub mod compile;
+pub mod loader;
+pub mod run;
+mod setup;
+pub mod stream;
+
+pub use compile::{Compiled, compile, compile_text};
+pub use gcodec_ail::{Document, write_listing};
+pub use gcodec_exec::channel::{BlockObserver, RunOptions, RunOutcome};
+pub use gcodec_exec::event;
+pub use gcodec_parser::{Parse, parse, write_outline};
+pub use gcodec_sema::{Definitions, ProgramKind};
+pub use loader::{FileLoader, MemoryLoader, SearchPath, program_name};
+pub use run::{RunReport, RunSetup, globals, run_main};
+pub use setup::{ProfileError, builtin_profile_file, load_profile, read_source};
+pub use stream::{StreamOptions, run_streamed};

@@ -1,0 +1,129 @@
+//! Running a main program as `gcodec run` does: streamed, with its calls
+//! found on the search path, against one machine profile.
+
+use std::io;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use gcodec_exec::channel::{BlockObserver, Channel, RunOptions, RunOutcome};
+use gcodec_exec::event::EventSink;
+use gcodec_exec::value::DataType;
+use gcodec_exec::vars::Global;
+use gcodec_profile::Profile;
+use gcodec_sema::{Definitions, ProgramKind};
+use gcodec_source::{Diagnostic, SourceFile};
+
+use crate::loader::{FileLoader, SearchPath, program_name};
+use crate::stream::{StreamOptions, run_streamed};
+
+/// What a run is set up with.
+#[derive(Clone, Debug)]
+pub struct RunSetup {
+    pub profile: Arc<Profile>,
+    /// The profile's file: its relative `subprogram_paths` are taken
+    /// against its directory (`None`: the built-in profile, against the
+    /// current directory).
+    pub profile_file: Option<PathBuf>,
+    pub definitions: Arc<Definitions>,
+    /// Directories searched for called programs after the caller's and
+    /// the profile's (`--subprogram-path`).
+    pub search_dirs: Vec<PathBuf>,
+    pub options: RunOptions,
+    pub stream: StreamOptions,
+}
+
+impl RunSetup {
+    /// The defaults for a machine ([`RunOptions::for_profile`]), no
+    /// definitions, no further directories.
+    pub fn new(profile: impl Into<Arc<Profile>>) -> Self {
+        let profile = profile.into();
+        Self {
+            options: RunOptions::for_profile(&profile),
+            profile,
+            profile_file: None,
+            definitions: Arc::new(Definitions::new()),
+            search_dirs: Vec::new(),
+            stream: StreamOptions::default(),
+        }
+    }
+}
+
+/// What a run gives back besides its events.
+#[derive(Debug)]
+pub struct RunReport {
+    /// How the run ended, or the error that stopped writing its events.
+    pub outcome: io::Result<RunOutcome>,
+    /// All the main program's own diagnostics (parse, structure, outline,
+    /// lowering), in source order; those of the run and of called
+    /// programs are events.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Runs the main program in `file` streamed (its name is the one its
+/// file gives, [`program_name`]): events go to `sink`, the state after
+/// each block to `observer`.
+pub fn run_main(
+    file: Arc<SourceFile>,
+    setup: &RunSetup,
+    sink: &mut dyn EventSink,
+    observer: Option<&mut dyn BlockObserver>,
+) -> RunReport {
+    let search = SearchPath::new()
+        .with_profile(&setup.profile, setup.profile_file.as_deref())
+        .with_dirs(setup.search_dirs.iter().cloned());
+    let mut loader = FileLoader::new(
+        search,
+        Arc::clone(&setup.profile),
+        Arc::clone(&setup.definitions),
+    );
+    let name = program_name(Path::new(file.name()));
+    let kind = ProgramKind::of_file(file.name());
+    let globals = globals(&setup.definitions);
+    let (outcome, diagnostics) = run_streamed(
+        &file,
+        name,
+        kind,
+        &setup.profile,
+        &setup.definitions,
+        setup.stream,
+        |main| {
+            let mut channel = Channel::new(
+                Arc::clone(&setup.profile),
+                setup.options.clone(),
+                &mut loader,
+                sink,
+            )
+            .with_globals(&globals);
+            if let Some(observer) = observer {
+                channel = channel.with_observer(observer);
+            }
+            channel.run(main)
+        },
+    );
+    RunReport {
+        outcome,
+        diagnostics,
+    }
+}
+
+/// The global user data of `definitions` as the channel declares it. A
+/// variable whose type or dimensions are not constants the channel can
+/// hold is left out (reading it is an error naming it).
+pub fn globals(definitions: &Definitions) -> Vec<Global> {
+    definitions
+        .variables()
+        .filter_map(|variable| {
+            let data_type = DataType::from_sema(&variable.data_type)?;
+            let dims = variable
+                .dims
+                .iter()
+                .map(|d| d.map(|d| d as usize))
+                .collect::<Option<Vec<usize>>>()?;
+            Some(Global {
+                name: variable.name.to_ascii_uppercase(),
+                data_type,
+                dims,
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,53 @@
+//! What a run or a lowering is set up with: the files it reads and the
+//! machine profile, checked in full.
+
+use std::path::Path;
+
+use gcodec_profile::Profile;
+use gcodec_source::{Diagnostic, SourceFile};
+
+/// Reads a file; one that cannot be read is `gcodec::io::read`.
+pub fn read_source(path: &Path) -> Result<SourceFile, Diagnostic> {
+    SourceFile::read(path).map_err(|e| {
+        Diagnostic::error(
+            "gcodec::io::read",
+            format!("cannot read `{}`: {e}", path.display()),
+        )
+        .with_help("check the path and that the file is readable")
+    })
+}
+
+/// The built-in profile's file (`profiles/default.toml`, compiled in).
+pub fn builtin_profile_file() -> SourceFile {
+    SourceFile::new(gcodec_profile::BUILTIN_NAME, gcodec_profile::BUILTIN_TOML)
+}
+
+/// A machine profile that cannot be used: every problem, against the
+/// profile's text.
+#[derive(Debug)]
+pub struct ProfileError {
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Checks the profile in `file` in full: its form (TOML, keys, ranges,
+/// references; [`gcodec_profile::load`]) and then its G codes against the
+/// G-group table ([`gcodec_sema::check_profile`]). The profile and the
+/// warnings of the second check, or every problem found.
+pub fn load_profile(file: &SourceFile) -> Result<(Profile, Vec<Diagnostic>), ProfileError> {
+    let Ok(text) = std::str::from_utf8(file.bytes()) else {
+        let d = Diagnostic::error(
+            "gcodec::profile::syntax",
+            format!("`{}` is not UTF-8 text", file.name()),
+        )
+        .with_help("TOML files are UTF-8");
+        return Err(ProfileError {
+            diagnostics: vec![d],
+        });
+    };
+    let profile = gcodec_profile::load(text).map_err(|diagnostics| ProfileError { diagnostics })?;
+    let diagnostics = gcodec_sema::check_profile(&profile);
+    if diagnostics.iter().any(Diagnostic::is_error) {
+        return Err(ProfileError { diagnostics });
+    }
+    Ok((profile, diagnostics))
+}

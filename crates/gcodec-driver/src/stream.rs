@@ -1,0 +1,187 @@
+//! A streamed run of a main program: it runs while it is lowered, and
+//! neither its syntax tree nor all its instructions are ever held
+//! (docs/ARCHITECTURE.md, "Streaming").
+//!
+//! Pass 1 skims the program chunk by chunk into its outline (structures,
+//! jump targets, names, signatures), parsing only the blocks the outline
+//! reads something of and dropping each tree. Pass 2, on a second
+//! thread, has each chunk parsed and lowered against the outline by the
+//! workers and hands its instructions to the run as a page through a
+//! bounded channel; it lowers to the end even when the run stops early,
+//! so every diagnostic is reported. A block with errors stops the run
+//! with an alarm when the run reaches it (SPEC §11.9).
+
+use std::sync::Arc;
+use std::sync::mpsc::{SyncSender, sync_channel};
+
+use gcodec_ail::{ByteRange, Source};
+use gcodec_exec::program::{Program, SourcePage};
+use gcodec_profile::Profile;
+use gcodec_sema::{Definitions, LoweredChunk, ProgramKind, lower_chunks, outline_chunks};
+use gcodec_source::{Diagnostic, SourceFile};
+use gcodec_stream::chunks_at;
+
+/// How a streamed run cuts its program.
+#[derive(Clone, Copy, Debug)]
+pub struct StreamOptions {
+    /// Lines per chunk, and so per page of instructions.
+    pub page_lines: usize,
+    /// Threads that skim chunks for the outline (pass 1), and that parse
+    /// and lower chunks (pass 2).
+    pub workers: usize,
+}
+
+impl Default for StreamOptions {
+    fn default() -> Self {
+        Self {
+            // Measured on the 1,000,000-block program (docs/performance.md):
+            // smaller pages hold less in flight at the same speed.
+            page_lines: 1024,
+            workers: 2,
+        }
+    }
+}
+
+/// Pages the channel holds before pass 2 waits for the run: enough for
+/// the two threads not to wait on each other at every page.
+const PAGES_AHEAD: usize = 2;
+
+/// Runs the program in `file` (called `name`, started as `kind`:
+/// [`ProgramKind::Main`] but for a subprogram run on its own) streamed:
+/// `run` gets the [`Program`] while pass 2 still lowers it. Returns what
+/// `run` returned and all the program's own diagnostics (parse,
+/// structure, outline, lowering) in source order.
+pub fn run_streamed<R>(
+    file: &Arc<SourceFile>,
+    name: String,
+    kind: ProgramKind,
+    profile: &Profile,
+    definitions: &Definitions,
+    options: StreamOptions,
+    run: impl FnOnce(Arc<Program>) -> R,
+) -> (R, Vec<Diagnostic>) {
+    let src = file.bytes();
+    let chunks = chunks_at(file.line_starts(), src.len(), options.page_lines);
+    let (outline, structure_diagnostics) = outline_chunks(
+        file.name(),
+        kind,
+        src,
+        &chunks,
+        options.workers,
+        profile,
+        definitions,
+    );
+    let outline_diagnostics = outline.diagnostics();
+    let (sender, receiver) = sync_channel::<SourcePage>(PAGES_AHEAD);
+    let program = Program::streamed(
+        name,
+        Arc::clone(file),
+        Box::new(receiver),
+        outline.returns(),
+    );
+    let program = Arc::new(program);
+    let file_name = &program.file;
+    // Pass 1's errors are known before the run starts.
+    let known_errors = error_sources(
+        file,
+        file_name,
+        structure_diagnostics.iter().chain(outline_diagnostics),
+    );
+    let (result, lowered) = std::thread::scope(|scope| {
+        let pass2 = scope.spawn(|| {
+            let mut pages = Pages {
+                sender: Some(sender),
+                file,
+                name: file_name,
+                parse_diagnostics: Vec::new(),
+                diagnostics: Vec::new(),
+            };
+            // The errors pass 1 found go ahead of every page.
+            pages.send(SourcePage::new(Vec::new(), known_errors));
+            let workers = options.workers;
+            lower_chunks(src, &chunks, workers, &outline, profile, |lowered| {
+                pages.lowered(lowered);
+            });
+            (pages.parse_diagnostics, pages.diagnostics)
+        });
+        let result = run(Arc::clone(&program));
+        // A run that stopped early leaves pages unread: pass 2 must not
+        // wait for it to take them.
+        program.end_stream();
+        let lowered = pass2
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (result, lowered)
+    });
+    // In the order the whole program's parse and lowering give them: a
+    // stable sort keeps the parser's ahead of the pairing's, the
+    // outline's and the lowering's at one place.
+    let (parse_diagnostics, lowering_diagnostics) = lowered;
+    let mut diagnostics = parse_diagnostics;
+    diagnostics.extend(structure_diagnostics);
+    diagnostics.extend_from_slice(outline_diagnostics);
+    diagnostics.extend(lowering_diagnostics);
+    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    (result, diagnostics)
+}
+
+/// The pages pass 2 sends, while the run takes them, and the parser's
+/// and the lowering's diagnostics.
+struct Pages<'a> {
+    sender: Option<SyncSender<SourcePage>>,
+    file: &'a SourceFile,
+    name: &'a Arc<str>,
+    parse_diagnostics: Vec<Diagnostic>,
+    diagnostics: Vec<Diagnostic>,
+}
+
+impl Pages<'_> {
+    /// Sends a lowered chunk, with the places of its errors.
+    fn lowered(&mut self, chunk: LoweredChunk) {
+        let errors = error_sources(
+            self.file,
+            self.name,
+            chunk.parse_diagnostics.iter().chain(&chunk.diagnostics),
+        );
+        self.parse_diagnostics.extend(chunk.parse_diagnostics);
+        self.diagnostics.extend(chunk.diagnostics);
+        self.send(SourcePage::new(chunk.instructions, errors).given_back_to(chunk.spent));
+    }
+
+    fn send(&mut self, page: SourcePage) {
+        if let Some(sender) = &self.sender
+            && sender.send(page).is_err()
+        {
+            // The run has ended: lowering goes on for the diagnostics.
+            self.sender = None;
+        }
+    }
+}
+
+/// Where the errors among `diagnostics` are, in line order; an error
+/// without a place counts as one on the first line.
+fn error_sources<'d>(
+    file: &SourceFile,
+    name: &Arc<str>,
+    diagnostics: impl IntoIterator<Item = &'d Diagnostic>,
+) -> Vec<Source> {
+    let mut errors: Vec<Source> = diagnostics
+        .into_iter()
+        .filter(|d| d.is_error())
+        .map(|d| {
+            let span = d.span().unwrap_or_default();
+            let (line, col) = file.line_col(span.start);
+            Source {
+                file: Arc::clone(name),
+                line,
+                col,
+                span: ByteRange {
+                    start: span.start,
+                    end: span.end,
+                },
+            }
+        })
+        .collect();
+    errors.sort_by_key(|e| (e.line, e.col));
+    errors
+}

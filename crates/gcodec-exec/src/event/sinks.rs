@@ -1,0 +1,57 @@
+//! The sinks that write nothing: [`VecSink`] keeps the events (tests),
+//! [`CountingSink`] counts them by kind (benchmarks).
+
+use std::io;
+
+use super::{EVENT_KINDS, Event, EventSink};
+
+/// Keeps every event, for tests.
+#[derive(Clone, Debug, Default)]
+pub struct VecSink {
+    pub events: Vec<Event>,
+}
+
+impl VecSink {
+    pub fn new() -> Self {
+        Self::default()
+    }
+}
+
+impl EventSink for VecSink {
+    fn event(&mut self, event: &Event) -> io::Result<()> {
+        self.events.push(event.clone());
+        Ok(())
+    }
+}
+
+/// Counts events by kind and keeps nothing else, for benchmarks.
+#[derive(Clone, Debug, Default)]
+pub struct CountingSink {
+    by_kind: [u64; EVENT_KINDS.len()],
+}
+
+impl CountingSink {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Events of the kind named `kind` (`motion`); 0 for an unknown name.
+    pub fn count(&self, kind: &str) -> u64 {
+        EVENT_KINDS
+            .iter()
+            .position(|name| *name == kind)
+            .map_or(0, |index| self.by_kind[index])
+    }
+
+    /// All events.
+    pub fn total(&self) -> u64 {
+        self.by_kind.iter().sum()
+    }
+}
+
+impl EventSink for CountingSink {
+    fn event(&mut self, event: &Event) -> io::Result<()> {
+        self.by_kind[event.kind.index()] += 1;
+        Ok(())
+    }
+}

@@ -1,0 +1,60 @@
+//! The run set-up the tests repeat: compile a main program, run it on a
+//! channel with a file loader. Thin, so that the pipeline's facade can
+//! take its place.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use gcodec_driver::{Definitions, FileLoader, ProgramKind, SearchPath, compile, program_name};
+use gcodec_exec::channel::{BlockObserver, Channel, RunOptions, RunOutcome};
+use gcodec_exec::event::EventSink;
+use gcodec_exec::loader::Loaded;
+use gcodec_exec::program::Program;
+use gcodec_profile::Profile;
+use gcodec_source::SourceFile;
+
+/// Compiles the main program in `file` as `gcodec run` does, named as
+/// callers name its file.
+pub fn compile_main(
+    file: &Arc<SourceFile>,
+    profile: &Profile,
+    definitions: &Definitions,
+) -> Loaded {
+    let name = program_name(Path::new(file.name()));
+    let kind = ProgramKind::of_file(file.name());
+    compile(Arc::clone(file), kind, profile, definitions).into_loaded(name)
+}
+
+/// What a run is given besides its main program.
+pub struct RunSetup {
+    pub profile: Arc<Profile>,
+    pub options: RunOptions,
+    /// Their global variables are declared before the run.
+    pub definitions: Arc<Definitions>,
+    /// Searched after the caller's directory, as `--subprogram-path`.
+    pub search: SearchPath,
+}
+
+/// Runs `main` with its events to `sink` (and its blocks to `observer`),
+/// called programs loaded from files as `gcodec run` loads them.
+pub fn run_main(
+    main: Arc<Program>,
+    setup: RunSetup,
+    sink: &mut dyn EventSink,
+    observer: Option<&mut dyn BlockObserver>,
+) -> RunOutcome {
+    let RunSetup {
+        profile,
+        options,
+        definitions,
+        search,
+    } = setup;
+    let mut loader = FileLoader::new(search, Arc::clone(&profile), Arc::clone(&definitions));
+    let globals = gcodec_driver::globals(&definitions);
+    let channel = Channel::new(profile, options, &mut loader, sink).with_globals(&globals);
+    match observer {
+        Some(observer) => channel.with_observer(observer).run(main),
+        None => channel.run(main),
+    }
+    .expect("events go to memory")
+}

@@ -1,0 +1,23 @@
+//! Helpers shared by the integration tests of the gcodec crates; a
+//! dev-dependency only, never a dependency of a library.
+//!
+//! - [`paths`]: where the programs are (the repository, the shared
+//!   corpus) and how a corpus program is shown.
+//! - [`fixtures`]: a fixture of `tests/fixtures/KIND/`, its `; KIND:` line
+//!   and its snapshot (the scheme is in `tests/fixtures/README.md`).
+//! - [`profiles`]: the shipped profiles and small test machines.
+//! - [`corpus`]: the machines and definitions the corpus was written for.
+//! - [`compile`]: the compile set-up a test repeats (parse a program that
+//!   must parse cleanly, lower it for a profile). It stays thin so that
+//!   the pipeline's facade can take its place.
+
+pub mod compile;
+pub mod corpus;
+pub mod fixtures;
+pub mod paths;
+pub mod profiles;
+
+pub use compile::lower_clean;
+pub use fixtures::{Fixture, Header};
+pub use paths::{all_programs, corpus_dir, each_program, programs, repo, shown};
+pub use profiles::{machine, profile};
