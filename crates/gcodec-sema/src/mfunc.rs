@@ -1,5 +1,5 @@
-//! M functions per seed 001: the accepted forms, the value range, the
-//! extended address, the per-block limit, classes and the unknown-code
+//! M functions per the M-function design: the accepted forms, the value range,
+//! the extended address, the per-block limit, classes and the unknown-code
 //! policy.
 
 use std::collections::HashMap;
@@ -17,7 +17,7 @@ const EXTENSION_FORBIDDEN: &str = "gcodec::lower::m_extension_forbidden";
 const TOO_MANY_M: &str = "gcodec::lower::too_many_m_functions";
 const UNKNOWN_M: &str = "gcodec::lower::unknown_m_function";
 
-/// Largest M value (seed 001: a 32-bit non-negative INT).
+/// Largest M value (the M-function design: a 32-bit non-negative INT).
 const MAX_M: f64 = 2_147_483_647.0;
 
 /// A checked M word.
@@ -47,7 +47,7 @@ impl MWord {
     }
 }
 
-/// `M0 M1 M2 M17 M30` act after the block's motion (seed 001).
+/// `M0 M1 M2 M17 M30` act after the block's motion (the M-function design).
 pub(crate) fn acts_after_motion(value: u32) -> bool {
     matches!(value, 0 | 1 | 2 | 17 | 30)
 }
@@ -241,11 +241,11 @@ pub(crate) fn check_count(words: &[MWord], profile: &Profile, diagnostics: &mut 
     }
 }
 
-/// The class of the M function `value` on the machine `profile`
-/// describes: its `mcode_class_overrides` first, then the predefined
-/// classes (seed 001); `None` for a value the machine does not know. For
-/// values computed when a block runs (lowering classifies constants with
-/// the overrides read once, `overrides`).
+/// The class of the M function `value` on the machine `profile` describes: its
+/// `mcode_class_overrides` first, then the predefined classes (the M-function
+/// design); `None` for a value the machine does not know. For values computed
+/// when a block runs (lowering classifies constants with the overrides read
+/// once, `overrides`).
 pub fn m_class(profile: &Profile, value: u32) -> Option<MClass> {
     profile
         .m_functions
