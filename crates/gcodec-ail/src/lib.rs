@@ -20,7 +20,9 @@ mod expr;
 use std::borrow::Cow;
 use std::sync::Arc;
 
-pub use expr::{BinaryOp, Expr, UnaryOp, Value, VarKind};
+pub use expr::{Expr, Value, VarKind};
+use gcodec_lang::ggroups::GCommand;
+use gcodec_lang::{DataType, DimensionMode, MClass, MotionKind};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -110,9 +112,12 @@ pub enum Op {
     },
     /// A modal G command of any group but 8.
     ModalChange {
+        // `code`'s group, written out for readers of the JSON (a doc
+        // comment would change the schema).
         group: u8,
         /// The command in upper case (`G17`, `DIAMON`).
-        code: Cow<'static, str>,
+        #[schemars(with = "String")]
+        code: GCommand,
     },
     /// A traversing block.
     Motion {
@@ -259,7 +264,8 @@ pub struct Declare {
     pub name: String,
     /// `INT`, `REAL`, `BOOL`, `CHAR`, `STRING[n]` (`STRING` where the
     /// length is not a constant), `AXIS`, `FRAME`.
-    pub data_type: String,
+    #[schemars(with = "String")]
+    pub data_type: DataType,
     pub dims: Vec<Value>,
     /// One value per element in storage order (the last index runs
     /// fastest); an omitted value (`SET(1,,3)`) is `null` and, like the
@@ -324,17 +330,6 @@ pub enum ToolChangeTrigger {
     TWord,
 }
 
-/// M-function classes (the M-function design).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum MClass {
-    ProgramFlow,
-    Spindle,
-    Tool,
-    Gearbox,
-    Custom,
-}
-
 /// When an M function acts (the M-function design): `M0 M1 M2 M17 M30` in a
 /// block with motion act after it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
@@ -362,80 +357,6 @@ pub enum SuppressionScope {
     Block,
 }
 
-/// How a block traverses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum MotionKind {
-    /// The motion command of group 1 active when the block runs: not
-    /// known before the program runs, because the block is reached from
-    /// places with different commands (after a jump target, a call, at the
-    /// start of a subprogram) and programs none of its own.
-    Modal,
-    Rapid,
-    Linear,
-    ArcCw,
-    ArcCcw,
-    /// `CIP`: a circle through an intermediate point.
-    ArcThroughPoint,
-    /// `CT`: a circle tangential to the previous path.
-    ArcTangential,
-    /// `ASPLINE`: Akima spline through the programmed points.
-    Aspline,
-    /// `BSPLINE`: B spline with the points as control points.
-    Bspline,
-    /// `CSPLINE`: cubic spline through the programmed points.
-    Cspline,
-    /// `POLY`: polynomial interpolation.
-    Poly,
-    /// `G33`: thread with constant lead.
-    Thread,
-    /// `G34`: thread with increasing lead.
-    ThreadIncreasingLead,
-    /// `G35`: thread with decreasing lead.
-    ThreadDecreasingLead,
-    /// `G331`: rigid tapping.
-    Tapping,
-    /// `G332`: retraction of rigid tapping.
-    TappingRetract,
-    /// `G335`: convex thread, clockwise.
-    ThreadConvexCw,
-    /// `G336`: convex thread, counter-clockwise.
-    ThreadConvexCcw,
-    /// `INVCW`: involute, clockwise.
-    InvoluteCw,
-    /// `INVCCW`: involute, counter-clockwise.
-    InvoluteCcw,
-}
-
-impl MotionKind {
-    /// The motion of a group 1 command as the registry spells it (`G1`,
-    /// `CIP`); `None` for another text.
-    pub fn of_command(code: &str) -> Option<Self> {
-        Some(match code {
-            "G0" => Self::Rapid,
-            "G1" => Self::Linear,
-            "G2" => Self::ArcCw,
-            "G3" => Self::ArcCcw,
-            "CIP" => Self::ArcThroughPoint,
-            "CT" => Self::ArcTangential,
-            "ASPLINE" => Self::Aspline,
-            "BSPLINE" => Self::Bspline,
-            "CSPLINE" => Self::Cspline,
-            "POLY" => Self::Poly,
-            "G33" => Self::Thread,
-            "G34" => Self::ThreadIncreasingLead,
-            "G35" => Self::ThreadDecreasingLead,
-            "G331" => Self::Tapping,
-            "G332" => Self::TappingRetract,
-            "G335" => Self::ThreadConvexCw,
-            "G336" => Self::ThreadConvexCcw,
-            "INVCW" => Self::InvoluteCw,
-            "INVCCW" => Self::InvoluteCcw,
-            _ => return None,
-        })
-    }
-}
-
 /// A value for one axis (or circle parameter), with its dimension mode.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -445,36 +366,6 @@ pub struct AxisValue {
     pub value: Value,
     /// `AC(…)`, `IC(…)`, … when written; otherwise the modal G90/G91 holds.
     pub mode: Option<DimensionMode>,
-}
-
-/// A dimension modifier written on one value (`X=AC(10)`, `C=ACP(90)`),
-/// as the control spells it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "UPPERCASE")]
-pub enum DimensionMode {
-    /// Absolute for this value.
-    Ac,
-    /// Incremental for this value.
-    Ic,
-    /// Rotary axis: absolute, the shorter way.
-    Dc,
-    /// Rotary axis: absolute, in the positive direction.
-    Acp,
-    /// Rotary axis: absolute, in the negative direction.
-    Acn,
-    /// Indexing positions: absolute, incremental, shorter way, positive,
-    /// negative direction.
-    Cac,
-    Cic,
-    Cdc,
-    Cacp,
-    Cacn,
-    /// Diameter (`DAC`, `DIC`) or radius (`RAC`, `RIC`), absolute or
-    /// incremental.
-    Dac,
-    Dic,
-    Rac,
-    Ric,
 }
 
 /// The data of an arc, in the form it was programmed.
@@ -844,7 +735,8 @@ pub struct Parameter {
     pub name: String,
     /// `INT`, `REAL`, `BOOL`, `CHAR`, `STRING[n]` (`STRING` where the
     /// length is not a constant), `AXIS`, `FRAME`.
-    pub data_type: String,
+    #[schemars(with = "String")]
+    pub data_type: DataType,
     /// `VAR`: the caller's variable itself, not a copy.
     pub by_reference: bool,
     pub dims: Vec<Value>,
@@ -866,7 +758,8 @@ pub struct External {
 #[serde(deny_unknown_fields)]
 pub struct ExternalParameter {
     /// As in [`Parameter::data_type`].
-    pub data_type: String,
+    #[schemars(with = "String")]
+    pub data_type: DataType,
     pub by_reference: bool,
     /// One entry per array dimension; empty ones (`REAL[,]`) are `null`.
     pub dims: Vec<Option<Value>>,

@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-pub use gcodec_ail::MClass;
+use gcodec_lang::MClass;
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 

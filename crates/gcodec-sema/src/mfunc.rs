@@ -4,7 +4,9 @@
 
 use std::collections::HashMap;
 
-use gcodec_ail::{MClass, MTiming, Op};
+use gcodec_ail::{MTiming, Op};
+use gcodec_lang::MClass;
+use gcodec_lang::mfunctions::{acts_after_motion, standard_class};
 use gcodec_parser::ast::{Extension, Word, WordValue};
 use gcodec_profile::{Policy, Profile};
 use gcodec_source::{Diagnostic, Span};
@@ -45,22 +47,6 @@ impl MWord {
             raw: self.raw,
         }))
     }
-}
-
-/// `M0 M1 M2 M17 M30` act after the block's motion (the M-function design).
-pub(crate) fn acts_after_motion(value: u32) -> bool {
-    matches!(value, 0 | 1 | 2 | 17 | 30)
-}
-
-/// The built-in class of a predefined M function, `None` for the others.
-fn predefined_class(value: u32, change_m: u32) -> Option<MClass> {
-    Some(match value {
-        0 | 1 | 2 | 17 | 30 => MClass::ProgramFlow,
-        3 | 4 | 5 | 19 | 70 => MClass::Spindle,
-        40..=45 => MClass::Gearbox,
-        v if v == change_m => MClass::Tool,
-        _ => return None,
-    })
 }
 
 /// Checks one M word; `None` when it is rejected (its diagnostic pushed).
@@ -128,7 +114,7 @@ pub(crate) fn check(
     let (extension, extension_expr) = extension(word, span, profile, diagnostics)?;
     let change_m = *profile.tool_change.change_m_code.get_ref();
     let overridden = overrides.get(&m).copied();
-    let class = match overridden.or_else(|| predefined_class(m, change_m)) {
+    let class = match overridden.or_else(|| standard_class(m, change_m)) {
         Some(class) => class,
         None => {
             let message = format!("M{m} is not a predefined M function");
@@ -239,21 +225,6 @@ pub(crate) fn check_count(words: &[MWord], profile: &Profile, diagnostics: &mut 
             .with_help("split the block; the limit is `max_m_per_block` in the profile"),
         );
     }
-}
-
-/// The class of the M function `value` on the machine `profile` describes: its
-/// `mcode_class_overrides` first, then the predefined classes (the M-function
-/// design); `None` for a value the machine does not know. For values computed
-/// when a block runs (lowering classifies constants with the overrides read
-/// once, `overrides`).
-pub fn m_class(profile: &Profile, value: u32) -> Option<MClass> {
-    profile
-        .m_functions
-        .mcode_class_overrides
-        .iter()
-        .find(|(k, _)| k.get_ref().parse::<u32>() == Ok(value))
-        .map(|(_, class)| *class)
-        .or_else(|| predefined_class(value, *profile.tool_change.change_m_code.get_ref()))
 }
 
 /// The profile's `mcode_class_overrides` by M value, read once.

@@ -14,7 +14,7 @@ use std::ops::Range;
 use gcodec_profile::Profile;
 use gcodec_source::{Diagnostic, Span};
 
-use crate::ggroups::{self, Effect, GGroup};
+use gcodec_lang::ggroups::{self, Effect, GGroup};
 
 const OUT_OF_RANGE: &str = "gcodec::profile::out_of_range";
 const DUPLICATE: &str = "gcodec::profile::duplicate";

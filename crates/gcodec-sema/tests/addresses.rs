@@ -544,7 +544,7 @@ fn an_axis_with_a_longer_name_is_a_target_not_a_variable() {
     let l = gcodec_sema::lower(&parsed.program, &profile);
     let codes: Vec<&str> = l.diagnostics.iter().map(|d| d.code).collect();
     assert_eq!(codes, ["gcodec::lower::modifier_not_allowed"]);
-    let targets: Vec<(String, Option<gcodec_ail::DimensionMode>)> = l
+    let targets: Vec<(String, Option<gcodec_lang::DimensionMode>)> = l
         .document
         .instructions
         .iter()
@@ -559,7 +559,7 @@ fn an_axis_with_a_longer_name_is_a_target_not_a_variable() {
         targets,
         [
             ("XV".to_owned(), None),
-            ("XV".to_owned(), Some(gcodec_ail::DimensionMode::Ic))
+            ("XV".to_owned(), Some(gcodec_lang::DimensionMode::Ic))
         ]
     );
     assert!(

@@ -43,9 +43,8 @@ use std::fmt;
 use std::io;
 use std::sync::Arc;
 
-pub use gcodec_ail::{
-    MClass, MTiming, MotionKind, SelectorKind, Suppression, ToolChangeTrigger, ToolTiming,
-};
+pub use gcodec_ail::{MTiming, SelectorKind, Suppression, ToolChangeTrigger, ToolTiming};
+pub use gcodec_lang::{MClass, MotionKind};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

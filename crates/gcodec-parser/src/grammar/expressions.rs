@@ -7,11 +7,13 @@ use chumsky::input::MapExtra;
 use chumsky::pratt::{infix, left, prefix};
 use chumsky::prelude::*;
 use chumsky::primitive::select;
+use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_lexer::TokenKind as T;
 
 use super::numbers::number_value;
 use super::operators::{self, Associativity, Precedence};
 use super::{Ctx, ERR_NUMBER, ERR_WORD, Ex, In, args, decode_text, indices};
+
 use crate::ast::*;
 use crate::error::SyntaxError;
 

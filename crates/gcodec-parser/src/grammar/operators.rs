@@ -11,7 +11,7 @@
 
 use gcodec_lexer::TokenKind as T;
 
-use crate::ast::{BinaryOp, UnaryOp};
+use gcodec_lang::{BinaryOp, UnaryOp};
 
 /// How a chain of operators of one precedence class groups.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -5,10 +5,11 @@
 use std::collections::HashMap;
 
 use gcodec_ail::{Op, Value};
+use gcodec_lang::ggroups;
 use gcodec_parser::ast::{self, CallTarget, JumpTarget, StatementKind};
 use gcodec_source::{Diagnostic, Span};
 
-use crate::{ggroups, values};
+use crate::values;
 
 use super::{BlockPlan, Lowering};
 
@@ -269,7 +270,7 @@ impl Lowering<'_> {
                 }
                 gcodec_ail::Parameter {
                     name: p.name.to_ascii_uppercase().to_string(),
-                    data_type: crate::types::DataType::from_ast(&p.ty.kind).describe(),
+                    data_type: crate::types::from_ast(&p.ty.kind),
                     by_reference: p.by_reference,
                     dims: p.dims.iter().map(values::value).collect(),
                     default: p.default.as_ref().map(values::value),
@@ -297,7 +298,7 @@ impl Lowering<'_> {
             .params
             .iter()
             .map(|p| gcodec_ail::ExternalParameter {
-                data_type: crate::types::DataType::from_ast(&p.ty.kind).describe(),
+                data_type: crate::types::from_ast(&p.ty.kind),
                 by_reference: p.by_reference,
                 dims: p
                     .dims

@@ -6,10 +6,11 @@
 use std::borrow::Cow;
 
 use gcodec_ail::{AxisValue, Suppression, Value};
+use gcodec_lang::ggroups::{self, GCommand};
 use gcodec_parser::ast::{self, Extension, Word};
 use gcodec_source::{Diagnostic, Span};
 
-use crate::{ggroups, mfunc, tools, values};
+use crate::{mfunc, tools, values};
 
 use super::addresses::{EXTENSION_NOT_ALLOWED, UNSUPPORTED_G};
 use super::{
@@ -209,9 +210,10 @@ impl Lowering<'_> {
 
     /// A G command at its registry position (`group`, 1-based `index`).
     pub(super) fn g_code(&mut self, group: u8, index: u8, span: Span, plan: &mut BlockPlan) {
-        let Some(member) = ggroups::member(group, index) else {
+        let Some(command) = GCommand::new(group, index) else {
             return;
         };
+        let member = command.name();
         if let Some(key) = self.g_unsupported(group, member) {
             return self.diagnostics.push(
                 Diagnostic::error(
@@ -257,17 +259,17 @@ impl Lowering<'_> {
                 .with_label(*first_span, "first"),
             );
         }
-        if let Some((_, first, first_span)) = plan.g_codes.iter().find(|(g, _, _)| *g == group) {
+        if let Some((first, first_span)) = plan.g_codes.iter().find(|(c, _)| c.group() == group) {
             return self.diagnostics.push(
                 Diagnostic::error(
                     G_GROUP_CONFLICT,
-                    format!("`{member}` and `{first}` are both in G group {group}; a block holds one command of a group"),
+                    format!("`{member}` and `{}` are both in G group {group}; a block holds one command of a group", first.name()),
                 )
                 .with_label(span, "second command of the group")
                 .with_label(*first_span, "first"),
             );
         }
-        plan.g_codes.push((group, member, span));
+        plan.g_codes.push((command, span));
     }
 }
 
@@ -411,11 +413,11 @@ impl Lowering<'_> {
         if group == 1 {
             return self.not_lowered(span, "a motion command chosen when the block runs");
         }
-        if let Some((_, first, first_span)) = plan.g_codes.iter().find(|(g, _, _)| *g == group) {
+        if let Some((first, first_span)) = plan.g_codes.iter().find(|(c, _)| c.group() == group) {
             return self.diagnostics.push(
                 Diagnostic::error(
                     G_GROUP_CONFLICT,
-                    format!("`G[{group}]=…` and `{first}` are both in G group {group}; a block holds one command of a group"),
+                    format!("`G[{group}]=…` and `{}` are both in G group {group}; a block holds one command of a group", first.name()),
                 )
                 .with_label(span, "second command of the group")
                 .with_label(*first_span, "first"),
