@@ -3,9 +3,9 @@
 //!
 //! A document is `{"ail_version": 1, "instructions": [...]}`. Every
 //! instruction is one JSON object with `"kind"`, the kind's fields and
-//! `"source": {"file", "line", "col", "span"}`. The kinds of the design
-//! seeds keep their field names exactly: `tool_select` and `tool_change`
-//! (seed 000), `m_function` (seed 001), `work_offset` (seed 003).
+//! `"source": {"file", "line", "col", "span"}`. The kinds of the
+//! tool-change, M-function and work-offset designs keep their field names
+//! exactly: `tool_select` and `tool_change`, `m_function`, `work_offset`.
 //!
 //! The types are the schema: `docs/schema/ail.schema.json` is generated
 //! from them ([`json_schema`]) and a test fails when the checked-in file is
@@ -87,16 +87,17 @@ pub struct ByteRange {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Op {
-    /// `T5`, `T=5`, `T1=5`, `T="DRILL_10"` (seed 000).
+    /// `T5`, `T=5`, `T1=5`, `T="DRILL_10"` (the tool-change design).
     ToolSelect(Box<ToolSelect>),
     /// The change itself: by the change M function (deferred mode) or by
-    /// the `T` word (direct mode) (seed 000).
+    /// the `T` word (direct mode) (the tool-change design).
     ToolChange { trigger: ToolChangeTrigger },
     /// `D1`: the cutting edge; `D0` deselects the tool offset.
     CuttingEdge { edge: Value },
-    /// `M3`, `M2=5` (seed 001).
+    /// `M3`, `M2=5` (the M-function design).
     MFunction(Box<MFunction>),
-    /// The Group 8 selection and the block's suppression (seed 003).
+    /// The Group 8 selection and the block's suppression (the work-offset
+    /// design).
     WorkOffset {
         /// The modal Group 8 code after this block, lower case (`g54`);
         /// `null` when the block only suppresses and its selection is not
@@ -220,7 +221,7 @@ pub enum Op {
     End,
 }
 
-/// A tool selection (seed 000).
+/// A tool selection (the tool-change design).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ToolSelect {
     pub selector_kind: SelectorKind,
@@ -238,7 +239,7 @@ pub struct ToolSelect {
     pub raw: String,
 }
 
-/// An M function (seed 001).
+/// An M function (the M-function design).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct MFunction {
     /// `null` when the value is computed (`M1=DIR`): see `m_expr`.
@@ -299,7 +300,7 @@ pub struct Call {
     pub modal: bool,
 }
 
-/// How a tool is named (seed 000).
+/// How a tool is named (the tool-change design).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum SelectorKind {
@@ -311,7 +312,7 @@ pub enum SelectorKind {
     Computed,
 }
 
-/// When a selection takes effect (seed 000).
+/// When a selection takes effect (the tool-change design).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ToolTiming {
@@ -319,7 +320,7 @@ pub enum ToolTiming {
     DeferredUntilM6,
 }
 
-/// What changes the tool (seed 000).
+/// What changes the tool (the tool-change design).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ToolChangeTrigger {
@@ -329,8 +330,8 @@ pub enum ToolChangeTrigger {
     TWord,
 }
 
-/// When an M function acts (seed 001): `M0 M1 M2 M17 M30` in a block with
-/// motion act after it.
+/// When an M function acts (the M-function design): `M0 M1 M2 M17 M30` in a
+/// block with motion act after it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum MTiming {
@@ -338,7 +339,7 @@ pub enum MTiming {
     PostMotion,
 }
 
-/// Block-scope suppression of offsets (seed 003), weakest first.
+/// Block-scope suppression of offsets (the work-offset design), weakest first.
 #[derive(
     Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
 )]
@@ -349,7 +350,7 @@ pub enum Suppression {
     Supa,
 }
 
-/// The scope of a suppression: always the block (seed 003).
+/// The scope of a suppression: always the block (the work-offset design).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum SuppressionScope {

@@ -1,11 +1,11 @@
-//! M functions (seed 001): the classes, and the class and timing the
-//! control gives a predefined M function. A machine's own classes
+//! M functions (the M-function design): the classes, and the class and timing
+//! the control gives a predefined M function. A machine's own classes
 //! (`mcode_class_overrides`) come from its profile (`gcodec_profile::m_class`).
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-/// M-function classes (seed 001).
+/// M-function classes (the M-function design).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum MClass {
@@ -28,7 +28,7 @@ pub fn standard_class(value: u32, change_m: u32) -> Option<MClass> {
     })
 }
 
-/// `M0 M1 M2 M17 M30` act after the block's motion (seed 001).
+/// `M0 M1 M2 M17 M30` act after the block's motion (the M-function design).
 pub fn acts_after_motion(value: u32) -> bool {
     matches!(value, 0 | 1 | 2 | 17 | 30)
 }

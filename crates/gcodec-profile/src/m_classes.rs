@@ -6,11 +6,11 @@ use gcodec_lang::mfunctions::standard_class;
 
 use crate::Profile;
 
-/// The class of the M function `value` on the machine `profile`
-/// describes: its `mcode_class_overrides` first, then the predefined
-/// classes (seed 001); `None` for a value the machine does not know. For
-/// values computed when a block runs (lowering classifies constants with
-/// the overrides read once).
+/// The class of the M function `value` on the machine `profile` describes: its
+/// `mcode_class_overrides` first, then the predefined classes (the M-function
+/// design); `None` for a value the machine does not know. For values computed
+/// when a block runs (lowering classifies constants with the overrides read
+/// once).
 pub fn m_class(profile: &Profile, value: u32) -> Option<MClass> {
     profile
         .m_functions

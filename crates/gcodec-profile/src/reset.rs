@@ -8,8 +8,9 @@ use crate::{Profile, group8_index};
 /// The modal G commands after a reset, group `n` at `n - 1`: the registry's
 /// defaults ([`ggroups::default_member`]), overridden by the profile's
 /// `modal_defaults`; group 8 is the profile's `default_group8_offset` (the
-/// selection lowering starts from for `work_offset`, seed 003) when that is
-/// a Group 8 code. `None` for non-modal and unassigned groups.
+/// selection lowering starts from for `work_offset`, per the work-offset
+/// design) when that is a Group 8 code. `None` for non-modal and unassigned
+/// groups.
 pub fn reset_defaults(profile: &Profile) -> [Option<&'static str>; GROUP_COUNT] {
     let mut modal = [None; GROUP_COUNT];
     for (i, slot) in modal.iter_mut().enumerate() {

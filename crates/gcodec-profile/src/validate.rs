@@ -15,7 +15,7 @@ const DUPLICATE: &str = "gcodec::profile::duplicate";
 const UNKNOWN_REFERENCE: &str = "gcodec::profile::unknown_reference";
 const OVERLAPPING_RANGES: &str = "gcodec::profile::overlapping_ranges";
 
-/// Largest M value and T number (`0…2147483647`, seed 001).
+/// Largest M value and T number (`0…2147483647`, per the M-function design).
 const MAX_ADDRESS_VALUE: u32 = i32::MAX as u32;
 
 pub(crate) fn check(profile: &Profile) -> Vec<Diagnostic> {

@@ -1,5 +1,5 @@
-//! M functions per seed 001: the accepted forms, the value range, the
-//! extended address, the per-block limit, classes and the unknown-code
+//! M functions per the M-function design: the accepted forms, the value range,
+//! the extended address, the per-block limit, classes and the unknown-code
 //! policy.
 
 use std::collections::HashMap;
@@ -19,7 +19,7 @@ const EXTENSION_FORBIDDEN: &str = "gcodec::lower::m_extension_forbidden";
 const TOO_MANY_M: &str = "gcodec::lower::too_many_m_functions";
 const UNKNOWN_M: &str = "gcodec::lower::unknown_m_function";
 
-/// Largest M value (seed 001: a 32-bit non-negative INT).
+/// Largest M value (the M-function design: a 32-bit non-negative INT).
 const MAX_M: f64 = 2_147_483_647.0;
 
 /// A checked M word.

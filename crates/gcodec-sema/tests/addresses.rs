@@ -353,7 +353,7 @@ fn m_and_s_with_a_computed_spindle() {
     assert_eq!(ops(&l, "spindle_speed")[0]["spindle"], 2);
     let l = lower_with(&mill(), "M[5]=3\n");
     assert_eq!(codes(&l), ["gcodec::lower::unknown_spindle"]);
-    // No extension keeps the seed 001 shape without the new field.
+    // No extension keeps the M-function design's shape without the new field.
     let l = lower_with(&mill(), "M3\n");
     assert!(
         ops(&l, "m_function")[0]

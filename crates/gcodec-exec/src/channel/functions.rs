@@ -1,5 +1,5 @@
-//! The auxiliary and preparatory functions of a block: M and H functions
-//! (seed 001), tool selection and change (seed 000), cutting edges,
+//! The auxiliary and preparatory functions of a block: M and H functions,
+//! tool selection and change, cutting edges,
 //! spindles, dwell, named addresses and programmable frames.
 
 use std::sync::Arc;

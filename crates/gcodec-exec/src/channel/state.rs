@@ -75,7 +75,7 @@ pub struct MachineState {
     /// This block's suppression.
     pub suppression: Option<Suppression>,
     pub active_tool: Option<ToolRef>,
-    /// A `T` selection waiting for the change (seed 000).
+    /// A `T` selection waiting for the change (the tool-change design).
     pub pending: Option<PendingTool>,
     /// The active cutting edge (D); 0: none.
     pub edge: u32,

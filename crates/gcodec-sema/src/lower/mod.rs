@@ -2,14 +2,14 @@
 //! against the machine profile and tracking the modal state of
 //! straight-line code.
 //!
-//! Within a block, instructions come in the order the control acts on
-//! them: work offset and other modal G commands (indirect ones last),
-//! feed, spindle speed, tool selection and cutting edge (then `DL`), M
-//! functions acting before the motion, `H` functions, declarations and
-//! assignments, named addresses (`address`), the dwell, the motion, then
-//! `M0 M1 M2 M17 M30` after it (seed 001). A skipped block (`/`, `/0`…`/9`)
-//! has its `skip_block` test after its labels and its `SKIP@<line>.end`
-//! label after all of it, before the end of a `REPEAT` section it closes.
+//! Within a block, instructions come in the order the control acts on them:
+//! work offset and other modal G commands (indirect ones last), feed, spindle
+//! speed, tool selection and cutting edge (then `DL`), M functions acting
+//! before the motion, `H` functions, declarations and assignments, named
+//! addresses (`address`), the dwell, the motion, then `M0 M1 M2 M17 M30` after
+//! it (the M-function design). A skipped block (`/`, `/0`…`/9`) has its
+//! `skip_block` test after its labels and its `SKIP@<line>.end` label after all
+//! of it, before the end of a `REPEAT` section it closes.
 
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -1117,7 +1117,7 @@ impl<'a> Lowering<'a> {
     }
 
     /// The strongest suppression of a block, per the profile's policy for
-    /// several in one block (seed 003).
+    /// several in one block (the work-offset design).
     fn suppression(&mut self, found: &[(Suppression, Span)]) -> Option<Suppression> {
         let (first, first_span) = *found.first()?;
         if found.len() == 1 {
