@@ -3,6 +3,7 @@
 
 use std::borrow::Cow;
 
+use gcodec_lang::{BinaryOp, UnaryOp};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -63,41 +64,4 @@ pub enum VarKind {
     System,
     /// An axis name used as a value (`AX[X]`, frame functions).
     Axis,
-}
-
-/// Unary operators.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum UnaryOp {
-    Neg,
-    Plus,
-    Not,
-    BNot,
-    ToString,
-}
-
-/// Binary operators.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum BinaryOp {
-    Mul,
-    Div,
-    IntDiv,
-    Mod,
-    Add,
-    Sub,
-    BAnd,
-    BXor,
-    BOr,
-    And,
-    Xor,
-    Or,
-    Concat,
-    Eq,
-    Ne,
-    Lt,
-    Gt,
-    Le,
-    Ge,
-    Chain,
 }

@@ -3,9 +3,9 @@
 //!
 //! A document is `{"ail_version": 1, "instructions": [...]}`. Every
 //! instruction is one JSON object with `"kind"`, the kind's fields and
-//! `"source": {"file", "line", "col", "span"}`. The kinds of the design
-//! seeds keep their field names exactly: `tool_select` and `tool_change`
-//! (seed 000), `m_function` (seed 001), `work_offset` (seed 003).
+//! `"source": {"file", "line", "col", "span"}`. The kinds of the
+//! tool-change, M-function and work-offset designs keep their field names
+//! exactly: `tool_select` and `tool_change`, `m_function`, `work_offset`.
 //!
 //! The types are the schema: `docs/schema/ail.schema.json` is generated
 //! from them ([`json_schema`]) and a test fails when the checked-in file is
@@ -20,7 +20,9 @@ mod expr;
 use std::borrow::Cow;
 use std::sync::Arc;
 
-pub use expr::{BinaryOp, Expr, UnaryOp, Value, VarKind};
+pub use expr::{Expr, Value, VarKind};
+use gcodec_lang::ggroups::GCommand;
+use gcodec_lang::{DataType, DimensionMode, MClass, MotionKind};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -85,16 +87,17 @@ pub struct ByteRange {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Op {
-    /// `T5`, `T=5`, `T1=5`, `T="DRILL_10"` (seed 000).
+    /// `T5`, `T=5`, `T1=5`, `T="DRILL_10"` (the tool-change design).
     ToolSelect(Box<ToolSelect>),
     /// The change itself: by the change M function (deferred mode) or by
-    /// the `T` word (direct mode) (seed 000).
+    /// the `T` word (direct mode) (the tool-change design).
     ToolChange { trigger: ToolChangeTrigger },
     /// `D1`: the cutting edge; `D0` deselects the tool offset.
     CuttingEdge { edge: Value },
-    /// `M3`, `M2=5` (seed 001).
+    /// `M3`, `M2=5` (the M-function design).
     MFunction(Box<MFunction>),
-    /// The Group 8 selection and the block's suppression (seed 003).
+    /// The Group 8 selection and the block's suppression (the work-offset
+    /// design).
     WorkOffset {
         /// The modal Group 8 code after this block, lower case (`g54`);
         /// `null` when the block only suppresses and its selection is not
@@ -109,9 +112,12 @@ pub enum Op {
     },
     /// A modal G command of any group but 8.
     ModalChange {
+        // `code`'s group, written out for readers of the JSON (a doc
+        // comment would change the schema).
         group: u8,
         /// The command in upper case (`G17`, `DIAMON`).
-        code: Cow<'static, str>,
+        #[schemars(with = "String")]
+        code: GCommand,
     },
     /// A traversing block.
     Motion {
@@ -215,7 +221,7 @@ pub enum Op {
     End,
 }
 
-/// A tool selection (seed 000).
+/// A tool selection (the tool-change design).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ToolSelect {
     pub selector_kind: SelectorKind,
@@ -233,7 +239,7 @@ pub struct ToolSelect {
     pub raw: String,
 }
 
-/// An M function (seed 001).
+/// An M function (the M-function design).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct MFunction {
     /// `null` when the value is computed (`M1=DIR`): see `m_expr`.
@@ -258,7 +264,8 @@ pub struct Declare {
     pub name: String,
     /// `INT`, `REAL`, `BOOL`, `CHAR`, `STRING[n]` (`STRING` where the
     /// length is not a constant), `AXIS`, `FRAME`.
-    pub data_type: String,
+    #[schemars(with = "String")]
+    pub data_type: DataType,
     pub dims: Vec<Value>,
     /// One value per element in storage order (the last index runs
     /// fastest); an omitted value (`SET(1,,3)`) is `null` and, like the
@@ -293,7 +300,7 @@ pub struct Call {
     pub modal: bool,
 }
 
-/// How a tool is named (seed 000).
+/// How a tool is named (the tool-change design).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum SelectorKind {
@@ -305,7 +312,7 @@ pub enum SelectorKind {
     Computed,
 }
 
-/// When a selection takes effect (seed 000).
+/// When a selection takes effect (the tool-change design).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ToolTiming {
@@ -313,7 +320,7 @@ pub enum ToolTiming {
     DeferredUntilM6,
 }
 
-/// What changes the tool (seed 000).
+/// What changes the tool (the tool-change design).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ToolChangeTrigger {
@@ -323,19 +330,8 @@ pub enum ToolChangeTrigger {
     TWord,
 }
 
-/// M-function classes (seed 001).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum MClass {
-    ProgramFlow,
-    Spindle,
-    Tool,
-    Gearbox,
-    Custom,
-}
-
-/// When an M function acts (seed 001): `M0 M1 M2 M17 M30` in a block with
-/// motion act after it.
+/// When an M function acts (the M-function design): `M0 M1 M2 M17 M30` in a
+/// block with motion act after it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum MTiming {
@@ -343,7 +339,7 @@ pub enum MTiming {
     PostMotion,
 }
 
-/// Block-scope suppression of offsets (seed 003), weakest first.
+/// Block-scope suppression of offsets (the work-offset design), weakest first.
 #[derive(
     Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
 )]
@@ -354,85 +350,11 @@ pub enum Suppression {
     Supa,
 }
 
-/// The scope of a suppression: always the block (seed 003).
+/// The scope of a suppression: always the block (the work-offset design).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum SuppressionScope {
     Block,
-}
-
-/// How a block traverses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum MotionKind {
-    /// The motion command of group 1 active when the block runs: not
-    /// known before the program runs, because the block is reached from
-    /// places with different commands (after a jump target, a call, at the
-    /// start of a subprogram) and programs none of its own.
-    Modal,
-    Rapid,
-    Linear,
-    ArcCw,
-    ArcCcw,
-    /// `CIP`: a circle through an intermediate point.
-    ArcThroughPoint,
-    /// `CT`: a circle tangential to the previous path.
-    ArcTangential,
-    /// `ASPLINE`: Akima spline through the programmed points.
-    Aspline,
-    /// `BSPLINE`: B spline with the points as control points.
-    Bspline,
-    /// `CSPLINE`: cubic spline through the programmed points.
-    Cspline,
-    /// `POLY`: polynomial interpolation.
-    Poly,
-    /// `G33`: thread with constant lead.
-    Thread,
-    /// `G34`: thread with increasing lead.
-    ThreadIncreasingLead,
-    /// `G35`: thread with decreasing lead.
-    ThreadDecreasingLead,
-    /// `G331`: rigid tapping.
-    Tapping,
-    /// `G332`: retraction of rigid tapping.
-    TappingRetract,
-    /// `G335`: convex thread, clockwise.
-    ThreadConvexCw,
-    /// `G336`: convex thread, counter-clockwise.
-    ThreadConvexCcw,
-    /// `INVCW`: involute, clockwise.
-    InvoluteCw,
-    /// `INVCCW`: involute, counter-clockwise.
-    InvoluteCcw,
-}
-
-impl MotionKind {
-    /// The motion of a group 1 command as the registry spells it (`G1`,
-    /// `CIP`); `None` for another text.
-    pub fn of_command(code: &str) -> Option<Self> {
-        Some(match code {
-            "G0" => Self::Rapid,
-            "G1" => Self::Linear,
-            "G2" => Self::ArcCw,
-            "G3" => Self::ArcCcw,
-            "CIP" => Self::ArcThroughPoint,
-            "CT" => Self::ArcTangential,
-            "ASPLINE" => Self::Aspline,
-            "BSPLINE" => Self::Bspline,
-            "CSPLINE" => Self::Cspline,
-            "POLY" => Self::Poly,
-            "G33" => Self::Thread,
-            "G34" => Self::ThreadIncreasingLead,
-            "G35" => Self::ThreadDecreasingLead,
-            "G331" => Self::Tapping,
-            "G332" => Self::TappingRetract,
-            "G335" => Self::ThreadConvexCw,
-            "G336" => Self::ThreadConvexCcw,
-            "INVCW" => Self::InvoluteCw,
-            "INVCCW" => Self::InvoluteCcw,
-            _ => return None,
-        })
-    }
 }
 
 /// A value for one axis (or circle parameter), with its dimension mode.
@@ -444,36 +366,6 @@ pub struct AxisValue {
     pub value: Value,
     /// `AC(…)`, `IC(…)`, … when written; otherwise the modal G90/G91 holds.
     pub mode: Option<DimensionMode>,
-}
-
-/// A dimension modifier written on one value (`X=AC(10)`, `C=ACP(90)`),
-/// as the control spells it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "UPPERCASE")]
-pub enum DimensionMode {
-    /// Absolute for this value.
-    Ac,
-    /// Incremental for this value.
-    Ic,
-    /// Rotary axis: absolute, the shorter way.
-    Dc,
-    /// Rotary axis: absolute, in the positive direction.
-    Acp,
-    /// Rotary axis: absolute, in the negative direction.
-    Acn,
-    /// Indexing positions: absolute, incremental, shorter way, positive,
-    /// negative direction.
-    Cac,
-    Cic,
-    Cdc,
-    Cacp,
-    Cacn,
-    /// Diameter (`DAC`, `DIC`) or radius (`RAC`, `RIC`), absolute or
-    /// incremental.
-    Dac,
-    Dic,
-    Rac,
-    Ric,
 }
 
 /// The data of an arc, in the form it was programmed.
@@ -843,7 +735,8 @@ pub struct Parameter {
     pub name: String,
     /// `INT`, `REAL`, `BOOL`, `CHAR`, `STRING[n]` (`STRING` where the
     /// length is not a constant), `AXIS`, `FRAME`.
-    pub data_type: String,
+    #[schemars(with = "String")]
+    pub data_type: DataType,
     /// `VAR`: the caller's variable itself, not a copy.
     pub by_reference: bool,
     pub dims: Vec<Value>,
@@ -865,7 +758,8 @@ pub struct External {
 #[serde(deny_unknown_fields)]
 pub struct ExternalParameter {
     /// As in [`Parameter::data_type`].
-    pub data_type: String,
+    #[schemars(with = "String")]
+    pub data_type: DataType,
     pub by_reference: bool,
     /// One entry per array dimension; empty ones (`REAL[,]`) are `null`.
     pub dims: Vec<Option<Value>>,

@@ -1,7 +1,9 @@
-//! The checked-in JSON Schema is the one the types generate, and the seed
-//! designs' instruction shapes read and write exactly as they specify.
+//! The checked-in JSON Schema is the one the types generate, and the
+//! instruction shapes of the tool-change, M-function and work-offset
+//! designs read and write exactly as they specify.
 
 use gcodec_ail::*;
+use gcodec_lang::{BinaryOp, DimensionMode, MClass, MotionKind};
 use serde_json::json;
 
 const SCHEMA_PATH: &str = concat!(

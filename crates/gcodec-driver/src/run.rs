@@ -7,7 +7,6 @@ use std::sync::Arc;
 
 use gcodec_exec::channel::{BlockObserver, Channel, RunOptions, RunOutcome};
 use gcodec_exec::event::EventSink;
-use gcodec_exec::value::DataType;
 use gcodec_exec::vars::Global;
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, ProgramKind};
@@ -113,7 +112,7 @@ pub fn globals(definitions: &Definitions) -> Vec<Global> {
     definitions
         .variables()
         .filter_map(|variable| {
-            let data_type = DataType::from_sema(&variable.data_type)?;
+            let data_type = Some(variable.data_type).filter(|ty| ty.is_declarable())?;
             let dims = variable
                 .dims
                 .iter()

@@ -4,8 +4,8 @@
 //! A program is held whole (a subprogram, a document lowered in one go)
 //! or streamed: its instructions arrive a page at a time from a
 //! [`PageSource`] while it runs, and the pages the run cannot come back
-//! to are forgotten (docs/ARCHITECTURE.md, gcodec-exec, "The streamed
-//! run"), so memory follows the program's longest loop, not its length.
+//! to are forgotten (docs/ARCHITECTURE.md, "Streaming"), so memory
+//! follows the program's longest loop, not its length.
 
 use std::collections::VecDeque;
 use std::ops::Deref;

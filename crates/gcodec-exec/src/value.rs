@@ -19,6 +19,8 @@
 use std::fmt;
 use std::sync::Arc;
 
+use gcodec_lang::DataType;
+use gcodec_lang::types::MAX_STRING_LEN;
 use gcodec_source::{Code, codes};
 
 /// A run-time error: a stable code (from [`codes::run`]) and a message naming what
@@ -53,95 +55,19 @@ impl fmt::Display for RunError {
 
 impl std::error::Error for RunError {}
 
-/// The longest string a `STRING` variable holds without a length (a
-/// local `STRING[200]`, reference §7.1), and the longest length a
-/// declaration may give.
-pub const MAX_STRING_LEN: u16 = 200;
-
-/// A declared type.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DataType {
-    Int,
-    Real,
-    Bool,
-    Char,
-    /// `STRING[max_len]`.
-    String {
-        max_len: u16,
-    },
-    Axis,
-    Frame,
-}
-
-impl DataType {
-    /// A type as AIL writes it: `INT`, `REAL`, `STRING` (length
-    /// [`MAX_STRING_LEN`]) or `STRING[12]`; any case.
-    pub fn parse(text: &str) -> Option<Self> {
-        let text = text.trim();
-        let upper = |s: &str, k: &str| s.eq_ignore_ascii_case(k);
-        Some(match text {
-            t if upper(t, "INT") => Self::Int,
-            t if upper(t, "REAL") => Self::Real,
-            t if upper(t, "BOOL") => Self::Bool,
-            t if upper(t, "CHAR") => Self::Char,
-            t if upper(t, "AXIS") => Self::Axis,
-            t if upper(t, "FRAME") => Self::Frame,
-            t if upper(t, "STRING") => Self::String {
-                max_len: MAX_STRING_LEN,
-            },
-            t if t.len() > 6 && upper(&t[..6], "STRING") => {
-                let len = t[6..]
-                    .trim()
-                    .strip_prefix('[')?
-                    .strip_suffix(']')?
-                    .trim()
-                    .parse::<u16>()
-                    .ok()?;
-                if len == 0 || len > MAX_STRING_LEN {
-                    return None;
-                }
-                Self::String { max_len: len }
-            }
-            _ => return None,
-        })
-    }
-
-    /// The type sema declared a variable with, as [`parse`](Self::parse)
-    /// reads the text sema writes of it: a `STRING` without a constant
-    /// length holds [`MAX_STRING_LEN`] characters; `None` for a length of
-    /// 0 or above [`MAX_STRING_LEN`].
-    pub fn from_sema(ty: &gcodec_sema::DataType) -> Option<Self> {
-        use gcodec_sema::DataType as Sema;
-        Some(match *ty {
-            Sema::Int => Self::Int,
-            Sema::Real => Self::Real,
-            Sema::Bool => Self::Bool,
-            Sema::Char => Self::Char,
-            Sema::String { length: None } => Self::String {
-                max_len: MAX_STRING_LEN,
-            },
-            Sema::String { length: Some(n) } => Self::String {
-                max_len: u16::try_from(n)
-                    .ok()
-                    .filter(|n| (1..=MAX_STRING_LEN).contains(n))?,
-            },
-            Sema::Axis => Self::Axis,
-            Sema::Frame => Self::Frame,
-        })
-    }
-
+impl RtValue {
     /// The value a variable of this type starts with: 0, 0.0, FALSE,
     /// CHAR 0, the empty string, no axis (an empty name), the neutral
     /// frame.
-    pub fn initial_value(self) -> RtValue {
-        match self {
-            Self::Int => RtValue::Int(0),
-            Self::Real => RtValue::Real(0.0),
-            Self::Bool => RtValue::Bool(false),
-            Self::Char => RtValue::Char(0),
-            Self::String { .. } => RtValue::String(Arc::from("")),
-            Self::Axis => RtValue::Axis(Arc::from("")),
-            Self::Frame => RtValue::Frame(Arc::new(FrameValue::default())),
+    pub fn initial(ty: DataType) -> RtValue {
+        match ty {
+            DataType::Int => RtValue::Int(0),
+            DataType::Real => RtValue::Real(0.0),
+            DataType::Bool => RtValue::Bool(false),
+            DataType::Char => RtValue::Char(0),
+            DataType::String { .. } => RtValue::String(Arc::from("")),
+            DataType::Axis => RtValue::Axis(Arc::from("")),
+            DataType::Frame => RtValue::Frame(Arc::new(FrameValue::default())),
         }
     }
 }
@@ -462,13 +388,14 @@ impl RtValue {
             DataType::Real => Self::Real(self.to_real()?),
             DataType::Bool => Self::Bool(self.to_bool()?),
             DataType::Char => Self::Char(self.to_char()?),
-            DataType::String { max_len } => {
+            DataType::String { length } => {
+                let max_len = length.unwrap_or(u32::from(MAX_STRING_LEN));
                 let s: Arc<str> = match self {
                     Self::String(s) => s.clone(),
                     Self::Char(c) => Arc::from(char_text(*c).as_str()),
                     _ => return Err(RunError::type_mismatch(self, "STRING")),
                 };
-                if s.len() > usize::from(max_len) {
+                if s.len() > max_len as usize {
                     return Err(RunError::new(
                         codes::run::STRING_TOO_LONG,
                         format!(
@@ -577,45 +504,6 @@ pub fn format_real(r: f64, out: &mut String) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// `from_sema` is the text round trip `parse(describe())` without the
-    /// text.
-    #[test]
-    fn from_sema_reads_sema_types_as_their_text_does() {
-        use gcodec_sema::DataType as Sema;
-        let mut types = vec![
-            Sema::Int,
-            Sema::Real,
-            Sema::Bool,
-            Sema::Char,
-            Sema::Axis,
-            Sema::Frame,
-            Sema::String { length: None },
-        ];
-        for n in [
-            0,
-            1,
-            2,
-            12,
-            199,
-            200,
-            201,
-            255,
-            256,
-            65_535,
-            65_536,
-            u32::MAX,
-        ] {
-            types.push(Sema::String { length: Some(n) });
-        }
-        for ty in types {
-            assert_eq!(
-                DataType::from_sema(&ty),
-                DataType::parse(&ty.describe()),
-                "{ty:?}"
-            );
-        }
-    }
 
     #[test]
     fn frame_components_read_and_write_by_keyword() {

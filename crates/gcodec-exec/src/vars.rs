@@ -24,9 +24,10 @@
 use std::sync::Arc;
 
 use gcodec_ail::VarKind;
+use gcodec_lang::DataType;
 use gcodec_source::codes;
 
-use crate::value::{DataType, RtValue, RunError};
+use crate::value::{RtValue, RunError};
 
 /// The number of R parameters when nothing says otherwise (MD28050).
 pub const DEFAULT_R_PARAMETERS: usize = 100;
@@ -101,7 +102,7 @@ impl Variable {
             ty,
             dims: d,
             rank: dims.len() as u8,
-            data: vec![ty.initial_value(); total],
+            data: vec![RtValue::initial(ty); total],
         })
     }
 

@@ -7,12 +7,13 @@ use std::borrow::Cow;
 use std::cell::Cell;
 use std::collections::HashMap;
 
-use gcodec_ail::{BinaryOp as B, Expr, Op, UnaryOp as U, Value, VarKind};
+use gcodec_ail::{Expr, Op, Value, VarKind};
 use gcodec_exec::eval::{
     self, Env, NoMachine, RuntimeInterface, assign, assign_list, declare, eval, sprint,
 };
-use gcodec_exec::value::{DataType, RtValue, RunError};
+use gcodec_exec::value::{RtValue, RunError};
 use gcodec_exec::vars::{DEFAULT_R_PARAMETERS, Init, Scope, Variables};
+use gcodec_lang::{BinaryOp as B, DataType, UnaryOp as U};
 use gcodec_profile::Profile;
 use gcodec_source::codes;
 
@@ -524,7 +525,7 @@ fn conversions_follow_the_control_table() {
             .code,
         codes::run::OVERFLOW
     );
-    let string = DataType::String { max_len: 5 };
+    let string = DataType::String { length: Some(5) };
     assert_eq!(
         RtValue::Char(b'A').convert_to(string),
         Ok(RtValue::from("A"))
@@ -575,11 +576,11 @@ fn conversions_follow_the_control_table() {
     );
     assert_eq!(
         DataType::parse("STRING[12]"),
-        Some(DataType::String { max_len: 12 })
+        Some(DataType::String { length: Some(12) })
     );
     assert_eq!(
-        DataType::parse("string"),
-        Some(DataType::String { max_len: 200 })
+        DataType::parse("string").and_then(DataType::string_capacity),
+        Some(200)
     );
     assert_eq!(DataType::parse("STRING[0]"), None);
     assert_eq!(DataType::parse("DOUBLE"), None);
@@ -793,7 +794,7 @@ fn strings_have_their_length_and_characters() {
     vars.declare(
         Scope::Local,
         "TXT",
-        DataType::String { max_len: 5 },
+        DataType::String { length: Some(5) },
         &[],
         Init::List(&[Some(RtValue::from("ABC"))]),
     )

@@ -1,5 +1,6 @@
 //! Runtime events: the checked-in schema is current, every kind reads and
-//! writes with the contract's field names (seeds 000, 001, 003), and the
+//! writes with the contract's field names (the tool-change, M-function and
+//! work-offset designs), and the
 //! sinks and the CSV writer write what SPEC §11.x says.
 
 use std::borrow::Cow;

@@ -8,12 +8,13 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use gcodec_ail::{MotionKind, Op};
+use gcodec_ail::Op;
 use gcodec_driver::Definitions;
 use gcodec_driver::loader::*;
 use gcodec_driver::{ProgramKind, compile};
 use gcodec_exec::event::EventKind;
 use gcodec_exec::loader::*;
+use gcodec_lang::MotionKind;
 use gcodec_profile::Profile;
 use gcodec_source::Severity;
 

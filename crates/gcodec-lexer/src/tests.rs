@@ -56,6 +56,39 @@ fn keywords_are_case_insensitive_and_longest_match_wins() {
     assert_eq!(kinds("B_AND b_or")[..], [(BAnd, "B_AND"), (BOr, "b_or")]);
 }
 
+/// The lexer's keyword tokens are `gcodec_lang`'s reserved words, no more
+/// and no fewer: each word lexes as one token of its own, named by it.
+#[test]
+fn keyword_tokens_are_the_vocabulary_reserved_words() {
+    use gcodec_lang::keywords::{KEYWORDS, WORD_CONSTANTS, WORD_OPERATORS};
+    let word_of = |kind: TokenKind| kind.describe().trim_matches('`');
+    for (words, of_kind) in [
+        (KEYWORDS, TokenKind::is_keyword as fn(TokenKind) -> bool),
+        (WORD_OPERATORS, |k| {
+            matches!(
+                k,
+                Div | Mod | And | Or | Xor | Not | BAnd | BOr | BXor | BNot
+            )
+        }),
+        (WORD_CONSTANTS, |k| matches!(k, True | False)),
+    ] {
+        for word in words {
+            let lower = word.to_ascii_lowercase();
+            let tokens = kinds(&lower);
+            assert_eq!(tokens.len(), 1, "{word}");
+            assert!(of_kind(tokens[0].0), "{word}: {:?}", tokens[0].0);
+            assert_eq!(word_of(tokens[0].0), *word);
+        }
+        let lexed: Vec<&str> = TokenKind::ALL
+            .iter()
+            .copied()
+            .filter(|k| of_kind(*k))
+            .map(word_of)
+            .collect();
+        assert_eq!(lexed, words);
+    }
+}
+
 #[test]
 fn numbers_in_all_forms() {
     for n in ["5", "5.", ".5", "0.5", "1.5EX-3", "10ex5", ".1EX+3"] {

@@ -14,6 +14,8 @@
 use std::borrow::Cow;
 
 use compact_str::CompactString;
+use gcodec_lang::addresses::letter_str;
+use gcodec_lang::{BinaryOp, DimensionMode, UnaryOp};
 use gcodec_source::Span;
 use serde::Serialize;
 
@@ -351,18 +353,6 @@ impl Word {
     }
 }
 
-/// An upper-case ASCII letter as a string (`?` for any other byte).
-pub fn letter_str(letter: u8) -> &'static str {
-    const LETTERS: &str = "ABCDEFGHIJKLMNOPQRSTUVWXYZ";
-    match letter {
-        b'A'..=b'Z' => {
-            let i = usize::from(letter - b'A');
-            &LETTERS[i..i + 1]
-        }
-        _ => "?",
-    }
-}
-
 /// A word that is part of another statement (`TRANS X10`, the `P3` of a
 /// call), with the span it is written at.
 #[derive(Clone, Debug, PartialEq)]
@@ -418,60 +408,7 @@ pub struct NumberLit {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DimensionModifier {
     pub span: Span,
-    pub kind: DimensionKind,
-}
-
-/// Which dimension modifier.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "UPPERCASE")]
-pub enum DimensionKind {
-    Ac,
-    Ic,
-    Dc,
-    Acp,
-    Acn,
-    Cac,
-    Cic,
-    Cdc,
-    Cacp,
-    Cacn,
-    Dac,
-    Dic,
-    Rac,
-    Ric,
-}
-
-impl DimensionKind {
-    /// The modifier as the control spells it.
-    pub const fn keyword(self) -> &'static str {
-        use DimensionKind::*;
-        match self {
-            Ac => "AC",
-            Ic => "IC",
-            Dc => "DC",
-            Acp => "ACP",
-            Acn => "ACN",
-            Cac => "CAC",
-            Cic => "CIC",
-            Cdc => "CDC",
-            Cacp => "CACP",
-            Cacn => "CACN",
-            Dac => "DAC",
-            Dic => "DIC",
-            Rac => "RAC",
-            Ric => "RIC",
-        }
-    }
-
-    /// The modifier named `name` (case-insensitive).
-    pub fn from_name(name: &str) -> Option<Self> {
-        use DimensionKind::*;
-        [
-            Ac, Ic, Dc, Acp, Acn, Cac, Cic, Cdc, Cacp, Cacn, Dac, Dic, Rac, Ric,
-        ]
-        .into_iter()
-        .find(|k| k.keyword().eq_ignore_ascii_case(name))
-    }
+    pub kind: DimensionMode,
 }
 
 /// An assignment.
@@ -997,45 +934,6 @@ pub struct BinaryExpr {
     pub op: BinaryOp,
     pub lhs: Expr,
     pub rhs: Expr,
-}
-
-/// Unary operators.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum UnaryOp {
-    Neg,
-    Plus,
-    Not,
-    BNot,
-    /// `<<x`: converts `x` to a string (as in `SETAL(61000, <<R1)`).
-    ToString,
-}
-
-/// Binary operators, in Siemens precedence classes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum BinaryOp {
-    Mul,
-    Div,
-    IntDiv,
-    Mod,
-    Add,
-    Sub,
-    BAnd,
-    BXor,
-    BOr,
-    And,
-    Xor,
-    Or,
-    Concat,
-    Eq,
-    Ne,
-    Lt,
-    Gt,
-    Le,
-    Ge,
-    /// `:` frame chaining.
-    Chain,
 }
 
 /// A matched control structure.

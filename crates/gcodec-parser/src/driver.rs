@@ -197,7 +197,7 @@ pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
 /// chunk's diagnostics are not given (`diagnostics` is empty):
 /// [`parse_chunk`] gives them.
 pub fn skim_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
-    let mut skimmed = read_chunk(src, chunk, Reading::Outline);
+    let mut skimmed = read_chunk(src, chunk, Reading::Skim);
     skimmed.diagnostics.clear();
     skimmed
 }
@@ -326,8 +326,8 @@ fn run_segment(
         tokens: Vec::with_capacity(token_room(segment, reading)),
         lines: Vec::with_capacity(CHUNK_LINES),
     };
-    if reading == Reading::Outline {
-        driver.run_outline(segment);
+    if reading == Reading::Skim {
+        driver.run_skim(segment);
     } else {
         driver.run(segment);
     }
@@ -347,11 +347,11 @@ fn run_segment(
 
 /// Room for a segment's tokens up to its first flush. Lines of real
 /// programs hold a token per 4–6 bytes; growing the buffer from a fixed
-/// size copied it three times per chunk. An outline reads the lines it
+/// size copied it three times per chunk. A skim reads the lines it
 /// parses one at a time.
 fn token_room(segment: Segment, reading: Reading) -> usize {
     match reading {
-        Reading::Outline => 64,
+        Reading::Skim => 64,
         _ => (segment.end - segment.start).min(FLUSH_BYTES_BOUND) / 4 + 64,
     }
 }
@@ -377,13 +377,13 @@ enum Reading {
     Whole,
     /// As [`skim_chunk`] reads it: a plain line after a block that
     /// settles is not lexed beyond its skip mark and number.
-    Outline,
+    Skim,
 }
 
 struct Driver<'s, 'b> {
     src: &'s [u8],
     reading: Reading,
-    /// The last block parsed settles what an outline reads (see
+    /// The last block parsed settles what a skim reads (see
     /// [`skim_chunk`]).
     settles: bool,
     /// Only the segment at the start of the file may hold the header.
@@ -403,11 +403,11 @@ struct Driver<'s, 'b> {
 }
 
 impl<'s> Driver<'s, '_> {
-    /// Reads `segment` for an outline (see [`skim_chunk`]): a plain line
-    /// after a block that settles becomes a block of its span, skip mark
-    /// and number; every other line is parsed, one at a time, since
-    /// whether it settles decides how the next is read.
-    fn run_outline(&mut self, segment: Segment) {
+    /// Skims `segment` (see [`skim_chunk`]): a plain line after a block that
+    /// settles becomes a block of its span, skip mark and number; every other
+    /// line is parsed, one at a time, since whether it settles decides how the
+    /// next is read.
+    fn run_skim(&mut self, segment: Segment) {
         let src = self.src;
         let mut start = segment.start;
         while start < segment.end {
@@ -556,7 +556,7 @@ impl<'s> Driver<'s, '_> {
         {
             let ctx = Ctx { src: self.src };
             // Built only when a block needs it: most take the fast path,
-            // and reading for an outline flushes line by line.
+            // and a skim flushes line by line.
             let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
             for line in &lines {
                 let block = self.parse_line(line, &tokens[line.tokens.clone()], &ctx, &parser);
@@ -569,7 +569,7 @@ impl<'s> Driver<'s, '_> {
                 {
                     self.structure_blocks.push(self.filled as u32);
                 }
-                if self.reading == Reading::Outline {
+                if self.reading == Reading::Skim {
                     self.settles = block_settles(&block);
                 }
                 if let Some(slot) = self.blocks.get_mut(self.filled) {
@@ -812,7 +812,7 @@ fn with_prefix(mut block: Block, tokens: &[Spanned], ctx: &Ctx<'_>) -> Block {
     block
 }
 
-/// Whether a block settles what an outline reads (see [`skim_chunk`]): it
+/// Whether a block settles what a skim reads (see [`skim_chunk`]): it
 /// has statements, and none of them defines, declares or ends anything.
 pub fn block_settles(block: &Block) -> bool {
     !block.statements.is_empty()

@@ -18,9 +18,10 @@
 
 use chumsky::span::SimpleSpan;
 use compact_str::CompactString;
+use gcodec_lang::addresses::letter_str;
 use gcodec_lexer::TokenKind as T;
 
-use crate::ast::{letter_str, *};
+use crate::ast::*;
 use crate::grammar::operators::{self, Associativity};
 use crate::grammar::{
     BlockBody, Ctx, Spanned, is_named_address, number_bytes_value, structure_keyword,

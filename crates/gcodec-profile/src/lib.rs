@@ -9,14 +9,19 @@
 //!
 //! The checks that need the G-group registry (`modal_defaults` codes and
 //! groups, `[g_codes] unsupported` names, `legacy_aliases` keys) are
-//! `gcodec_sema::check_profile`, run after [`load`]: the semantic stage
-//! owns the registry. Not built yet: the profile's use by the executor.
+//! `gcodec_sema::check_profile`, run after [`load`]. The registry itself is
+//! `gcodec_lang::ggroups`; [`reset_defaults`] and [`m_class`] read it
+//! with a profile's settings. Not built yet: the profile's use by the executor.
 
 mod group8;
+mod m_classes;
+mod reset;
 mod schema;
 mod validate;
 
 pub use group8::{group8_code, group8_index, group8_number_index, group8_range};
+pub use m_classes::m_class;
+pub use reset::reset_defaults;
 pub use schema::*;
 
 use gcodec_source::{Code, Diagnostic, Span, codes};

@@ -1,11 +1,11 @@
 //! The TOML schema of a machine profile. Field and policy names follow the
-//! design seeds (000 tool change, 001 M functions, 003 work offsets).
+//! designs for tool change, M functions and work offsets.
 //! Unknown keys are rejected everywhere; every section has defaults, so a
 //! profile states only what differs from a plain 840D sl milling machine.
 
 use std::collections::BTreeMap;
 
-pub use gcodec_ail::MClass;
+use gcodec_lang::MClass;
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
@@ -101,7 +101,7 @@ pub enum AxisKind {
     Rotary,
 }
 
-/// Tool change per seed 000.
+/// Tool change per the tool-change design.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ToolChange {
@@ -238,7 +238,7 @@ pub struct Edge {
     pub radius: f64,
 }
 
-/// M functions per seed 001.
+/// M functions per the M-function design.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MFunctions {
@@ -250,7 +250,7 @@ pub struct MFunctions {
     #[serde(default = "yes")]
     pub enable_extended_m_address: bool,
     /// M value → class, overriding the built-in classification. The
-    /// classes are those of the `m_function` instruction (seed 001).
+    /// classes are those of the `m_function` instruction.
     #[serde(default)]
     pub mcode_class_overrides: BTreeMap<Spanned<String>, MClass>,
 }
@@ -266,7 +266,7 @@ impl Default for MFunctions {
     }
 }
 
-/// Work offsets per seed 003.
+/// Work offsets per the work-offset design.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct WorkOffsets {

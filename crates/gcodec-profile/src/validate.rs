@@ -9,7 +9,7 @@ use toml::Spanned;
 use crate::group8::{group8_index, group8_range};
 use crate::schema::*;
 use crate::span;
-/// Largest M value and T number (`0…2147483647`, seed 001).
+/// Largest M value and T number (`0…2147483647`, per the M-function design).
 const MAX_ADDRESS_VALUE: u32 = i32::MAX as u32;
 
 pub(crate) fn check(profile: &Profile) -> Vec<Diagnostic> {

@@ -13,11 +13,12 @@
 //! error (`gcodec::definitions::not_a_definition`), and so is a name
 //! defined twice (`gcodec::definitions::duplicate`).
 
+use gcodec_lang::DataType;
 use gcodec_parser::ast::{self, StatementKind};
 use gcodec_source::{Diagnostic, SourceFile, Span, codes};
 
-use crate::sysvars;
-use crate::types::{self, DataType, NameMap, constant_count};
+use crate::types::{self, NameMap, constant_count};
+use gcodec_lang::sysvars;
 /// Where a global variable lives (`DEF NCK …`, `DEF CHAN …`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GlobalRange {
@@ -125,7 +126,7 @@ impl Definitions {
     ) -> bool {
         match &statement.kind {
             StatementKind::Def(def) => {
-                let data_type = DataType::from_ast(&def.ty.kind);
+                let data_type = types::from_ast(&def.ty.kind);
                 let mut range = GlobalRange::Chan;
                 let mut attributes = Vec::new();
                 for attribute in &def.attributes {

@@ -1,10 +1,12 @@
-//! M functions per seed 001: the accepted forms, the value range, the
-//! extended address, the per-block limit, classes and the unknown-code
+//! M functions per the M-function design: the accepted forms, the value range,
+//! the extended address, the per-block limit, classes and the unknown-code
 //! policy.
 
 use std::collections::HashMap;
 
-use gcodec_ail::{MClass, MTiming, Op};
+use gcodec_ail::{MTiming, Op};
+use gcodec_lang::MClass;
+use gcodec_lang::mfunctions::{acts_after_motion, standard_class};
 use gcodec_parser::ast::{Extension, Word, WordValue};
 use gcodec_profile::{Policy, Profile};
 use gcodec_source::{Diagnostic, Span, codes};
@@ -12,7 +14,7 @@ use gcodec_source::{Diagnostic, Span, codes};
 use crate::lower::by_policy;
 use crate::tools::{spindle_exists, unknown_spindle};
 use crate::values::{constant, source_text, tree, whole_number};
-/// Largest M value (seed 001: a 32-bit non-negative INT).
+/// Largest M value (the M-function design: a 32-bit non-negative INT).
 const MAX_M: f64 = 2_147_483_647.0;
 
 /// A checked M word.
@@ -40,22 +42,6 @@ impl MWord {
             raw: self.raw,
         }))
     }
-}
-
-/// `M0 M1 M2 M17 M30` act after the block's motion (seed 001).
-pub(crate) fn acts_after_motion(value: u32) -> bool {
-    matches!(value, 0 | 1 | 2 | 17 | 30)
-}
-
-/// The built-in class of a predefined M function, `None` for the others.
-fn predefined_class(value: u32, change_m: u32) -> Option<MClass> {
-    Some(match value {
-        0 | 1 | 2 | 17 | 30 => MClass::ProgramFlow,
-        3 | 4 | 5 | 19 | 70 => MClass::Spindle,
-        40..=45 => MClass::Gearbox,
-        v if v == change_m => MClass::Tool,
-        _ => return None,
-    })
 }
 
 /// Checks one M word; `None` when it is rejected (its diagnostic pushed).
@@ -129,7 +115,7 @@ pub(crate) fn check(
     let (extension, extension_expr) = extension(word, span, profile, diagnostics)?;
     let change_m = *profile.tool_change.change_m_code.get_ref();
     let overridden = overrides.get(&m).copied();
-    let class = match overridden.or_else(|| predefined_class(m, change_m)) {
+    let class = match overridden.or_else(|| standard_class(m, change_m)) {
         Some(class) => class,
         None => {
             let message = format!("M{m} is not a predefined M function");
@@ -243,21 +229,6 @@ pub(crate) fn check_count(words: &[MWord], profile: &Profile, diagnostics: &mut 
             .with_help("split the block; the limit is `max_m_per_block` in the profile"),
         );
     }
-}
-
-/// The class of the M function `value` on the machine `profile`
-/// describes: its `mcode_class_overrides` first, then the predefined
-/// classes (seed 001); `None` for a value the machine does not know. For
-/// values computed when a block runs (lowering classifies constants with
-/// the overrides read once, `overrides`).
-pub fn m_class(profile: &Profile, value: u32) -> Option<MClass> {
-    profile
-        .m_functions
-        .mcode_class_overrides
-        .iter()
-        .find(|(k, _)| k.get_ref().parse::<u32>() == Ok(value))
-        .map(|(_, class)| *class)
-        .or_else(|| predefined_class(value, *profile.tool_change.change_m_code.get_ref()))
 }
 
 /// The profile's `mcode_class_overrides` by M value, read once.

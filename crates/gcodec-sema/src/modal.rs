@@ -23,43 +23,11 @@ use std::collections::BinaryHeap;
 use std::collections::hash_map::Entry;
 use std::fmt;
 
-use gcodec_ail::{Document, Instruction, MClass, Op, RepeatSection, Value};
-use gcodec_profile::Profile;
+use gcodec_ail::{Document, Instruction, Op, RepeatSection, Value};
+use gcodec_lang::modal::GROUP_COUNT;
+use gcodec_lang::{MClass, ggroups};
+use gcodec_profile::{Profile, reset_defaults};
 use rustc_hash::FxHashMap;
-
-use crate::ggroups;
-
-/// The number of G groups (reference §3.2).
-pub const GROUP_COUNT: usize = 64;
-
-/// The modal G commands after a reset, group `n` at `n - 1`: the registry's
-/// defaults ([`ggroups::default_member`]), overridden by the profile's
-/// `modal_defaults`; group 8 is the profile's `default_group8_offset` (the
-/// selection lowering starts from for `work_offset`, seed 003) when that is
-/// a Group 8 code. `None` for non-modal and unassigned groups.
-pub fn reset_defaults(profile: &Profile) -> [Option<&'static str>; GROUP_COUNT] {
-    let mut modal = [None; GROUP_COUNT];
-    for (i, slot) in modal.iter_mut().enumerate() {
-        *slot = ggroups::default_member(i as u8 + 1);
-    }
-    for (group, code) in &profile.modal_defaults {
-        let lookup = ggroups::lookup(code.get_ref());
-        if let (Ok(g), Some((found, index))) = (group.get_ref().parse::<u8>(), lookup) {
-            // A profile `check_profile` rejects (a code of another group,
-            // a non-modal group) changes nothing.
-            if g == found && ggroups::is_modal(g) {
-                modal[usize::from(g) - 1] = ggroups::member(g, index);
-            }
-        }
-    }
-    // Lowering tracks the Group 8 selection from this setting, so the
-    // `group8_selected` of its `work_offset` instructions agree with it.
-    let group8 = profile.work_offsets.default_group8_offset.get_ref();
-    if let Some(uifr) = gcodec_profile::group8_index(group8) {
-        modal[7] = ggroups::member(8, uifr + 1);
-    }
-    modal
-}
 
 /// Where the analysed program starts.
 #[derive(Clone, Copy, Debug)]
@@ -610,20 +578,17 @@ fn member_index(group: u8, code: &str) -> u8 {
     }
 }
 
-/// [`member_index`] behind two small direct-mapped caches, keyed by the
-/// code's address (lowering writes the registry's own `&'static str`s) and
-/// by its bytes (every member name but a few fits 8; `group8_selected` is
-/// an owned string). A document's codes are a few distinct strings, so the
-/// caches skip nearly every lookup.
+/// [`member_index`] behind a small direct-mapped cache keyed by the
+/// code's bytes (every Group 8 code fits 8): `group8_selected` is an owned
+/// string per instruction, and a document's are a few distinct codes, so
+/// the cache skips nearly every lookup.
 struct Lookups {
     /// (bytes, length, group, index); length `u8::MAX` is empty.
     slots: Box<[(u64, u8, u8, u8); LOOKUP_SLOTS]>,
-    /// (address, length, group, index); length `usize::MAX` is empty.
-    by_address: Box<[(usize, usize, u8, u8); LOOKUP_SLOTS]>,
 }
 
 /// The multiplier of FxHash: it spreads the keys of the direct-mapped
-/// caches over their slots.
+/// cache over its slots.
 const FX_SEED: u64 = 0x51_7c_c1_b7_27_22_0a_95;
 
 const LOOKUP_SLOTS: usize = 256;
@@ -632,26 +597,10 @@ impl Lookups {
     fn new() -> Self {
         Self {
             slots: Box::new([(0, u8::MAX, 0, 0); LOOKUP_SLOTS]),
-            by_address: Box::new([(0, usize::MAX, 0, 0); LOOKUP_SLOTS]),
         }
     }
 
     fn member_index(&mut self, group: u8, code: &str) -> u8 {
-        // By address first: that reads no string (each of which may be a
-        // cache miss of its own). Sound while the document is borrowed:
-        // two live strings at one address with one length are the same.
-        let (address, len) = (code.as_ptr() as usize, code.len());
-        let by_address = (address ^ (address >> 8) ^ usize::from(group)) % LOOKUP_SLOTS;
-        let slot = &self.by_address[by_address];
-        if (slot.0, slot.1, slot.2) == (address, len, group) {
-            return slot.3;
-        }
-        let index = self.member_index_by_content(group, code);
-        self.by_address[by_address] = (address, len, group, index);
-        index
-    }
-
-    fn member_index_by_content(&mut self, group: u8, code: &str) -> u8 {
         let bytes = code.as_bytes();
         if bytes.len() > 8 {
             return member_index(group, code);
@@ -755,9 +704,19 @@ impl<'d> Graph<'d> {
             let mut control = Control::Next;
             let mut event = None;
             match op {
-                Op::ModalChange { group, code: name } => {
+                Op::ModalChange {
+                    group,
+                    code: command,
+                } => {
                     if ggroups::is_modal(*group) {
-                        event = Some(code(SET, *group, lookups.member_index(*group, name)));
+                        // A command of another group (in a document read
+                        // from JSON) makes the group's command unknown.
+                        let index = if command.group() == *group {
+                            command.index()
+                        } else {
+                            0
+                        };
+                        event = Some(code(SET, *group, index));
                     }
                 }
                 Op::ModalChangeIndirect { group, index } => {

@@ -14,7 +14,7 @@ use std::ops::Range;
 use gcodec_profile::Profile;
 use gcodec_source::{Code, Diagnostic, Span, codes};
 
-use crate::ggroups::{self, Effect, GGroup};
+use gcodec_lang::ggroups::{self, Effect, GGroup};
 /// Checks `profile` against the G-group registry. Every problem found is
 /// reported, in the order of the TOML text, with labelled spans into it.
 ///

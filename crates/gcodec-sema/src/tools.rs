@@ -1,6 +1,6 @@
-//! Tool selection per seed 000: the selector forms each tool-management
-//! mode accepts, normalised into one selector model, with the timing the
-//! profile's tool-change mode gives; and spindle numbers.
+//! Tool selection per the tool-change design: the selector forms each
+//! tool-management mode accepts, normalised into one selector model, with the
+//! timing the profile's tool-change mode gives; and spindle numbers.
 
 use gcodec_ail::{Op, SelectorKind, ToolTiming};
 use gcodec_parser::ast::{ExprKind, Extension, Word, WordValue};

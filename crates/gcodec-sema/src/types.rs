@@ -1,102 +1,30 @@
-//! The data types of the NC language (reference §7.1), the conversions
-//! between them, and what is known about the types of built-in functions
-//! and system variables.
+//! The static types of expressions: the data type a declaration names,
+//! and what is known about the types of system variables.
 //!
 //! Also the case-insensitive name map the variable checks use: names are
 //! upper-cased into a stack buffer for each lookup, so a lookup allocates
 //! nothing.
 
+use gcodec_lang::DataType;
 use gcodec_parser::ast;
 use gcodec_source::{Diagnostic, Span, codes};
 use rustc_hash::FxHashMap;
 
-use crate::sysvars::{self, IndexShape};
+use gcodec_lang::sysvars::{self, IndexShape};
 
-/// A declared data type.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum DataType {
-    Int,
-    Real,
-    Bool,
-    Char,
-    /// `STRING[n]`; `length` is `None` where it is not a constant (or the
-    /// type of a computed string).
-    String {
-        length: Option<u32>,
-    },
-    Axis,
-    Frame,
-}
-
-impl DataType {
-    /// The type a `DEF` or a `PROC` parameter names; the length of
-    /// `STRING[n]` when it is a constant.
-    pub fn from_ast(kind: &ast::TypeKind) -> Self {
-        match kind {
-            ast::TypeKind::Int => DataType::Int,
-            ast::TypeKind::Real => DataType::Real,
-            ast::TypeKind::Bool => DataType::Bool,
-            ast::TypeKind::Char => DataType::Char,
-            ast::TypeKind::String { length } => DataType::String {
-                length: length.as_deref().and_then(constant_count),
-            },
-            ast::TypeKind::Axis => DataType::Axis,
-            ast::TypeKind::Frame => DataType::Frame,
-        }
-    }
-
-    /// The keyword (`STRING` without its length).
-    pub const fn keyword(self) -> &'static str {
-        match self {
-            DataType::Int => "INT",
-            DataType::Real => "REAL",
-            DataType::Bool => "BOOL",
-            DataType::Char => "CHAR",
-            DataType::String { .. } => "STRING",
-            DataType::Axis => "AXIS",
-            DataType::Frame => "FRAME",
-        }
-    }
-
-    /// The type as written in a message (`STRING[12]`).
-    pub fn describe(self) -> String {
-        match self {
-            DataType::String { length: Some(n) } => format!("STRING[{n}]"),
-            other => other.keyword().to_owned(),
-        }
-    }
-
-    /// Whether a value of type `self` may be assigned to a variable of
-    /// type `to`: the conversion table of the control (alarm 14096, "illegal
-    /// type conversion", Siemens diagnostics manual; reference §7.1).
-    ///
-    /// REAL, INT, BOOL and CHAR convert into each other; CHAR and STRING
-    /// into STRING; STRING into BOOL (empty is FALSE) and CHAR (one
-    /// character, checked by the caller for constants); AXIS and FRAME only
-    /// into themselves. Nothing numeric converts into STRING, AXIS or
-    /// FRAME.
-    pub fn converts_to(self, to: DataType) -> bool {
-        use DataType::*;
-        match (self, to) {
-            (Axis, Axis) | (Frame, Frame) => true,
-            (Axis | Frame, _) | (_, Axis | Frame) => false,
-            (String { .. }, Int | Real) => false,
-            (Int | Real | Bool, String { .. }) => false,
-            _ => true,
-        }
-    }
-
-    /// "a" or "an" before the keyword.
-    pub(crate) const fn article(self) -> &'static str {
-        match self {
-            DataType::Int | DataType::Axis => "an",
-            _ => "a",
-        }
-    }
-
-    /// INT or REAL.
-    pub const fn is_number(self) -> bool {
-        matches!(self, DataType::Int | DataType::Real)
+/// The type a `DEF` or a `PROC` parameter names; the length of
+/// `STRING[n]` when it is a constant.
+pub fn from_ast(kind: &ast::TypeKind) -> DataType {
+    match kind {
+        ast::TypeKind::Int => DataType::Int,
+        ast::TypeKind::Real => DataType::Real,
+        ast::TypeKind::Bool => DataType::Bool,
+        ast::TypeKind::Char => DataType::Char,
+        ast::TypeKind::String { length } => DataType::String {
+            length: length.as_deref().and_then(constant_count),
+        },
+        ast::TypeKind::Axis => DataType::Axis,
+        ast::TypeKind::Frame => DataType::Frame,
     }
 }
 
@@ -105,71 +33,6 @@ impl DataType {
 pub(crate) fn constant_count(expr: &ast::Expr) -> Option<u32> {
     let value = crate::values::constant(expr)?;
     (value.fract() == 0.0 && value >= 1.0 && value <= f64::from(u32::MAX)).then_some(value as u32)
-}
-
-/// Built-in functions and their result types, sorted by name for binary
-/// search (a test keeps it so).
-const FUNCTIONS: &[(&str, DataType)] = &[
-    ("ABS", DataType::Real),
-    ("ACOS", DataType::Real),
-    ("ASIN", DataType::Real),
-    ("ATAN2", DataType::Real),
-    ("AXNAME", DataType::Axis),
-    ("AXSTRING", DataType::String { length: None }),
-    ("AXTOSPI", DataType::Int),
-    ("BOUND", DataType::Real),
-    ("BTOI", DataType::Int),
-    ("BTOR", DataType::Real),
-    ("CFINE", DataType::Frame),
-    ("CMIRROR", DataType::Frame),
-    ("COS", DataType::Real),
-    ("CROT", DataType::Frame),
-    ("CROTS", DataType::Frame),
-    ("CRPL", DataType::Frame),
-    ("CSCALE", DataType::Frame),
-    ("CTRANS", DataType::Frame),
-    ("EXP", DataType::Real),
-    ("INDEX", DataType::Int),
-    ("INVFRAME", DataType::Frame),
-    ("ISAXIS", DataType::Bool),
-    ("ISFILE", DataType::Bool),
-    ("ISNUMBER", DataType::Bool),
-    ("ISVAR", DataType::Bool),
-    ("ITOB", DataType::Bool),
-    ("ITOR", DataType::Real),
-    ("LN", DataType::Real),
-    ("MATCH", DataType::Int),
-    ("MAXVAL", DataType::Real),
-    ("MEAFRAME", DataType::Frame),
-    ("MINDEX", DataType::Int),
-    ("MINVAL", DataType::Real),
-    ("NUMBER", DataType::Real),
-    ("POT", DataType::Real),
-    ("RINDEX", DataType::Int),
-    ("ROUND", DataType::Real),
-    ("ROUNDUP", DataType::Real),
-    ("RTOB", DataType::Bool),
-    ("RTOI", DataType::Int),
-    ("SIN", DataType::Real),
-    ("SPI", DataType::Axis),
-    ("SPRINT", DataType::String { length: None }),
-    ("SQRT", DataType::Real),
-    ("STRLEN", DataType::Int),
-    ("SUBSTR", DataType::String { length: None }),
-    ("TAN", DataType::Real),
-    ("TOLOWER", DataType::String { length: None }),
-    ("TOUPPER", DataType::String { length: None }),
-    ("TRUNC", DataType::Real),
-];
-
-/// The result type of a built-in function (reference §7.6), by name in
-/// any case; `None` for functions whose type is not listed and for user
-/// functions.
-pub(crate) fn function_type(name: &str) -> Option<DataType> {
-    FUNCTIONS
-        .binary_search_by(|(entry, _)| compare_upper(entry, name))
-        .ok()
-        .map(|i| FUNCTIONS[i].1)
 }
 
 /// System variables of known type, sorted by name.
@@ -319,13 +182,6 @@ fn number_is_integer(expr: &ast::Expr) -> bool {
     }
 }
 
-/// Compares an upper-case table name with `key` as if `key` were upper case.
-fn compare_upper(upper: &str, key: &str) -> std::cmp::Ordering {
-    upper
-        .bytes()
-        .cmp(key.bytes().map(|b| b.to_ascii_uppercase()))
-}
-
 /// Calls `f` with `name` in upper case, without allocating for names of
 /// up to 64 bytes (the control's names have at most 32 characters).
 pub(crate) fn with_upper<R>(name: &str, f: impl FnOnce(&str) -> R) -> R {
@@ -398,29 +254,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn function_table_is_sorted() {
-        for pair in FUNCTIONS.windows(2) {
-            assert!(pair[0].0 < pair[1].0, "{} {}", pair[0].0, pair[1].0);
-        }
+    fn system_type_table_is_sorted() {
         for pair in SYSTEM_TYPES.windows(2) {
             assert!(pair[0].0 < pair[1].0, "{} {}", pair[0].0, pair[1].0);
         }
-        assert_eq!(function_type("sin"), Some(DataType::Real));
-        assert_eq!(function_type("CTrans"), Some(DataType::Frame));
-        assert_eq!(function_type("TRUNC"), Some(DataType::Real));
-        assert_eq!(function_type("ABS"), Some(DataType::Real));
-        assert_eq!(function_type("MYFUNC"), None);
-    }
-
-    #[test]
-    fn conversions_follow_the_control() {
-        use DataType::*;
-        let s = String { length: None };
-        assert!(Int.converts_to(Real) && Real.converts_to(Int) && Real.converts_to(Bool));
-        assert!(Char.converts_to(s) && s.converts_to(Bool) && s.converts_to(Char));
-        assert!(!s.converts_to(Real) && !Real.converts_to(s) && !Bool.converts_to(s));
-        assert!(!Real.converts_to(Axis) && !Axis.converts_to(Real) && Axis.converts_to(Axis));
-        assert!(!Frame.converts_to(Real) && Frame.converts_to(Frame) && !Int.converts_to(Frame));
     }
 
     #[test]

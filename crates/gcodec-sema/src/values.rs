@@ -2,8 +2,9 @@
 
 use std::borrow::Cow;
 
-use gcodec_ail::{self as ail, DimensionMode, Value};
-use gcodec_parser::ast::{self, DimensionKind, ExprKind, WordValue};
+use gcodec_ail::{self as ail, Value};
+use gcodec_lang::{DimensionMode, UnaryOp};
+use gcodec_parser::ast::{self, ExprKind, WordValue};
 
 /// An expression as an AIL value: a plain number stays a constant (so do
 /// signed numbers, `-5`), anything else becomes a tree.
@@ -19,11 +20,11 @@ pub(crate) fn constant(expr: &ast::Expr) -> Option<f64> {
     match &expr.kind {
         ExprKind::Number { value, .. } => Some(*value),
         ExprKind::Unary {
-            op: ast::UnaryOp::Neg,
+            op: UnaryOp::Neg,
             operand,
         } => constant(operand).map(|v| -v),
         ExprKind::Unary {
-            op: ast::UnaryOp::Plus,
+            op: UnaryOp::Plus,
             operand,
         } => constant(operand),
         _ => None,
@@ -35,30 +36,8 @@ pub(crate) fn word_value(value: &WordValue) -> (Value, Option<DimensionMode>) {
     match value {
         WordValue::Constant(n) => (Value::Const(n.value), None),
         WordValue::Assigned { modifier, expr } => {
-            (self::value(expr), modifier.as_ref().map(|m| mode(m.kind)))
+            (self::value(expr), modifier.as_ref().map(|m| m.kind))
         }
-    }
-}
-
-/// A dimension modifier as the AIL writes it.
-pub(crate) fn mode(kind: DimensionKind) -> DimensionMode {
-    use DimensionKind as K;
-    use DimensionMode as M;
-    match kind {
-        K::Ac => M::Ac,
-        K::Ic => M::Ic,
-        K::Dc => M::Dc,
-        K::Acp => M::Acp,
-        K::Acn => M::Acn,
-        K::Cac => M::Cac,
-        K::Cic => M::Cic,
-        K::Cdc => M::Cdc,
-        K::Cacp => M::Cacp,
-        K::Cacn => M::Cacn,
-        K::Dac => M::Dac,
-        K::Dic => M::Dic,
-        K::Rac => M::Rac,
-        K::Ric => M::Ric,
     }
 }
 
@@ -104,11 +83,11 @@ pub(crate) fn tree(expr: &ast::Expr) -> ail::Expr {
             args: call.args.iter().map(|a| a.as_ref().map(tree)).collect(),
         },
         ExprKind::Unary { op, operand } => ail::Expr::Unary {
-            operator: unary(*op),
+            operator: *op,
             operand: Box::new(tree(operand)),
         },
         ExprKind::Binary(b) => ail::Expr::Binary {
-            operator: binary(b.op),
+            operator: b.op,
             lhs: Box::new(tree(&b.lhs)),
             rhs: Box::new(tree(&b.rhs)),
         },
@@ -128,42 +107,5 @@ pub(crate) fn variable(var: &ast::VarRef) -> ail::Expr {
             _ => Cow::Owned(var.name.to_ascii_uppercase().to_string()),
         },
         indices: var.indices.iter().map(tree).collect(),
-    }
-}
-
-fn unary(op: ast::UnaryOp) -> ail::UnaryOp {
-    match op {
-        ast::UnaryOp::Neg => ail::UnaryOp::Neg,
-        ast::UnaryOp::Plus => ail::UnaryOp::Plus,
-        ast::UnaryOp::Not => ail::UnaryOp::Not,
-        ast::UnaryOp::BNot => ail::UnaryOp::BNot,
-        ast::UnaryOp::ToString => ail::UnaryOp::ToString,
-    }
-}
-
-fn binary(op: ast::BinaryOp) -> ail::BinaryOp {
-    use ail::BinaryOp as B;
-    use ast::BinaryOp as A;
-    match op {
-        A::Mul => B::Mul,
-        A::Div => B::Div,
-        A::IntDiv => B::IntDiv,
-        A::Mod => B::Mod,
-        A::Add => B::Add,
-        A::Sub => B::Sub,
-        A::BAnd => B::BAnd,
-        A::BXor => B::BXor,
-        A::BOr => B::BOr,
-        A::And => B::And,
-        A::Xor => B::Xor,
-        A::Or => B::Or,
-        A::Concat => B::Concat,
-        A::Eq => B::Eq,
-        A::Ne => B::Ne,
-        A::Lt => B::Lt,
-        A::Gt => B::Gt,
-        A::Le => B::Le,
-        A::Ge => B::Ge,
-        A::Chain => B::Chain,
     }
 }

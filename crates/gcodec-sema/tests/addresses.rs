@@ -353,7 +353,7 @@ fn m_and_s_with_a_computed_spindle() {
     assert_eq!(ops(&l, "spindle_speed")[0]["spindle"], 2);
     let l = lower_with(&mill(), "M[5]=3\n");
     assert_eq!(codes(&l), ["gcodec::lower::unknown_spindle"]);
-    // No extension keeps the seed 001 shape without the new field.
+    // No extension keeps the M-function design's shape without the new field.
     let l = lower_with(&mill(), "M3\n");
     assert!(
         ops(&l, "m_function")[0]
@@ -544,7 +544,7 @@ fn an_axis_with_a_longer_name_is_a_target_not_a_variable() {
     let l = gcodec_sema::lower(&parsed.program, &profile);
     let codes: Vec<&str> = l.diagnostics.iter().map(|d| d.code.name()).collect();
     assert_eq!(codes, ["gcodec::lower::modifier_not_allowed"]);
-    let targets: Vec<(String, Option<gcodec_ail::DimensionMode>)> = l
+    let targets: Vec<(String, Option<gcodec_lang::DimensionMode>)> = l
         .document
         .instructions
         .iter()
@@ -559,7 +559,7 @@ fn an_axis_with_a_longer_name_is_a_target_not_a_variable() {
         targets,
         [
             ("XV".to_owned(), None),
-            ("XV".to_owned(), Some(gcodec_ail::DimensionMode::Ic))
+            ("XV".to_owned(), Some(gcodec_lang::DimensionMode::Ic))
         ]
     );
     assert!(

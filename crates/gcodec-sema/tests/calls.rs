@@ -248,13 +248,13 @@ fn a_procedure_keeps_its_signature() {
     };
     assert_eq!(p.name, "CONTOUR");
     assert_eq!(p.attributes, ["SBLOF", "DISPLOF"]);
-    let params: Vec<(&str, &str, bool, bool)> = p
+    let params: Vec<(&str, String, bool, bool)> = p
         .params
         .iter()
         .map(|q| {
             (
                 q.name.as_str(),
-                q.data_type.as_str(),
+                q.data_type.describe(),
                 q.by_reference,
                 q.default.is_some(),
             )
@@ -263,9 +263,9 @@ fn a_procedure_keeps_its_signature() {
     assert_eq!(
         params,
         [
-            ("X1", "REAL", false, false),
-            ("N", "INT", true, false),
-            ("D", "REAL", false, true)
+            ("X1", "REAL".to_owned(), false, false),
+            ("N", "INT".to_owned(), true, false),
+            ("D", "REAL".to_owned(), false, true)
         ]
     );
 }
@@ -353,7 +353,7 @@ fn a_frame_with_an_unknown_axis_is_rejected_not_a_reset() {
 
 #[test]
 fn a_motion_after_paths_with_different_commands_is_decided_when_it_runs() {
-    use gcodec_ail::MotionKind::*;
+    use gcodec_lang::MotionKind::*;
     let l = lower_src("IF R1>0\nG0 X1\nELSE\nG1 X2 F100\nENDIF\nX3\nM30\n");
     assert_eq!(motions(&l), [Rapid, Linear, Modal]);
     // Where every path agrees, the dataflow knows the command.
@@ -366,14 +366,14 @@ fn a_motion_after_paths_with_different_commands_is_decided_when_it_runs() {
 
 #[test]
 fn a_motion_after_a_section_repetition_runs_in_the_sections_state() {
-    use gcodec_ail::MotionKind::*;
+    use gcodec_lang::MotionKind::*;
     let l = lower_src("N10 G3 X2 CR=5\nN20 G1 X1 F100\nREPEAT N10 N20 P=2\nX3\nM30\n");
     assert_eq!(motions(&l), [ArcCcw, Linear, Linear]);
 }
 
 #[test]
 fn calls_and_modal_calls_may_change_the_motion_command() {
-    use gcodec_ail::MotionKind::*;
+    use gcodec_lang::MotionKind::*;
     let l = lower_src("G0 X0\nCYCLE81(10,0,2,-5)\nX1\nM30\n");
     assert_eq!(motions(&l), [Rapid, Modal]);
     let l = lower_src("G0 X0\nMCALL CYCLE81(10,0,2,-5)\nX1\nX2\nMCALL\nM30\n");
@@ -382,7 +382,7 @@ fn calls_and_modal_calls_may_change_the_motion_command() {
 
 #[test]
 fn a_subprogram_starts_in_its_callers_state() {
-    use gcodec_ail::MotionKind::*;
+    use gcodec_lang::MotionKind::*;
     let lower_as = |file: &str, src: &str| {
         let parsed = gcodec_parser::parse_bytes(file, src.as_bytes());
         lower(&parsed.program, &gcodec_profile::builtin().unwrap())

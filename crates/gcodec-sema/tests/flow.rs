@@ -131,7 +131,7 @@ fn declarations_lower_per_variable() {
         .instructions
         .iter()
         .filter_map(|i| match &i.op {
-            Op::Declare(d) => Some((d.name.clone(), d.data_type.clone(), d.init.len())),
+            Op::Declare(d) => Some((d.name.clone(), d.data_type.describe(), d.init.len())),
             _ => None,
         })
         .collect();

@@ -374,7 +374,7 @@ fn document(ops: Vec<(u32, Op)>) -> Document {
 fn modal(group: u8, code: &'static str) -> Op {
     Op::ModalChange {
         group,
-        code: code.into(),
+        code: gcodec_lang::ggroups::GCommand::named(code).expect("a G command"),
     }
 }
 
@@ -460,7 +460,7 @@ fn random_documents_terminate() {
             let op = match next(12) {
                 0 | 1 => {
                     let code = codes[next(codes.len() as u64) as usize];
-                    let group = gcodec_sema::ggroups::lookup(code).map_or(1, |(g, _)| g);
+                    let group = gcodec_lang::ggroups::lookup(code).map_or(1, |(g, _)| g);
                     modal(group, code)
                 }
                 2 => label(&name),
@@ -492,7 +492,7 @@ fn random_documents_terminate() {
                     suppression_scope: None,
                 },
                 _ => Op::Motion {
-                    motion: gcodec_ail::MotionKind::Linear,
+                    motion: gcodec_lang::MotionKind::Linear,
                     targets: Vec::new(),
                     circle: None,
                     details: None,
@@ -577,8 +577,9 @@ fn every_fixture_and_corpus_program_is_analysed() {
 mod reference {
     use std::collections::{BTreeMap, HashSet};
 
-    use gcodec_ail::{Document, MClass, Op, Value};
-    use gcodec_sema::ggroups;
+    use gcodec_ail::{Document, Op, Value};
+    use gcodec_lang::MClass;
+    use gcodec_lang::ggroups;
     use gcodec_sema::modal::ModalState;
 
     pub type State = ([u8; 64], u8);
@@ -599,7 +600,7 @@ mod reference {
     fn transfer(state: &mut State, op: &Op) {
         match op {
             Op::ModalChange { group, code } if ggroups::is_modal(*group) => {
-                set(state, *group, member_index(*group, code));
+                set(state, *group, member_index(*group, code.name()));
             }
             Op::ModalChangeIndirect { group, index } if ggroups::is_modal(*group) => {
                 let index = match index {
@@ -864,7 +865,7 @@ fn the_analysis_agrees_with_a_reference_on_random_documents() {
             let condition =
                 (next(2) == 0).then(|| Box::new(gcodec_ail::Expr::Bool { value: true }));
             let motion = || Op::Motion {
-                motion: gcodec_ail::MotionKind::Linear,
+                motion: gcodec_lang::MotionKind::Linear,
                 targets: Vec::new(),
                 circle: None,
                 details: None,
@@ -872,7 +873,7 @@ fn the_analysis_agrees_with_a_reference_on_random_documents() {
             let op = match next(20) {
                 0..=2 => {
                     let code = codes[next(codes.len() as u64) as usize];
-                    let group = gcodec_sema::ggroups::lookup(code).map_or(1, |(g, _)| g);
+                    let group = gcodec_lang::ggroups::lookup(code).map_or(1, |(g, _)| g);
                     modal(group, code)
                 }
                 3 => modal(1, "G17"),

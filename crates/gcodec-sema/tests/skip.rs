@@ -2,7 +2,8 @@
 //! test after the labels it starts with and a `SKIP@<line>.end` label after
 //! its instructions, before the end of a `REPEAT` section it closes.
 
-use gcodec_ail::{MotionKind, Op};
+use gcodec_ail::Op;
+use gcodec_lang::MotionKind;
 use gcodec_sema::Lowered;
 
 mod common;

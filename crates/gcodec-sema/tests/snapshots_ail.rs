@@ -1,7 +1,7 @@
-//! insta snapshots of the AIL: the seed features (the lower fixture
-//! `seed_features.mpf`) as the JSON document, and the example programs
-//! as listings with their diagnostics. The listings of the lower fixtures
-//! are `fixtures.rs`'s.
+//! insta snapshots of the AIL: tool change, M functions and work offsets
+//! (the lower fixture `tool_m_functions_offsets.mpf`) as the JSON
+//! document, and the example programs as listings with their diagnostics.
+//! The listings of the lower fixtures are `fixtures.rs`'s.
 
 mod common;
 
@@ -22,8 +22,11 @@ fn listing(path: &str, profile: &str) -> String {
 }
 
 #[test]
-fn seed_features_document() {
-    let (_, lowered) = lower_file("tests/fixtures/lower/seed_features.mpf", "default.toml");
+fn tool_m_functions_offsets_document() {
+    let (_, lowered) = lower_file(
+        "tests/fixtures/lower/tool_m_functions_offsets.mpf",
+        "default.toml",
+    );
     assert!(lowered.diagnostics.is_empty(), "{:#?}", lowered.diagnostics);
     insta::assert_json_snapshot!(lowered.document);
 }

@@ -151,7 +151,7 @@ fn the_definition_file_is_read_as_the_control_reads_it() {
     let tool = definitions.variable("gr_tool").expect("defined");
     assert_eq!(
         tool.data_type,
-        gcodec_sema::DataType::String { length: Some(32) }
+        gcodec_lang::DataType::String { length: Some(32) }
     );
     assert_eq!(tool.range, gcodec_sema::definitions::GlobalRange::Chan);
     let taper = definitions.variable("GR_TAPER").expect("defined");

@@ -623,7 +623,7 @@ impl Channel<'_> {
             };
             let declare = Declare {
                 name: param.name.clone(),
-                data_type: param.data_type.clone(),
+                data_type: param.data_type,
                 dims: param.dims.clone(),
                 init: Vec::new(),
                 init_repeat: None,

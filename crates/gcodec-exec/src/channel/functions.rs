@@ -1,13 +1,14 @@
-//! The auxiliary and preparatory functions of a block: M and H functions
-//! (seed 001), tool selection and change (seed 000), cutting edges,
+//! The auxiliary and preparatory functions of a block: M and H functions,
+//! tool selection and change, cutting edges,
 //! spindles, dwell, named addresses and programmable frames.
 
 use std::sync::Arc;
 
 use gcodec_ail::{
-    Address, Frame as FrameInstruction, HFunction, Instruction, MClass, MFunction, SelectorKind,
+    Address, Frame as FrameInstruction, HFunction, Instruction, MFunction, SelectorKind,
     ToolChangeTrigger, ToolSelect, Value,
 };
+use gcodec_lang::MClass;
 use gcodec_profile::{Policy, Tool, ToolState, UnresolvedToolPolicy};
 use gcodec_source::{Severity, codes};
 
@@ -51,7 +52,7 @@ impl Channel<'_> {
         let computed_class = m
             .m_value
             .is_none()
-            .then(|| gcodec_sema::m_class(&self.state.profile, value));
+            .then(|| gcodec_profile::m_class(&self.state.profile, value));
         let class = match computed_class {
             Some(known) => known.unwrap_or(MClass::Custom),
             None => m.class,

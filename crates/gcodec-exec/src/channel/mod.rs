@@ -28,8 +28,8 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use gcodec_ail::{Instruction, Op};
+use gcodec_lang::ggroups;
 use gcodec_profile::Profile;
-use gcodec_sema::ggroups;
 use gcodec_source::{Code, Severity, codes};
 use rustc_hash::FxHashSet;
 
@@ -567,7 +567,9 @@ impl<'r> Channel<'r> {
                 None => Ok(Flow::Next),
             },
             Op::ModalChange { group, code } => {
-                self.modal_change(program, instruction, *group, code);
+                if ggroups::is_modal(*group) {
+                    self.set_modal(program, instruction, *group, code.index());
+                }
                 Ok(Flow::Next)
             }
             Op::ModalChangeIndirect { group, index } => {
@@ -716,42 +718,29 @@ impl<'r> Channel<'r> {
         }
     }
 
-    fn modal_change(
-        &mut self,
-        program: &Arc<Program>,
-        instruction: &Instruction,
-        group: u8,
-        code: &str,
-    ) {
-        if !ggroups::is_modal(group) {
-            return;
-        }
-        // The registry's spelling, as a static string.
-        let Some(code) = ggroups::lookup(code).and_then(|(g, i)| ggroups::member(g, i)) else {
-            return;
-        };
-        self.set_modal(program, instruction, group, code);
-    }
-
+    /// Puts the command at `index` of `group` in force; an index the
+    /// registry does not assign changes nothing.
     fn set_modal(
         &mut self,
         program: &Arc<Program>,
         instruction: &Instruction,
         group: u8,
-        code: &'static str,
+        index: u8,
     ) {
+        let Some(code) = ggroups::member(group, index) else {
+            return;
+        };
         if group == 7 && matches!(code, "G41" | "G42") {
             self.not_simulated(program, instruction, "radius-compensation", || {
                 "tool radius compensation (G41/G42) is not simulated: paths are the programmed contour"
                     .into()
             });
         }
-        let slot = &mut self.state.modal[usize::from(group) - 1];
-        let previous = *slot;
+        let previous = self.state.modal(group);
         if previous == Some(code) {
             return;
         }
-        *slot = Some(code);
+        self.state.modal[usize::from(group) - 1] = index;
         let event = EventKind::ModalChange(ModalChangeEvent {
             group,
             code: Cow::Borrowed(code),
@@ -768,8 +757,10 @@ impl<'r> Channel<'r> {
         index: &gcodec_ail::Value,
     ) -> Result<Flow, RunError> {
         let n = eval::eval_value(&self.env(), index)?.to_int()?;
-        let code = u8::try_from(n).ok().and_then(|n| ggroups::member(group, n));
-        let Some(code) = code else {
+        let member = u8::try_from(n)
+            .ok()
+            .and_then(|n| Some((n, ggroups::member(group, n)?)));
+        let Some((index, code)) = member else {
             return Err(RunError::new(
                 codes::run::INDEX_OUT_OF_RANGE,
                 format!("`G[{group}]={n}`: group {group} has no command at index {n}"),
@@ -780,7 +771,7 @@ impl<'r> Channel<'r> {
                 self.select_work_offset(program, instruction, selected);
             }
         } else if ggroups::is_modal(group) {
-            self.set_modal(program, instruction, group, code);
+            self.set_modal(program, instruction, group, index);
         }
         Ok(Flow::Next)
     }
@@ -793,10 +784,8 @@ impl<'r> Channel<'r> {
     ) {
         self.state.group8 = code;
         // The registry lists group 8 in `$P_UIFR` order from index 1.
-        let name = gcodec_profile::group8_number_index(code.0)
-            .and_then(|uifr| ggroups::member(8, uifr + 1));
-        if let Some(name) = name {
-            self.set_modal(program, instruction, 8, name);
+        if let Some(uifr) = gcodec_profile::group8_number_index(code.0) {
+            self.set_modal(program, instruction, 8, uifr + 1);
         }
     }
 

@@ -5,7 +5,9 @@
 use std::borrow::Cow;
 use std::sync::Arc;
 
-use gcodec_ail::{AxisValue, Circle, DimensionMode, Instruction, MotionKind, Op, Value};
+use gcodec_ail::{AxisValue, Circle, Instruction, Op, Value};
+use gcodec_lang::motion::MOTION_GROUP;
+use gcodec_lang::{DimensionMode, MotionKind};
 use gcodec_source::{Severity, codes};
 
 use super::Channel;
@@ -97,8 +99,8 @@ impl Channel<'_> {
         };
         let kind = self
             .state
-            .modal(1)
-            .and_then(MotionKind::of_command)
+            .modal_index(MOTION_GROUP)
+            .and_then(|index| MotionKind::of_command(MOTION_GROUP, index))
             .unwrap_or(*motion);
         self.motion.workpiece_position(&self.state);
         self.motion.target.copy_from_slice(&self.motion.wcs);

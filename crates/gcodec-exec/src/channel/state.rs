@@ -5,9 +5,10 @@
 use std::cell::{Ref, RefCell};
 use std::sync::Arc;
 
+use gcodec_lang::ggroups;
+use gcodec_lang::modal::GROUP_COUNT;
+use gcodec_profile::reset_defaults;
 use gcodec_profile::{AxisKind, Profile};
-use gcodec_sema::ggroups;
-use gcodec_sema::modal::{GROUP_COUNT, reset_defaults};
 use gcodec_source::codes;
 
 use crate::eval::{
@@ -59,9 +60,9 @@ pub struct MachineState {
     pub profile: Arc<Profile>,
     pub axes: Vec<AxisInfo>,
     pub frame_axes: FrameAxes,
-    /// Per G group (index group − 1) the command in force; `None` for
-    /// non-modal groups.
-    pub modal: [Option<&'static str>; GROUP_COUNT],
+    /// Per G group (index group − 1) the registry index of the command in
+    /// force ([`ggroups::member`]); 0 for none (non-modal groups).
+    pub modal: [u8; GROUP_COUNT],
     /// The tool reference point in machine coordinates, mm (the diameter
     /// axis as a radius), per axis.
     pub machine: Vec<f64>,
@@ -75,7 +76,7 @@ pub struct MachineState {
     /// This block's suppression.
     pub suppression: Option<Suppression>,
     pub active_tool: Option<ToolRef>,
-    /// A `T` selection waiting for the change (seed 000).
+    /// A `T` selection waiting for the change (the tool-change design).
     pub pending: Option<PendingTool>,
     /// The active cutting edge (D); 0: none.
     pub edge: u32,
@@ -135,10 +136,12 @@ impl MachineState {
         let settable = (0..100)
             .map(|index| settable_frame(&profile, &frame_axes, index))
             .collect();
-        let modal = reset_defaults(&profile);
-        let group8 = modal[7]
+        let defaults = reset_defaults(&profile);
+        let group8 = defaults[7]
             .and_then(WorkOffsetCode::parse)
             .unwrap_or(WorkOffsetCode::G500);
+        let modal =
+            defaults.map(|code| code.and_then(ggroups::lookup).map_or(0, |(_, index)| index));
         let spindles = profile
             .machine
             .spindles
@@ -189,10 +192,16 @@ impl MachineState {
 
     /// The command in force of group `group`.
     pub fn modal(&self, group: u8) -> Option<&'static str> {
+        ggroups::member(group, self.modal_index(group)?)
+    }
+
+    /// The registry index of the command of `group` in force (what
+    /// `$P_GG` returns); `None` for none.
+    pub fn modal_index(&self, group: u8) -> Option<u8> {
         self.modal
             .get(usize::from(group).wrapping_sub(1))
             .copied()
-            .flatten()
+            .filter(|&index| index != 0)
     }
 
     pub fn plane(&self) -> Plane {
@@ -416,10 +425,7 @@ impl RuntimeInterface for MachineState {
                         format!("`$P_GG[{n}]`: there is no G group {n}"),
                     ));
                 };
-                let index = self
-                    .modal(group)
-                    .and_then(ggroups::lookup)
-                    .map_or(0, |(_, i)| i32::from(i));
+                let index = self.modal_index(group).map_or(0, i32::from);
                 Ok(RtValue::Int(index))
             }
             ("$AA_IM" | "$VA_IM", _) => {

@@ -6,7 +6,7 @@ use gcodec_ail::{AssignList, Declare, Expr, Value, VarKind};
 use gcodec_source::codes;
 
 use super::{Env, EvalContext, RuntimeInterface, eval_value, int_indices, system_indices};
-use crate::value::{DataType, RtValue, RunError};
+use crate::value::{RtValue, RunError};
 use crate::vars::{Init, Scope, Variables, undefined};
 
 fn target_parts(target: &Expr) -> Result<(VarKind, &str, &[Expr]), RunError> {
@@ -133,12 +133,13 @@ pub fn declare(
     decl: &Declare,
     scope: Scope,
 ) -> Result<(), RunError> {
-    let ty = DataType::parse(&decl.data_type).ok_or_else(|| {
-        RunError::new(
+    let ty = decl.data_type;
+    if !ty.is_declarable() {
+        return Err(RunError::new(
             codes::run::INVALID_DECLARATION,
-            format!("`{}` is not a type", decl.data_type),
-        )
-    })?;
+            format!("`{ty}` is not a type"),
+        ));
+    }
     let env = Env::new(vars, rt);
     let mut dims = Vec::with_capacity(decl.dims.len());
     for d in &decl.dims {

@@ -24,7 +24,8 @@ mod profile_variables;
 
 use std::sync::Arc;
 
-use gcodec_ail::{BinaryOp, Expr, UnaryOp, Value, VarKind};
+use gcodec_ail::{Expr, Value, VarKind};
+use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_profile::Profile;
 use gcodec_source::codes;
 

@@ -18,7 +18,7 @@ pub type AxisName = Cow<'static, str>;
 pub fn axis_name(name: &str) -> AxisName {
     match name.as_bytes() {
         [b] if b.is_ascii_alphabetic() => {
-            Cow::Borrowed(gcodec_parser::ast::letter_str(b.to_ascii_uppercase()))
+            Cow::Borrowed(gcodec_lang::addresses::letter_str(b.to_ascii_uppercase()))
         }
         _ => Cow::Owned(name.to_ascii_uppercase()),
     }

@@ -6,11 +6,11 @@
 //! object with `"event"` naming its kind, the kind's fields and
 //! `"source": {"file", "line", "col", "level"}` (SPEC §11.x "Events").
 //!
-//! The kinds of the design seeds keep their field names exactly:
-//! `tool_change` (seed 000: `previous_tool`, `new_tool`,
-//! `selection_source`, `substituted`), `m_function` (seed 001: `m_value`,
-//! `class`, `phase`, `action`), and the work-offset context of `motion`
-//! (seed 003: `effective_work_offset_selected`,
+//! The kinds of the tool-change, M-function and work-offset designs keep
+//! their field names exactly: `tool_change` (`previous_tool`, `new_tool`,
+//! `selection_source`, `substituted`), `m_function` (`m_value`, `class`,
+//! `phase`, `action`), and the work-offset context of `motion`
+//! (`effective_work_offset_selected`,
 //! `effective_work_offset_enabled`, `effective_suppression_mask`).
 //!
 //! The types are the schema: `docs/schema/events.schema.json` is generated
@@ -43,10 +43,10 @@ use std::fmt;
 use std::io;
 use std::sync::Arc;
 
-pub use gcodec_ail::{
-    MClass, MTiming, MotionKind, SelectorKind, Suppression, ToolChangeTrigger, ToolTiming,
-};
 use gcodec_source::{Code, Severity};
+
+pub use gcodec_ail::{MTiming, SelectorKind, Suppression, ToolChangeTrigger, ToolTiming};
+pub use gcodec_lang::{MClass, MotionKind};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -116,13 +116,13 @@ pub enum EventKind {
     Motion(MotionEvent),
     /// The command of a modal G group changed.
     ModalChange(ModalChangeEvent),
-    /// An M function was output (seed 001).
+    /// An M function was output (the M-function design).
     MFunction(MFunctionEvent),
     /// An H function was output to the PLC.
     HFunction(HFunctionEvent),
-    /// A tool was selected (seed 000).
+    /// A tool was selected (the tool-change design).
     ToolSelect(ToolSelectEvent),
-    /// The tool changed (seed 000).
+    /// The tool changed (the tool-change design).
     ToolChange(ToolChangeEvent),
     /// A spindle's state or speed changed.
     Spindle(SpindleEvent),
@@ -196,7 +196,7 @@ pub struct MotionEvent {
     pub feed_mode: Cow<'static, str>,
     /// The working plane (group 6).
     pub plane: Plane,
-    /// The work offset in effect for this block (seed 003).
+    /// The work offset in effect for this block (the work-offset design).
     #[serde(flatten)]
     pub work_offset: WorkOffsetContext,
 }
@@ -216,7 +216,7 @@ pub struct ModalChangeEvent {
     pub previous: Option<Cow<'static, str>>,
 }
 
-/// An M function (seed 001).
+/// An M function (the M-function design).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 pub struct MFunctionEvent {
     /// The value, computed if it was an expression.
@@ -231,7 +231,7 @@ pub struct MFunctionEvent {
     pub action: MAction,
 }
 
-/// What the channel does with an M function (seed 001).
+/// What the channel does with an M function (the M-function design).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum MAction {
@@ -275,7 +275,7 @@ pub struct HFunctionEvent {
     pub phase: MTiming,
 }
 
-/// A tool selection (seed 000).
+/// A tool selection (the tool-change design).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 pub struct ToolSelectEvent {
     /// How the program named the tool; never `computed` (the value is
@@ -294,7 +294,7 @@ pub struct ToolSelectEvent {
     pub timing: ToolTiming,
 }
 
-/// A tool change (seed 000).
+/// A tool change (the tool-change design).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 pub struct ToolChangeEvent {
     /// The tool before the change (`T12`, or its name with tool
@@ -311,7 +311,7 @@ pub struct ToolChangeEvent {
     pub trigger: ToolChangeTrigger,
 }
 
-/// How a tool change came about (seed 000).
+/// How a tool change came about (the tool-change design).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum SelectionSource {

@@ -1,6 +1,6 @@
-//! The effective work-offset context of a motion (seed 003): the Group 8
-//! selection, whether it acts, and what the block suppresses, with the
-//! JSON spellings seed 003 gives them.
+//! The effective work-offset context of a motion: the Group 8 selection,
+//! whether it acts, and what the block suppresses, with the JSON
+//! spellings the work-offset design gives them.
 
 use std::borrow::Cow;
 use std::fmt;
@@ -9,7 +9,7 @@ use gcodec_ail::Suppression;
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-/// The effective work-offset context of a block (seed 003): the modal
+/// The effective work-offset context of a block: the modal
 /// Group 8 selection and what the block's `G53`/`G153`/`SUPA` suppresses.
 /// Suppression never changes the selection.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
@@ -43,9 +43,9 @@ impl Default for WorkOffsetContext {
     }
 }
 
-/// A Group 8 command by its number (`G54` is 54, `G505` is 505). Every
-/// member of group 8 is `G` and a number, so the number is the whole
-/// identity; in JSON it is the lower-case code of seed 003 (`"g54"`).
+/// A Group 8 command by its number (`G54` is 54, `G505` is 505). Every member
+/// of group 8 is `G` and a number, so the number is the whole identity; in JSON
+/// it is the lower-case code of the work-offset design (`"g54"`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct WorkOffsetCode(pub u16);
 
@@ -66,7 +66,7 @@ impl WorkOffsetCode {
 }
 
 impl fmt::Display for WorkOffsetCode {
-    /// The seed 003 spelling: `g54`.
+    /// The work-offset design's spelling: `g54`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "g{}", self.0)
     }
@@ -101,7 +101,7 @@ impl JsonSchema for WorkOffsetCode {
     }
 }
 
-/// What a block's suppression switches off (seed 003). Each level
+/// What a block's suppression switches off (the work-offset design). Each level
 /// includes the ones before it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]

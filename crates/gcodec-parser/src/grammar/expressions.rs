@@ -7,12 +7,14 @@ use chumsky::input::MapExtra;
 use chumsky::pratt::{infix, left, prefix};
 use chumsky::prelude::*;
 use chumsky::primitive::select;
+use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_lexer::TokenKind as T;
 use gcodec_source::codes;
 
 use super::numbers::number_value;
 use super::operators::{self, Associativity, Precedence};
 use super::{Ctx, Ex, In, args, decode_text, indices};
+
 use crate::ast::*;
 use crate::error::SyntaxError;
 

@@ -11,7 +11,7 @@
 
 use gcodec_lexer::TokenKind as T;
 
-use crate::ast::{BinaryOp, UnaryOp};
+use gcodec_lang::{BinaryOp, UnaryOp};
 
 /// How a chain of operators of one precedence class groups.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -155,23 +155,23 @@ pub(crate) const UNARY: [UnaryOperator; 5] = [
 /// The binding power of every prefix operator, above every binary one.
 pub(crate) const PREFIX_POWER: u8 = 12;
 
-/// What the parsers look up per token, built from [`BINARY`] and
+/// What the parsers look up per token kind, built from [`BINARY`] and
 /// [`UNARY`] so that a lookup is one load: the operators a token stands
-/// for (binary after an operand, prefix before one), and which tokens are
-/// operators, as bit sets (bit `k` for the kind `k`).
+/// for (binary after an operand, prefix before one), whether it is an
+/// operator and whether one spelt as a word.
 struct TokenTables {
     binary: [Option<(BinaryOp, Precedence)>; T::ALL.len()],
     unary: [Option<UnaryOp>; T::ALL.len()],
-    operators: u128,
-    words: u128,
+    operator: [bool; T::ALL.len()],
+    word: [bool; T::ALL.len()],
 }
 
-const TOKENS: TokenTables = {
+static TOKENS: TokenTables = {
     let mut tables = TokenTables {
         binary: [None; T::ALL.len()],
         unary: [None; T::ALL.len()],
-        operators: 0,
-        words: 0,
+        operator: [false; T::ALL.len()],
+        word: [false; T::ALL.len()],
     };
     let mut i = 0;
     while i < BINARY.len() {
@@ -179,10 +179,8 @@ const TOKENS: TokenTables = {
         // Rows follow the enum, so an operator's row is `BINARY[op as usize]`.
         assert!(row.op as usize == i);
         tables.binary[row.token as usize] = Some((row.op, row.precedence));
-        tables.operators |= 1 << row.token as u8;
-        if is_word(row.text) {
-            tables.words |= 1 << row.token as u8;
-        }
+        tables.operator[row.token as usize] = true;
+        tables.word[row.token as usize] = is_word(row.text);
         i += 1;
     }
     let mut i = 0;
@@ -190,10 +188,8 @@ const TOKENS: TokenTables = {
         let row = UNARY[i];
         assert!(row.op as usize == i);
         tables.unary[row.token as usize] = Some(row.op);
-        tables.operators |= 1 << row.token as u8;
-        if is_word(row.text) {
-            tables.words |= 1 << row.token as u8;
-        }
+        tables.operator[row.token as usize] = true;
+        tables.word[row.token as usize] = is_word(row.text);
         i += 1;
     }
     tables
@@ -225,13 +221,13 @@ pub(crate) fn unary_operator(op: UnaryOp) -> &'static UnaryOperator {
 /// Whether a token is an operator, binary or prefix.
 #[inline]
 pub(crate) fn is_operator(kind: T) -> bool {
-    TOKENS.operators & (1 << kind as u8) != 0
+    TOKENS.operator[kind as usize]
 }
 
 /// An operator spelt as a word: `DIV`, `MOD`, `AND`, … `B_NOT`.
 #[inline]
 pub(crate) fn is_word_operator(kind: T) -> bool {
-    TOKENS.words & (1 << kind as u8) != 0
+    TOKENS.word[kind as usize]
 }
 
 /// Whether an operator's text is a word (`AND`), not a symbol (`<>`).

@@ -5,13 +5,16 @@
 //! dimension modifiers (`IC(…)`, `AC(…)`) are read here.
 
 use chumsky::prelude::*;
+use gcodec_lang::DimensionMode;
+use gcodec_lang::addresses::letter_str;
 use gcodec_lexer::TokenKind as T;
 use gcodec_source::codes;
 
 use super::expressions::{initializer, var_ref};
 use super::numbers::number_value;
 use super::{Ctx, Ex, In, args};
-use crate::ast::{letter_str, *};
+
+use crate::ast::*;
 use crate::error::SyntaxError;
 
 /// Single-letter addresses that take a numeric extension (`X1=`, `M2=`, `S1=`).
@@ -65,7 +68,7 @@ fn assigned_value(expr: Expr) -> WordValue {
     let kind = match kind {
         ExprKind::Call(mut call) if call.args.len() == 1 => {
             match (
-                DimensionKind::from_name(&call.name),
+                DimensionMode::from_name(&call.name),
                 call.args.pop().flatten(),
             ) {
                 (Some(kind), Some(inner)) => {

@@ -14,11 +14,13 @@ use gcodec_ail::{
     Address, AddressScope, AxisValue, HFunction, IndirectAxisValue, MTiming, Op, TransitionKind,
     Value,
 };
-use gcodec_parser::ast::{self, DimensionKind, Extension, StatementKind, Word, WordValue};
+use gcodec_lang::DimensionMode;
+use gcodec_lang::ggroups;
+use gcodec_parser::ast::{self, Extension, StatementKind, Word, WordValue};
 use gcodec_profile::AxisKind;
 use gcodec_source::{Diagnostic, Span, codes};
 
-use crate::{ggroups, tools, values};
+use crate::{tools, values};
 
 use super::{BlockPlan, Lowering};
 /// What a named address is and where its value goes.
@@ -204,7 +206,7 @@ impl Lowering<'_> {
         else {
             return true;
         };
-        use DimensionKind::*;
+        use DimensionMode::*;
         let kind = modifier.kind;
         let address = word.address();
         let (allowed, help): (bool, Cow<'static, str>) = match self.modifiers_for(word) {
@@ -400,7 +402,7 @@ impl Lowering<'_> {
         role: Role,
         extension: Option<&Extension>,
         value: Value,
-        mode: Option<gcodec_ail::DimensionMode>,
+        mode: Option<DimensionMode>,
         word: &Word,
         span: Span,
         plan: &mut BlockPlan,
@@ -573,9 +575,9 @@ impl Lowering<'_> {
         self.check_variables(expr);
         let (value, mode) = match &expr.kind {
             ast::ExprKind::Call(call) if call.args.len() == 1 => {
-                match (DimensionKind::from_name(&call.name), &call.args[0]) {
+                match (DimensionMode::from_name(&call.name), &call.args[0]) {
                     (Some(kind), Some(arg)) => {
-                        use DimensionKind::*;
+                        use DimensionMode::*;
                         let allowed = match kind {
                             Dc | Acp | Acn => axis != AxisKind::Linear,
                             Dac | Dic | Rac | Ric => axis != AxisKind::Rotary,
@@ -595,7 +597,7 @@ impl Lowering<'_> {
                                 .with_help("DC, ACP and ACN position rotary axes; DAC, DIC, RAC and RIC apply to linear axes"),
                             );
                         }
-                        (values::value(arg), Some(values::mode(kind)))
+                        (values::value(arg), Some(kind))
                     }
                     _ => (values::value(expr), None),
                 }
@@ -656,7 +658,7 @@ impl Lowering<'_> {
         // `SPOS2=DC(90)`: the modifier is a call in an assignment.
         let (value, mode) = match &expr.kind {
             ast::ExprKind::Call(call) if call.args.len() == 1 => {
-                match (DimensionKind::from_name(&call.name), &call.args[0]) {
+                match (DimensionMode::from_name(&call.name), &call.args[0]) {
                     (Some(kind), Some(arg)) => {
                         if spindle.is_none() {
                             self.diagnostics.push(
@@ -671,11 +673,11 @@ impl Lowering<'_> {
                         }
                         if !matches!(
                             kind,
-                            DimensionKind::Ac
-                                | DimensionKind::Ic
-                                | DimensionKind::Dc
-                                | DimensionKind::Acp
-                                | DimensionKind::Acn
+                            DimensionMode::Ac
+                                | DimensionMode::Ic
+                                | DimensionMode::Dc
+                                | DimensionMode::Acp
+                                | DimensionMode::Acn
                         ) {
                             self.diagnostics.push(
                                 Diagnostic::new(
@@ -687,7 +689,7 @@ impl Lowering<'_> {
                             );
                             return true;
                         }
-                        (values::value(arg), Some(values::mode(kind)))
+                        (values::value(arg), Some(kind))
                     }
                     _ => (values::value(expr), None),
                 }

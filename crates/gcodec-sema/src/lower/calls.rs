@@ -5,10 +5,11 @@
 use std::collections::HashMap;
 
 use gcodec_ail::{Op, Value};
+use gcodec_lang::ggroups;
 use gcodec_parser::ast::{self, CallTarget, JumpTarget, StatementKind};
 use gcodec_source::{Diagnostic, Span, codes};
 
-use crate::{ggroups, values};
+use crate::values;
 
 use super::{BlockPlan, Lowering};
 /// A signature the file declares: by a `PROC` of its own or `EXTERN`.
@@ -264,7 +265,7 @@ impl Lowering<'_> {
                 }
                 gcodec_ail::Parameter {
                     name: p.name.to_ascii_uppercase().to_string(),
-                    data_type: crate::types::DataType::from_ast(&p.ty.kind).describe(),
+                    data_type: crate::types::from_ast(&p.ty.kind),
                     by_reference: p.by_reference,
                     dims: p.dims.iter().map(values::value).collect(),
                     default: p.default.as_ref().map(values::value),
@@ -292,7 +293,7 @@ impl Lowering<'_> {
             .params
             .iter()
             .map(|p| gcodec_ail::ExternalParameter {
-                data_type: crate::types::DataType::from_ast(&p.ty.kind).describe(),
+                data_type: crate::types::from_ast(&p.ty.kind),
                 by_reference: p.by_reference,
                 dims: p
                     .dims

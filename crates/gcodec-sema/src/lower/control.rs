@@ -124,7 +124,7 @@ impl<'a> Lowering<'a> {
         let span = statement.span;
         let not = |cond: &ast::Expr| {
             Some(Box::new(gcodec_ail::Expr::Unary {
-                operator: gcodec_ail::UnaryOp::Not,
+                operator: gcodec_lang::UnaryOp::Not,
                 operand: Box::new(values::tree(cond)),
             }))
         };
@@ -197,7 +197,7 @@ impl<'a> Lowering<'a> {
                     Op::Jump {
                         target: flow::structure_label(StructureKind::For, line, "end"),
                         condition: Some(Box::new(gcodec_ail::Expr::Binary {
-                            operator: gcodec_ail::BinaryOp::Gt,
+                            operator: gcodec_lang::BinaryOp::Gt,
                             lhs: Box::new(var),
                             rhs: Box::new(values::tree(&f.end)),
                         })),
@@ -215,7 +215,7 @@ impl<'a> Lowering<'a> {
                         Op::Assign {
                             target: Box::new(var.clone()),
                             value: gcodec_ail::Value::Expr(Box::new(gcodec_ail::Expr::Binary {
-                                operator: gcodec_ail::BinaryOp::Add,
+                                operator: gcodec_lang::BinaryOp::Add,
                                 lhs: Box::new(var),
                                 rhs: Box::new(gcodec_ail::Expr::Number { value: 1.0 }),
                             })),
@@ -274,7 +274,7 @@ impl<'a> Lowering<'a> {
                 continue;
             }
             let condition = gcodec_ail::Expr::Binary {
-                operator: gcodec_ail::BinaryOp::Eq,
+                operator: gcodec_lang::BinaryOp::Eq,
                 lhs: Box::new(selector.clone()),
                 rhs: Box::new(values::tree(&arm.value)),
             };

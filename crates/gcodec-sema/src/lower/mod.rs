@@ -2,29 +2,34 @@
 //! against the machine profile and tracking the modal state of
 //! straight-line code.
 //!
-//! Within a block, instructions come in the order the control acts on
-//! them: work offset and other modal G commands (indirect ones last),
-//! feed, spindle speed, tool selection and cutting edge (then `DL`), M
-//! functions acting before the motion, `H` functions, declarations and
-//! assignments, named addresses (`address`), the dwell, the motion, then
-//! `M0 M1 M2 M17 M30` after it (seed 001). A skipped block (`/`, `/0`…`/9`)
-//! has its `skip_block` test after its labels and its `SKIP@<line>.end`
-//! label after all of it, before the end of a `REPEAT` section it closes.
+//! Within a block, instructions come in the order the control acts on them:
+//! work offset and other modal G commands (indirect ones last), feed, spindle
+//! speed, tool selection and cutting edge (then `DL`), M functions acting
+//! before the motion, `H` functions, declarations and assignments, named
+//! addresses (`address`), the dwell, the motion, then `M0 M1 M2 M17 M30` after
+//! it (the M-function design). A skipped block (`/`, `/0`…`/9`) has its
+//! `skip_block` test after its labels and its `SKIP@<line>.end` label after all
+//! of it, before the end of a `REPEAT` section it closes.
 
 use std::borrow::Cow;
 use std::sync::Arc;
 
 use gcodec_ail::{
-    AxisValue, ByteRange, Circle, Document, Instruction, MTiming, MotionKind, Op, Source,
-    Suppression, SuppressionScope, ToolChangeTrigger, Value,
+    AxisValue, ByteRange, Circle, Document, Instruction, MTiming, Op, Source, Suppression,
+    SuppressionScope, ToolChangeTrigger, Value,
 };
+use gcodec_lang::MotionKind;
+use gcodec_lang::addresses::letter_str;
+use gcodec_lang::ggroups::{self, GCommand};
+use gcodec_lang::mfunctions::acts_after_motion;
+use gcodec_lang::motion::MOTION_GROUP;
 use gcodec_parser::ast::{self, Block, GotoKind, Program};
 use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
 use gcodec_source::{Code, Diagnostic, Severity, Span, codes};
 
 use crate::definitions::Definitions;
 use crate::flow::BlockFlow;
-use crate::{ggroups, mfunc};
+use crate::mfunc;
 use outline::{Outline, ProgramKind};
 
 mod addresses;
@@ -250,9 +255,7 @@ impl Lowering<'_> {
             return false;
         }
         if let (false, Some(code)) = (self.pending_motions.is_empty(), before.group1) {
-            let Some(kind) =
-                MotionKind::of_command(code).filter(|_| !matches!(code, "G34" | "G35"))
-            else {
+            let Some(kind) = motion_of(code).filter(|_| !matches!(code, "G34" | "G35")) else {
                 return false;
             };
             for &i in &self.pending_motions {
@@ -376,7 +379,10 @@ pub fn refine(document: &mut Document, profile: &Profile, subprogram: bool) {
                 details,
                 ..
             } => {
-                if let Some(kind) = state.get(1).and_then(MotionKind::of_command) {
+                if let Some(kind) = state
+                    .index(MOTION_GROUP)
+                    .and_then(|index| MotionKind::of_command(MOTION_GROUP, index))
+                {
                     settle_motion(motion, circle, details, kind);
                 }
             }
@@ -410,10 +416,16 @@ pub(crate) fn by_policy(error: bool, code: &'static Code, message: String) -> Di
     Diagnostic::new(code, message).with_severity(severity)
 }
 
+/// The motion of a group 1 command as the registry spells it (`G1`,
+/// `CIP`); `None` for another command.
+fn motion_of(code: &str) -> Option<MotionKind> {
+    ggroups::lookup(code).and_then(|(group, index)| MotionKind::of_command(group, index))
+}
+
 /// An address as an AIL axis name: single letters without allocating.
 fn axis_name(address: &str) -> Cow<'static, str> {
     match address.as_bytes() {
-        [b @ b'A'..=b'Z'] => Cow::Borrowed(ast::letter_str(*b)),
+        [b @ b'A'..=b'Z'] => Cow::Borrowed(letter_str(*b)),
         _ => Cow::Owned(address.to_owned()),
     }
 }
@@ -504,7 +516,7 @@ fn skip_label(index: usize) -> String {
 /// What one block says, collected before instructions are emitted.
 #[derive(Default)]
 struct BlockPlan {
-    g_codes: Vec<(u8, &'static str, Span)>,
+    g_codes: Vec<(GCommand, Span)>,
     suppressions: Vec<(Suppression, Span)>,
     feed: Option<(Value, Span)>,
     spindle: Vec<SpindleWord>,
@@ -630,7 +642,7 @@ impl<'a> Lowering<'a> {
         statements: usize,
         inherits: bool,
     ) -> Self {
-        let mut modal = crate::modal::reset_defaults(profile);
+        let mut modal = gcodec_profile::reset_defaults(profile);
         let mut group8 =
             gcodec_profile::group8_index(profile.work_offsets.default_group8_offset.get_ref());
         // A part after the first starts in the state the part before it
@@ -839,17 +851,17 @@ impl<'a> Lowering<'a> {
     fn emit_block(&mut self, index: usize, block: &Block, plan: &mut BlockPlan) {
         let tail = std::mem::take(&mut plan.tail);
         // Work offset: the Group 8 selection and the block's suppression.
-        let group8 = plan.g_codes.iter().find(|(g, _, _)| *g == 8);
+        let group8 = plan.g_codes.iter().find(|(c, _)| c.group() == 8);
         let suppression = self.suppression(&plan.suppressions);
-        if let Some((_, code, _)) = group8
-            && let Some(selected) = gcodec_profile::group8_index(code)
+        if let Some((code, _)) = group8
+            && let Some(selected) = gcodec_profile::group8_index(code.name())
         {
             self.group8 = Some(selected);
             self.group8_inherited = false;
         }
         if group8.is_some() || suppression.is_some() {
             let span = group8
-                .map(|(_, _, s)| *s)
+                .map(|(_, s)| *s)
                 .or(plan.suppressions.first().map(|(_, s)| *s))
                 .unwrap_or(block.span);
             let selected = self
@@ -873,10 +885,11 @@ impl<'a> Lowering<'a> {
         let dwell = plan
             .g_codes
             .iter()
-            .find(|(g, c, _)| *g == 2 && *c == "G4")
-            .map(|(_, _, s)| *s)
+            .find(|(c, _)| c.group() == 2 && c.name() == "G4")
+            .map(|(_, s)| *s)
             .map(|g4| (self.dwell(block, g4, plan), g4));
-        for &(group, code, span) in &plan.g_codes {
+        for &(command, span) in &plan.g_codes {
+            let (group, code) = (command.group(), command.name());
             if group == 8 || dwell.is_some() && code == "G4" {
                 continue;
             }
@@ -892,7 +905,7 @@ impl<'a> Lowering<'a> {
                 span,
                 Op::ModalChange {
                     group,
-                    code: Cow::Borrowed(code),
+                    code: command,
                 },
             );
         }
@@ -957,7 +970,7 @@ impl<'a> Lowering<'a> {
         // Only blocks with motion and M0/M1/M2/M17/M30 allocate here.
         let mut after = Vec::new();
         for m in std::mem::take(&mut plan.m_functions) {
-            if has_motion && m.value.is_some_and(mfunc::acts_after_motion) {
+            if has_motion && m.value.is_some_and(acts_after_motion) {
                 after.push(m);
             } else {
                 self.emit_m(index, m, MTiming::InBlock, deferred);
@@ -993,7 +1006,7 @@ impl<'a> Lowering<'a> {
                 .unwrap_or(block.span);
             let motion = match self.modal[0] {
                 None => MotionKind::Modal,
-                Some(code) => MotionKind::of_command(code).unwrap_or_else(|| {
+                Some(code) => motion_of(code).unwrap_or_else(|| {
                     self.not_lowered(first, &format!("motion under `{code}`"));
                     MotionKind::Linear
                 }),
@@ -1091,7 +1104,7 @@ impl<'a> Lowering<'a> {
     }
 
     /// The strongest suppression of a block, per the profile's policy for
-    /// several in one block (seed 003).
+    /// several in one block (the work-offset design).
     fn suppression(&mut self, found: &[(Suppression, Span)]) -> Option<Suppression> {
         let (first, first_span) = *found.first()?;
         if found.len() == 1 {

@@ -7,7 +7,7 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use gcodec_ail::MClass;
+use gcodec_lang::MClass;
 use gcodec_parser::ast::{self, Block, ControlStructure, StatementKind};
 use gcodec_profile::Profile;
 use gcodec_source::{Diagnostic, Span, codes};

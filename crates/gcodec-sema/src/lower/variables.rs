@@ -27,14 +27,15 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use gcodec_ail::Op;
+use gcodec_lang::{DataType, UnaryOp};
 use gcodec_parser::ast::{self, StatementKind};
 use gcodec_profile::Profile;
 use gcodec_source::{Diagnostic, Span, codes};
 
 use crate::definitions::{Definitions, is_program_end};
-use crate::sysvars::{self, IndexShape};
-use crate::types::{self, Constant, DataType, NameMap, constant_count};
+use crate::types::{self, Constant, NameMap, constant_count};
 use crate::values;
+use gcodec_lang::sysvars::{self, IndexShape};
 
 use super::{BlockPlan, Lowering};
 /// Array dimensions tracked per variable (the language allows three).
@@ -189,7 +190,7 @@ impl<'a> NameCollector<'a> {
                     self.first_executable = None;
                     for param in &proc.params {
                         let shape = Shape::new(
-                            DataType::from_ast(&param.ty.kind),
+                            types::from_ast(&param.ty.kind),
                             param.dims.iter().map(constant_count),
                         );
                         names.define(param.span, &param.name, shape, span.start, diagnostics);
@@ -212,7 +213,7 @@ impl<'a> NameCollector<'a> {
                             );
                         }
                     }
-                    let ty = DataType::from_ast(&def.ty.kind);
+                    let ty = types::from_ast(&def.ty.kind);
                     for var in &def.vars {
                         let shape = Shape::new(ty, var.dims.iter().map(constant_count));
                         names.define(var.span, &var.name, shape, var.span.end, diagnostics);
@@ -603,7 +604,7 @@ impl Lowering<'_> {
     /// registry types, built-in functions, operators. `None` is unknown
     /// (never an error).
     pub(super) fn expr_type(&self, expr: &ast::Expr) -> Option<DataType> {
-        use ast::BinaryOp as B;
+        use gcodec_lang::BinaryOp as B;
         match &expr.kind {
             ast::ExprKind::Number { integer, .. } => Some(if *integer {
                 DataType::Int
@@ -615,14 +616,12 @@ impl Lowering<'_> {
             }),
             ast::ExprKind::Bool { .. } => Some(DataType::Bool),
             ast::ExprKind::Var { var } => self.var_type(var),
-            ast::ExprKind::Call(call) => types::function_type(&call.name),
+            ast::ExprKind::Call(call) => gcodec_lang::functions::function_type(&call.name),
             ast::ExprKind::Unary { op, operand } => match op {
-                ast::UnaryOp::Neg | ast::UnaryOp::Plus => {
-                    self.expr_type(operand).filter(|t| t.is_number())
-                }
-                ast::UnaryOp::Not => Some(DataType::Bool),
-                ast::UnaryOp::BNot => Some(DataType::Int),
-                ast::UnaryOp::ToString => Some(DataType::String { length: None }),
+                UnaryOp::Neg | UnaryOp::Plus => self.expr_type(operand).filter(|t| t.is_number()),
+                UnaryOp::Not => Some(DataType::Bool),
+                UnaryOp::BNot => Some(DataType::Int),
+                UnaryOp::ToString => Some(DataType::String { length: None }),
             },
             ast::ExprKind::Binary(b) => match b.op {
                 B::Add | B::Sub | B::Mul | B::Mod | B::Div | B::IntDiv => {
@@ -676,7 +675,7 @@ impl Lowering<'_> {
     /// `DEF TYPE name[dims]=init, …`: one declaration per variable, its
     /// initialiser checked against the type and the number of elements.
     pub(super) fn declare(&mut self, def: &ast::Def, span: Span, plan: &mut BlockPlan) {
-        let ty = DataType::from_ast(&def.ty.kind);
+        let ty = types::from_ast(&def.ty.kind);
         if let ast::TypeKind::String {
             length: Some(length),
         } = &def.ty.kind
@@ -724,7 +723,7 @@ impl Lowering<'_> {
             plan.other.push((
                 Op::Declare(Box::new(gcodec_ail::Declare {
                     name: var.name.to_ascii_uppercase().to_string(),
-                    data_type: ty.describe(),
+                    data_type: ty,
                     dims: var.dims.iter().map(values::value).collect(),
                     init,
                     init_repeat,

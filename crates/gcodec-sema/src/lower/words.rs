@@ -6,10 +6,11 @@
 use std::borrow::Cow;
 
 use gcodec_ail::{AxisValue, Suppression, Value};
+use gcodec_lang::ggroups::{self, GCommand};
 use gcodec_parser::ast::{self, Extension, Word};
 use gcodec_source::{Diagnostic, Span, codes};
 
-use crate::{ggroups, mfunc, tools, values};
+use crate::{mfunc, tools, values};
 
 use super::{BlockPlan, Lowering, axis_name};
 impl Lowering<'_> {
@@ -204,9 +205,10 @@ impl Lowering<'_> {
 
     /// A G command at its registry position (`group`, 1-based `index`).
     pub(super) fn g_code(&mut self, group: u8, index: u8, span: Span, plan: &mut BlockPlan) {
-        let Some(member) = ggroups::member(group, index) else {
+        let Some(command) = GCommand::new(group, index) else {
             return;
         };
+        let member = command.name();
         if let Some(key) = self.g_unsupported(group, member) {
             return self.diagnostics.push(
                 Diagnostic::new(
@@ -252,17 +254,17 @@ impl Lowering<'_> {
                 .with_label(*first_span, "first"),
             );
         }
-        if let Some((_, first, first_span)) = plan.g_codes.iter().find(|(g, _, _)| *g == group) {
+        if let Some((first, first_span)) = plan.g_codes.iter().find(|(c, _)| c.group() == group) {
             return self.diagnostics.push(
                 Diagnostic::new(
                     codes::lower::G_GROUP_CONFLICT,
-                    format!("`{member}` and `{first}` are both in G group {group}; a block holds one command of a group"),
+                    format!("`{member}` and `{}` are both in G group {group}; a block holds one command of a group", first.name()),
                 )
                 .with_label(span, "second command of the group")
                 .with_label(*first_span, "first"),
             );
         }
-        plan.g_codes.push((group, member, span));
+        plan.g_codes.push((command, span));
     }
 }
 
@@ -320,8 +322,8 @@ impl Lowering<'_> {
         }
     }
 
-    /// The Group 8 code a legacy alias (`legacy_aliases`, seed 003) stands
-    /// for, if `G<n>` is one.
+    /// The Group 8 code a legacy alias (`legacy_aliases`, per the work-offset
+    /// design) stands for, if `G<n>` is one.
     fn legacy_alias(&self, n: f64) -> Option<String> {
         let aliases = &self.profile.work_offsets.legacy_aliases;
         if aliases.is_empty() {
@@ -414,11 +416,11 @@ impl Lowering<'_> {
         if group == 1 {
             return self.not_lowered(span, "a motion command chosen when the block runs");
         }
-        if let Some((_, first, first_span)) = plan.g_codes.iter().find(|(g, _, _)| *g == group) {
+        if let Some((first, first_span)) = plan.g_codes.iter().find(|(c, _)| c.group() == group) {
             return self.diagnostics.push(
                 Diagnostic::new(
                     codes::lower::G_GROUP_CONFLICT,
-                    format!("`G[{group}]=…` and `{first}` are both in G group {group}; a block holds one command of a group"),
+                    format!("`G[{group}]=…` and `{}` are both in G group {group}; a block holds one command of a group", first.name()),
                 )
                 .with_label(span, "second command of the group")
                 .with_label(*first_span, "first"),

@@ -52,7 +52,7 @@ pub fn errors(lowered: &gcodec_sema::Lowered) -> Vec<&'static str> {
 }
 
 /// The motion kinds, in order.
-pub fn motions(lowered: &gcodec_sema::Lowered) -> Vec<gcodec_ail::MotionKind> {
+pub fn motions(lowered: &gcodec_sema::Lowered) -> Vec<gcodec_lang::MotionKind> {
     lowered
         .document
         .instructions

@@ -43,7 +43,7 @@
 //! `;$PATH=…` in a file header is a comment, not a variable, and is not
 //! listed.
 
-use std::cmp::Ordering;
+use crate::names::compare_ignore_case;
 
 /// The indices a system variable takes in brackets.
 ///
@@ -403,14 +403,6 @@ fn strip_dollars(name: &str) -> Option<&str> {
         .or_else(|| name.strip_prefix('$'))
         .unwrap_or(name);
     (!key.is_empty()).then_some(key)
-}
-
-/// Compares an upper-case table name with `key` as if `key` were upper
-/// case too, byte by byte (the order the table is sorted in).
-fn compare_ignore_case(upper: &str, key: &str) -> Ordering {
-    upper
-        .bytes()
-        .cmp(key.bytes().map(|b| b.to_ascii_uppercase()))
 }
 
 #[cfg(test)]

@@ -1,7 +1,6 @@
-//! The Test Matrix rows of the design seeds that belong to parsing,
-//! lowering and the modal engine, one named test each (the executor rows
-//! belong to `gcodec run`): seed 000 tool change, seed 001 M functions,
-//! seed 003 work offsets.
+//! The test-matrix rows of the tool-change, M-function and work-offset
+//! designs that belong to parsing, lowering and the modal engine, one
+//! named test each (the executor rows belong to `gcodec run`).
 
 use serde_json::{Value, json};
 
@@ -9,12 +8,12 @@ mod common;
 
 use common::{codes, errors, kinds, lower_with, machine as profile, ops};
 
-// ---- seed 000: tool change ----
+// ---- tool change ----
 
-/// Test Matrix 000, parser tests: accepted/rejected selector forms by
+/// Tool-change matrix, parser tests: accepted/rejected selector forms by
 /// management mode.
 #[test]
-fn seed000_selector_forms_by_management_mode() {
+fn tool_change_selector_forms_by_management_mode() {
     let plain = profile("");
     for accepted in ["T5", "T=5", "T1=5", "T0"] {
         let l = lower_with(&plain, accepted);
@@ -61,10 +60,10 @@ fn seed000_selector_forms_by_management_mode() {
     assert_eq!(errors(&l), ["gcodec::lower::tool_selector_form"]);
 }
 
-/// Test Matrix 000, AIL tests: normalized instruction shape + timing
+/// Tool-change matrix, AIL tests: normalized instruction shape + timing
 /// metadata.
 #[test]
-fn seed000_normalized_instruction_shape_and_timing() {
+fn tool_change_normalized_instruction_shape_and_timing() {
     let deferred = lower_with(&profile(""), "T1=7");
     assert_eq!(
         ops(&deferred, "tool_select"),
@@ -93,10 +92,10 @@ fn seed000_normalized_instruction_shape_and_timing() {
     );
 }
 
-/// Test Matrix 000, integration: M6 goes through the M-code path (class
+/// Tool-change matrix, integration: M6 goes through the M-code path (class
 /// `tool`) and triggers the change; the cutting edge follows the tool.
 #[test]
-fn seed000_m6_goes_through_the_m_code_path() {
+fn tool_change_m6_goes_through_the_m_code_path() {
     let l = lower_with(&profile(""), "T5 M6 D1");
     let kinds = kinds(&l);
     assert_eq!(
@@ -119,7 +118,7 @@ fn seed000_m6_goes_through_the_m_code_path() {
 
 /// Unknown tools follow `on_unresolved_tool` once the profile has a table.
 #[test]
-fn seed000_unresolved_tools_follow_the_policy() {
+fn tool_change_unresolved_tools_follow_the_policy() {
     let table = "[[tools]]\nnumber = 1\n";
     let l = lower_with(&profile(table), "T2");
     assert_eq!(errors(&l), ["gcodec::lower::unresolved_tool"]);
@@ -140,12 +139,12 @@ fn seed000_unresolved_tools_follow_the_policy() {
     assert_eq!(codes(&l), [] as [&str; 0]);
 }
 
-// ---- seed 001: M functions ----
+// ---- M functions ----
 
-/// Test Matrix 001, parser tests: valid/invalid forms, range, extension
+/// M-function matrix, parser tests: valid/invalid forms, range, extension
 /// restrictions, per-block count.
 #[test]
-fn seed001_forms_range_extensions_and_count() {
+fn m_functions_forms_range_extensions_and_count() {
     let p = profile("");
     for valid in ["M3", "M1=3", "M0", "M30", "M2147483647"] {
         assert_eq!(errors(&lower_with(&p, valid)), [] as [&str; 0], "{valid}");
@@ -194,10 +193,10 @@ fn seed001_forms_range_extensions_and_count() {
     );
 }
 
-/// Test Matrix 001, AIL tests: normalized instruction metadata for
+/// M-function matrix, AIL tests: normalized instruction metadata for
 /// class/timing/raw/source.
 #[test]
-fn seed001_instruction_metadata() {
+fn m_functions_instruction_metadata() {
     let l = lower_with(&profile(""), "N10 G1 X10 M3 M1=4 M40 M30");
     let m = ops(&l, "m_function");
     let summary: Vec<(Value, Value, Value, Value)> = m
@@ -248,7 +247,7 @@ fn seed001_instruction_metadata() {
 
 /// Unknown M functions follow `unknown_mcode_policy`; overrides classify.
 #[test]
-fn seed001_unknown_codes_follow_the_policy() {
+fn m_functions_unknown_codes_follow_the_policy() {
     let l = lower_with(&profile(""), "M123");
     assert_eq!(codes(&l), ["gcodec::lower::unknown_m_function"]);
     assert_eq!(errors(&l), [] as [&str; 0]);
@@ -268,12 +267,12 @@ fn seed001_unknown_codes_follow_the_policy() {
     assert_eq!(ops(&l, "m_function")[0]["class"], "gearbox");
 }
 
-// ---- seed 003: work offsets ----
+// ---- work offsets ----
 
-/// Test Matrix 003, parser tests: Group 8 syntax acceptance/rejection with
+/// Work-offset matrix, parser tests: Group 8 syntax acceptance/rejection with
 /// profile range variants.
 #[test]
-fn seed003_group8_acceptance_with_profile_ranges() {
+fn work_offsets_group8_acceptance_with_profile_ranges() {
     let standard = profile("");
     for accepted in ["G500", "G54", "G57"] {
         assert_eq!(
@@ -306,9 +305,9 @@ fn seed003_group8_acceptance_with_profile_ranges() {
     );
 }
 
-/// Test Matrix 003, parser tests: suppression command parse coverage.
+/// Work-offset matrix, parser tests: suppression command parse coverage.
 #[test]
-fn seed003_suppression_commands() {
+fn work_offsets_suppression_commands() {
     for (src, suppression) in [
         ("G53", "g53"),
         ("G153", "g153"),
@@ -323,9 +322,9 @@ fn seed003_suppression_commands() {
     }
 }
 
-/// Test Matrix 003, modal-engine tests: Group 8 persistence across blocks.
+/// Work-offset matrix, modal-engine tests: Group 8 persistence across blocks.
 #[test]
-fn seed003_group8_persists_across_blocks() {
+fn work_offsets_group8_persists_across_blocks() {
     let l = lower_with(&profile(""), "G54\nG0 X1\nG53 X2\nX3\nG500\n");
     let selected: Vec<Value> = ops(&l, "work_offset")
         .iter()
@@ -341,10 +340,10 @@ fn seed003_group8_persists_across_blocks() {
     assert_eq!(selected, [json!("g55"), json!("g55")]);
 }
 
-/// Test Matrix 003, modal-engine tests: block-local suppression precedence
+/// Work-offset matrix, modal-engine tests: block-local suppression precedence
 /// and non-mutation of the modal selection.
 #[test]
-fn seed003_suppression_is_block_local_and_keeps_the_selection() {
+fn work_offsets_suppression_is_block_local_and_keeps_the_selection() {
     let l = lower_with(&profile(""), "G54\nG53 G0 X1\nG0 X2\n");
     let w = ops(&l, "work_offset");
     assert_eq!(
@@ -361,10 +360,10 @@ fn seed003_suppression_is_block_local_and_keeps_the_selection() {
     assert_eq!(ops(&l, "work_offset")[0]["suppression"], "supa");
 }
 
-/// Test Matrix 003, AIL tests: selected/effective work-offset metadata
+/// Work-offset matrix, AIL tests: selected/effective work-offset metadata
 /// stability.
 #[test]
-fn seed003_work_offset_metadata_is_stable() {
+fn work_offsets_metadata_is_stable() {
     let l = lower_with(&profile(""), "G55 G153\n");
     assert_eq!(
         ops(&l, "work_offset"),
@@ -376,10 +375,10 @@ fn seed003_work_offset_metadata_is_stable() {
     assert_eq!(l.document, again.document);
 }
 
-/// Test Matrix 003, AIL tests: policy behavior for duplicate suppression
+/// Work-offset matrix, AIL tests: policy behavior for duplicate suppression
 /// words.
 #[test]
-fn seed003_duplicate_suppression_policy() {
+fn work_offsets_duplicate_suppression_policy() {
     let src = "G53 SUPA\n";
     let warn = lower_with(&profile(""), src);
     assert_eq!(codes(&warn), ["gcodec::lower::duplicate_suppression"]);

@@ -1,0 +1,180 @@
+//! The vocabulary's tables against the control's catalogue of names
+//! (`../shared/reference/catalogue` beside the checkout, or
+//! `GCODEC_CATALOGUE_DIR`; skipped with a notice where it is absent):
+//! every name gcodec knows is one the control knows, or is listed here
+//! with the reason it is not in the catalogue. What the catalogue has and
+//! gcodec lacks is printed (issue 16 fills it in).
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+use gcodec_lang::ggroups::G_GROUPS;
+use gcodec_lang::keywords::{KEYWORDS, WORD_CONSTANTS, WORD_OPERATORS};
+use gcodec_lang::{functions, sysvars};
+
+/// The catalogue beside the checkout or at `GCODEC_CATALOGUE_DIR`; `None`,
+/// with a notice, where it is absent.
+fn catalogue_dir() -> Option<PathBuf> {
+    let dir = std::env::var_os("GCODEC_CATALOGUE_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| {
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/reference/catalogue")
+        });
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        eprintln!(
+            "notice: catalogue not found at {}; catalogue checks skipped",
+            dir.display()
+        );
+        None
+    }
+}
+
+/// The names of one catalogue list: the first column, upper case, without
+/// the header of the `.tsv`.
+fn names(dir: &Path, file: &str) -> BTreeSet<String> {
+    let text = std::fs::read_to_string(dir.join(file))
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.join(file).display()));
+    let skip = usize::from(file.ends_with(".tsv"));
+    text.lines()
+        .skip(skip)
+        .filter_map(|line| line.split('\t').next())
+        .map(|name| name.trim().to_ascii_uppercase())
+        .filter(|name| !name.is_empty())
+        .collect()
+}
+
+/// Checks that every name of `ours` is in `catalogue`, in another list
+/// of the catalogue (`elsewhere`) or in `not_listed` (each with its
+/// reason), and reports how many names of `catalogue` gcodec lacks.
+fn check(
+    what: &str,
+    ours: &BTreeSet<String>,
+    catalogue: &BTreeSet<String>,
+    elsewhere: &BTreeSet<String>,
+    not_listed: &[(&str, &str)],
+) {
+    let excused: BTreeSet<&str> = not_listed.iter().map(|(name, _)| *name).collect();
+    let known = |name: &String| catalogue.contains(name) || elsewhere.contains(name);
+    let unknown: Vec<&String> = ours
+        .iter()
+        .filter(|n| !known(n) && !excused.contains(n.as_str()))
+        .collect();
+    assert!(
+        unknown.is_empty(),
+        "{what}: not in the catalogue: {unknown:?}"
+    );
+    for (name, _) in not_listed {
+        assert!(
+            ours.contains(*name),
+            "{what}: {name} is excused but not ours"
+        );
+        assert!(
+            !known(&name.to_string()),
+            "{what}: {name} is in the catalogue now"
+        );
+    }
+    let lacking = catalogue.iter().filter(|n| !ours.contains(*n)).count();
+    eprintln!(
+        "{what}: {} known, {lacking} of the catalogue's {} not yet",
+        ours.len(),
+        catalogue.len()
+    );
+}
+
+#[test]
+fn g_commands_are_the_controls() {
+    let Some(dir) = catalogue_dir() else { return };
+    let ours: BTreeSet<String> = G_GROUPS
+        .iter()
+        .flat_map(|g| g.members)
+        .filter(|m| !m.is_empty())
+        .map(|m| m.to_string())
+        .collect();
+    let newer =
+        "group 58 (relief cut) of the reference §3.2, newer than the catalogue's lists of 05/2017";
+    check(
+        "commands",
+        &ours,
+        &names(&dir, "commands.txt"),
+        &BTreeSet::new(),
+        &[("RELIEVEON", newer), ("RELIEVEOF", newer)],
+    );
+}
+
+#[test]
+fn keywords_are_the_controls() {
+    let Some(dir) = catalogue_dir() else { return };
+    let ours: BTreeSet<String> = [KEYWORDS, WORD_OPERATORS, WORD_CONSTANTS]
+        .concat()
+        .into_iter()
+        .map(str::to_owned)
+        .collect();
+    // The catalogue lists the word operators, `VAR`, `RET`, `SET` and
+    // `REP` with the operators, data types, procedures and functions.
+    let elsewhere: BTreeSet<String> = [
+        "operators.txt",
+        "data-types.txt",
+        "procedures.txt",
+        "functions.txt",
+    ]
+    .into_iter()
+    .flat_map(|file| names(&dir, file))
+    .collect();
+    check(
+        "keywords",
+        &ours,
+        &names(&dir, "keywords.txt"),
+        &elsewhere,
+        &[
+            ("TO", "`FOR … TO`, `CALL … BLOCK … TO` (reference §8)"),
+            ("OF", "`CASE … OF` (reference §8)"),
+            ("DEFAULT", "`CASE … DEFAULT` (reference §8)"),
+            ("AS", "`DEFINE … AS` (reference §7.5)"),
+            ("PROC", "`PROC` opens a subprogram (reference §8.1)"),
+            ("BLOCK", "`CALL … BLOCK` (reference §8)"),
+            ("TRUE", "a BOOL constant (reference §7.1)"),
+            ("FALSE", "a BOOL constant (reference §7.1)"),
+        ],
+    );
+}
+
+#[test]
+fn functions_are_the_controls() {
+    let Some(dir) = catalogue_dir() else { return };
+    let ours: BTreeSet<String> = functions::FUNCTIONS
+        .iter()
+        .map(|(name, _)| name.to_string())
+        .collect();
+    check(
+        "functions",
+        &ours,
+        &names(&dir, "functions.txt"),
+        &BTreeSet::new(),
+        &[],
+    );
+}
+
+#[test]
+fn system_variables_are_the_controls() {
+    let Some(dir) = catalogue_dir() else { return };
+    // The catalogue lists no machine or setting data (`$MC_…`, `$SN_…`):
+    // the control has thousands, of which the table holds the ones
+    // programs use.
+    let ours: BTreeSet<String> = sysvars::all()
+        .iter()
+        .map(|v| v.name.to_owned())
+        .filter(|name| !sysvars::is_machine_or_setting_data(name))
+        .collect();
+    check(
+        "system variables",
+        &ours,
+        &names(&dir, "system-variables.tsv"),
+        &BTreeSet::new(),
+        &[(
+            "$R",
+            "`$R[n]`, the R parameters as an array (reference §7.2)",
+        )],
+    );
+}
