@@ -33,21 +33,10 @@ fn the_checked_in_reference_is_current() {
 /// out (their tests name codes that do not exist on purpose).
 #[test]
 fn every_code_named_in_the_crates_is_registered() {
-    let registry = Path::new(REGISTRY_DIR)
-        .canonicalize()
-        .expect("the registry");
-    let crates = Path::new(WORKSPACE)
-        .join("crates")
-        .canonicalize()
-        .expect("crates/");
     let mut unknown = Vec::new();
-    for path in files(&crates) {
-        if path.starts_with(&registry) && path.extension().is_some_and(|e| e == "rs") {
-            continue;
-        }
-        let Ok(text) = std::fs::read_to_string(&path) else {
-            continue;
-        };
+    for (path, text) in crate_files(|path, in_registry| {
+        !(in_registry && path.extension().is_some_and(|e| e == "rs"))
+    }) {
         for name in code_names(&text) {
             let registered = codes::all().iter().any(|code| code.name() == name);
             if !registered && !name.ends_with('_') {
@@ -68,23 +57,11 @@ fn every_code_named_in_the_crates_is_registered() {
 /// compare with names.
 #[test]
 fn no_code_is_spelt_out_outside_the_registry() {
-    let registry = Path::new(REGISTRY_DIR)
-        .canonicalize()
-        .expect("the registry");
-    let crates = Path::new(WORKSPACE)
-        .join("crates")
-        .canonicalize()
-        .expect("crates/");
     let mut spelt = Vec::new();
-    for path in files(&crates) {
+    for (path, text) in crate_files(|path, in_registry| {
         let in_sources = path.components().any(|c| c.as_os_str() == "src");
-        if !in_sources || path.starts_with(&registry) || path.extension().is_none_or(|e| e != "rs")
-        {
-            continue;
-        }
-        let Ok(text) = std::fs::read_to_string(&path) else {
-            continue;
-        };
+        in_sources && !in_registry && path.extension().is_some_and(|e| e == "rs")
+    }) {
         let code = text.split("#[cfg(test)]").next().unwrap_or("");
         for line in code.lines().filter(|l| l.contains("\"gcodec::")) {
             spelt.push(format!("{}: {}", path.display(), line.trim()));
@@ -124,6 +101,26 @@ fn every_explanation_file_is_a_code() {
         "explanations of no code:\n{}",
         orphans.join("\n")
     );
+}
+
+/// The text files under `crates/` that `wanted` keeps, told whether a
+/// file is in the registry's own directory.
+fn crate_files(wanted: impl Fn(&Path, bool) -> bool) -> Vec<(PathBuf, String)> {
+    let registry = Path::new(REGISTRY_DIR)
+        .canonicalize()
+        .expect("the registry");
+    let crates = Path::new(WORKSPACE)
+        .join("crates")
+        .canonicalize()
+        .expect("crates/");
+    files(&crates)
+        .into_iter()
+        .filter(|path| wanted(path, path.starts_with(&registry)))
+        .filter_map(|path| {
+            let text = std::fs::read_to_string(&path).ok()?;
+            Some((path, text))
+        })
+        .collect()
 }
 
 /// The files under `dir`, recursively, without build output.
