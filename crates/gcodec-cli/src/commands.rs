@@ -3,7 +3,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use gcodec_source::{Diagnostic, RenderOptions, SourceFile, render_diagnostics};
+use gcodec_source::{Diagnostic, RenderOptions, SourceFile, codes, render_diagnostics};
 
 /// Exit code: no error diagnostics.
 pub const EXIT_CLEAN: u8 = 0;
@@ -58,6 +58,18 @@ enum Command {
     /// Check or show machine profiles.
     #[command(subcommand)]
     Profile(ProfileCommand),
+    /// Explain a diagnostic code: what it means, why it is reported, how
+    /// to fix it, with examples.
+    #[command(arg_required_else_help = true)]
+    Explain {
+        /// The code: `gcodec::parse::invalid_word`, `parse::invalid_word`
+        /// or, where it is unique, `invalid_word`.
+        #[arg(required_unless_present = "list", conflicts_with = "list")]
+        code: Option<String>,
+        /// List every code with its level and summary instead.
+        #[arg(long)]
+        list: bool,
+    },
 }
 
 #[derive(Debug, Subcommand)]
@@ -128,6 +140,7 @@ pub fn run(cli: Cli) -> u8 {
             diagnostics,
         } => lower(&file, profile.as_deref(), &definitions, format, diagnostics),
         Command::Run(args) => crate::run::run(args),
+        Command::Explain { code, list } => explain(code.as_deref(), list),
         Command::Profile(ProfileCommand::Check { file, diagnostics }) => {
             match load_profile(Some(&file), diagnostics) {
                 Ok(_) => EXIT_CLEAN,
@@ -166,6 +179,29 @@ pub fn load_profile(
             Err(EXIT_USAGE)
         }
     }
+}
+
+/// `gcodec explain`: a code's explanation or, with `--list`, every code;
+/// an unknown code is a usage error, with the code meant if one is close.
+fn explain(code: Option<&str>, list: bool) -> u8 {
+    let text = match code {
+        Some(name) if !list => match codes::find(name) {
+            Some(code) => codes::explain(code),
+            None => {
+                let hint = codes::suggest(name)
+                    .map(|code| format!("; did you mean `{code}`?"))
+                    .unwrap_or_default();
+                eprintln!(
+                    "gcodec: `{name}` is not a diagnostic code{hint}\n\
+                     `gcodec explain --list` lists them"
+                );
+                return EXIT_USAGE;
+            }
+        },
+        _ => codes::list(),
+    };
+    let _ = std::io::stdout().write_all(text.as_bytes());
+    EXIT_CLEAN
 }
 
 fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 {

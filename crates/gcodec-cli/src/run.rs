@@ -1,17 +1,19 @@
 //! `gcodec run`: runs a program on the machine a profile describes and
 //! streams its events (jsonl, a text trace, or one CSV row per block).
 
+use std::collections::HashMap;
 use std::io::{self, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::ValueEnum;
 use gcodec_driver::event::{
-    CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
+    CsvWriter, DiagnosticEvent, Event, EventKind, EventSink, EventSource, JsonlSink,
+    ProgramEndReason, TextSink,
 };
 use gcodec_driver::{RunReport, RunSetup, run_main};
-use gcodec_source::Diagnostic;
+use gcodec_source::{Diagnostic, SourceFile, codes};
 
 use crate::commands::{
     DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
@@ -89,32 +91,45 @@ fn parse_skip_levels(text: &str) -> Result<SkipLevels, String> {
 }
 
 /// Writes runtime diagnostics to stderr as they happen (besides the
-/// event stream, so a CI job sees them whatever the format), and hands
-/// every event on.
+/// event stream, so a CI job sees them whatever the format), rendered as
+/// static diagnostics are, and hands every event on.
 struct Diagnostics<S> {
     inner: S,
+    options: DiagnosticOptions,
+    /// The main program, and the called programs read once a diagnostic
+    /// points into them (`None`: the file cannot be read).
+    main: Arc<SourceFile>,
+    called: HashMap<Arc<str>, Option<SourceFile>>,
+}
+
+impl<S: EventSink> Diagnostics<S> {
+    fn new(inner: S, main: Arc<SourceFile>, options: DiagnosticOptions) -> Self {
+        Self {
+            inner,
+            options,
+            main,
+            called: HashMap::new(),
+        }
+    }
+
+    /// The file an event's position is in, where it can be read.
+    fn file(&mut self, name: &Arc<str>) -> Option<&SourceFile> {
+        if **name == *self.main.name() {
+            return Some(&self.main);
+        }
+        self.called
+            .entry(Arc::clone(name))
+            .or_insert_with(|| SourceFile::read(Path::new(&**name)).ok())
+            .as_ref()
+    }
 }
 
 impl<S: EventSink> EventSink for Diagnostics<S> {
     fn event(&mut self, event: &Event) -> io::Result<()> {
         if let EventKind::Diagnostic(d) = &event.kind {
-            let s = &event.source;
-            let mut line = format!(
-                "{}:{}:{}: {}[{}]: {}",
-                s.file,
-                s.line,
-                s.col,
-                d.severity.name(),
-                d.code,
-                d.message
-            );
-            if let Some(alarm) = d.alarm {
-                line.push_str(&format!(" (alarm {alarm})"));
-            }
-            if let Some(help) = &d.help {
-                line.push_str(&format!("\n  help: {help}"));
-            }
-            let _ = writeln!(io::stderr().lock(), "{line}");
+            let options = self.options;
+            let file = self.file(&event.source.file);
+            report(&[runtime_diagnostic(d, &event.source, file)], file, options);
         }
         self.inner.event(event)
     }
@@ -122,6 +137,30 @@ impl<S: EventSink> EventSink for Diagnostics<S> {
     fn finish(&mut self) -> io::Result<()> {
         self.inner.finish()
     }
+}
+
+/// A run-time diagnostic as a [`Diagnostic`]: labelled at its block where
+/// its file is known, its position in the message where not, its alarm
+/// number after the message.
+fn runtime_diagnostic(
+    event: &DiagnosticEvent,
+    source: &EventSource,
+    file: Option<&SourceFile>,
+) -> Diagnostic {
+    let mut message = event.message.to_string();
+    if let Some(alarm) = event.alarm {
+        message.push_str(&format!(" (alarm {alarm})"));
+    }
+    let span = file.and_then(|f| f.line_span(source.line, source.col));
+    if span.is_none() {
+        message = format!("{}:{}:{}: {message}", source.file, source.line, source.col);
+    }
+    let mut diagnostic = Diagnostic::new(event.code, message).with_severity(event.severity);
+    if let Some(span) = span {
+        diagnostic = diagnostic.with_label(span, "the run is here");
+    }
+    diagnostic.help = event.help.clone();
+    diagnostic
 }
 
 /// Events go nowhere (the CSV format writes rows, not events).
@@ -183,7 +222,7 @@ pub fn run(args: RunArgs) -> u8 {
             Err(e) => return output_error(&e),
         },
     };
-    let mut sink = Diagnostics { inner: events };
+    let mut sink = Diagnostics::new(events, Arc::clone(&file), options);
     let observer = rows.as_mut().map(|rows| rows as _);
     let RunReport {
         outcome,
@@ -223,7 +262,7 @@ fn output_error(e: &io::Error) -> u8 {
     if e.kind() == io::ErrorKind::BrokenPipe {
         return EXIT_CLEAN;
     }
-    let d = Diagnostic::error("gcodec::io::write", format!("cannot write the events: {e}"));
+    let d = Diagnostic::new(codes::io::WRITE, format!("cannot write the events: {e}"));
     let text = gcodec_source::render_diagnostics(&[d], None, Default::default());
     let _ = io::stderr().write_all(text.as_bytes());
     EXIT_USAGE

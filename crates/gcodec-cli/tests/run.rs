@@ -110,7 +110,7 @@ fn skip_levels_and_max_steps_and_no_stop() {
         stdout(&out)
     );
     assert!(
-        stderr(&out).contains("error[gcodec::run::step_limit]"),
+        stderr(&out).contains("gcodec::run::step_limit"),
         "{}",
         stderr(&out)
     );
@@ -128,10 +128,7 @@ fn a_missing_subprogram_is_an_alarm_naming_the_search_path() {
     ]);
     assert_eq!(code(&out), EXIT_DIAGNOSTICS);
     let err = stderr(&out);
-    assert!(
-        err.contains("error[gcodec::run::program_not_found]"),
-        "{err}"
-    );
+    assert!(err.contains("gcodec::run::program_not_found"), "{err}");
     assert!(err.contains("NOT_THERE") && err.contains("extra"), "{err}");
     assert_eq!(events(&out).last().expect("end")["reason"], "alarm");
 }
@@ -147,10 +144,7 @@ fn a_run_stops_with_an_alarm_at_the_first_block_with_errors_it_reaches() {
     assert_eq!(code(&out), EXIT_DIAGNOSTICS);
     let err = stderr(&out);
     assert!(err.contains("gcodec::lower::repeated_axis"), "{err}");
-    assert!(
-        err.contains("error[gcodec::run::block_with_errors]"),
-        "{err}"
-    );
+    assert!(err.contains("gcodec::run::block_with_errors"), "{err}");
     assert!(err.contains("bad.mpf:2:"), "{err}");
     let events = events(&out);
     let last = events.last().expect("end");
@@ -174,10 +168,7 @@ fn a_jump_finds_the_number_of_a_block_with_a_syntax_error_and_stops_there() {
     let out = gcodec(["run".as_ref(), file.as_os_str()]);
     assert_eq!(code(&out), EXIT_DIAGNOSTICS);
     let err = stderr(&out);
-    assert!(
-        err.contains("error[gcodec::run::block_with_errors]"),
-        "{err}"
-    );
+    assert!(err.contains("gcodec::run::block_with_errors"), "{err}");
     assert!(err.contains("jump.mpf:4:"), "{err}");
     let events = events(&out);
     assert_eq!(events.last().expect("end")["reason"], "alarm");

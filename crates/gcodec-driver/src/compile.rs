@@ -2,7 +2,6 @@
 //! the global names of definition files, and gather every diagnostic of
 //! both stages in source order.
 
-use std::borrow::Cow;
 use std::sync::Arc;
 
 use gcodec_ail::Document;
@@ -101,8 +100,8 @@ fn diagnostic_event(d: Diagnostic, file: &SourceFile, file_name: &Arc<str>) -> E
     let (line, col) = d.span().map_or((1, 1), |span| file.line_col(span.start));
     Event {
         kind: EventKind::Diagnostic(DiagnosticEvent {
-            code: Cow::Borrowed(d.code),
-            severity: d.severity.into(),
+            code: d.code,
+            severity: d.severity,
             message: d.message,
             alarm: None,
             help: d.help,

@@ -77,15 +77,12 @@ use std::io;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use gcodec_exec::event::{DiagnosticEvent, Event, EventKind, EventSeverity, EventSource};
-use gcodec_exec::loader::{
-    LoadError, LoadRequest, Loaded, PROGRAM_AMBIGUOUS, PROGRAM_NOT_FOUND, PROGRAM_UNREADABLE,
-    ProgramLoader,
-};
+use gcodec_exec::event::{DiagnosticEvent, Event, EventKind, EventSource};
+use gcodec_exec::loader::{LoadError, LoadRequest, Loaded, ProgramLoader};
 use gcodec_exec::program::Program;
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, ProgramKind};
-use gcodec_source::SourceFile;
+use gcodec_source::{Severity, SourceFile, codes};
 use rustc_hash::FxHashMap;
 
 use crate::compile;
@@ -393,7 +390,7 @@ fn shown(name: &str) -> String {
 
 fn invalid_name(request: &LoadRequest<'_>, why: &str) -> LoadError {
     LoadError {
-        code: PROGRAM_NOT_FOUND,
+        code: codes::run::PROGRAM_NOT_FOUND,
         message: format!(
             "{} `{}` names no program: {why}",
             what(request),
@@ -619,7 +616,7 @@ impl FileLoader {
                     Ok(loaded)
                 }
                 Err(e) => Err(LoadError {
-                    code: PROGRAM_UNREADABLE,
+                    code: codes::run::PROGRAM_UNREADABLE,
                     message: format!(
                         "{} `{}` is `{}`, which cannot be read: {e}",
                         what(request),
@@ -654,8 +651,8 @@ fn ambiguity(dir: &Path, found: &DirFile, program: &Program) -> Event {
     }
     Event {
         kind: EventKind::Diagnostic(DiagnosticEvent {
-            code: Cow::Borrowed(PROGRAM_AMBIGUOUS),
-            severity: EventSeverity::Warning,
+            code: codes::run::PROGRAM_AMBIGUOUS,
+            severity: Severity::Warning,
             message: Cow::Owned(format!(
                 "`{}` holds more than one file for the program `{}` ({files}); `{}` is used",
                 dir.display(),
@@ -703,7 +700,7 @@ fn not_found(
         String::new()
     };
     LoadError {
-        code: PROGRAM_NOT_FOUND,
+        code: codes::run::PROGRAM_NOT_FOUND,
         message: format!(
             "{} `{}`{looked_up} is not on the search path (searched: {list})",
             what(request),
@@ -830,7 +827,7 @@ impl ProgramLoader for MemoryLoader {
         let wanted = parse_request(request.name).map_err(|why| invalid_name(request, why))?;
         let Some(&index) = wanted.find_in(&self.index) else {
             return Err(LoadError {
-                code: PROGRAM_NOT_FOUND,
+                code: codes::run::PROGRAM_NOT_FOUND,
                 message: format!(
                     "{} `{}` is not among the {} program(s) given",
                     what(request),

@@ -4,13 +4,13 @@
 use std::path::Path;
 
 use gcodec_profile::Profile;
-use gcodec_source::{Diagnostic, SourceFile};
+use gcodec_source::{Diagnostic, SourceFile, codes};
 
 /// Reads a file; one that cannot be read is `gcodec::io::read`.
 pub fn read_source(path: &Path) -> Result<SourceFile, Diagnostic> {
     SourceFile::read(path).map_err(|e| {
-        Diagnostic::error(
-            "gcodec::io::read",
+        Diagnostic::new(
+            codes::io::READ,
             format!("cannot read `{}`: {e}", path.display()),
         )
         .with_help("check the path and that the file is readable")
@@ -35,8 +35,8 @@ pub struct ProfileError {
 /// warnings of the second check, or every problem found.
 pub fn load_profile(file: &SourceFile) -> Result<(Profile, Vec<Diagnostic>), ProfileError> {
     let Ok(text) = std::str::from_utf8(file.bytes()) else {
-        let d = Diagnostic::error(
-            "gcodec::profile::syntax",
+        let d = Diagnostic::new(
+            codes::profile::SYNTAX,
             format!("`{}` is not UTF-8 text", file.name()),
         )
         .with_help("TOML files are UTF-8");

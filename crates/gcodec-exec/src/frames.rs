@@ -48,15 +48,10 @@
 use std::sync::Arc;
 
 use gcodec_profile::Profile;
+use gcodec_source::codes;
 
 use crate::geometry::Plane;
-use crate::value::{FrameAxis, FrameValue, RtValue, RunError, codes};
-
-/// The code of a frame instruction or frame value the control rejects: a
-/// rotation of an axis that is no geometry axis, a scale of 0, a value that
-/// is not a finite number, a rotation that would move a geometry axis the
-/// machine does not have.
-pub const FRAME: &str = "gcodec::run::frame";
+use crate::value::{FrameAxis, FrameValue, RtValue, RunError};
 
 type Mat3 = [[f64; 3]; 3];
 
@@ -505,13 +500,13 @@ impl Frame {
         if let Some(r) = rpl {
             if !op.is_rotation() {
                 return Err(RunError::new(
-                    FRAME,
+                    codes::run::FRAME,
                     format!("`{keyword}`: `RPL=` belongs to `ROT` and `AROT`"),
                 ));
             }
             if !r.is_finite() {
                 return Err(RunError::new(
-                    FRAME,
+                    codes::run::FRAME,
                     format!("`{keyword} RPL={r}`: the angle is not a finite number"),
                 ));
             }
@@ -704,7 +699,7 @@ impl Frame {
     }
 
     /// A frame from a FRAME value. Every axis with a non-neutral component
-    /// must be a channel axis ([`codes::UNKNOWN_AXIS`]); a rotation only on
+    /// must be a channel axis ([`codes::run::UNKNOWN_AXIS`]); a rotation only on
     /// a geometry axis, a scale not 0, every component finite ([`FRAME`]).
     pub fn from_value(axes: &FrameAxes, value: &FrameValue) -> Result<Frame, RunError> {
         let mut f = Frame::neutral(axes);
@@ -720,7 +715,7 @@ impl Frame {
                     continue;
                 }
                 return Err(RunError::new(
-                    codes::UNKNOWN_AXIS,
+                    codes::run::UNKNOWN_AXIS,
                     format!("the frame names `{}`, not an axis of the channel", fa.axis),
                 ));
             };
@@ -732,7 +727,7 @@ impl Frame {
             ] {
                 if !v.is_finite() {
                     return Err(RunError::new(
-                        FRAME,
+                        codes::run::FRAME,
                         format!(
                             "the frame's `{},{what}` is {v}, not a finite number",
                             fa.axis
@@ -768,13 +763,13 @@ impl Frame {
             let finite = a.coarse.is_finite() && a.fine.is_finite() && a.scale.is_finite();
             if !finite {
                 return Err(RunError::new(
-                    FRAME,
+                    codes::run::FRAME,
                     format!("`{what}`: the frame's components exceed the range of a REAL"),
                 ));
             }
             if a.scale == 0.0 {
                 return Err(RunError::new(
-                    FRAME,
+                    codes::run::FRAME,
                     format!("`{what}`: the resulting scale is 0"),
                 ));
             }
@@ -782,7 +777,7 @@ impl Frame {
         let m = &self.rotation.m;
         if !m.iter().flatten().all(|x| x.is_finite()) {
             return Err(RunError::new(
-                FRAME,
+                codes::run::FRAME,
                 format!("`{what}`: the rotation is not finite"),
             ));
         }
@@ -792,7 +787,7 @@ impl Frame {
             for other in (0..3).filter(|&s| s != missing) {
                 if m[missing][other].abs() > 1e-12 || m[other][missing].abs() > 1e-12 {
                     return Err(RunError::new(
-                        FRAME,
+                        codes::run::FRAME,
                         format!(
                             "`{what}`: the rotation would move the geometry axis {} the machine does not have",
                             SLOT_NAMES[missing]
@@ -809,13 +804,13 @@ fn check_values(axes: &FrameAxes, keyword: &str, values: &[(usize, f64)]) -> Res
     for &(i, v) in values {
         let Some(name) = axes.name(i) else {
             return Err(RunError::new(
-                codes::UNKNOWN_AXIS,
+                codes::run::UNKNOWN_AXIS,
                 format!("`{keyword}`: axis index {i} is not a channel axis"),
             ));
         };
         if !v.is_finite() {
             return Err(RunError::new(
-                FRAME,
+                codes::run::FRAME,
                 format!("`{keyword} {name}={v}`: the value is not a finite number"),
             ));
         }
@@ -842,7 +837,7 @@ fn rotation_frame(
     if let Some(r) = rpl {
         if !values.is_empty() {
             return Err(RunError::new(
-                FRAME,
+                codes::run::FRAME,
                 format!("`{keyword}`: `RPL=` and axis angles cannot be combined"),
             ));
         }
@@ -872,14 +867,14 @@ fn scale_frame(
 
 fn not_geometry(what: &str, axis: &str) -> RunError {
     RunError::new(
-        FRAME,
+        codes::run::FRAME,
         format!("{what}: {axis} is not a geometry axis; only the geometry axes rotate"),
     )
 }
 
 fn scale_zero(what: &str, axis: &str) -> RunError {
     RunError::new(
-        FRAME,
+        codes::run::FRAME,
         format!("{what} scale of {axis} is 0: a scale factor must not be 0"),
     )
 }
@@ -892,7 +887,7 @@ fn scale_zero(what: &str, axis: &str) -> RunError {
 /// angle, …)` (RPY, geometry axes), `CSCALE(axis, factor, …)`,
 /// `CMIRROR(axis, …)` and `INVFRAME(frame)`; with no arguments the first
 /// five give the neutral frame. `CRPL`, `CROTS`, `ADDFRAME`, `MEAFRAME` are
-/// known but not supported ([`codes::UNKNOWN_FUNCTION`] saying so). `None`:
+/// known but not supported ([`codes::run::UNKNOWN_FUNCTION`] saying so). `None`:
 /// `name` is no frame function.
 pub fn frame_function(
     axes: &FrameAxes,
@@ -937,12 +932,12 @@ pub fn frame_function(
             [Some(RtValue::Frame(v))] => Frame::from_value(axes, v).map(|f| f.inverse()),
             [Some(other)] => Err(RunError::type_mismatch(other, "FRAME")),
             _ => Err(RunError::new(
-                codes::ARGUMENT_COUNT,
+                codes::run::ARGUMENT_COUNT,
                 "`INVFRAME` takes one frame",
             )),
         },
         "CRPL" | "CROTS" | "ADDFRAME" | "MEAFRAME" => Err(RunError::new(
-            codes::UNKNOWN_FUNCTION,
+            codes::run::UNKNOWN_FUNCTION,
             format!("`{upper}` is not supported by the executor yet"),
         )),
         _ => return None,
@@ -961,7 +956,7 @@ fn pairs(
 ) -> Result<Vec<(usize, f64)>, RunError> {
     if !args.len().is_multiple_of(2) {
         return Err(RunError::new(
-            codes::ARGUMENT_COUNT,
+            codes::run::ARGUMENT_COUNT,
             format!(
                 "`{name}` takes pairs of an axis and a value, not {} arguments",
                 args.len()
@@ -989,12 +984,12 @@ fn axis_arg(
     match args.get(k) {
         Some(Some(RtValue::Axis(a))) => axes.index_of(a).ok_or_else(|| {
             RunError::new(
-                codes::UNKNOWN_AXIS,
+                codes::run::UNKNOWN_AXIS,
                 format!("`{name}`: `{a}` is not an axis of the channel"),
             )
         }),
         Some(Some(other)) => Err(RunError::new(
-            codes::TYPE_MISMATCH,
+            codes::run::TYPE_MISMATCH,
             format!(
                 "`{name}`: argument {} must be an axis, not a {} value",
                 k + 1,
@@ -1007,7 +1002,7 @@ fn axis_arg(
 
 fn omitted(name: &str, k: usize) -> RunError {
     RunError::new(
-        codes::ARGUMENT_COUNT,
+        codes::run::ARGUMENT_COUNT,
         format!("`{name}`: argument {} is omitted", k + 1),
     )
 }

@@ -27,6 +27,7 @@
 //!   is the abscissa and `v` the ordinate, so angles are the usual polar
 //!   angles of the plane and a positive sweep is `G3`.
 
+use gcodec_source::{Code, codes};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -283,21 +284,21 @@ pub enum ArcError {
 
 impl ArcError {
     /// The stable diagnostic code.
-    pub const fn code(&self) -> &'static str {
+    pub const fn code(&self) -> &'static Code {
         match self {
-            ArcError::NonFinite { .. } => "gcodec::run::circle_non_finite",
-            ArcError::InvalidTolerance => "gcodec::run::circle_tolerance",
-            ArcError::EndPointNotOnCircle { .. } => "gcodec::run::circle_end_point",
-            ArcError::ZeroRadius => "gcodec::run::circle_zero_radius",
-            ArcError::RadiusTooSmall { .. } => "gcodec::run::circle_radius_too_small",
-            ArcError::ZeroChord => "gcodec::run::circle_zero_chord",
-            ArcError::OpeningAngle { .. } => "gcodec::run::circle_opening_angle",
-            ArcError::CollinearPoints => "gcodec::run::circle_collinear",
-            ArcError::TangentMissing => "gcodec::run::circle_tangent_missing",
-            ArcError::TangentStraight => "gcodec::run::circle_tangent_straight",
-            ArcError::Turns { .. } => "gcodec::run::circle_turns",
-            ArcError::TurnsWithIntermediate => "gcodec::run::circle_turns_cip",
-            ArcError::OutOfRange => "gcodec::run::circle_out_of_range",
+            ArcError::NonFinite { .. } => codes::run::CIRCLE_NON_FINITE,
+            ArcError::InvalidTolerance => codes::run::CIRCLE_TOLERANCE,
+            ArcError::EndPointNotOnCircle { .. } => codes::run::CIRCLE_END_POINT,
+            ArcError::ZeroRadius => codes::run::CIRCLE_ZERO_RADIUS,
+            ArcError::RadiusTooSmall { .. } => codes::run::CIRCLE_RADIUS_TOO_SMALL,
+            ArcError::ZeroChord => codes::run::CIRCLE_ZERO_CHORD,
+            ArcError::OpeningAngle { .. } => codes::run::CIRCLE_OPENING_ANGLE,
+            ArcError::CollinearPoints => codes::run::CIRCLE_COLLINEAR,
+            ArcError::TangentMissing => codes::run::CIRCLE_TANGENT_MISSING,
+            ArcError::TangentStraight => codes::run::CIRCLE_TANGENT_STRAIGHT,
+            ArcError::Turns { .. } => codes::run::CIRCLE_TURNS,
+            ArcError::TurnsWithIntermediate => codes::run::CIRCLE_TURNS_CIP,
+            ArcError::OutOfRange => codes::run::CIRCLE_OUT_OF_RANGE,
         }
     }
 }

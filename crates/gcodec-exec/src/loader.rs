@@ -13,16 +13,10 @@ use std::fmt;
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use gcodec_source::{Code, Severity};
+
 use crate::event::{DiagnosticEvent, Event};
 use crate::program::Program;
-
-/// The program is not on the search path, or its name cannot name a
-/// program.
-pub const PROGRAM_NOT_FOUND: &str = "gcodec::run::program_not_found";
-/// The program's file was found but cannot be read.
-pub const PROGRAM_UNREADABLE: &str = "gcodec::run::program_unreadable";
-/// A directory holds more than one file for the program (a warning).
-pub const PROGRAM_AMBIGUOUS: &str = "gcodec::run::program_ambiguous";
 
 // ---------------------------------------------------------------------------
 // The loader interface
@@ -80,7 +74,7 @@ pub struct Loaded {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct LoadError {
     /// [`PROGRAM_NOT_FOUND`] or [`PROGRAM_UNREADABLE`].
-    pub code: &'static str,
+    pub code: &'static Code,
     /// One sentence naming the program and, when not found, every
     /// directory searched.
     pub message: String,
@@ -96,8 +90,8 @@ impl LoadError {
     /// channel sets it).
     pub fn to_diagnostic(&self) -> DiagnosticEvent {
         DiagnosticEvent {
-            code: Cow::Borrowed(self.code),
-            severity: crate::event::EventSeverity::Error,
+            code: self.code,
+            severity: Severity::Error,
             message: Cow::Owned(self.message.clone()),
             alarm: None,
             help: self.help.clone().map(Cow::Owned),

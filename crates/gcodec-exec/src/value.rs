@@ -14,65 +14,25 @@
 //! into BOOL (empty is FALSE) and into CHAR (exactly one character); AXIS
 //! and FRAME only into themselves. REAL to INT (and CHAR) rounds half away
 //! from zero (`2.5` → 3, `-2.5` → −3). A conversion that fails is a
-//! [`RunError`] with a stable code (see [`codes`]).
+//! [`RunError`] with a stable code (from the registry, [`codes::run`]).
 
 use std::fmt;
 use std::sync::Arc;
 
 use gcodec_lang::DataType;
 use gcodec_lang::types::MAX_STRING_LEN;
+use gcodec_source::{Code, codes};
 
-/// The stable codes of run-time errors. The executor turns a [`RunError`]
-/// into a diagnostic event with this code.
-pub mod codes {
-    /// `/`, `DIV` or `MOD` by zero.
-    pub const DIVISION_BY_ZERO: &str = "gcodec::run::division_by_zero";
-    /// A function argument outside the function's domain (`SQRT(-1)`,
-    /// `LN(0)`, `ASIN(2)`).
-    pub const DOMAIN: &str = "gcodec::run::domain";
-    /// A value of a type that cannot be converted to the one needed.
-    pub const TYPE_MISMATCH: &str = "gcodec::run::type_mismatch";
-    /// A number outside the range of the target type (INT, CHAR).
-    pub const OVERFLOW: &str = "gcodec::run::overflow";
-    /// A string longer than its variable's `STRING[n]`.
-    pub const STRING_TOO_LONG: &str = "gcodec::run::string_too_long";
-    /// A function neither built in nor provided by the runtime.
-    pub const UNKNOWN_FUNCTION: &str = "gcodec::run::unknown_function";
-    /// Too few or too many arguments, or an omitted one that is needed.
-    pub const ARGUMENT_COUNT: &str = "gcodec::run::argument_count";
-    /// An index outside `0 … dimension−1` (the control's alarm 17020).
-    pub const INDEX_OUT_OF_RANGE: &str = "gcodec::run::index_out_of_range";
-    /// A variable referenced with the wrong number of indices.
-    pub const INDEX_COUNT: &str = "gcodec::run::index_count";
-    /// A name that is no variable (and no axis) when it is read or
-    /// written (alarm 12550).
-    pub const UNDEFINED_VARIABLE: &str = "gcodec::run::undefined_variable";
-    /// A system variable the runtime does not know or has no value for.
-    pub const SYSTEM_VARIABLE: &str = "gcodec::run::system_variable";
-    /// A system variable that cannot be written.
-    pub const READ_ONLY: &str = "gcodec::run::read_only";
-    /// `NUMBER` of a string that is no number.
-    pub const INVALID_NUMBER: &str = "gcodec::run::invalid_number";
-    /// An axis name the machine does not have (`AXNAME("Q")`).
-    pub const UNKNOWN_AXIS: &str = "gcodec::run::unknown_axis";
-    /// A bad `SPRINT` format.
-    pub const FORMAT: &str = "gcodec::run::format";
-    /// A bad declaration (dimension 0, too many dimensions, too large).
-    pub const INVALID_DECLARATION: &str = "gcodec::run::invalid_declaration";
-    /// An expression nested deeper than the evaluator goes.
-    pub const TOO_DEEP: &str = "gcodec::run::expression_too_deep";
-}
-
-/// A run-time error: a stable code ([`codes`]) and a message naming what
+/// A run-time error: a stable code (from [`codes::run`]) and a message naming what
 /// failed. Never a panic: the executor reports it as a diagnostic event.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct RunError {
-    pub code: &'static str,
+    pub code: &'static Code,
     pub message: String,
 }
 
 impl RunError {
-    pub fn new(code: &'static str, message: impl Into<String>) -> Self {
+    pub fn new(code: &'static Code, message: impl Into<String>) -> Self {
         Self {
             code,
             message: message.into(),
@@ -81,7 +41,7 @@ impl RunError {
 
     pub(crate) fn type_mismatch(from: &RtValue, to: &str) -> Self {
         Self::new(
-            codes::TYPE_MISMATCH,
+            codes::run::TYPE_MISMATCH,
             format!("a {} value cannot be converted to {to}", from.type_name()),
         )
     }
@@ -273,7 +233,7 @@ fn component_name(component: &RtValue) -> Result<&str, RunError> {
 
 fn not_a_component(name: &str) -> RunError {
     RunError::new(
-        codes::TYPE_MISMATCH,
+        codes::run::TYPE_MISMATCH,
         format!("`{name}` is not a frame component (TR, FI, RT, SC, MI)"),
     )
 }
@@ -394,7 +354,7 @@ impl RtValue {
                 return match s.as_bytes() {
                     [c] => Ok(*c),
                     _ => Err(RunError::new(
-                        codes::TYPE_MISMATCH,
+                        codes::run::TYPE_MISMATCH,
                         format!(
                             "the string \"{s}\" has {} characters: a CHAR is one",
                             s.len()
@@ -406,7 +366,7 @@ impl RtValue {
         };
         u8::try_from(code).map_err(|_| {
             RunError::new(
-                codes::OVERFLOW,
+                codes::run::OVERFLOW,
                 format!("{code} is outside the range of a CHAR (0…255)"),
             )
         })
@@ -437,7 +397,7 @@ impl RtValue {
                 };
                 if s.len() > max_len as usize {
                     return Err(RunError::new(
-                        codes::STRING_TOO_LONG,
+                        codes::run::STRING_TOO_LONG,
                         format!(
                             "a string of {} characters does not fit a STRING[{max_len}]",
                             s.len()
@@ -481,12 +441,12 @@ impl RtValue {
 }
 
 /// A REAL rounded half away from zero to an INT; out of range is
-/// [`codes::OVERFLOW`].
+/// [`codes::run::OVERFLOW`].
 pub fn real_to_int(r: f64) -> Result<i32, RunError> {
     let rounded = r.round();
     if rounded.is_nan() || rounded < f64::from(i32::MIN) || rounded > f64::from(i32::MAX) {
         Err(RunError::new(
-            codes::OVERFLOW,
+            codes::run::OVERFLOW,
             format!("{r} is outside the range of an INT"),
         ))
     } else {
@@ -571,7 +531,7 @@ mod tests {
         );
         assert_eq!(
             f.component_of("X", &RtValue::Int(1)).unwrap_err().code,
-            codes::TYPE_MISMATCH
+            "gcodec::run::type_mismatch"
         );
     }
 }

@@ -25,8 +25,9 @@ use std::sync::Arc;
 
 use gcodec_ail::VarKind;
 use gcodec_lang::DataType;
+use gcodec_source::codes;
 
-use crate::value::{RtValue, RunError, codes};
+use crate::value::{RtValue, RunError};
 
 /// The number of R parameters when nothing says otherwise (MD28050).
 pub const DEFAULT_R_PARAMETERS: usize = 100;
@@ -72,7 +73,7 @@ impl Variable {
     fn new(ty: DataType, dims: &[usize]) -> Result<Self, RunError> {
         if dims.len() > MAX_DIMENSIONS {
             return Err(RunError::new(
-                codes::INVALID_DECLARATION,
+                codes::run::INVALID_DECLARATION,
                 format!(
                     "{} dimensions: at most {MAX_DIMENSIONS} are allowed",
                     dims.len()
@@ -84,7 +85,7 @@ impl Variable {
         for (slot, &n) in d.iter_mut().zip(dims) {
             if n == 0 {
                 return Err(RunError::new(
-                    codes::INVALID_DECLARATION,
+                    codes::run::INVALID_DECLARATION,
                     "an array dimension must be at least 1",
                 ));
             }
@@ -93,7 +94,7 @@ impl Variable {
         }
         if total > MAX_ELEMENTS {
             return Err(RunError::new(
-                codes::INVALID_DECLARATION,
+                codes::run::INVALID_DECLARATION,
                 format!("an array of {total} elements is larger than {MAX_ELEMENTS}"),
             ));
         }
@@ -123,7 +124,7 @@ impl Variable {
             let ok = usize::try_from(index).ok().filter(|&x| x < dim);
             let Some(index) = ok else {
                 return Err(RunError::new(
-                    codes::INDEX_OUT_OF_RANGE,
+                    codes::run::INDEX_OUT_OF_RANGE,
                     format!(
                         "index {index} of `{name}` is outside 0…{} (dimension {})",
                         dim - 1,
@@ -143,7 +144,7 @@ impl Variable {
             ""
         };
         RunError::new(
-            codes::INDEX_COUNT,
+            codes::run::INDEX_COUNT,
             format!("`{name}` takes {} indices{extra}, not {given}", self.rank),
         )
     }
@@ -170,7 +171,7 @@ impl Variable {
                 .map(|&c| RtValue::Char(c))
                 .ok_or_else(|| {
                     RunError::new(
-                        codes::INDEX_OUT_OF_RANGE,
+                        codes::run::INDEX_OUT_OF_RANGE,
                         format!(
                             "character {at} of `{name}` is outside the string of {} characters",
                             s.len()
@@ -201,7 +202,7 @@ impl Variable {
             let at = indices[rank];
             let Some(i) = usize::try_from(at).ok().filter(|&i| i < s.len()) else {
                 return Err(RunError::new(
-                    codes::INDEX_OUT_OF_RANGE,
+                    codes::run::INDEX_OUT_OF_RANGE,
                     format!(
                         "character {at} of `{name}` is outside the string of {} characters",
                         s.len()
@@ -474,7 +475,7 @@ impl Variables {
 
     fn r_out_of_range(&self, index: i32) -> RunError {
         RunError::new(
-            codes::INDEX_OUT_OF_RANGE,
+            codes::run::INDEX_OUT_OF_RANGE,
             format!(
                 "R{index} is outside R0…R{} (MD28050 $MC_MM_NUM_R_PARAM)",
                 self.r.len().saturating_sub(1)
@@ -525,7 +526,7 @@ impl Variables {
     /// Writes consecutive elements from the one `start` names on (all
     /// indices, or none for the first element), in storage order; `None`
     /// leaves its element as it is. More values than elements from
-    /// `start` on is [`codes::INDEX_OUT_OF_RANGE`] and writes nothing.
+    /// `start` on is [`codes::run::INDEX_OUT_OF_RANGE`] and writes nothing.
     pub fn write_list(
         &mut self,
         kind: VarKind,
@@ -579,7 +580,7 @@ impl Variables {
         let first = usize::try_from(first).map_err(|_| self.r_out_of_range(first))?;
         if first.saturating_add(count) > self.r.len() {
             return Err(RunError::new(
-                codes::INDEX_OUT_OF_RANGE,
+                codes::run::INDEX_OUT_OF_RANGE,
                 format!(
                     "{count} values from R{first} on go past R{}",
                     self.r.len().saturating_sub(1)
@@ -601,7 +602,7 @@ fn r_start(start: &[i32]) -> Result<i32, RunError> {
 fn check_span(name: &str, first: usize, count: usize, len: usize) -> Result<(), RunError> {
     if first.saturating_add(count) > len {
         return Err(RunError::new(
-            codes::INDEX_OUT_OF_RANGE,
+            codes::run::INDEX_OUT_OF_RANGE,
             format!(
                 "{count} values from element {first} on go past the {len} elements of `{name}`"
             ),
@@ -612,14 +613,14 @@ fn check_span(name: &str, first: usize, count: usize, len: usize) -> Result<(), 
 
 fn r_index_count(given: usize) -> RunError {
     RunError::new(
-        codes::INDEX_COUNT,
+        codes::run::INDEX_COUNT,
         format!("an R parameter takes one index, not {given}"),
     )
 }
 
 pub(crate) fn undefined(name: &str) -> RunError {
     RunError::new(
-        codes::UNDEFINED_VARIABLE,
+        codes::run::UNDEFINED_VARIABLE,
         format!("`{name}` is not defined here"),
     )
 }

@@ -14,10 +14,8 @@ use std::sync::Arc;
 
 use gcodec_driver::SearchPath;
 use gcodec_exec::channel::RunOptions;
-use gcodec_exec::event::{
-    CountingSink, Event, EventKind, EventSeverity, EventSink, ProgramEndReason,
-};
-use gcodec_source::SourceFile;
+use gcodec_exec::event::{CountingSink, Event, EventKind, EventSink, ProgramEndReason};
+use gcodec_source::{Severity, SourceFile};
 use gcodec_testkit::corpus::{definitions, machine_profile};
 use gcodec_testkit::{corpus_dir, programs};
 
@@ -43,7 +41,7 @@ struct Outcome {
 impl EventSink for Outcome {
     fn event(&mut self, event: &Event) -> std::io::Result<()> {
         if let EventKind::Diagnostic(d) = &event.kind
-            && d.severity == EventSeverity::Error
+            && d.severity == Severity::Error
         {
             self.last_error = Some((d.code.to_string(), event.source.line, d.message.to_string()));
         }

@@ -11,10 +11,11 @@ use gcodec_ail::{Expr, Op, Value, VarKind};
 use gcodec_exec::eval::{
     self, Env, NoMachine, RuntimeInterface, assign, assign_list, declare, eval, sprint,
 };
-use gcodec_exec::value::{RtValue, RunError, codes};
+use gcodec_exec::value::{RtValue, RunError};
 use gcodec_exec::vars::{DEFAULT_R_PARAMETERS, Init, Scope, Variables};
 use gcodec_lang::{BinaryOp as B, DataType, UnaryOp as U};
 use gcodec_profile::Profile;
+use gcodec_source::codes;
 
 // ---------------------------------------------------------------------
 // Counting allocations per thread
@@ -189,14 +190,17 @@ fn div_truncates_and_mod_takes_the_sign_of_the_dividend() {
 fn division_by_zero_is_an_error_with_its_code() {
     for op in [B::Div, B::IntDiv, B::Mod] {
         let e = err(bin(op, n(1.0), n(0.0)));
-        assert_eq!(e.code, codes::DIVISION_BY_ZERO, "{op:?}");
+        assert_eq!(e.code, codes::run::DIVISION_BY_ZERO, "{op:?}");
         assert_eq!(
             err(bin(op, n(1.5), n(0.0))).code,
-            codes::DIVISION_BY_ZERO,
+            codes::run::DIVISION_BY_ZERO,
             "{op:?}"
         );
     }
-    assert_eq!(codes::DIVISION_BY_ZERO, "gcodec::run::division_by_zero");
+    assert_eq!(
+        codes::run::DIVISION_BY_ZERO,
+        "gcodec::run::division_by_zero"
+    );
 }
 
 #[test]
@@ -221,7 +225,10 @@ fn bitwise_and_logical_operators() {
     // Numbers are truth values: not 0 is TRUE.
     assert_eq!(ok(bin(B::And, n(2.0), n(0.5))), RtValue::Bool(true));
     assert_eq!(ok(un(U::Not, n(0.0))), RtValue::Bool(true));
-    assert_eq!(err(bin(B::BAnd, s("A"), n(1.0))).code, codes::TYPE_MISMATCH);
+    assert_eq!(
+        err(bin(B::BAnd, s("A"), n(1.0))).code,
+        codes::run::TYPE_MISMATCH
+    );
 }
 
 #[test]
@@ -241,7 +248,10 @@ fn comparisons_of_reals_are_relative() {
     // Strings compare by bytes; a CHAR is a one-character string.
     assert_eq!(ok(bin(B::Eq, s("AB"), s("AB"))), RtValue::Bool(true));
     assert_eq!(ok(bin(B::Lt, s("AB"), s("AC"))), RtValue::Bool(true));
-    assert_eq!(err(bin(B::Eq, s("1"), n(1.0))).code, codes::TYPE_MISMATCH);
+    assert_eq!(
+        err(bin(B::Eq, s("1"), n(1.0))).code,
+        codes::run::TYPE_MISMATCH
+    );
 }
 
 #[test]
@@ -283,8 +293,8 @@ fn trigonometry_is_in_degrees() {
     assert_eq!(real(call("ATAN2", vec![n(1.0), n(-1.0)])), 135.0);
     assert_eq!(real(call("ASIN", vec![n(0.5)])), 30.0);
     assert_eq!(real(call("ACOS", vec![n(0.5)])), 60.0);
-    assert_eq!(err(call("ASIN", vec![n(2.0)])).code, codes::DOMAIN);
-    assert_eq!(err(call("TAN", vec![n(90.0)])).code, codes::DOMAIN);
+    assert_eq!(err(call("ASIN", vec![n(2.0)])).code, codes::run::DOMAIN);
+    assert_eq!(err(call("TAN", vec![n(90.0)])).code, codes::run::DOMAIN);
 }
 
 #[test]
@@ -306,9 +316,9 @@ fn arithmetic_functions() {
     assert_eq!(real(call("BOUND", vec![n(0.0), n(10.0), n(-2.0)])), 0.0);
     assert_eq!(real(call("BOUND", vec![n(0.0), n(10.0), n(4.0)])), 4.0);
     let e = err(call("SQRT", vec![n(-1.0)]));
-    assert_eq!(e.code, codes::DOMAIN);
+    assert_eq!(e.code, codes::run::DOMAIN);
     assert!(e.message.contains("SQRT"), "{}", e.message);
-    assert_eq!(err(call("LN", vec![n(0.0)])).code, codes::DOMAIN);
+    assert_eq!(err(call("LN", vec![n(0.0)])).code, codes::run::DOMAIN);
 }
 
 #[test]
@@ -316,7 +326,7 @@ fn conversion_functions() {
     assert_eq!(ok(call("RTOI", vec![n(2.5)])), RtValue::Int(3));
     assert_eq!(ok(call("RTOI", vec![n(-2.5)])), RtValue::Int(-3));
     assert_eq!(ok(call("RTOI", vec![n(2.4)])), RtValue::Int(2));
-    assert_eq!(err(call("RTOI", vec![n(1e10)])).code, codes::OVERFLOW);
+    assert_eq!(err(call("RTOI", vec![n(1e10)])).code, codes::run::OVERFLOW);
     assert_eq!(ok(call("ITOR", vec![n(2.0)])), RtValue::Real(2.0));
     assert_eq!(ok(call("RTOB", vec![n(0.0)])), RtValue::Bool(false));
     assert_eq!(ok(call("RTOB", vec![n(0.1)])), RtValue::Bool(true));
@@ -327,18 +337,21 @@ fn conversion_functions() {
     assert_eq!(ok(call("NUMBER", vec![s("2EX3")])), RtValue::Real(2000.0));
     assert_eq!(
         err(call("NUMBER", vec![s("1.5MM")])).code,
-        codes::INVALID_NUMBER
+        codes::run::INVALID_NUMBER
     );
     assert_eq!(ok(call("ISNUMBER", vec![s("12")])), RtValue::Bool(true));
     assert_eq!(ok(call("ISNUMBER", vec![s("inf")])), RtValue::Bool(false));
     assert_eq!(ok(call("ISNUMBER", vec![s("")])), RtValue::Bool(false));
     assert_eq!(ok(call("AXNAME", vec![s("y")])), RtValue::axis("Y"));
-    assert_eq!(err(call("AXNAME", vec![s("Q")])).code, codes::UNKNOWN_AXIS);
+    assert_eq!(
+        err(call("AXNAME", vec![s("Q")])).code,
+        codes::run::UNKNOWN_AXIS
+    );
     // An axis name as a value: `AXSTRING(Z)`.
     assert_eq!(text(call("AXSTRING", vec![var("Z", vec![])])), "Z");
     assert_eq!(
         err(call("AXSTRING", vec![n(1.0)])).code,
-        codes::TYPE_MISMATCH
+        codes::run::TYPE_MISMATCH
     );
 }
 
@@ -358,14 +371,14 @@ fn string_functions() {
     assert_eq!(text(call("SUBSTR", vec![t(), n(9.0), n(10.0)])), "LD");
     assert_eq!(
         err(call("SUBSTR", vec![t(), n(-1.0)])).code,
-        codes::INDEX_OUT_OF_RANGE
+        codes::run::INDEX_OUT_OF_RANGE
     );
     assert_eq!(text(call("TOLOWER", vec![s("AbC1")])), "abc1");
     assert_eq!(text(call("TOUPPER", vec![s("AbC1")])), "ABC1");
     // A CHAR where a one-character string is needed.
     assert_eq!(
         err(call("INDEX", vec![t(), s("OR")])).code,
-        codes::TYPE_MISMATCH
+        codes::run::TYPE_MISMATCH
     );
 }
 
@@ -414,11 +427,11 @@ fn sprint_directives() {
     assert_eq!(sprint("100%%", &[]).unwrap(), "100%");
     assert_eq!(
         sprint("%Q", &v(&[RtValue::Int(1)])).unwrap_err().code,
-        codes::FORMAT
+        codes::run::FORMAT
     );
     assert_eq!(
         sprint("%D %D", &v(&[RtValue::Int(1)])).unwrap_err().code,
-        codes::ARGUMENT_COUNT
+        codes::run::ARGUMENT_COUNT
     );
     // Through the evaluator.
     assert_eq!(text(call("SPRINT", vec![s("R=%.1F"), n(2.25)])), "R=2.2");
@@ -429,17 +442,20 @@ fn function_errors_have_codes() {
     let e = err(call("NOSUCH", vec![n(1.0)]));
     assert_eq!(e.code, "gcodec::run::unknown_function");
     assert!(e.message.contains("NOSUCH"));
-    assert_eq!(err(call("SIN", vec![])).code, codes::ARGUMENT_COUNT);
+    assert_eq!(err(call("SIN", vec![])).code, codes::run::ARGUMENT_COUNT);
     assert_eq!(
         err(call("SIN", vec![n(1.0), n(2.0)])).code,
-        codes::ARGUMENT_COUNT
+        codes::run::ARGUMENT_COUNT
     );
-    assert_eq!(err(call("SIN", vec![s("A")])).code, codes::TYPE_MISMATCH);
+    assert_eq!(
+        err(call("SIN", vec![s("A")])).code,
+        codes::run::TYPE_MISMATCH
+    );
     let omitted = Expr::Call {
         name: "ATAN2".into(),
         args: vec![Some(n(1.0)), None],
     };
-    assert_eq!(err(omitted).code, codes::ARGUMENT_COUNT);
+    assert_eq!(err(omitted).code, codes::run::ARGUMENT_COUNT);
 }
 
 /// A runtime that adds one function: the executor's hook for frame and
@@ -465,7 +481,7 @@ fn the_runtime_provides_further_functions() {
     );
     assert_eq!(
         eval(&Env::new(&vars, &NoMachine), &e).unwrap_err().code,
-        codes::UNKNOWN_FUNCTION
+        codes::run::UNKNOWN_FUNCTION
     );
 }
 
@@ -480,7 +496,7 @@ fn conversions_follow_the_control_table() {
     assert_eq!(RtValue::Real(2.49).convert_to(int), Ok(RtValue::Int(2)));
     assert_eq!(
         RtValue::Real(3e9).convert_to(int).unwrap_err().code,
-        codes::OVERFLOW
+        codes::run::OVERFLOW
     );
     assert_eq!(
         RtValue::Int(3).convert_to(DataType::Real),
@@ -507,7 +523,7 @@ fn conversions_follow_the_control_table() {
             .convert_to(DataType::Char)
             .unwrap_err()
             .code,
-        codes::OVERFLOW
+        codes::run::OVERFLOW
     );
     let string = DataType::String { length: Some(5) };
     assert_eq!(
@@ -516,23 +532,23 @@ fn conversions_follow_the_control_table() {
     );
     assert_eq!(
         RtValue::from("ABCDEF").convert_to(string).unwrap_err().code,
-        codes::STRING_TOO_LONG
+        codes::run::STRING_TOO_LONG
     );
     // Nothing numeric into STRING, AXIS or FRAME.
     assert_eq!(
         RtValue::Int(1).convert_to(string).unwrap_err().code,
-        codes::TYPE_MISMATCH
+        codes::run::TYPE_MISMATCH
     );
     assert_eq!(
         RtValue::Int(1).convert_to(DataType::Axis).unwrap_err().code,
-        codes::TYPE_MISMATCH
+        codes::run::TYPE_MISMATCH
     );
     assert_eq!(
         RtValue::Int(1)
             .convert_to(DataType::Frame)
             .unwrap_err()
             .code,
-        codes::TYPE_MISMATCH
+        codes::run::TYPE_MISMATCH
     );
     // STRING into BOOL (empty is FALSE) and CHAR (one character).
     assert_eq!(
@@ -552,11 +568,11 @@ fn conversions_follow_the_control_table() {
             .convert_to(DataType::Char)
             .unwrap_err()
             .code,
-        codes::TYPE_MISMATCH
+        codes::run::TYPE_MISMATCH
     );
     assert_eq!(
         RtValue::from("1").convert_to(int).unwrap_err().code,
-        codes::TYPE_MISMATCH
+        codes::run::TYPE_MISMATCH
     );
     assert_eq!(
         DataType::parse("STRING[12]"),
@@ -598,7 +614,7 @@ edges = [{ d = 1, length = 120.5, radius = 5.0 }]
     assert_eq!(get(comp(1.0, "X", "SC")), Ok(RtValue::Real(1.0)));
     assert_eq!(
         get(comp(7.0, "X", "TR")).unwrap_err().code,
-        codes::INDEX_OUT_OF_RANGE
+        codes::run::INDEX_OUT_OF_RANGE
     );
     assert!(matches!(
         get(sys("$P_UIFR", vec![n(1.0)])),
@@ -618,7 +634,7 @@ edges = [{ d = 1, length = 120.5, radius = 5.0 }]
     );
     assert_eq!(
         get(sys("$TC_DP3", vec![n(8.0), n(1.0)])).unwrap_err().code,
-        codes::INDEX_OUT_OF_RANGE
+        codes::run::INDEX_OUT_OF_RANGE
     );
     assert_eq!(get(sys("$P_TOOLNO", vec![])), Ok(RtValue::Int(0)));
     assert_eq!(get(sys("$P_AXN3", vec![])), Ok(RtValue::axis("Z")));
@@ -631,7 +647,7 @@ edges = [{ d = 1, length = 120.5, radius = 5.0 }]
         Ok(RtValue::Real(std::f64::consts::PI))
     );
     let e = get(sys("$AA_IM", vec![var("X", vec![])])).unwrap_err();
-    assert_eq!(e.code, codes::SYSTEM_VARIABLE);
+    assert_eq!(e.code, codes::run::SYSTEM_VARIABLE);
     assert!(e.message.contains("$AA_IM"), "{}", e.message);
     // `$R` are the R parameters.
     let mut vars = Variables::default();
@@ -647,7 +663,7 @@ edges = [{ d = 1, length = 120.5, radius = 5.0 }]
     let env = Env::new(&vars, &NoMachine);
     assert_eq!(
         eval(&env, &sys("$P_TOOLNO", vec![])).unwrap_err().code,
-        codes::SYSTEM_VARIABLE
+        codes::run::SYSTEM_VARIABLE
     );
 }
 
@@ -663,7 +679,7 @@ fn r_parameters_have_the_default_count() {
     assign(&mut vars, &mut builtin(), &target, &Value::Const(1.25)).unwrap();
     assert_eq!(vars.r(99), Ok(1.25));
     let e = assign(&mut vars, &mut builtin(), &r(100.0), &Value::Const(1.0)).unwrap_err();
-    assert_eq!(e.code, codes::INDEX_OUT_OF_RANGE);
+    assert_eq!(e.code, codes::run::INDEX_OUT_OF_RANGE);
     assert!(e.message.contains("R100"), "{}", e.message);
     // R[R1+2]: a computed index.
     vars.set_r(1, 3.0).unwrap();
@@ -685,7 +701,7 @@ fn r_parameters_have_the_default_count() {
         &Value::Expr(Box::new(s("A"))),
     )
     .unwrap_err();
-    assert_eq!(e.code, codes::TYPE_MISMATCH);
+    assert_eq!(e.code, codes::run::TYPE_MISMATCH);
 }
 
 #[test]
@@ -709,7 +725,7 @@ fn locals_are_per_level_and_globals_are_shared() {
     // The caller's local is not seen from the subprogram…
     assert_eq!(
         read(&vars, "LOC").unwrap_err().code,
-        codes::UNDEFINED_VARIABLE
+        codes::run::UNDEFINED_VARIABLE
     );
     // …the global is, and a write there is seen after the return.
     assign(
@@ -739,7 +755,7 @@ fn locals_are_per_level_and_globals_are_shared() {
     assert_eq!(read(&vars, "LOC"), Ok(RtValue::Real(1.5)));
     // Undefined names are errors naming them; an axis is a value.
     let e = read(&vars, "NOPE").unwrap_err();
-    assert_eq!(e.code, codes::UNDEFINED_VARIABLE);
+    assert_eq!(e.code, codes::run::UNDEFINED_VARIABLE);
     assert!(e.message.contains("NOPE"));
     assert_eq!(read(&vars, "X"), Ok(RtValue::axis("X")));
 }
@@ -766,7 +782,7 @@ fn assignment_converts_to_the_declared_type() {
         &Value::Expr(Box::new(s("A"))),
     )
     .unwrap_err();
-    assert_eq!(e.code, codes::TYPE_MISMATCH);
+    assert_eq!(e.code, codes::run::TYPE_MISMATCH);
     // Nothing was written.
     assert_eq!(vars.read(VarKind::User, "I", &[]), Ok(RtValue::Int(3)));
 }
@@ -791,7 +807,7 @@ fn strings_have_their_length_and_characters() {
     );
     assert_eq!(
         env_read(&vars, var("TXT", vec![n(3.0)])).unwrap_err().code,
-        codes::INDEX_OUT_OF_RANGE
+        codes::run::INDEX_OUT_OF_RANGE
     );
     assign(
         &mut vars,
@@ -809,7 +825,7 @@ fn strings_have_their_length_and_characters() {
         assign(&mut vars, rt, &var("TXT", vec![]), &long)
             .unwrap_err()
             .code,
-        codes::STRING_TOO_LONG
+        codes::run::STRING_TOO_LONG
     );
     // A CHAR assigned to a STRING.
     assign(
@@ -908,10 +924,10 @@ fn declarations_with_lists_and_rep() {
     assert_eq!(user(&vars, "GAP", &[3]), RtValue::Int(0));
     assert_eq!(user(&vars, "TXT", &[]), RtValue::from("AB"));
     let e = vars.read(VarKind::User, "MAT", &[2, 0]).unwrap_err();
-    assert_eq!(e.code, codes::INDEX_OUT_OF_RANGE);
+    assert_eq!(e.code, codes::run::INDEX_OUT_OF_RANGE);
     assert_eq!(
         vars.read(VarKind::User, "MAT", &[1]).unwrap_err().code,
-        codes::INDEX_COUNT
+        codes::run::INDEX_COUNT
     );
 }
 
@@ -951,17 +967,17 @@ fn list_past_the_end_is_an_error_and_writes_nothing() {
     let e = vars
         .write_list(VarKind::User, "V", &[1], &values)
         .unwrap_err();
-    assert_eq!(e.code, codes::INDEX_OUT_OF_RANGE);
+    assert_eq!(e.code, codes::run::INDEX_OUT_OF_RANGE);
     assert_eq!(vars.read(VarKind::User, "V", &[1]), Ok(RtValue::Int(0)));
     let e = vars
         .fill(VarKind::User, "V", &[2], &RtValue::Int(1), Some(2))
         .unwrap_err();
-    assert_eq!(e.code, codes::INDEX_OUT_OF_RANGE);
+    assert_eq!(e.code, codes::run::INDEX_OUT_OF_RANGE);
     assert_eq!(
         vars.declare(Scope::Local, "W", DataType::Int, &[2, 2, 2, 2], Init::None)
             .unwrap_err()
             .code,
-        codes::INVALID_DECLARATION
+        codes::run::INVALID_DECLARATION
     );
 }
 
@@ -1020,7 +1036,7 @@ fn deep_expressions_are_bounded_not_a_crash() {
         .join()
         .unwrap();
     assert_eq!(result.0, Ok(RtValue::Int(1000)));
-    assert_eq!(result.1.unwrap_err().code, codes::TOO_DEEP);
+    assert_eq!(result.1.unwrap_err().code, codes::run::EXPRESSION_TOO_DEEP);
 }
 
 #[test]

@@ -7,6 +7,7 @@ use std::borrow::Cow;
 use std::sync::Arc;
 
 use gcodec_exec::event::*;
+use gcodec_source::{Severity, codes};
 use serde_json::{Value as Json, json};
 
 const SCHEMA_PATH: &str = concat!(
@@ -199,8 +200,8 @@ fn every_kind() -> Vec<Event> {
         event(
             13,
             EventKind::Diagnostic(DiagnosticEvent {
-                code: "gcodec::exec::missing_jump_target".into(),
-                severity: EventSeverity::Error,
+                code: codes::run::JUMP_TARGET_NOT_FOUND,
+                severity: Severity::Error,
                 message: "jump target `END` not found".into(),
                 alarm: Some(14080),
                 help: None,
@@ -546,15 +547,22 @@ fn csv_has_a_header_and_one_row_per_block() {
 }
 
 #[test]
-fn diagnostics_take_the_severity_of_source_diagnostics() {
+fn a_diagnostic_is_written_with_its_code_s_name_level_and_alarm() {
+    let diagnostic = DiagnosticEvent::new(codes::run::JUMP_TARGET_NOT_FOUND, "not found");
     assert_eq!(
-        EventSeverity::from(gcodec_source::Severity::Warning),
-        EventSeverity::Warning
+        serde_json::to_value(&diagnostic).expect("serialises"),
+        json!({
+            "code": "gcodec::run::jump_target_not_found",
+            "severity": "error",
+            "message": "not found",
+            "alarm": 14080,
+        })
     );
-    assert_eq!(
-        serde_json::to_value(EventSeverity::Advice).expect("serialises"),
-        "advice"
-    );
+    let warning = DiagnosticEvent::new(codes::run::NO_FEED, "no feed");
+    assert_eq!(warning.severity, Severity::Warning);
+    let json = serde_json::to_string(&warning).expect("serialises");
+    let back: DiagnosticEvent = serde_json::from_str(&json).expect("reads back");
+    assert_eq!(back, warning);
 }
 
 #[test]

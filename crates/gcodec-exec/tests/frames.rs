@@ -4,10 +4,12 @@
 //! indices 0…3; the lathe X, Z (geometry) and C. A frame maps a point of
 //! its inner (workpiece) system to the outer one as `T + R·(S·M·p)`.
 
-use gcodec_exec::frames::{FRAME, Frame, FrameAxes, FrameOp, chain_values, frame_function};
+use gcodec_exec::frames::{Frame, FrameAxes, FrameOp, chain_values, frame_function};
 use gcodec_exec::geometry::Plane;
-use gcodec_exec::value::{FrameAxis, FrameValue, RtValue, RunError, codes};
+use gcodec_exec::value::{FrameAxis, FrameValue, RtValue, RunError};
 use std::sync::Arc;
+
+use gcodec_source::codes;
 
 const X: usize = 0;
 const Y: usize = 1;
@@ -433,16 +435,16 @@ fn rejected_instructions() {
     let g17 = Plane::G17;
     // A rotation of a rotary axis.
     let e = apply_err(&mut f, &axes, FrameOp::Rot, &[(C, 30.0)], None, g17);
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
     assert!(e.message.contains("C is not a geometry axis"), "{e}");
     let e = apply_err(&mut f, &axes, FrameOp::ARot, &[(C, 30.0)], None, g17);
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
     // Scale 0.
     let e = apply_err(&mut f, &axes, FrameOp::Scale, &[(Y, 0.0)], None, g17);
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
     assert!(e.message.contains("must not be 0"), "{e}");
     let e = apply_err(&mut f, &axes, FrameOp::AScale, &[(X, -0.0)], None, g17);
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
     // Not a number.
     for v in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         for op in [
@@ -452,29 +454,29 @@ fn rejected_instructions() {
             FrameOp::AScale,
         ] {
             let e = apply_err(&mut f, &axes, op, &[(X, v)], None, g17);
-            assert_eq!(e.code, FRAME);
+            assert_eq!(e.code, codes::run::FRAME);
         }
         let e = apply_err(&mut f, &axes, FrameOp::Rot, &[], Some(v), g17);
-        assert_eq!(e.code, FRAME);
+        assert_eq!(e.code, codes::run::FRAME);
     }
     // An index that is no axis.
     let e = apply_err(&mut f, &axes, FrameOp::Trans, &[(4, 1.0)], None, g17);
-    assert_eq!(e.code, codes::UNKNOWN_AXIS);
+    assert_eq!(e.code, codes::run::UNKNOWN_AXIS);
     // RPL= with TRANS, or together with axis angles.
     let e = apply_err(&mut f, &axes, FrameOp::Trans, &[], Some(10.0), g17);
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
     let e = apply_err(&mut f, &axes, FrameOp::Rot, &[(Z, 5.0)], Some(10.0), g17);
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
     // Overflow: 1e300 · 1e300 and 1e308 + 1e308 are infinite; 1e-200 · 1e-200 is 0.
     let mut f = run(&axes, &[(FrameOp::Scale, &[(X, 1e300)], None)]);
     let e = apply_err(&mut f, &axes, FrameOp::AScale, &[(X, 1e300)], None, g17);
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
     let mut f = run(&axes, &[(FrameOp::Trans, &[(Y, 1e308)], None)]);
     let e = apply_err(&mut f, &axes, FrameOp::ATrans, &[(Y, 1e308)], None, g17);
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
     let mut f = run(&axes, &[(FrameOp::Scale, &[(Z, 1e-200)], None)]);
     let e = apply_err(&mut f, &axes, FrameOp::AScale, &[(Z, 1e-200)], None, g17);
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
 }
 
 #[test]
@@ -492,11 +494,11 @@ fn a_lathe_rotates_only_in_its_z_x_plane() {
     maps(&f, &[1.0, 0.0, 5.0], &[0.0, -1.0, 5.0]);
     // G17 would turn X into the missing Y.
     let e = apply_err(&mut f, &axes, FrameOp::ARot, &[], Some(30.0), Plane::G17);
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
     assert!(e.message.contains("geometry axis Y"), "{e}");
     // ROT about X (G19) too: Z would turn into Y.
     let e = apply_err(&mut f, &axes, FrameOp::Rot, &[(0, 10.0)], None, Plane::G18);
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
     // A half turn about Z keeps Y out of it: X → −X.
     f.apply(&axes, FrameOp::Rot, &[(1, 180.0)], None, Plane::G18)
         .unwrap();
@@ -647,11 +649,11 @@ fn g54_chained_with_a_programmable_trans_and_rot() {
         Frame::translation(&axes, &[(X, f64::NAN)])
             .unwrap_err()
             .code,
-        FRAME
+        codes::run::FRAME
     );
     assert_eq!(
         Frame::translation(&axes, &[(9, 1.0)]).unwrap_err().code,
-        codes::UNKNOWN_AXIS
+        codes::run::UNKNOWN_AXIS
     );
 }
 
@@ -709,7 +711,7 @@ fn from_value_rejects_what_no_frame_holds() {
     });
     assert_eq!(
         Frame::from_value(&axes, &q).unwrap_err().code,
-        codes::UNKNOWN_AXIS
+        codes::run::UNKNOWN_AXIS
     );
     // A neutral unknown axis does no harm; names are case-insensitive.
     assert!(
@@ -746,7 +748,7 @@ fn from_value_rejects_what_no_frame_holds() {
     ];
     for fa in bad {
         let e = Frame::from_value(&axes, &one(fa.clone())).unwrap_err();
-        assert_eq!(e.code, FRAME, "{fa:?}");
+        assert_eq!(e.code, codes::run::FRAME, "{fa:?}");
     }
 }
 
@@ -851,23 +853,32 @@ fn the_other_frame_functions() {
 fn frame_function_errors() {
     let axes = mill();
     let code = |name: &str, args: &[Option<RtValue>]| call(&axes, name, args).unwrap_err().code;
-    assert_eq!(code("CTRANS", &[ax("X")]), codes::ARGUMENT_COUNT);
-    assert_eq!(code("CTRANS", &[ax("X"), None]), codes::ARGUMENT_COUNT);
-    assert_eq!(code("CTRANS", &[None, num(1.0)]), codes::ARGUMENT_COUNT);
-    assert_eq!(code("CTRANS", &[num(1.0), num(1.0)]), codes::TYPE_MISMATCH);
+    assert_eq!(code("CTRANS", &[ax("X")]), codes::run::ARGUMENT_COUNT);
+    assert_eq!(code("CTRANS", &[ax("X"), None]), codes::run::ARGUMENT_COUNT);
+    assert_eq!(
+        code("CTRANS", &[None, num(1.0)]),
+        codes::run::ARGUMENT_COUNT
+    );
+    assert_eq!(
+        code("CTRANS", &[num(1.0), num(1.0)]),
+        codes::run::TYPE_MISMATCH
+    );
     assert_eq!(
         code("CTRANS", &[ax("X"), Some(RtValue::string("a"))]),
-        codes::TYPE_MISMATCH
+        codes::run::TYPE_MISMATCH
     );
-    assert_eq!(code("CTRANS", &[ax("Q"), num(1.0)]), codes::UNKNOWN_AXIS);
-    assert_eq!(code("CTRANS", &[ax("X"), num(f64::NAN)]), FRAME);
-    assert_eq!(code("CROT", &[ax("C"), num(10.0)]), FRAME);
-    assert_eq!(code("CSCALE", &[ax("X"), num(0.0)]), FRAME);
-    assert_eq!(code("CMIRROR", &[num(1.0)]), codes::TYPE_MISMATCH);
-    assert_eq!(code("INVFRAME", &[]), codes::ARGUMENT_COUNT);
-    assert_eq!(code("INVFRAME", &[num(1.0)]), codes::TYPE_MISMATCH);
+    assert_eq!(
+        code("CTRANS", &[ax("Q"), num(1.0)]),
+        codes::run::UNKNOWN_AXIS
+    );
+    assert_eq!(code("CTRANS", &[ax("X"), num(f64::NAN)]), codes::run::FRAME);
+    assert_eq!(code("CROT", &[ax("C"), num(10.0)]), codes::run::FRAME);
+    assert_eq!(code("CSCALE", &[ax("X"), num(0.0)]), codes::run::FRAME);
+    assert_eq!(code("CMIRROR", &[num(1.0)]), codes::run::TYPE_MISMATCH);
+    assert_eq!(code("INVFRAME", &[]), codes::run::ARGUMENT_COUNT);
+    assert_eq!(code("INVFRAME", &[num(1.0)]), codes::run::TYPE_MISMATCH);
     for name in ["CRPL", "CROTS", "ADDFRAME", "MEAFRAME"] {
-        assert_eq!(code(name, &[]), codes::UNKNOWN_FUNCTION, "{name}");
+        assert_eq!(code(name, &[]), codes::run::UNKNOWN_FUNCTION, "{name}");
     }
     assert!(frame_function(&axes, "SIN", &[num(1.0)]).is_none());
     // A value naming an axis the channel does not have.
@@ -881,11 +892,14 @@ fn frame_function_errors() {
         chain_values(&axes, &q, &FrameValue::default())
             .unwrap_err()
             .code,
-        codes::UNKNOWN_AXIS
+        codes::run::UNKNOWN_AXIS
     );
     // 1e300 · 1e300 overflows in a chain.
     let big = call(&axes, "CSCALE", &[ax("X"), num(1e300)]).unwrap();
-    assert_eq!(chain_values(&axes, &big, &big).unwrap_err().code, FRAME);
+    assert_eq!(
+        chain_values(&axes, &big, &big).unwrap_err().code,
+        codes::run::FRAME
+    );
 }
 
 // ---------------------------------------------------------------------
@@ -911,7 +925,7 @@ fn slices_of_other_lengths_do_not_panic() {
     let e = n
         .apply(&none, FrameOp::Rot, &[], Some(10.0), Plane::G17)
         .unwrap_err();
-    assert_eq!(e.code, FRAME);
+    assert_eq!(e.code, codes::run::FRAME);
 }
 
 #[test]

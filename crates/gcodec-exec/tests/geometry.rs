@@ -956,7 +956,7 @@ fn error_codes_are_distinct() {
         ArcError::TurnsWithIntermediate,
         ArcError::OutOfRange,
     ];
-    let mut codes: Vec<_> = all.iter().map(|e| e.code()).collect();
+    let mut codes: Vec<_> = all.iter().map(|e| e.code().name()).collect();
     assert!(codes.iter().all(|c| c.starts_with("gcodec::run::circle_")));
     assert!(all.iter().all(|e| !e.to_string().is_empty()));
     codes.sort();

@@ -12,10 +12,11 @@ use gcodec_ail::Op;
 use gcodec_driver::Definitions;
 use gcodec_driver::loader::*;
 use gcodec_driver::{ProgramKind, compile};
-use gcodec_exec::event::{EventKind, EventSeverity};
+use gcodec_exec::event::EventKind;
 use gcodec_exec::loader::*;
 use gcodec_lang::MotionKind;
 use gcodec_profile::Profile;
+use gcodec_source::Severity;
 
 fn fixtures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/fixtures/loader")
@@ -346,7 +347,7 @@ fn not_found_names_every_directory_searched() {
     assert_eq!(error.to_string(), error.message);
     let diagnostic = error.to_diagnostic();
     assert_eq!(diagnostic.code, "gcodec::run::program_not_found");
-    assert_eq!(diagnostic.severity, EventSeverity::Error);
+    assert_eq!(diagnostic.severity, Severity::Error);
 
     // The caller's directory is `.` for a bare file name.
     let error = load_err(&mut loader, "CYCLE81", "MAIN.MPF");
@@ -486,7 +487,7 @@ fn two_files_for_one_program_are_reported() {
         panic!("{warning:?}");
     };
     assert_eq!(diagnostic.code, "gcodec::run::program_ambiguous");
-    assert_eq!(diagnostic.severity, EventSeverity::Warning);
+    assert_eq!(diagnostic.severity, Severity::Warning);
     assert!(
         diagnostic.message.contains("TWIN.SPF, _N_TWIN_SPF"),
         "{}",
@@ -504,7 +505,7 @@ fn a_program_with_errors_is_returned_with_its_diagnostics() {
         .diagnostics
         .iter()
         .filter_map(|event| match &event.kind {
-            EventKind::Diagnostic(d) if d.severity == EventSeverity::Error => Some((d, event)),
+            EventKind::Diagnostic(d) if d.severity == Severity::Error => Some((d, event)),
             _ => None,
         })
         .collect();
@@ -512,7 +513,7 @@ fn a_program_with_errors_is_returned_with_its_diagnostics() {
         panic!("{:?}", loaded.diagnostics);
     };
     assert!(
-        diagnostic.code.starts_with("gcodec::"),
+        diagnostic.code.name().starts_with("gcodec::"),
         "{}",
         diagnostic.code
     );

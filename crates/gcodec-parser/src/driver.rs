@@ -7,7 +7,7 @@ use chumsky::input::Input as _;
 use chumsky::span::SimpleSpan;
 use compact_str::CompactString;
 use gcodec_lexer::{Lexer, TokenKind};
-use gcodec_source::{Diagnostic, SourceFile, Span, decode};
+use gcodec_source::{Diagnostic, SourceFile, Span, codes, decode};
 
 use crate::ast::*;
 use crate::error::SyntaxError;
@@ -526,8 +526,8 @@ impl<'s> Driver<'s, '_> {
                     if line.header.is_some() && !line.broken {
                         let span = Span::new(tok.start, tok.end);
                         self.diagnostics.push(
-                            Diagnostic::error(
-                                "gcodec::parse::header_not_alone",
+                            Diagnostic::new(
+                                codes::parse::HEADER_NOT_ALONE,
                                 "a program header line holds nothing but the header",
                             )
                             .with_label(span, "unexpected after the header")
@@ -621,8 +621,8 @@ impl<'s> Driver<'s, '_> {
         }
         if let Some(op) = too_many_operators(tokens) {
             self.diagnostics.push(
-                Diagnostic::error(
-                    "gcodec::parse::block_too_complex",
+                Diagnostic::new(
+                    codes::parse::BLOCK_TOO_COMPLEX,
                     format!("more than {MAX_OPERATORS_PER_BLOCK} operators in one block"),
                 )
                 .with_label(ctx.span(op), "this operator is over the limit")
@@ -634,8 +634,8 @@ impl<'s> Driver<'s, '_> {
         }
         if let Some(deep) = too_deep(tokens) {
             self.diagnostics.push(
-                Diagnostic::error(
-                    "gcodec::parse::nesting_too_deep",
+                Diagnostic::new(
+                    codes::parse::NESTING_TOO_DEEP,
                     format!("brackets nested more than {MAX_EXPRESSION_DEPTH} deep in one block"),
                 )
                 .with_label(ctx.span(deep), "this bracket is too deep")
@@ -679,8 +679,8 @@ impl<'s> Driver<'s, '_> {
         let text = text.trim_end();
         if !self.first_segment || self.header.is_some() || self.content_seen {
             self.diagnostics.push(
-                Diagnostic::error(
-                    "gcodec::parse::misplaced_header",
+                Diagnostic::new(
+                    codes::parse::MISPLACED_HEADER,
                     "a `%` program header may only open the file",
                 )
                 .with_label(span, "header after the program started")
@@ -729,8 +729,8 @@ impl<'s> Driver<'s, '_> {
             };
             if ends_in_value && pair[1].span.start == pair[0].span.end {
                 self.diagnostics.push(
-                    Diagnostic::error(
-                        "gcodec::parse::missing_separator",
+                    Diagnostic::new(
+                        codes::parse::MISSING_SEPARATOR,
                         "a value after `=` must be followed by a blank before the next word",
                     )
                     .with_label(pair[1].span, "touches the value before it")
@@ -1072,8 +1072,8 @@ fn too_deep(tokens: &[Spanned]) -> Option<SimpleSpan> {
 fn lexical_error(kind: TokenKind, span: Span, src: &[u8]) -> Diagnostic {
     let text = decode(&src[span.range()]);
     match kind {
-        TokenKind::UnclosedString => Diagnostic::error(
-            "gcodec::parse::unclosed_string",
+        TokenKind::UnclosedString => Diagnostic::new(
+            codes::parse::UNCLOSED_STRING,
             "string is not closed on its line",
         )
         .with_label(span, "opened here")
@@ -1093,15 +1093,15 @@ fn lexical_error(kind: TokenKind, span: Span, src: &[u8]) -> Diagnostic {
                     "quoted constants are hex ('H1F') or binary ('B101'); strings use double quotes",
                 ),
             };
-            Diagnostic::error(
-                "gcodec::parse::invalid_number",
+            Diagnostic::new(
+                codes::parse::INVALID_NUMBER,
                 format!("malformed {what} `{text}`"),
             )
             .with_label(span, "here")
             .with_help(help)
         }
-        TokenKind::Header => Diagnostic::error(
-            "gcodec::parse::misplaced_header",
+        TokenKind::Header => Diagnostic::new(
+            codes::parse::MISPLACED_HEADER,
             "`%` may only start a program header line",
         )
         .with_label(span, "here")
@@ -1119,8 +1119,8 @@ fn lexical_error(kind: TokenKind, span: Span, src: &[u8]) -> Diagnostic {
                 b'_' => "names are at least two characters long, e.g. `_A`",
                 _ => "comments start with `;`; this character is not part of the NC language",
             };
-            Diagnostic::error(
-                "gcodec::parse::invalid_character",
+            Diagnostic::new(
+                codes::parse::INVALID_CHARACTER,
                 format!("invalid character {shown}"),
             )
             .with_label(span, "not allowed here")
@@ -1132,7 +1132,7 @@ fn lexical_error(kind: TokenKind, span: Span, src: &[u8]) -> Diagnostic {
 fn syntax_diagnostic(error: SyntaxError, ctx: &Ctx<'_>) -> Diagnostic {
     let span = ctx.span(error.span);
     if let Some(custom) = error.custom {
-        let mut d = Diagnostic::error(custom.code, custom.message).with_label(span, "here");
+        let mut d = Diagnostic::new(custom.code, custom.message).with_label(span, "here");
         d.help = custom.help;
         return d;
     }
@@ -1150,7 +1150,7 @@ fn syntax_diagnostic(error: SyntaxError, ctx: &Ctx<'_>) -> Diagnostic {
     } else {
         format!("expected {}", join_or(&expected))
     };
-    Diagnostic::error("gcodec::parse::unexpected_token", found)
+    Diagnostic::new(codes::parse::UNEXPECTED_TOKEN, found)
         .with_label(span, label)
         .with_help("each block holds words (`G1 X10`), assignments (`R1=5`), one control statement or calls; see SPEC.md")
 }

@@ -9,6 +9,7 @@ use chumsky::input::Input;
 use chumsky::span::SimpleSpan;
 use chumsky::util::MaybeRef;
 use gcodec_lexer::TokenKind;
+use gcodec_source::Code;
 
 /// A syntax error inside one block.
 #[derive(Clone, Debug)]
@@ -26,7 +27,7 @@ pub struct SyntaxError {
 /// A syntax error with its own code, message and help.
 #[derive(Clone, Debug)]
 pub struct CustomError {
-    pub code: &'static str,
+    pub code: &'static Code,
     pub message: Cow<'static, str>,
     pub help: Option<Cow<'static, str>>,
 }
@@ -35,7 +36,7 @@ impl SyntaxError {
     /// A specific error.
     pub fn custom(
         span: SimpleSpan,
-        code: &'static str,
+        code: &'static Code,
         message: impl Into<Cow<'static, str>>,
         help: Option<&'static str>,
     ) -> Self {

@@ -4,7 +4,7 @@
 //! `ENDIF` when it gets there; gcodec reports it up front, naming both the
 //! opener and where the end was expected.
 
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Diagnostic, Span, codes};
 
 use crate::ast::*;
 
@@ -116,8 +116,8 @@ impl Pairing {
                     });
                     if stack.len() == CONTROL_NESTING_LIMIT + 1 {
                         diagnostics.push(
-                            Diagnostic::warning(
-                                "gcodec::parse::deep_nesting",
+                            Diagnostic::new(
+                                codes::parse::DEEP_NESTING,
                                 format!(
                                     "control structures nested more than {CONTROL_NESTING_LIMIT} deep"
                                 ),
@@ -146,8 +146,8 @@ impl Pairing {
                             depth = stack.len() - 1;
                         }
                         _ => diagnostics.push(
-                            Diagnostic::error(
-                                "gcodec::parse::unmatched_end",
+                            Diagnostic::new(
+                                codes::parse::UNMATCHED_END,
                                 "`ELSE` without an open `IF`",
                             )
                             .with_label(st.span, "no IF to belong to")
@@ -169,8 +169,8 @@ impl Pairing {
                         depth = depth.min(stack.len());
                     }
                     None => diagnostics.push(
-                        Diagnostic::error(
-                            "gcodec::parse::unmatched_end",
+                        Diagnostic::new(
+                            codes::parse::UNMATCHED_END,
                             format!("`{word}` without an open `{}`", opener_word(kind)),
                         )
                         .with_label(st.span, "nothing to close")
@@ -233,8 +233,8 @@ fn closer_word(kind: StructureKind) -> &'static str {
 fn unclosed(open: &Open, expected_at: Span, where_: &'static str) -> Diagnostic {
     let opener = opener_word(open.kind);
     let closer = closer_word(open.kind);
-    Diagnostic::error(
-        "gcodec::parse::unclosed_structure",
+    Diagnostic::new(
+        codes::parse::UNCLOSED_STRUCTURE,
         format!("`{opener}` is never closed by `{closer}`"),
     )
     .with_label(open.span, format!("`{opener}` opened here"))

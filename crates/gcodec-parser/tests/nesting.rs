@@ -84,7 +84,7 @@ fn check_invariants(src: &[u8], parse: &Parse) {
     }
     for d in &parse.diagnostics {
         for label in &d.labels {
-            check_span(src, label.span, d.code);
+            check_span(src, label.span, d.code.name());
         }
     }
 }
@@ -94,7 +94,7 @@ fn count(diagnostics: &[Diagnostic], code: &str) -> usize {
 }
 
 fn codes(diagnostics: &[Diagnostic]) -> Vec<&'static str> {
-    let mut codes: Vec<_> = diagnostics.iter().map(|d| d.code).collect();
+    let mut codes: Vec<_> = diagnostics.iter().map(|d| d.code.name()).collect();
     codes.sort_unstable();
     codes.dedup();
     codes

@@ -326,9 +326,9 @@ fn line_summary(parse: &Parse, block: usize) -> String {
                 "gcodec::parse::deep_nesting",
                 "gcodec::parse::misplaced_header",
             ]
-            .contains(&d.code)
+            .contains(&d.code.name())
         })
-        .map(|d| d.code)
+        .map(|d| d.code.name())
         .collect();
     codes.sort_unstable();
     format!("{statements} {codes:?}")

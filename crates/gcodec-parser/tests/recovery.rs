@@ -59,7 +59,7 @@ fn a_skip_mark_in_error_drops_only_itself() {
 fn a_blank_between_the_skip_mark_and_its_level_is_an_error() {
     for (src, end) in [("/ 5 N10 G1 X1", 3), ("/  7", 4), ("N1\n/ 0 X1", 3)] {
         let parsed = parse_bytes("skip.mpf", src.as_bytes());
-        let codes: Vec<_> = parsed.diagnostics.iter().map(|d| d.code).collect();
+        let codes: Vec<_> = parsed.diagnostics.iter().map(|d| d.code.name()).collect();
         assert_eq!(codes, ["gcodec::parse::separated_skip_level"], "{src}");
         let span = parsed.diagnostics[0].span().expect("a place");
         let start = src.rfind('/').unwrap() as u32;

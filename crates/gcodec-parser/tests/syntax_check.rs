@@ -81,7 +81,7 @@ fn each_annotated_line_gets_its_verdict() {
                 code.trim(),
                 expected,
                 got,
-                errors.iter().map(|d| d.code).collect::<Vec<_>>()
+                errors.iter().map(|d| d.code.name()).collect::<Vec<_>>()
             ));
         }
         checked += 1;

@@ -24,7 +24,7 @@ pub use m_classes::m_class;
 pub use reset::reset_defaults;
 pub use schema::*;
 
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Code, Diagnostic, Span, codes};
 
 /// The text of the built-in profile.
 pub const BUILTIN_TOML: &str = include_str!("../../../profiles/default.toml");
@@ -37,10 +37,10 @@ pub const BUILTIN_NAME: &str = "<built-in profiles/default.toml>";
 pub fn load(text: &str) -> Result<Profile, Vec<Diagnostic>> {
     // Syntax first: a TOML syntax error makes schema errors meaningless.
     if let Err(e) = text.parse::<toml::Table>() {
-        return Err(vec![toml_diagnostic("gcodec::profile::syntax", &e)]);
+        return Err(vec![toml_diagnostic(codes::profile::SYNTAX, &e)]);
     }
     let profile: Profile =
-        toml::from_str(text).map_err(|e| vec![toml_diagnostic("gcodec::profile::schema", &e)])?;
+        toml::from_str(text).map_err(|e| vec![toml_diagnostic(codes::profile::SCHEMA, &e)])?;
     let mut problems = validate::check(&profile);
     problems.sort_by_key(|d| d.span().map_or(0, |s| s.start));
     if problems.iter().any(Diagnostic::is_error) {
@@ -55,9 +55,9 @@ pub fn builtin() -> Result<Profile, Vec<Diagnostic>> {
     load(BUILTIN_TOML)
 }
 
-fn toml_diagnostic(code: &'static str, error: &toml::de::Error) -> Diagnostic {
+fn toml_diagnostic(code: &'static Code, error: &toml::de::Error) -> Diagnostic {
     let message = error.message().trim().to_owned();
-    let diagnostic = Diagnostic::error(code, format!("invalid profile: {message}"));
+    let diagnostic = Diagnostic::new(code, format!("invalid profile: {message}"));
     match error.span() {
         Some(range) => diagnostic
             .with_label(span(range), "here")

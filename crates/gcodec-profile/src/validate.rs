@@ -3,18 +3,12 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use gcodec_source::Diagnostic;
+use gcodec_source::{Code, Diagnostic, codes};
 use toml::Spanned;
 
 use crate::group8::{group8_index, group8_range};
 use crate::schema::*;
 use crate::span;
-
-const OUT_OF_RANGE: &str = "gcodec::profile::out_of_range";
-const DUPLICATE: &str = "gcodec::profile::duplicate";
-const UNKNOWN_REFERENCE: &str = "gcodec::profile::unknown_reference";
-const OVERLAPPING_RANGES: &str = "gcodec::profile::overlapping_ranges";
-
 /// Largest M value and T number (`0…2147483647`, per the M-function design).
 const MAX_ADDRESS_VALUE: u32 = i32::MAX as u32;
 
@@ -44,7 +38,7 @@ fn check_g_codes(g: &GCodes, out: &mut Vec<Diagnostic>) {
         if !valid {
             out.push(
                 error(
-                    OUT_OF_RANGE,
+                    codes::profile::OUT_OF_RANGE,
                     code,
                     format!("`{name}` is not a G command"),
                     "here",
@@ -54,7 +48,7 @@ fn check_g_codes(g: &GCodes, out: &mut Vec<Diagnostic>) {
         }
         if !seen.insert(name.to_ascii_uppercase()) {
             out.push(error(
-                DUPLICATE,
+                codes::profile::DUPLICATE,
                 code,
                 format!("`{name}` is listed twice"),
                 "again here",
@@ -68,7 +62,7 @@ fn check_g_codes(g: &GCodes, out: &mut Vec<Diagnostic>) {
         }
         if !groups.insert(*group.get_ref()) {
             out.push(error(
-                DUPLICATE,
+                codes::profile::DUPLICATE,
                 group,
                 format!("group {} is listed twice", group.get_ref()),
                 "again here",
@@ -78,18 +72,18 @@ fn check_g_codes(g: &GCodes, out: &mut Vec<Diagnostic>) {
 }
 
 fn error<T>(
-    code: &'static str,
+    code: &'static Code,
     at: &Spanned<T>,
     message: String,
     label: &'static str,
 ) -> Diagnostic {
-    Diagnostic::error(code, message).with_label(span(at.span()), label)
+    Diagnostic::new(code, message).with_label(span(at.span()), label)
 }
 
 /// A G group number outside 1…64; `example` ends the help.
 fn not_a_group<T: std::fmt::Display>(group: &Spanned<T>, example: &str) -> Diagnostic {
     error(
-        OUT_OF_RANGE,
+        codes::profile::OUT_OF_RANGE,
         group,
         format!("`{}` is not a G group", group.get_ref()),
         "here",
@@ -102,7 +96,7 @@ fn check_spindles(spindles: &[Spanned<u32>], out: &mut Vec<Diagnostic>) {
     for spindle in spindles {
         if !(1..=99).contains(spindle.get_ref()) {
             out.push(error(
-                OUT_OF_RANGE,
+                codes::profile::OUT_OF_RANGE,
                 spindle,
                 "spindle numbers range over 1…99".into(),
                 "here",
@@ -110,7 +104,7 @@ fn check_spindles(spindles: &[Spanned<u32>], out: &mut Vec<Diagnostic>) {
         }
         if !seen.insert(*spindle.get_ref()) {
             out.push(error(
-                DUPLICATE,
+                codes::profile::DUPLICATE,
                 spindle,
                 format!("spindle {} is listed twice", spindle.get_ref()),
                 "again here",
@@ -128,14 +122,14 @@ fn check_axes(axes: &[Axis], out: &mut Vec<Diagnostic>) {
             && name.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_');
         if !valid {
             out.push(
-                error(OUT_OF_RANGE, &axis.name, format!("`{name}` is not an axis name"), "here")
+                error(codes::profile::OUT_OF_RANGE, &axis.name, format!("`{name}` is not an axis name"), "here")
                     .with_help("an axis name is a letter followed by up to 7 letters, digits or `_`, e.g. `X`, `C1`"),
             );
         }
         if let Some(first) = seen.insert(name.to_ascii_uppercase(), &axis.name) {
             out.push(
                 error(
-                    DUPLICATE,
+                    codes::profile::DUPLICATE,
                     &axis.name,
                     format!("axis `{name}` is listed twice"),
                     "again here",
@@ -145,7 +139,7 @@ fn check_axes(axes: &[Axis], out: &mut Vec<Diagnostic>) {
         }
         if axis.diameter && axis.kind != AxisKind::Linear {
             out.push(error(
-                OUT_OF_RANGE,
+                codes::profile::OUT_OF_RANGE,
                 &axis.name,
                 format!("the diameter axis `{name}` must be linear"),
                 "rotary",
@@ -153,7 +147,7 @@ fn check_axes(axes: &[Axis], out: &mut Vec<Diagnostic>) {
         }
         if !(axis.rapid.get_ref().is_finite() && *axis.rapid.get_ref() > 0.0) {
             out.push(error(
-                OUT_OF_RANGE,
+                codes::profile::OUT_OF_RANGE,
                 &axis.rapid,
                 "a rapid rate must be above 0".into(),
                 "here",
@@ -165,7 +159,7 @@ fn check_axes(axes: &[Axis], out: &mut Vec<Diagnostic>) {
         && let Some(fourth) = axes.iter().filter(|a| a.geometry).nth(3)
     {
         out.push(error(
-            OUT_OF_RANGE,
+            codes::profile::OUT_OF_RANGE,
             &fourth.name,
             "a channel has at most three geometry axes".into(),
             "the fourth",
@@ -173,7 +167,7 @@ fn check_axes(axes: &[Axis], out: &mut Vec<Diagnostic>) {
     }
     if let Some(second) = axes.iter().filter(|a| a.diameter).nth(1) {
         out.push(error(
-            OUT_OF_RANGE,
+            codes::profile::OUT_OF_RANGE,
             &second.name,
             "a channel has one diameter axis".into(),
             "a second one",
@@ -191,7 +185,12 @@ fn check_modal_defaults(profile: &Profile, out: &mut Vec<Diagnostic>) {
             out.push(not_a_group(group, ", e.g. `8 = \"G54\"`"));
         }
         if code.get_ref().trim().is_empty() {
-            out.push(error(OUT_OF_RANGE, code, "empty G code".into(), "here"));
+            out.push(error(
+                codes::profile::OUT_OF_RANGE,
+                code,
+                "empty G code".into(),
+                "here",
+            ));
         }
     }
 }
@@ -200,7 +199,7 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
     let change = &profile.tool_change;
     if *change.change_m_code.get_ref() > MAX_ADDRESS_VALUE {
         out.push(error(
-            OUT_OF_RANGE,
+            codes::profile::OUT_OF_RANGE,
             &change.change_m_code,
             format!("M values range over 0…{MAX_ADDRESS_VALUE}"),
             "here",
@@ -212,7 +211,7 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
         let number = *tool.number.get_ref();
         if number == 0 || number > MAX_ADDRESS_VALUE {
             out.push(error(
-                OUT_OF_RANGE,
+                codes::profile::OUT_OF_RANGE,
                 &tool.number,
                 format!("tool numbers range over 1…{MAX_ADDRESS_VALUE} (T0 deselects)"),
                 "here",
@@ -221,7 +220,7 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
         if let Some(first) = numbers.insert((number, tool.duplo), &tool.number) {
             out.push(
                 error(
-                    DUPLICATE,
+                    codes::profile::DUPLICATE,
                     &tool.number,
                     format!("tool {number} (duplo {}) is listed twice", tool.duplo),
                     "again here",
@@ -233,14 +232,14 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
             Some(name) => {
                 if let Some(first) = names.insert((name.get_ref().to_ascii_uppercase(), tool.duplo), name) {
                     out.push(
-                        error(DUPLICATE, name, format!("tool `{}` (duplo {}) is listed twice", name.get_ref(), tool.duplo), "again here")
+                        error(codes::profile::DUPLICATE, name, format!("tool `{}` (duplo {}) is listed twice", name.get_ref(), tool.duplo), "again here")
                             .with_label(span(first.span()), "first here")
                             .with_help("sister tools share a name and differ in `duplo`"),
                     );
                 }
             }
             None if change.tool_management_enabled => out.push(
-                error(OUT_OF_RANGE, &tool.number, format!("tool {number} has no name"), "this tool")
+                error(codes::profile::OUT_OF_RANGE, &tool.number, format!("tool {number} has no name"), "this tool")
                     .with_help("with `tool_management_enabled`, tools are selected by name: add `name = \"…\"`"),
             ),
             None => {}
@@ -250,7 +249,7 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
             let d = *edge.d.get_ref();
             if !(1..=32_000).contains(&d) {
                 out.push(error(
-                    OUT_OF_RANGE,
+                    codes::profile::OUT_OF_RANGE,
                     &edge.d,
                     "cutting edges are D1…D32000 (D0 deselects)".into(),
                     "here",
@@ -258,7 +257,7 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
             }
             if !edges.insert(d) {
                 out.push(error(
-                    DUPLICATE,
+                    codes::profile::DUPLICATE,
                     &edge.d,
                     format!("tool {number} has D{d} twice"),
                     "again here",
@@ -271,7 +270,7 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
 fn check_m_functions(m: &MFunctions, out: &mut Vec<Diagnostic>) {
     if !(1..=16).contains(m.max_m_per_block.get_ref()) {
         out.push(error(
-            OUT_OF_RANGE,
+            codes::profile::OUT_OF_RANGE,
             &m.max_m_per_block,
             "`max_m_per_block` ranges over 1…16".into(),
             "here",
@@ -285,7 +284,7 @@ fn check_m_functions(m: &MFunctions, out: &mut Vec<Diagnostic>) {
         {
             out.push(
                 error(
-                    OUT_OF_RANGE,
+                    codes::profile::OUT_OF_RANGE,
                     value,
                     format!("`{}` is not an M value", value.get_ref()),
                     "here",
@@ -306,7 +305,7 @@ fn check_work_offsets(profile: &Profile, out: &mut Vec<Diagnostic>) {
                 {
                     out.push(
                         error(
-                            OVERLAPPING_RANGES,
+                            codes::profile::OVERLAPPING_RANGES,
                             entry,
                             format!("`{}` overlaps `{}`", entry.get_ref(), other.get_ref()),
                             "this range",
@@ -316,9 +315,11 @@ fn check_work_offsets(profile: &Profile, out: &mut Vec<Diagnostic>) {
                 }
                 supported.push((lo, hi, entry));
             }
-            Err(message) => out.push(error(OUT_OF_RANGE, entry, message, "here").with_help(
-                "write codes or ranges such as `\"G500\"`, `\"G54-G57\"`, `\"G505-G599\"`",
-            )),
+            Err(message) => out.push(
+                error(codes::profile::OUT_OF_RANGE, entry, message, "here").with_help(
+                    "write codes or ranges such as `\"G500\"`, `\"G54-G57\"`, `\"G505-G599\"`",
+                ),
+            ),
         }
     }
     let is_supported = |code: &str| {
@@ -327,7 +328,7 @@ fn check_work_offsets(profile: &Profile, out: &mut Vec<Diagnostic>) {
     };
     let unsupported = |at: &Spanned<String>, what: &str| {
         error(
-            UNKNOWN_REFERENCE,
+            codes::profile::UNKNOWN_REFERENCE,
             at,
             format!(
                 "{what} `{}` is not among `supported_group8_offsets`",
@@ -346,7 +347,7 @@ fn check_work_offsets(profile: &Profile, out: &mut Vec<Diagnostic>) {
             .is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()));
         if !is_g_code {
             out.push(error(
-                OUT_OF_RANGE,
+                codes::profile::OUT_OF_RANGE,
                 alias,
                 format!("`{name}` is not a G code"),
                 "here",
@@ -354,7 +355,7 @@ fn check_work_offsets(profile: &Profile, out: &mut Vec<Diagnostic>) {
         }
         if group8_index(name).is_some() {
             out.push(error(
-                OUT_OF_RANGE,
+                codes::profile::OUT_OF_RANGE,
                 alias,
                 format!("`{name}` is a Group 8 code itself"),
                 "here",
@@ -376,7 +377,7 @@ fn check_work_offsets(profile: &Profile, out: &mut Vec<Diagnostic>) {
         for axis in values.keys() {
             if !axes.contains(&axis.get_ref().to_ascii_uppercase()) {
                 out.push(error(
-                    UNKNOWN_REFERENCE,
+                    codes::profile::UNKNOWN_REFERENCE,
                     axis,
                     format!("`{}` is not an axis of this profile", axis.get_ref()),
                     "here",
@@ -390,7 +391,7 @@ fn check_program(p: &ProgramSettings, out: &mut Vec<Diagnostic>) {
     for level in &p.skip_levels {
         if *level.get_ref() > 9 {
             out.push(error(
-                OUT_OF_RANGE,
+                codes::profile::OUT_OF_RANGE,
                 level,
                 "skip levels are 0…9".into(),
                 "here",
@@ -399,7 +400,7 @@ fn check_program(p: &ProgramSettings, out: &mut Vec<Diagnostic>) {
     }
     if *p.max_block_length.get_ref() == 0 {
         out.push(error(
-            OUT_OF_RANGE,
+            codes::profile::OUT_OF_RANGE,
             &p.max_block_length,
             "a block length must be above 0".into(),
             "here",
@@ -407,7 +408,7 @@ fn check_program(p: &ProgramSettings, out: &mut Vec<Diagnostic>) {
     }
     if !(p.max_feed.get_ref().is_finite() && *p.max_feed.get_ref() > 0.0) {
         out.push(error(
-            OUT_OF_RANGE,
+            codes::profile::OUT_OF_RANGE,
             &p.max_feed,
             "a feed limit must be above 0".into(),
             "here",
@@ -416,7 +417,7 @@ fn check_program(p: &ProgramSettings, out: &mut Vec<Diagnostic>) {
     for tolerance in [&p.circle_error_const, &p.circle_error_factor] {
         if !(tolerance.get_ref().is_finite() && *tolerance.get_ref() >= 0.0) {
             out.push(error(
-                OUT_OF_RANGE,
+                codes::profile::OUT_OF_RANGE,
                 tolerance,
                 "a circle tolerance must be 0 or more".into(),
                 "here",
@@ -431,7 +432,7 @@ mod tests {
         let text = format!("[machine]\nname = \"t\"\ncontrol = \"828d\"\n{sections}");
         match crate::load(&text) {
             Ok(_) => Vec::new(),
-            Err(d) => d.iter().map(|d| d.code).collect(),
+            Err(d) => d.iter().map(|d| d.code.name()).collect(),
         }
     }
 

@@ -15,15 +15,10 @@
 
 use gcodec_lang::DataType;
 use gcodec_parser::ast::{self, StatementKind};
-use gcodec_source::{Diagnostic, SourceFile, Span};
+use gcodec_source::{Diagnostic, SourceFile, Span, codes};
 
 use crate::types::{self, NameMap, constant_count};
 use gcodec_lang::sysvars;
-
-const NOT_A_DEFINITION: &str = "gcodec::definitions::not_a_definition";
-const DUPLICATE: &str = "gcodec::definitions::duplicate";
-pub(crate) const UNDEFINED_VARIABLE: &str = "gcodec::lower::undefined_variable";
-
 /// Where a global variable lives (`DEF NCK …`, `DEF CHAN …`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GlobalRange {
@@ -109,8 +104,8 @@ impl Definitions {
                 let definition = self.statement(program, statement, &mut diagnostics);
                 if !definition && !std::mem::replace(&mut reported, true) {
                     diagnostics.push(
-                        Diagnostic::error(
-                            NOT_A_DEFINITION,
+                        Diagnostic::new(
+                            codes::definitions::NOT_A_DEFINITION,
                             "a definition file holds only `DEF`, `DEFINE` and `REDEF`",
                         )
                         .with_label(statement.span, "not a definition")
@@ -155,8 +150,8 @@ impl Definitions {
                         span: var.span,
                     };
                     if let Some(first) = self.variables.insert_new(&var.name, global) {
-                        let mut d = Diagnostic::error(
-                            DUPLICATE,
+                        let mut d = Diagnostic::new(
+                            codes::definitions::DUPLICATE,
                             format!("`{}` is defined twice", var.name),
                         )
                         .with_label(var.span, "defined again here")
@@ -175,8 +170,8 @@ impl Definitions {
                 };
                 if self.macros.insert_new(&define.name, item).is_some() {
                     diagnostics.push(
-                        Diagnostic::error(
-                            DUPLICATE,
+                        Diagnostic::new(
+                            codes::definitions::DUPLICATE,
                             format!("the macro `{}` is defined twice", define.name),
                         )
                         .with_label(statement.span, "defined again here")
@@ -199,8 +194,8 @@ impl Definitions {
                     );
                 } else if !known {
                     diagnostics.push(
-                        Diagnostic::error(
-                            UNDEFINED_VARIABLE,
+                        Diagnostic::new(
+                            codes::lower::UNDEFINED_VARIABLE,
                             format!("`REDEF` of `{}`, which is not defined", redef.name),
                         )
                         .with_label(statement.span, "not defined before")

@@ -9,16 +9,11 @@ use gcodec_lang::MClass;
 use gcodec_lang::mfunctions::{acts_after_motion, standard_class};
 use gcodec_parser::ast::{Extension, Word, WordValue};
 use gcodec_profile::{Policy, Profile};
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Diagnostic, Span, codes};
 
-use crate::lower::{INVALID_VALUE, by_policy};
+use crate::lower::by_policy;
 use crate::tools::{spindle_exists, unknown_spindle};
 use crate::values::{constant, source_text, tree, whole_number};
-
-const EXTENSION_FORBIDDEN: &str = "gcodec::lower::m_extension_forbidden";
-const TOO_MANY_M: &str = "gcodec::lower::too_many_m_functions";
-const UNKNOWN_M: &str = "gcodec::lower::unknown_m_function";
-
 /// Largest M value (the M-function design: a 32-bit non-negative INT).
 const MAX_M: f64 = 2_147_483_647.0;
 
@@ -84,26 +79,32 @@ pub(crate) fn check(
         }
         _ => {
             diagnostics.push(
-                Diagnostic::error(INVALID_VALUE, "an M function takes a whole number")
-                    .with_label(span, "not a whole number")
-                    .with_help("write e.g. `M3` or `M2=3`; M values are 0…2147483647"),
+                Diagnostic::new(
+                    codes::lower::INVALID_VALUE,
+                    "an M function takes a whole number",
+                )
+                .with_label(span, "not a whole number")
+                .with_help("write e.g. `M3` or `M2=3`; M values are 0…2147483647"),
             );
             return None;
         }
     };
     if !(0.0..=MAX_M).contains(&number) {
         diagnostics.push(
-            Diagnostic::error(INVALID_VALUE, format!("M{number} is out of range"))
-                .with_label(span, "out of range")
-                .with_help("M values are 0…2147483647"),
+            Diagnostic::new(
+                codes::lower::INVALID_VALUE,
+                format!("M{number} is out of range"),
+            )
+            .with_label(span, "out of range")
+            .with_help("M values are 0…2147483647"),
         );
         return None;
     }
     let m = number as u32;
     if acts_after_motion(m) && word.extension().is_some() {
         diagnostics.push(
-            Diagnostic::error(
-                EXTENSION_FORBIDDEN,
+            Diagnostic::new(
+                codes::lower::M_EXTENSION_FORBIDDEN,
                 format!("M{m} takes no address extension"),
             )
             .with_label(span, "extended address")
@@ -127,7 +128,7 @@ pub(crate) fn check(
             };
             if let Some(error) = severity {
                 diagnostics.push(
-                    by_policy(error, UNKNOWN_M, message)
+                    by_policy(error, codes::lower::UNKNOWN_M_FUNCTION, message)
                         .with_label(span, "unknown")
                         .with_help(help),
                 );
@@ -176,8 +177,11 @@ fn extension(
             Some(n) if n.fract() == 0.0 && (0.0..=99.0).contains(&n) => (n as u32, *at),
             Some(_) => {
                 diagnostics.push(
-                    Diagnostic::error(INVALID_VALUE, "a spindle number is a whole number 0…99")
-                        .with_label(*at, "not a spindle number"),
+                    Diagnostic::new(
+                        codes::lower::INVALID_VALUE,
+                        "a spindle number is a whole number 0…99",
+                    )
+                    .with_label(*at, "not a spindle number"),
                 );
                 return None;
             }
@@ -204,8 +208,8 @@ fn extension(
 }
 
 fn no_extended_address(span: Span) -> Diagnostic {
-    Diagnostic::error(
-        EXTENSION_FORBIDDEN,
+    Diagnostic::new(
+        codes::lower::M_EXTENSION_FORBIDDEN,
         "this machine has no extended M addresses",
     )
     .with_label(span, "extended address")
@@ -217,8 +221,8 @@ pub(crate) fn check_count(words: &[MWord], profile: &Profile, diagnostics: &mut 
     let max = *profile.m_functions.max_m_per_block.get_ref() as usize;
     if let Some(first_excess) = words.get(max) {
         diagnostics.push(
-            Diagnostic::error(
-                TOO_MANY_M,
+            Diagnostic::new(
+                codes::lower::TOO_MANY_M_FUNCTIONS,
                 format!("more than {max} M functions in one block"),
             )
             .with_label(first_excess.span, "one too many")

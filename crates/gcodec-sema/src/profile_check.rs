@@ -12,20 +12,9 @@
 use std::ops::Range;
 
 use gcodec_profile::Profile;
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Code, Diagnostic, Span, codes};
 
 use gcodec_lang::ggroups::{self, Effect, GGroup};
-
-const OUT_OF_RANGE: &str = "gcodec::profile::out_of_range";
-const DUPLICATE: &str = "gcodec::profile::duplicate";
-const UNKNOWN_G_CODE: &str = "gcodec::profile::unknown_g_code";
-const NOT_IN_GROUP: &str = "gcodec::profile::not_in_group";
-const NOT_MODAL: &str = "gcodec::profile::not_modal";
-const UNASSIGNED_GROUP: &str = "gcodec::profile::unassigned_group";
-const UNSUPPORTED_DEFAULT: &str = "gcodec::profile::unsupported_default";
-const CONFLICTING_DEFAULTS: &str = "gcodec::profile::conflicting_defaults";
-const ALIAS_CONFLICT: &str = "gcodec::profile::alias_conflict";
-
 /// Checks `profile` against the G-group registry. Every problem found is
 /// reported, in the order of the TOML text, with labelled spans into it.
 ///
@@ -47,8 +36,13 @@ fn span(range: Range<usize>) -> Span {
     Span::new(clamp(range.start), clamp(range.end))
 }
 
-fn error(code: &'static str, at: Range<usize>, message: String, label: &'static str) -> Diagnostic {
-    Diagnostic::error(code, message).with_label(span(at), label)
+fn error(
+    code: &'static Code,
+    at: Range<usize>,
+    message: String,
+    label: &'static str,
+) -> Diagnostic {
+    Diagnostic::new(code, message).with_label(span(at), label)
 }
 
 /// A group as messages name it: `group 6 (Plane selection)`.
@@ -101,7 +95,7 @@ fn check_modal_defaults(profile: &Profile, out: &mut Vec<Diagnostic>) {
         let Some(group) = key.get_ref().parse::<u8>().ok().and_then(ggroups::group) else {
             out.push(
                 error(
-                    OUT_OF_RANGE,
+                    codes::profile::OUT_OF_RANGE,
                     key.span(),
                     format!("`{}` is not a G group", key.get_ref()),
                     "here",
@@ -114,7 +108,7 @@ fn check_modal_defaults(profile: &Profile, out: &mut Vec<Diagnostic>) {
         if let Some((_, first)) = seen.iter().find(|(n, _)| *n == group.number) {
             out.push(
                 error(
-                    DUPLICATE,
+                    codes::profile::DUPLICATE,
                     key.span(),
                     format!("group {} is given twice", group.number),
                     "again here",
@@ -127,7 +121,7 @@ fn check_modal_defaults(profile: &Profile, out: &mut Vec<Diagnostic>) {
         if group.members.is_empty() {
             out.push(
                 error(
-                    UNASSIGNED_GROUP,
+                    codes::profile::UNASSIGNED_GROUP,
                     key.span(),
                     format!("group {} is not assigned: it has no commands", group.number),
                     "no such group",
@@ -139,7 +133,7 @@ fn check_modal_defaults(profile: &Profile, out: &mut Vec<Diagnostic>) {
         if group.effect == Effect::NonModal {
             out.push(
                 error(
-                    NOT_MODAL,
+                    codes::profile::NOT_MODAL,
                     key.span(),
                     format!(
                         "{} is not modal: its commands act only in their block, so it has no reset default",
@@ -155,7 +149,7 @@ fn check_modal_defaults(profile: &Profile, out: &mut Vec<Diagnostic>) {
         let Some((found, index)) = ggroups::lookup(name) else {
             out.push(
                 error(
-                    UNKNOWN_G_CODE,
+                    codes::profile::UNKNOWN_G_CODE,
                     code.span(),
                     format!("`{name}` is not a G command of the control"),
                     "unknown G command",
@@ -168,7 +162,7 @@ fn check_modal_defaults(profile: &Profile, out: &mut Vec<Diagnostic>) {
             let right = ggroups::group(found).map_or_else(|| format!("group {found}"), describe);
             out.push(
                 error(
-                    NOT_IN_GROUP,
+                    codes::profile::NOT_IN_GROUP,
                     code.span(),
                     format!("`{name}` is not a command of {}", describe(group)),
                     "a command of another group",
@@ -183,7 +177,7 @@ fn check_modal_defaults(profile: &Profile, out: &mut Vec<Diagnostic>) {
         if let Some(list) = ruled_out(profile, found, index) {
             out.push(
                 error(
-                    UNSUPPORTED_DEFAULT,
+                    codes::profile::UNSUPPORTED_DEFAULT,
                     code.span(),
                     format!("the reset default `{name}` is a command the profile's `[g_codes]` rules out"),
                     "ruled out",
@@ -218,7 +212,7 @@ fn check_group8_default(
         return;
     }
     let mut d = error(
-        CONFLICTING_DEFAULTS,
+        codes::profile::CONFLICTING_DEFAULTS,
         at,
         format!(
             "the Group 8 reset default `{name}` contradicts `default_group8_offset = \"{}\"`",
@@ -246,7 +240,7 @@ fn check_unsupported(profile: &Profile, out: &mut Vec<Diagnostic>) {
         if ggroups::lookup(code.get_ref()).is_none() {
             out.push(
                 error(
-                    UNKNOWN_G_CODE,
+                    codes::profile::UNKNOWN_G_CODE,
                     code.span(),
                     format!("`{}` is not a G command of the control", code.get_ref()),
                     "unknown G command",
@@ -276,7 +270,7 @@ fn check_legacy_aliases(profile: &Profile, out: &mut Vec<Diagnostic>) {
         let group = ggroups::group(found).map_or_else(|| format!("group {found}"), describe);
         out.push(
             error(
-                ALIAS_CONFLICT,
+                codes::profile::ALIAS_CONFLICT,
                 alias.span(),
                 format!("`legacy_aliases` redefines `{name}`, a command of {group}"),
                 "a G command of the control",

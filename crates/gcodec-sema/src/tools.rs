@@ -5,14 +5,10 @@
 use gcodec_ail::{Op, SelectorKind, ToolTiming};
 use gcodec_parser::ast::{ExprKind, Extension, Word, WordValue};
 use gcodec_profile::{Profile, ToolChangeMode, UnresolvedToolPolicy};
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Diagnostic, Span, codes};
 
-use crate::lower::{INVALID_VALUE, UNKNOWN_SPINDLE, by_policy};
+use crate::lower::by_policy;
 use crate::values::{source_text, whole_number};
-
-const SELECTOR_FORM: &str = "gcodec::lower::tool_selector_form";
-const UNRESOLVED_TOOL: &str = "gcodec::lower::unresolved_tool";
-
 /// Whether the machine has spindle `number`.
 pub(crate) fn spindle_exists(profile: &Profile, number: u32) -> bool {
     profile
@@ -24,8 +20,8 @@ pub(crate) fn spindle_exists(profile: &Profile, number: u32) -> bool {
 
 /// The diagnostic for a spindle number the machine does not have.
 pub(crate) fn unknown_spindle(number: u32, span: Span) -> Diagnostic {
-    Diagnostic::error(
-        UNKNOWN_SPINDLE,
+    Diagnostic::new(
+        codes::lower::UNKNOWN_SPINDLE,
         format!("this machine has no spindle {number}"),
     )
     .with_label(span, "spindle number")
@@ -94,8 +90,11 @@ pub(crate) fn select(
         },
         _ => {
             diagnostics.push(
-                Diagnostic::error(INVALID_VALUE, "a tool number is a whole number")
-                    .with_label(span, "not a tool number"),
+                Diagnostic::new(
+                    codes::lower::INVALID_VALUE,
+                    "a tool number is a whole number",
+                )
+                .with_label(span, "not a tool number"),
             );
             return None;
         }
@@ -173,7 +172,7 @@ fn resolve(
     };
     if let Some(error) = severity {
         diagnostics.push(
-            by_policy(error, UNRESOLVED_TOOL, message)
+            by_policy(error, codes::lower::UNRESOLVED_TOOL, message)
                 .with_label(span, "unknown tool")
                 .with_help(help),
         );
@@ -181,8 +180,8 @@ fn resolve(
 }
 
 fn form_error(span: Span, help: &'static str) -> Diagnostic {
-    Diagnostic::error(
-        SELECTOR_FORM,
+    Diagnostic::new(
+        codes::lower::TOOL_SELECTOR_FORM,
         "this tool selection is not accepted on this machine",
     )
     .with_label(span, "tool selection")

@@ -7,7 +7,7 @@
 
 use gcodec_lang::DataType;
 use gcodec_parser::ast;
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Diagnostic, Span, codes};
 use rustc_hash::FxHashMap;
 
 use gcodec_lang::sysvars::{self, IndexShape};
@@ -77,9 +77,6 @@ pub(crate) fn system_variable_type(var: &sysvars::SysVar, count: usize) -> Optio
         .map(|i| SYSTEM_TYPES[i].1)
 }
 
-/// The code of an assignment or initialiser of the wrong type.
-pub(crate) const TYPE_MISMATCH: &str = "gcodec::lower::type_mismatch";
-
 /// What is known of a value beyond its type when it is a constant.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum Constant {
@@ -118,8 +115,8 @@ pub(crate) fn mismatch(
             }
         };
         return Some(
-            Diagnostic::error(
-                TYPE_MISMATCH,
+            Diagnostic::new(
+                codes::lower::TYPE_MISMATCH,
                 format!(
                     "{} {} value cannot be assigned to `{name}`, which is {}",
                     found.article(),
@@ -146,7 +143,7 @@ pub(crate) fn mismatch(
         _ => return None,
     };
     Some(
-        Diagnostic::error(TYPE_MISMATCH, problem)
+        Diagnostic::new(codes::lower::TYPE_MISMATCH, problem)
             .with_label(span, "does not fit")
             .with_help("the control rejects the value (alarm 14096 \"illegal type conversion\"); shorten it or change the declaration"),
     )

@@ -542,7 +542,7 @@ fn an_axis_with_a_longer_name_is_a_target_not_a_variable() {
     let parsed =
         gcodec_parser::parse_bytes("xv.mpf", b"G1 XV=10 F100\nXV=IC(2.5)\nXV=ACP(5)\nM30\n");
     let l = gcodec_sema::lower(&parsed.program, &profile);
-    let codes: Vec<&str> = l.diagnostics.iter().map(|d| d.code).collect();
+    let codes: Vec<&str> = l.diagnostics.iter().map(|d| d.code.name()).collect();
     assert_eq!(codes, ["gcodec::lower::modifier_not_allowed"]);
     let targets: Vec<(String, Option<gcodec_lang::DimensionMode>)> = l
         .document

@@ -80,7 +80,7 @@ fn jumps_search_as_the_control_does() {
     // GOTO searches forward first, then backward.
     let l = lower_src("N10 X1\nGOTO N10\n");
     assert_eq!(jump_targets(&l), ["N10@1"]);
-    let codes: Vec<_> = l.diagnostics.iter().map(|d| d.code).collect();
+    let codes: Vec<_> = l.diagnostics.iter().map(|d| d.code.name()).collect();
     assert!(codes.is_empty(), "{codes:?}");
 }
 
@@ -89,7 +89,11 @@ fn labels_defined_twice_are_advice() {
     // The control accepts them (the nearest one wins), so neither an
     // error nor a warning.
     let l = lower_src("LB: X1\nLB: X2\n");
-    let codes: Vec<_> = l.diagnostics.iter().map(|d| (d.code, d.severity)).collect();
+    let codes: Vec<_> = l
+        .diagnostics
+        .iter()
+        .map(|d| (d.code.name(), d.severity))
+        .collect();
     assert_eq!(
         codes,
         [(
@@ -107,7 +111,7 @@ fn missing_targets_warn_and_gotoc_goes_on() {
     let codes: Vec<_> = l
         .diagnostics
         .iter()
-        .map(|d| (d.code, d.is_error()))
+        .map(|d| (d.code.name(), d.is_error()))
         .collect();
     assert_eq!(codes, [("gcodec::lower::missing_jump_target", false)]);
     assert_eq!(jump_targets(&l), ["NOWHERE@missing"]);

@@ -39,7 +39,7 @@ fn check(sections: &str) -> (String, Vec<Diagnostic>) {
 }
 
 fn codes(sections: &str) -> Vec<&'static str> {
-    check(sections).1.iter().map(|d| d.code).collect()
+    check(sections).1.iter().map(|d| d.code.name()).collect()
 }
 
 /// The TOML text under the first label of the only diagnostic.
@@ -273,7 +273,7 @@ fn an_alias_may_not_redefine_a_command_of_another_group() {
 fn diagnostics_come_in_text_order_and_render_into_the_toml() {
     let (text, diagnostics) =
         check("[modal_defaults]\n1 = \"G17\"\n2 = \"G4\"\n[g_codes]\nunsupported = [\"G999\"]\n");
-    let codes: Vec<_> = diagnostics.iter().map(|d| d.code).collect();
+    let codes: Vec<_> = diagnostics.iter().map(|d| d.code.name()).collect();
     assert_eq!(
         codes,
         [

@@ -46,7 +46,7 @@ fn machine_dependent_lines_are_rejected_by_lowering() {
             .diagnostics
             .iter()
             .filter(|d| d.is_error())
-            .map(|d| d.code)
+            .map(|d| d.code.name())
             .collect();
         assert_eq!(errors, [code], "`{line}`");
     }

@@ -167,7 +167,7 @@ fn a_bad_definition_file_gives_diagnostics() {
         "BAD.DEF",
         "DEF INT AA\nDEF REAL AA\nG1 X10\nREDEF QQ SYNR\n",
     );
-    let codes: Vec<_> = d.iter().map(|d| d.code).collect();
+    let codes: Vec<_> = d.iter().map(|d| d.code.name()).collect();
     assert_eq!(
         codes,
         [
@@ -178,7 +178,7 @@ fn a_bad_definition_file_gives_diagnostics() {
     );
     let (_, d) = Definitions::from_source("BAD.DEF", "DEF STRING[3] NAME=\"ABCDE\"\n");
     assert_eq!(
-        d.iter().map(|d| d.code).collect::<Vec<_>>(),
+        d.iter().map(|d| d.code.name()).collect::<Vec<_>>(),
         [TYPE_MISMATCH]
     );
     // Parse errors come through.

@@ -1,11 +1,14 @@
 use std::borrow::Cow;
 
-use serde::Serialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
-use crate::Span;
+use crate::{Code, Span};
 
 /// How bad a diagnostic is. Only `Error` makes a command exit with 1.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize, JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Severity {
     /// A hint; the program is fine.
@@ -14,6 +17,17 @@ pub enum Severity {
     Warning,
     /// The real control would reject the program.
     Error,
+}
+
+impl Severity {
+    /// The name used in JSON and in messages: `error`, `warning`, `advice`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Advice => "advice",
+            Self::Warning => "warning",
+            Self::Error => "error",
+        }
+    }
 }
 
 /// A labelled span inside a diagnostic.
@@ -27,12 +41,13 @@ pub struct Label {
 
 /// A problem found in a part program, a profile or the environment.
 ///
-/// `code` is stable (`gcodec::area::name`): tools and CI scripts may match on
+/// `code` is stable (`gcodec::AREA::NAME`): tools and CI scripts may match on
 /// it. The first label is the primary one.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Diagnostic {
-    /// Stable code, `gcodec::area::name`.
-    pub code: &'static str,
+    /// Stable code, `gcodec::AREA::NAME`, from the registry; serialised as
+    /// its name.
+    pub code: &'static Code,
     /// Error, warning or advice.
     pub severity: Severity,
     /// One sentence saying what is wrong.
@@ -44,32 +59,22 @@ pub struct Diagnostic {
 }
 
 impl Diagnostic {
-    /// An error with `code` and `message`.
-    pub fn error(code: &'static str, message: impl Into<Cow<'static, str>>) -> Self {
+    /// A diagnostic with `code`, at the code's level, and `message`.
+    pub fn new(code: &'static Code, message: impl Into<Cow<'static, str>>) -> Self {
         Self {
             code,
-            severity: Severity::Error,
+            severity: code.level(),
             message: message.into(),
             labels: Vec::new(),
             help: None,
         }
     }
 
-    /// A warning with `code` and `message`.
-    pub fn warning(code: &'static str, message: impl Into<Cow<'static, str>>) -> Self {
-        Self {
-            severity: Severity::Warning,
-            ..Self::error(code, message)
-        }
-    }
-
-    /// Advice with `code` and `message`: something worth a look that the
-    /// control itself accepts.
-    pub fn advice(code: &'static str, message: impl Into<Cow<'static, str>>) -> Self {
-        Self {
-            severity: Severity::Advice,
-            ..Self::error(code, message)
-        }
+    /// At another level than the code's: where a profile policy decides
+    /// it (`unknown_mcode_policy`, `on_unresolved_tool`, …).
+    pub fn with_severity(mut self, severity: Severity) -> Self {
+        self.severity = severity;
+        self
     }
 
     /// Adds a labelled span.

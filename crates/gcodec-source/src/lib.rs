@@ -6,12 +6,14 @@
 //! file's line table, and JSON dumps write them next to the offsets so that
 //! a consumer never has to re-read the file to point at a construct.
 
+pub mod codes;
 mod diagnostic;
 mod lines;
 mod render;
 mod source;
 mod span;
 
+pub use codes::Code;
 pub use diagnostic::{Diagnostic, Label, Severity};
 pub use lines::line_starts;
 pub use render::{RenderOptions, render_diagnostics};

@@ -72,6 +72,25 @@ impl SourceFile {
         crate::span::line_col(&self.line_starts, offset)
     }
 
+    /// The span from 1-based `line` and byte `col` to the end of that
+    /// line (its line end left out): where a position reported without a
+    /// span (a run-time event's) is labelled. `None` for a position the
+    /// file does not have.
+    pub fn line_span(&self, line: u32, col: u32) -> Option<Span> {
+        let index = usize::try_from(line.checked_sub(1)?).ok()?;
+        let start = *self.line_starts.get(index)?;
+        let end = self
+            .line_starts
+            .get(index + 1)
+            .map_or(self.bytes.len() as u32, |next| next - 1);
+        let mut end = end.max(start);
+        if end > start && self.bytes.get(end as usize - 1) == Some(&b'\r') {
+            end -= 1;
+        }
+        let at = start.checked_add(col.checked_sub(1)?)?;
+        (at <= end).then(|| Span::new(at, end))
+    }
+
     /// The text of a span, decoded for display (see [`decode`]).
     pub fn text(&self, span: Span) -> String {
         let end = (span.end as usize).min(self.bytes.len());
@@ -107,6 +126,20 @@ pub(crate) fn cp1252(b: u8) -> char {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn line_span_runs_from_the_column_to_the_line_end() {
+        let file = SourceFile::new("t.mpf", "G0 X1\r\nN20 X2\nM30");
+        let text = |span: Option<Span>| span.map(|s| file.text(s));
+        assert_eq!(text(file.line_span(1, 1)), Some("G0 X1".into()));
+        assert_eq!(text(file.line_span(2, 5)), Some("X2".into()));
+        assert_eq!(text(file.line_span(3, 1)), Some("M30".into()));
+        assert_eq!(text(file.line_span(3, 4)), Some(String::new()));
+        assert_eq!(file.line_span(3, 5), None);
+        assert_eq!(file.line_span(4, 1), None);
+        assert_eq!(file.line_span(0, 1), None);
+        assert_eq!(file.line_span(1, 0), None);
+    }
 
     #[test]
     fn line_col_is_one_based() {

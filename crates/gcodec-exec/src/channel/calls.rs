@@ -10,12 +10,12 @@
 use std::sync::Arc;
 
 use gcodec_ail::{Call, Declare, Expr, Instruction, Op, Parameter, RepeatSection, Value, VarKind};
+use gcodec_source::{Severity, codes};
 
-use super::{Channel, Flow, Level, LevelKind, codes};
+use super::{Channel, Flow, Level, LevelKind};
 use crate::eval;
 use crate::event::{
-    ArgumentValue, CallEvent, CallKind, EventKind, EventSeverity, ProgramEndReason, ReturnEvent,
-    SectionEvent,
+    ArgumentValue, CallEvent, CallKind, EventKind, ProgramEndReason, ReturnEvent, SectionEvent,
 };
 use crate::loader::LoadRequest;
 use crate::program::{Program, written_label};
@@ -213,10 +213,10 @@ impl Channel<'_> {
                 Ok(n) => n.unwrap_or(0),
                 Err(e) => return Some(Err(e)),
             };
-            self.count(EventSeverity::Error);
+            self.count(Severity::Error);
             let event = EventKind::Diagnostic(crate::event::DiagnosticEvent {
-                code: codes::CYCLE_ALARM.into(),
-                severity: EventSeverity::Error,
+                code: codes::run::CYCLE_ALARM,
+                severity: Severity::Error,
                 message: format!("the program raised alarm {number} (`SETAL`)").into(),
                 alarm: u32::try_from(number).ok(),
                 help: None,
@@ -265,7 +265,7 @@ impl Channel<'_> {
                 let n = eval::eval_value(&self.env(), p)?.to_int()?;
                 u32::try_from(n).ok().filter(|&n| n >= 1).ok_or_else(|| {
                     RunError::new(
-                        crate::value::codes::INDEX_OUT_OF_RANGE,
+                        codes::run::INDEX_OUT_OF_RANGE,
                         format!("`P{n}`: a call runs at least once"),
                     )
                 })?
@@ -297,7 +297,7 @@ impl Channel<'_> {
                 let to = eval::eval_value(&self.env(), &section.to)?.to_text()?;
                 let (start, end_line) = callee.section(&from, &to).map_err(|label| {
                     RunError::new(
-                        codes::JUMP_TARGET,
+                        codes::run::JUMP_TARGET_NOT_FOUND,
                         format!("the section label `{label}` is not in `{}`", callee.name),
                     )
                 })?;
@@ -354,7 +354,7 @@ impl Channel<'_> {
                 }
                 if loaded.has_errors {
                     return Err(RunError::new(
-                        codes::PROGRAM_ERRORS,
+                        codes::run::PROGRAM_HAS_ERRORS,
                         format!(
                             "`{target}` ({}) has errors: the control does not run it",
                             loaded.program.file
@@ -368,8 +368,8 @@ impl Channel<'_> {
                 self.diagnostic_at(
                     program,
                     instruction,
-                    codes::CYCLE_NOT_SIMULATED,
-                    EventSeverity::Warning,
+                    codes::run::CYCLE_NOT_SIMULATED,
+                    Severity::Warning,
                     message,
                     Some("pass the directory holding the cycle's source with --subprogram-path to simulate it"),
                 );
@@ -381,7 +381,7 @@ impl Channel<'_> {
                     message.push_str("; ");
                     message.push_str(&help);
                 }
-                Err(RunError::new(codes::PROGRAM_NOT_FOUND, message))
+                Err(RunError::new(codes::run::PROGRAM_NOT_FOUND, message))
             }
         }
     }
@@ -501,7 +501,7 @@ impl Channel<'_> {
         let levels = self.program_level() as usize + 1;
         if active.own_level && levels >= self.options.max_levels {
             return Err(RunError::new(
-                codes::CALL_DEPTH,
+                codes::run::CALL_DEPTH,
                 format!(
                     "calling `{}` would open program level {}: the control has {} (the main program is level 0)",
                     active.target, levels, self.options.max_levels
@@ -554,7 +554,7 @@ impl Channel<'_> {
             && call.args.iter().skip(params.len()).any(Option::is_some)
         {
             return Err(RunError::new(
-                crate::value::codes::ARGUMENT_COUNT,
+                codes::run::ARGUMENT_COUNT,
                 format!(
                     "`{}` takes {} parameters, the call passes {}",
                     callee.name,
@@ -592,7 +592,7 @@ impl Channel<'_> {
                 }
                 (true, Some(_)) => {
                     return Err(RunError::new(
-                        crate::value::codes::TYPE_MISMATCH,
+                        codes::run::TYPE_MISMATCH,
                         format!(
                             "the `VAR` parameter `{}` needs a variable, not a value",
                             param.name
@@ -718,7 +718,7 @@ impl Channel<'_> {
     ) -> Result<Flow, RunError> {
         let missing = |label: &str| {
             RunError::new(
-                codes::JUMP_TARGET,
+                codes::run::JUMP_TARGET_NOT_FOUND,
                 format!(
                     "the section label `{}` is not in the program",
                     written_label(label)
@@ -737,7 +737,7 @@ impl Channel<'_> {
             .filter(|&p| p >= 1)
             .ok_or_else(|| {
                 RunError::new(
-                    crate::value::codes::INDEX_OUT_OF_RANGE,
+                    codes::run::INDEX_OUT_OF_RANGE,
                     format!("`P={passes}`: a section runs at least once"),
                 )
             })?;

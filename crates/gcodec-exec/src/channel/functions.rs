@@ -10,18 +10,19 @@ use gcodec_ail::{
 };
 use gcodec_lang::MClass;
 use gcodec_profile::{Policy, Tool, ToolState, UnresolvedToolPolicy};
+use gcodec_source::{Severity, codes};
 
 use super::state::ToolRef;
-use super::{Channel, Flow, codes};
+use super::{Channel, Flow};
 use crate::eval;
 use crate::event::{
-    DwellEvent, EventKind, EventSeverity, HFunctionEvent, MAction, MFunctionEvent,
-    ProgramEndReason, SelectionSource, SpindleEvent, SpindleState, StopEvent, StopReason,
-    ToolChangeEvent, ToolSelectEvent,
+    DwellEvent, EventKind, HFunctionEvent, MAction, MFunctionEvent, ProgramEndReason,
+    SelectionSource, SpindleEvent, SpindleState, StopEvent, StopReason, ToolChangeEvent,
+    ToolSelectEvent,
 };
 use crate::frames::FrameOp;
 use crate::program::Program;
-use crate::value::{RtValue, RunError, codes as value_codes};
+use crate::value::{RtValue, RunError};
 
 impl Channel<'_> {
     pub(super) fn m_function(
@@ -38,7 +39,7 @@ impl Channel<'_> {
                 let n = eval::eval(&env, expr)?.to_int()?;
                 u32::try_from(n).map_err(|_| {
                     RunError::new(
-                        value_codes::OVERFLOW,
+                        codes::run::OVERFLOW,
                         format!("`M={n}`: an M function is 0 or more"),
                     )
                 })?
@@ -76,15 +77,15 @@ impl Channel<'_> {
             match self.state.profile.m_functions.unknown_mcode_policy {
                 Policy::Error => {
                     return Err(RunError::new(
-                        codes::UNKNOWN_M,
+                        codes::run::UNKNOWN_M_FUNCTION,
                         format!("`M{value}` is not an M function of this machine"),
                     ));
                 }
                 Policy::Warning => self.diagnostic_at(
                     program,
                     instruction,
-                    codes::UNKNOWN_M,
-                    EventSeverity::Warning,
+                    codes::run::UNKNOWN_M_FUNCTION,
+                    Severity::Warning,
                     format!(
                         "`M{value}` is not an M function of this machine; it is output to the PLC"
                     ),
@@ -282,7 +283,7 @@ impl Channel<'_> {
     pub(super) fn frame(&mut self, frame: &FrameInstruction) -> Result<(), RunError> {
         let op = FrameOp::parse(&frame.op).ok_or_else(|| {
             RunError::new(
-                crate::frames::FRAME,
+                codes::run::FRAME,
                 format!(
                     "`{}` is not simulated: the positions after it would be wrong",
                     frame.op
@@ -441,13 +442,13 @@ impl Channel<'_> {
             format!("the tool `{value}` is disabled or locked and no sister tool may replace it")
         };
         match profile.tool_change.on_unresolved_tool {
-            UnresolvedToolPolicy::Error => Err(RunError::new(codes::UNRESOLVED_TOOL, why)),
+            UnresolvedToolPolicy::Error => Err(RunError::new(codes::run::UNRESOLVED_TOOL, why)),
             UnresolvedToolPolicy::Warning => {
                 self.diagnostic_at(
                     program,
                     instruction,
-                    codes::UNRESOLVED_TOOL,
-                    EventSeverity::Warning,
+                    codes::run::UNRESOLVED_TOOL,
+                    Severity::Warning,
                     why,
                     None,
                 );
@@ -474,15 +475,15 @@ impl Channel<'_> {
             match self.state.profile.tool_change.m6_without_pending_policy {
                 Policy::Error => {
                     return Err(RunError::new(
-                        codes::M6_WITHOUT_PENDING,
+                        codes::run::M6_WITHOUT_PENDING,
                         "the tool change has no tool selected before it (T…)",
                     ));
                 }
                 Policy::Warning => self.diagnostic_at(
                     program,
                     instruction,
-                    codes::M6_WITHOUT_PENDING,
-                    EventSeverity::Warning,
+                    codes::run::M6_WITHOUT_PENDING,
+                    Severity::Warning,
                     "the tool change has no tool selected before it (T…); the tool stays".into(),
                     Some("select the tool with T before the change"),
                 ),
@@ -524,7 +525,7 @@ impl Channel<'_> {
         let d = eval::eval_value(&self.env(), edge)?.to_int()?;
         let d = u32::try_from(d).map_err(|_| {
             RunError::new(
-                value_codes::OVERFLOW,
+                codes::run::OVERFLOW,
                 format!("`D{d}`: an edge is 0 or more"),
             )
         })?;
@@ -562,8 +563,8 @@ impl Channel<'_> {
                 self.diagnostic_at(
                     program,
                     instruction,
-                    codes::UNKNOWN_EDGE,
-                    EventSeverity::Warning,
+                    codes::run::UNKNOWN_EDGE,
+                    Severity::Warning,
                     message,
                     None,
                 );

@@ -30,6 +30,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use gcodec_ail::{Instruction, Op};
 use gcodec_lang::ggroups;
 use gcodec_profile::Profile;
+use gcodec_source::{Code, Severity, codes};
 use rustc_hash::FxHashSet;
 
 pub use state::MachineState;
@@ -37,56 +38,14 @@ pub use summary::{RunSummary, ToolSummary};
 
 use crate::eval::{self, Env};
 use crate::event::{
-    BlockRow, CallKind, DiagnosticEvent, Event, EventKind, EventSeverity, EventSink, EventSource,
-    MessageEvent, ModalChangeEvent, ProgramEndEvent, ProgramEndReason, StopEvent, StopReason,
-    WorkOffsetCode,
+    BlockRow, CallKind, DiagnosticEvent, Event, EventKind, EventSink, EventSource, MessageEvent,
+    ModalChangeEvent, ProgramEndEvent, ProgramEndReason, StopEvent, StopReason, WorkOffsetCode,
 };
 use crate::geometry::CircleTolerance;
 use crate::loader::ProgramLoader;
 use crate::program::Program;
 use crate::value::RunError;
 use crate::vars::{Global, Scope, Variables};
-
-/// The stable codes of the channel's own diagnostics (expression errors
-/// keep theirs, [`crate::value::codes`]).
-pub mod codes {
-    /// A jump whose target is not in the program (alarm 14080).
-    pub const JUMP_TARGET: &str = "gcodec::run::jump_target_not_found";
-    /// The run reaches a block that has errors.
-    pub const BLOCK_WITH_ERRORS: &str = "gcodec::run::block_with_errors";
-    /// A streamed run comes back to an instruction it forgot.
-    pub const FORGOTTEN: &str = "gcodec::run::forgotten_instruction";
-    /// A called program that is on no search path (alarm 14011).
-    pub use crate::loader::PROGRAM_NOT_FOUND;
-    /// A standard cycle or predefined procedure that is not on the search
-    /// path: the call is reported, not run.
-    pub const CYCLE_NOT_SIMULATED: &str = "gcodec::run::cycle_not_simulated";
-    /// A called program with errors.
-    pub const PROGRAM_ERRORS: &str = "gcodec::run::program_has_errors";
-    /// More program levels than the control has.
-    pub const CALL_DEPTH: &str = "gcodec::run::call_depth";
-    /// The run stopped after `--max-steps` blocks.
-    pub const STEP_LIMIT: &str = "gcodec::run::step_limit";
-    /// Ctrl-C.
-    pub const INTERRUPTED: &str = "gcodec::run::interrupted";
-    /// A construct the simulation does not model; it has no effect.
-    pub const NOT_SIMULATED: &str = "gcodec::run::not_simulated";
-    /// A tool the tool table does not have (`on_unresolved_tool`).
-    pub const UNRESOLVED_TOOL: &str = "gcodec::run::unresolved_tool";
-    /// The change M without a pending selection
-    /// (`m6_without_pending_policy`).
-    pub const M6_WITHOUT_PENDING: &str = "gcodec::run::m6_without_pending";
-    /// An M function outside the known set (`unknown_mcode_policy`).
-    pub const UNKNOWN_M: &str = "gcodec::run::unknown_m_function";
-    /// A cutting edge the active tool does not have.
-    pub const UNKNOWN_EDGE: &str = "gcodec::run::unknown_edge";
-    /// A feed motion without a feed (alarm 10860 on the control).
-    pub const NO_FEED: &str = "gcodec::run::no_feed";
-    /// `SETAL(n)`: the program raised a cycle alarm.
-    pub const CYCLE_ALARM: &str = "gcodec::run::cycle_alarm";
-    /// Writing the events failed.
-    pub const OUTPUT: &str = "gcodec::run::output";
-}
 
 /// How a run goes.
 #[derive(Clone, Debug)]
@@ -435,7 +394,7 @@ impl<'r> Channel<'r> {
         let mut there = instruction.clone();
         there.source = at;
         let error = RunError::new(
-            codes::BLOCK_WITH_ERRORS,
+            codes::run::BLOCK_WITH_ERRORS,
             "the run reaches a block with errors (reported with the program's diagnostics)",
         );
         self.alarm(program, &there, error);
@@ -447,7 +406,7 @@ impl<'r> Channel<'r> {
     fn forgotten(&mut self, program: &Arc<Program>, pc: usize) -> ProgramEndReason {
         if let Some(last) = program.last_instruction() {
             let error = RunError::new(
-                codes::FORGOTTEN,
+                codes::run::FORGOTTEN_INSTRUCTION,
                 format!(
                     "the run comes back to instruction {pc}, which the streamed run \
                      had forgotten; please report this program to gcodec"
@@ -487,8 +446,8 @@ impl<'r> Channel<'r> {
             self.diagnostic_at(
                 program,
                 instruction,
-                codes::STEP_LIMIT,
-                EventSeverity::Error,
+                codes::run::STEP_LIMIT,
+                Severity::Error,
                 message,
                 Some("raise the limit with --max-steps N if the program is meant to run this long"),
             );
@@ -503,8 +462,8 @@ impl<'r> Channel<'r> {
             self.diagnostic_at(
                 program,
                 instruction,
-                codes::INTERRUPTED,
-                EventSeverity::Error,
+                codes::run::INTERRUPTED,
+                Severity::Error,
                 "the run was interrupted (Ctrl-C)".into(),
                 None,
             );
@@ -723,7 +682,7 @@ impl<'r> Channel<'r> {
         match program.jump_target(pc).or_else(|| program.label(target)) {
             Some(index) => Ok(Flow::Jump(index)),
             None => Err(RunError::new(
-                codes::JUMP_TARGET,
+                codes::run::JUMP_TARGET_NOT_FOUND,
                 format!(
                     "the jump target `{}` is not in the program",
                     crate::program::written_label(target)
@@ -753,7 +712,7 @@ impl<'r> Channel<'r> {
             Some(index) => Ok(Flow::Jump(index)),
             None if jump.continue_if_missing => Ok(Flow::Next),
             None => Err(RunError::new(
-                codes::JUMP_TARGET,
+                codes::run::JUMP_TARGET_NOT_FOUND,
                 format!("the jump target `{target}` is not in the program"),
             )),
         }
@@ -803,7 +762,7 @@ impl<'r> Channel<'r> {
             .and_then(|n| Some((n, ggroups::member(group, n)?)));
         let Some((index, code)) = member else {
             return Err(RunError::new(
-                crate::value::codes::INDEX_OUT_OF_RANGE,
+                codes::run::INDEX_OUT_OF_RANGE,
                 format!("`G[{group}]={n}`: group {group} has no command at index {n}"),
             ));
         };
@@ -837,7 +796,7 @@ impl<'r> Channel<'r> {
             program,
             instruction,
             code,
-            EventSeverity::Error,
+            Severity::Error,
             error.message,
             None,
         );
@@ -847,28 +806,24 @@ impl<'r> Channel<'r> {
         &mut self,
         program: &Arc<Program>,
         instruction: &Instruction,
-        code: &'static str,
-        severity: EventSeverity,
+        code: &'static Code,
+        severity: Severity,
         message: String,
         help: Option<&'static str>,
     ) {
-        let diagnostic = DiagnosticEvent {
-            code: Cow::Borrowed(code),
-            severity,
-            message: Cow::Owned(message),
-            alarm: alarm_number(code),
-            help: help.map(Cow::Borrowed),
-        };
+        let mut diagnostic = DiagnosticEvent::new(code, message);
+        diagnostic.severity = severity;
+        diagnostic.help = help.map(Cow::Borrowed);
         self.count(severity);
         self.emit_at(program, instruction, EventKind::Diagnostic(diagnostic));
     }
 
     /// Counts a diagnostic the run reports.
-    fn count(&mut self, severity: EventSeverity) {
+    fn count(&mut self, severity: Severity) {
         match severity {
-            EventSeverity::Error => self.errors += 1,
-            EventSeverity::Warning => self.warnings += 1,
-            EventSeverity::Advice => {}
+            Severity::Error => self.errors += 1,
+            Severity::Warning => self.warnings += 1,
+            Severity::Advice => {}
         }
     }
 
@@ -880,15 +835,8 @@ impl<'r> Channel<'r> {
         key: &str,
         message: impl FnOnce() -> String,
     ) {
-        let code = codes::NOT_SIMULATED;
-        self.once(
-            program,
-            instruction,
-            key,
-            code,
-            EventSeverity::Advice,
-            message,
-        );
+        let code = codes::run::NOT_SIMULATED;
+        self.once(program, instruction, key, code, Severity::Advice, message);
     }
 
     /// A diagnostic reported once per run for `key`; its message is only
@@ -898,8 +846,8 @@ impl<'r> Channel<'r> {
         program: &Arc<Program>,
         instruction: &Instruction,
         key: &str,
-        code: &'static str,
-        severity: EventSeverity,
+        code: &'static Code,
+        severity: Severity,
         message: impl FnOnce() -> String,
     ) {
         if !self.reported.contains(key) {
@@ -969,20 +917,5 @@ fn send(sink: &mut dyn EventSink, error: &mut Option<io::Error>, event: &Event) 
     }
     if let Err(e) = sink.event(event) {
         *error = Some(e);
-    }
-}
-
-/// The alarm number the control shows for a code, where there is one.
-fn alarm_number(code: &str) -> Option<u32> {
-    match code {
-        codes::JUMP_TARGET => Some(14080),
-        codes::BLOCK_WITH_ERRORS => Some(12080),
-        codes::PROGRAM_NOT_FOUND => Some(14011),
-        crate::value::codes::UNDEFINED_VARIABLE => Some(12550),
-        crate::value::codes::INDEX_OUT_OF_RANGE => Some(17020),
-        crate::value::codes::TYPE_MISMATCH => Some(14096),
-        crate::value::codes::ARGUMENT_COUNT => Some(12340),
-        "gcodec::run::circle_end_point" => Some(14040),
-        _ => None,
     }
 }

@@ -8,13 +8,14 @@ use std::sync::Arc;
 use gcodec_ail::{AxisValue, Circle, Instruction, Op, Value};
 use gcodec_lang::motion::MOTION_GROUP;
 use gcodec_lang::{DimensionMode, MotionKind};
+use gcodec_source::{Severity, codes};
 
 use super::Channel;
 use crate::eval;
 use crate::event::{AxisMap, Event, EventKind, MotionEvent, Plane, WorkOffsetContext};
 use crate::geometry::{self, ArcForm, BoundingBox, Direction, Point3};
 use crate::program::Program;
-use crate::value::{RtValue, RunError, codes};
+use crate::value::{RtValue, RunError};
 
 use super::state::MachineState;
 
@@ -114,7 +115,7 @@ impl Channel<'_> {
                     RtValue::Axis(a) | RtValue::String(a) => a,
                     v => {
                         return Err(RunError::new(
-                            codes::TYPE_MISMATCH,
+                            codes::run::TYPE_MISMATCH,
                             format!("a {} value names no axis", v.type_name()),
                         ));
                     }
@@ -127,7 +128,7 @@ impl Channel<'_> {
             }
         }
         if kind != MotionKind::Rapid && self.state.feed <= 0.0 {
-            self.once(program, instruction, "no-feed", super::codes::NO_FEED, crate::event::EventSeverity::Warning, || "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into());
+            self.once(program, instruction, "no-feed", codes::run::NO_FEED, Severity::Warning, || "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into());
         }
         let plane = self.state.plane();
         let start = point(&self.state, &self.motion.wcs);
@@ -252,7 +253,7 @@ impl Channel<'_> {
     pub(super) fn axis(&self, name: &str) -> Result<usize, RunError> {
         self.state.axis_index(name).ok_or_else(|| {
             RunError::new(
-                codes::UNKNOWN_AXIS,
+                codes::run::UNKNOWN_AXIS,
                 format!("the machine has no axis `{name}`"),
             )
         })
@@ -359,7 +360,7 @@ impl Channel<'_> {
             let point =
                 offsets(&circle.intermediate, self.state.incremental())?.ok_or_else(|| {
                     RunError::new(
-                        "gcodec::run::circle_intermediate",
+                        codes::run::CIRCLE_INTERMEDIATE,
                         "`CIP` needs an intermediate point (`I1= J1= K1=`)",
                     )
                 })?;
@@ -382,7 +383,7 @@ impl Channel<'_> {
                 (None, None, Some(angle)) => ArcForm::AngleToEnd { direction, angle },
                 (None, None, None) => {
                     return Err(RunError::new(
-                        "gcodec::run::circle_data",
+                        codes::run::CIRCLE_DATA,
                         "the circle has neither a centre (`I J K`), a radius (`CR=`) nor an opening angle (`AR=`)",
                     ));
                 }

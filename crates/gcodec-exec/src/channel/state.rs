@@ -9,6 +9,7 @@ use gcodec_lang::ggroups;
 use gcodec_lang::modal::GROUP_COUNT;
 use gcodec_profile::reset_defaults;
 use gcodec_profile::{AxisKind, Profile};
+use gcodec_source::codes;
 
 use crate::eval::{
     RuntimeInterface, machine_axis_number, profile_offsets, profile_system_variable,
@@ -18,7 +19,7 @@ use gcodec_ail::Suppression;
 
 use crate::event::{AxisName, Plane, SpindleState, WorkOffsetCode};
 use crate::frames::{Frame, FrameAxes, chain_values, frame_function};
-use crate::value::{FrameValue, RtValue, RunError, codes};
+use crate::value::{FrameValue, RtValue, RunError};
 
 /// One channel axis.
 #[derive(Clone, Debug)]
@@ -350,7 +351,7 @@ impl MachineState {
         };
         self.axis_index(&axis).ok_or_else(|| {
             RunError::new(
-                codes::UNKNOWN_AXIS,
+                codes::run::UNKNOWN_AXIS,
                 format!("`{name}[{axis}]`: the machine has no axis `{axis}`"),
             )
         })
@@ -378,7 +379,7 @@ impl RuntimeInterface for MachineState {
             match indices {
                 [axis] => self.axis_argument(name, axis),
                 _ => Err(RunError::new(
-                    codes::INDEX_COUNT,
+                    codes::run::INDEX_COUNT,
                     format!("`{name}` takes one axis index ({what})"),
                 )),
             }
@@ -420,7 +421,7 @@ impl RuntimeInterface for MachineState {
                 let group = u8::try_from(n).ok().filter(|g| (1..=64).contains(g));
                 let Some(group) = group else {
                     return Err(RunError::new(
-                        codes::INDEX_OUT_OF_RANGE,
+                        codes::run::INDEX_OUT_OF_RANGE,
                         format!("`$P_GG[{n}]`: there is no G group {n}"),
                     ));
                 };
@@ -474,7 +475,7 @@ impl RuntimeInterface for MachineState {
                 Ok(())
             }
             _ => Err(RunError::new(
-                codes::READ_ONLY,
+                codes::run::READ_ONLY,
                 format!("the system variable `{name}` cannot be written in the simulation"),
             )),
         }

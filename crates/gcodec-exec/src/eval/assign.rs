@@ -3,9 +3,10 @@
 //! [`declare`] (`declare`: a `DEF`).
 
 use gcodec_ail::{AssignList, Declare, Expr, Value, VarKind};
+use gcodec_source::codes;
 
 use super::{Env, EvalContext, RuntimeInterface, eval_value, int_indices, system_indices};
-use crate::value::{RtValue, RunError, codes};
+use crate::value::{RtValue, RunError};
 use crate::vars::{Init, Scope, Variables, undefined};
 
 fn target_parts(target: &Expr) -> Result<(VarKind, &str, &[Expr]), RunError> {
@@ -16,7 +17,7 @@ fn target_parts(target: &Expr) -> Result<(VarKind, &str, &[Expr]), RunError> {
             indices,
         } => Ok((*var_kind, name, indices)),
         _ => Err(RunError::new(
-            codes::TYPE_MISMATCH,
+            codes::run::TYPE_MISMATCH,
             "only a variable can be assigned to",
         )),
     }
@@ -80,7 +81,7 @@ pub fn assign_list(
     let (kind, name, indices) = target_parts(&list.target)?;
     if kind == VarKind::System && !(name.starts_with("$R") && is_r_system(name)) {
         return Err(RunError::new(
-            codes::TYPE_MISMATCH,
+            codes::run::TYPE_MISMATCH,
             format!("a list of values cannot be assigned to `{name}`"),
         ));
     }
@@ -115,7 +116,7 @@ fn repeat_values<C: EvalContext + ?Sized>(
             let n = eval_value(ctx, c)?.to_int()?;
             Some(usize::try_from(n).ok().filter(|&n| n >= 1).ok_or_else(|| {
                 RunError::new(
-                    codes::INDEX_OUT_OF_RANGE,
+                    codes::run::INDEX_OUT_OF_RANGE,
                     format!("`REP`: the count {n} is below 1"),
                 )
             })?)
@@ -135,7 +136,7 @@ pub fn declare(
     let ty = decl.data_type;
     if !ty.is_declarable() {
         return Err(RunError::new(
-            codes::INVALID_DECLARATION,
+            codes::run::INVALID_DECLARATION,
             format!("`{ty}` is not a type"),
         ));
     }
@@ -145,7 +146,7 @@ pub fn declare(
         let n = eval_value(&env, d)?.to_int()?;
         dims.push(usize::try_from(n).ok().filter(|&n| n >= 1).ok_or_else(|| {
             RunError::new(
-                codes::INVALID_DECLARATION,
+                codes::run::INVALID_DECLARATION,
                 format!("`{}`: the dimension {n} is below 1", decl.name),
             )
         })?);

@@ -27,8 +27,9 @@ use std::sync::Arc;
 use gcodec_ail::{Expr, Value, VarKind};
 use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_profile::Profile;
+use gcodec_source::codes;
 
-use crate::value::{FrameValue, RtValue, RunError, codes, real_to_int};
+use crate::value::{FrameValue, RtValue, RunError, real_to_int};
 use crate::vars::{Variables, undefined};
 
 pub use assign::{assign, assign_list, declare};
@@ -36,7 +37,7 @@ pub use functions::sprint;
 pub use profile_variables::profile_system_variable;
 pub(crate) use profile_variables::{profile_offsets, settable_offset};
 
-/// Expressions nested deeper than this are [`codes::TOO_DEEP`]. The
+/// Expressions nested deeper than this are [`codes::run::EXPRESSION_TOO_DEEP`]. The
 /// parser's limits (64 brackets, 1000 operators a block) keep every
 /// lowered expression well below it; the bound protects the stack from
 /// hand-made AIL.
@@ -63,7 +64,7 @@ pub trait RuntimeInterface {
     }
 
     /// Writes a system variable. The default refuses
-    /// ([`codes::READ_ONLY`]).
+    /// ([`codes::run::READ_ONLY`]).
     fn set_system_variable(
         &mut self,
         name: &str,
@@ -71,14 +72,14 @@ pub trait RuntimeInterface {
         _value: &RtValue,
     ) -> Result<(), RunError> {
         Err(RunError::new(
-            codes::READ_ONLY,
+            codes::run::READ_ONLY,
             format!("the system variable `{name}` cannot be written here"),
         ))
     }
 
     /// A function that is not built into the evaluator (frame functions,
     /// tool management, user functions): `None` when the runtime does not
-    /// know it either ([`codes::UNKNOWN_FUNCTION`]).
+    /// know it either ([`codes::run::UNKNOWN_FUNCTION`]).
     fn function(
         &self,
         _name: &str,
@@ -90,7 +91,7 @@ pub trait RuntimeInterface {
     /// The frame chaining operator `:`. The default: not available.
     fn chain_frames(&self, _lhs: &FrameValue, _rhs: &FrameValue) -> Result<FrameValue, RunError> {
         Err(RunError::new(
-            codes::UNKNOWN_FUNCTION,
+            codes::run::UNKNOWN_FUNCTION,
             "frame chaining (`:`) is not available here",
         ))
     }
@@ -230,7 +231,7 @@ fn eval_at<C: EvalContext + ?Sized>(
 #[cold]
 fn too_deep() -> RunError {
     RunError::new(
-        codes::TOO_DEEP,
+        codes::run::EXPRESSION_TOO_DEEP,
         format!("the expression is nested deeper than {MAX_DEPTH} levels"),
     )
 }
@@ -307,7 +308,7 @@ fn int_indices<'b, C: EvalContext + ?Sized>(
 ) -> Result<&'b [i32], RunError> {
     if indices.len() > buf.len() {
         return Err(RunError::new(
-            codes::INDEX_COUNT,
+            codes::run::INDEX_COUNT,
             format!("{} indices: no variable has that many", indices.len()),
         ));
     }
@@ -459,7 +460,7 @@ fn int_result(i: i64) -> RtValue {
 
 fn operand_error(op: &str, v: &RtValue) -> RunError {
     RunError::new(
-        codes::TYPE_MISMATCH,
+        codes::run::TYPE_MISMATCH,
         format!("`{op}` does not take a {} operand", v.type_name()),
     )
 }
@@ -472,7 +473,7 @@ fn bit_operand(op: &str, v: &RtValue) -> Result<i32, RunError> {
 }
 
 fn division_by_zero(op: &str) -> RunError {
-    RunError::new(codes::DIVISION_BY_ZERO, format!("`{op}` by zero"))
+    RunError::new(codes::run::DIVISION_BY_ZERO, format!("`{op}` by zero"))
 }
 
 /// REAL equality within [`REAL_TOLERANCE`], relative.
@@ -615,7 +616,7 @@ fn compare(op: BinaryOp, a: &RtValue, b: &RtValue) -> Result<bool, RunError> {
         }
         _ => {
             return Err(RunError::new(
-                codes::TYPE_MISMATCH,
+                codes::run::TYPE_MISMATCH,
                 format!(
                     "`{sym}` cannot compare a {} with a {}",
                     a.type_name(),

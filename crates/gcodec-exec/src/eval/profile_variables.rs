@@ -6,8 +6,9 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 
 use gcodec_profile::{Profile, ToolChangeMode};
+use gcodec_source::codes;
 
-use crate::value::{FrameAxis, FrameValue, RtValue, RunError, codes};
+use crate::value::{FrameAxis, FrameValue, RtValue, RunError};
 
 /// The system variables a machine profile answers, the default of
 /// [`super::RuntimeInterface::system_variable`]:
@@ -25,7 +26,7 @@ use crate::value::{FrameAxis, FrameValue, RtValue, RunError, codes};
 /// * `$P_AXN1`…`$P_AXN3`: the geometry axes in channel order;
 /// * `$MC_TOOL_CHANGE_MODE`: 0 (`direct`) or 1 (`deferred_m6`).
 ///
-/// Any other variable is [`codes::SYSTEM_VARIABLE`] naming it.
+/// Any other variable is [`codes::run::SYSTEM_VARIABLE`] naming it.
 pub fn profile_system_variable(
     profile: Option<&Profile>,
     name: &str,
@@ -37,7 +38,7 @@ pub fn profile_system_variable(
     }
     let Some(profile) = profile else {
         return Err(RunError::new(
-            codes::SYSTEM_VARIABLE,
+            codes::run::SYSTEM_VARIABLE,
             format!("the system variable `{name}` has no value without a machine profile"),
         ));
     };
@@ -64,7 +65,7 @@ pub fn profile_system_variable(
                 .map(|a| RtValue::axis(a.name.get_ref()))
                 .ok_or_else(|| {
                     RunError::new(
-                        codes::SYSTEM_VARIABLE,
+                        codes::run::SYSTEM_VARIABLE,
                         format!("`{name}`: the machine has no geometry axis {}", n + 1),
                     )
                 })
@@ -78,7 +79,7 @@ pub fn profile_system_variable(
                 return tool_parameter(profile, name, k, indices);
             }
             Err(RunError::new(
-                codes::SYSTEM_VARIABLE,
+                codes::run::SYSTEM_VARIABLE,
                 format!(
                     "the system variable `{name}` has no value here: the machine profile does not give it"
                 ),
@@ -97,7 +98,7 @@ fn no_indices(name: &str, indices: &[RtValue]) -> Result<(), RunError> {
 
 fn sys_index_count(name: &str, expected: &str, given: usize) -> RunError {
     RunError::new(
-        codes::INDEX_COUNT,
+        codes::run::INDEX_COUNT,
         format!("`{name}` takes {expected} indices, not {given}"),
     )
 }
@@ -139,7 +140,7 @@ pub(crate) fn settable_offset(
         .filter(|&i| exists(i))
         .ok_or_else(|| {
             RunError::new(
-                codes::INDEX_OUT_OF_RANGE,
+                codes::run::INDEX_OUT_OF_RANGE,
                 format!("`$P_UIFR[{n}]`: the machine has no settable offset {n}"),
             )
         })
@@ -176,7 +177,7 @@ fn tool_parameter(
         .and_then(|t| profile.tool(t))
         .ok_or_else(|| {
             RunError::new(
-                codes::INDEX_OUT_OF_RANGE,
+                codes::run::INDEX_OUT_OF_RANGE,
                 format!("`{name}[{t},{d}]`: the tool table has no tool {t}"),
             )
         })?;
@@ -185,13 +186,13 @@ fn tool_parameter(
         .and_then(|d| tool.edge(d))
         .ok_or_else(|| {
             RunError::new(
-                codes::INDEX_OUT_OF_RANGE,
+                codes::run::INDEX_OUT_OF_RANGE,
                 format!("`{name}[{t},{d}]`: tool {t} has no cutting edge D{d}"),
             )
         })?;
     match k {
         1 => Err(RunError::new(
-            codes::SYSTEM_VARIABLE,
+            codes::run::SYSTEM_VARIABLE,
             format!("`{name}[{t},{d}]`: the tool type is not in the machine profile"),
         )),
         3 => Ok(RtValue::Real(edge.length)),

@@ -43,6 +43,8 @@ use std::fmt;
 use std::io;
 use std::sync::Arc;
 
+use gcodec_source::{Code, Severity};
+
 pub use gcodec_ail::{MTiming, SelectorKind, Suppression, ToolChangeTrigger, ToolTiming};
 pub use gcodec_lang::{MClass, MotionKind};
 use schemars::JsonSchema;
@@ -509,12 +511,15 @@ pub enum ProgramEndReason {
 /// A problem found while running.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 pub struct DiagnosticEvent {
-    /// Stable code, `gcodec::exec::name`.
-    pub code: Cow<'static, str>,
-    pub severity: EventSeverity,
+    /// Stable code, `gcodec::AREA::NAME`, from the registry.
+    #[schemars(with = "String")]
+    pub code: &'static Code,
+    /// An error is an alarm of the control: the run ends.
+    pub severity: Severity,
     /// One sentence saying what is wrong.
     pub message: Cow<'static, str>,
-    /// The alarm number the control shows (`14080`), where there is one.
+    /// The alarm number the control shows (`14080`), where there is one:
+    /// the code's, or the one a program raised (`SETAL`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub alarm: Option<u32>,
     /// How to fix it, where a fix is known.
@@ -522,35 +527,15 @@ pub struct DiagnosticEvent {
     pub help: Option<Cow<'static, str>>,
 }
 
-/// How bad a diagnostic is; as [`gcodec_source::Severity`].
-#[derive(
-    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
-)]
-#[serde(rename_all = "snake_case")]
-pub enum EventSeverity {
-    Advice,
-    Warning,
-    /// The control raises an alarm; the run ends.
-    Error,
-}
-
-impl From<gcodec_source::Severity> for EventSeverity {
-    fn from(severity: gcodec_source::Severity) -> Self {
-        match severity {
-            gcodec_source::Severity::Advice => Self::Advice,
-            gcodec_source::Severity::Warning => Self::Warning,
-            gcodec_source::Severity::Error => Self::Error,
-        }
-    }
-}
-
-impl EventSeverity {
-    /// The name used in JSON.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Advice => "advice",
-            Self::Warning => "warning",
-            Self::Error => "error",
+impl DiagnosticEvent {
+    /// A diagnostic with `code` at its level, with the code's alarm.
+    pub fn new(code: &'static Code, message: impl Into<Cow<'static, str>>) -> Self {
+        Self {
+            code,
+            severity: code.level(),
+            message: message.into(),
+            alarm: code.alarm(),
+            help: None,
         }
     }
 }

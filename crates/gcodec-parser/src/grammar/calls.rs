@@ -5,9 +5,10 @@
 
 use chumsky::prelude::*;
 use gcodec_lexer::TokenKind as T;
+use gcodec_source::codes;
 
 use super::control::jump_target;
-use super::{Ctx, ERR_WORD, Ex, In, args};
+use super::{Ctx, Ex, In, args};
 use crate::ast::*;
 use crate::error::SyntaxError;
 
@@ -56,7 +57,7 @@ pub(super) fn indirect_call<'t, 's: 't>(
             if program.is_none() && section.is_none() {
                 Err(SyntaxError::custom(
                     span,
-                    ERR_WORD,
+                    codes::parse::INVALID_WORD,
                     "`CALL` needs a program name or `BLOCK … TO …`",
                     Some("write e.g. `CALL \"PART1\"`"),
                 ))
@@ -127,7 +128,7 @@ fn named_call<'t, 's: 't>(
             } else {
                 Err(SyntaxError::custom(
                     span,
-                    ERR_WORD,
+                    codes::parse::INVALID_WORD,
                     "expected a program name or `L` number",
                     None,
                 ))

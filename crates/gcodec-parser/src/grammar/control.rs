@@ -5,10 +5,11 @@
 
 use chumsky::prelude::*;
 use gcodec_lexer::TokenKind as T;
+use gcodec_source::codes;
 
 use super::expressions::var_ref;
 use super::words::{LetterStatement, letter_statement};
-use super::{Ctx, ERR_WORD, Ex, In};
+use super::{Ctx, Ex, In};
 use crate::ast::*;
 use crate::error::SyntaxError;
 
@@ -168,7 +169,7 @@ pub(super) fn jump_target<'t, 's: 't>(
                 }),
                 _ => Err(SyntaxError::custom(
                     span,
-                    ERR_WORD,
+                    codes::parse::INVALID_WORD,
                     "a jump target is a label, a block number `N…` or a string",
                     None,
                 )),
@@ -180,8 +181,14 @@ pub(super) fn jump_target<'t, 's: 't>(
 /// A label or block number (REPEAT sections take no string expressions,
 /// which keeps `REPEAT A B P=3` unambiguous).
 fn section_target<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, JumpTarget, Ex> + Clone + 't {
-    let never = select! { T::Error => () }
-        .try_map(|_, s| Err::<Expr, _>(SyntaxError::custom(s, ERR_WORD, "unreachable", None)));
+    let never = select! { T::Error => () }.try_map(|_, s| {
+        Err::<Expr, _>(SyntaxError::custom(
+            s,
+            codes::parse::INVALID_WORD,
+            "unreachable",
+            None,
+        ))
+    });
     jump_target(g, never).labelled("label")
 }
 
@@ -204,14 +211,14 @@ fn jump<'t, 's: 't>(
         .try_map(|(goto, target), span| match (goto, &target) {
             (GotoKind::GotoS, Some(_)) => Err(SyntaxError::custom(
                 span,
-                ERR_WORD,
+                codes::parse::INVALID_WORD,
                 "`GOTOS` takes no target",
                 Some("GOTOS jumps back to the program start"),
             )),
             (GotoKind::GotoS, None) | (_, Some(_)) => Ok(Jump { goto, target }),
             (_, None) => Err(SyntaxError::custom(
                 span,
-                "gcodec::parse::missing_jump_target",
+                codes::parse::MISSING_JUMP_TARGET,
                 "jump without a target",
                 Some("name a label, a block number (`N100`) or a string expression"),
             )),
@@ -234,7 +241,7 @@ fn passes_word<'t, 's: 't>(
         LetterStatement::Invalid => Ok(None),
         _ => Err(SyntaxError::custom(
             span,
-            ERR_WORD,
+            codes::parse::INVALID_WORD,
             "expected the number of passes `P=n`",
             None,
         )),

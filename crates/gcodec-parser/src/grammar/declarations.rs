@@ -4,9 +4,10 @@
 
 use chumsky::prelude::*;
 use gcodec_lexer::TokenKind as T;
+use gcodec_source::codes;
 
 use super::expressions::initializer;
-use super::{Ctx, ERR_WORD, Ex, In, decode_text, indices, name_token};
+use super::{Ctx, Ex, In, decode_text, indices, name_token};
 use crate::ast::*;
 use crate::error::SyntaxError;
 
@@ -52,7 +53,7 @@ fn type_spec<'t, 's: 't>(
             }),
             (_, Some(_)) => Err(SyntaxError::custom(
                 span,
-                ERR_WORD,
+                codes::parse::INVALID_WORD,
                 "only STRING takes a length in `[…]`",
                 Some("array dimensions follow the variable name: `DEF REAL A[3]`"),
             )),
@@ -237,7 +238,7 @@ fn extern_param<'t, 's: 't>(
                         Some(_) => {
                             return Err(SyntaxError::custom(
                                 span,
-                                ERR_WORD,
+                                codes::parse::INVALID_WORD,
                                 "a STRING length is one number, e.g. `STRING[32]`",
                                 None,
                             ));
@@ -249,7 +250,7 @@ fn extern_param<'t, 's: 't>(
                     if second.is_some() {
                         return Err(SyntaxError::custom(
                             span,
-                            ERR_WORD,
+                            codes::parse::INVALID_WORD,
                             "only STRING takes a length before its dimensions",
                             None,
                         ));

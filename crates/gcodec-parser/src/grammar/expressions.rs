@@ -9,10 +9,11 @@ use chumsky::prelude::*;
 use chumsky::primitive::select;
 use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_lexer::TokenKind as T;
+use gcodec_source::codes;
 
 use super::numbers::number_value;
 use super::operators::{self, Associativity, Precedence};
-use super::{Ctx, ERR_NUMBER, ERR_WORD, Ex, In, args, decode_text, indices};
+use super::{Ctx, Ex, In, args, decode_text, indices};
 
 use crate::ast::*;
 use crate::error::SyntaxError;
@@ -48,7 +49,7 @@ fn number<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> + Clone +
         let value = number_value(text).unwrap_or_else(|| {
             emitter.emit(SyntaxError::custom(
                 s,
-                ERR_NUMBER,
+                codes::parse::INVALID_NUMBER,
                 format!("number `{text}` is out of range"),
                 Some("REAL values range over about ±1.8·10^308"),
             ));
@@ -79,7 +80,7 @@ fn radix_number<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> + C
             .map_err(|_| {
                 SyntaxError::custom(
                     s,
-                    ERR_NUMBER,
+                    codes::parse::INVALID_NUMBER,
                     format!("constant `{text}` is too large"),
                     None,
                 )
@@ -238,7 +239,7 @@ fn letter_reference(
             if !text.bytes().all(|b| b.is_ascii_digit()) {
                 return Err(SyntaxError::custom(
                     d,
-                    ERR_WORD,
+                    codes::parse::INVALID_WORD,
                     format!("R parameter number `{text}` is not an integer"),
                     None,
                 ));
@@ -264,7 +265,7 @@ fn letter_reference(
         }),
         (_, Some(_), Some(_)) => Err(SyntaxError::custom(
             span,
-            ERR_WORD,
+            codes::parse::INVALID_WORD,
             format!(
                 "`{}` cannot be indexed: a numbered address takes no `[…]`",
                 g.text(SimpleSpan::from(letter.start..letter.end + 1))
@@ -277,7 +278,7 @@ fn letter_reference(
             if !text.bytes().all(|b| b.is_ascii_digit()) {
                 return Err(SyntaxError::custom(
                     span,
-                    ERR_WORD,
+                    codes::parse::INVALID_WORD,
                     "a number cannot follow an address letter inside an expression",
                     Some(
                         "write `=` values as expressions: `X=R1+5`; numbered axes need an integer, e.g. `X1`",

@@ -3,9 +3,10 @@
 
 use chumsky::prelude::*;
 use gcodec_lexer::TokenKind as T;
+use gcodec_source::codes;
 
 use super::words::{LetterStatement, letter_statement, named_word};
-use super::{Ctx, ERR_WORD, Ex, In};
+use super::{Ctx, Ex, In};
 use crate::ast::*;
 use crate::error::SyntaxError;
 
@@ -49,7 +50,7 @@ fn frame_word<'t, 's: 't>(
             LetterStatement::Invalid => Ok(None),
             _ => Err(SyntaxError::custom(
                 span,
-                ERR_WORD,
+                codes::parse::INVALID_WORD,
                 "frame instructions take axis words only",
                 Some("write e.g. `TRANS X10 Y5` in a block of its own"),
             )),

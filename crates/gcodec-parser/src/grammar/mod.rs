@@ -23,7 +23,7 @@ use chumsky::input::MappedInput;
 use chumsky::prelude::*;
 use compact_str::CompactString;
 use gcodec_lexer::TokenKind as T;
-use gcodec_source::Span;
+use gcodec_source::{Span, codes};
 
 pub(crate) use control::structure_keyword;
 pub(crate) use numbers::number_bytes_value;
@@ -70,11 +70,6 @@ impl<'s> Ctx<'s> {
         CompactString::from(self.text(s))
     }
 }
-
-const ERR_VALUE: &str = "gcodec::parse::invalid_value";
-const ERR_WORD: &str = "gcodec::parse::invalid_word";
-const ERR_NUMBER: &str = "gcodec::parse::invalid_number";
-
 /// The block: skip mark, block number, label, then its statements.
 pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody, Ex> + 't {
     prefix::skip_mark(g)
@@ -142,7 +137,7 @@ fn name_token<'t>() -> impl Parser<'t, In<'t>, SimpleSpan, Ex> + Clone + 't {
             Some(n) if n.start == l.end => Ok(span),
             Some(_) => Err(SyntaxError::custom(
                 span,
-                ERR_WORD,
+                codes::parse::INVALID_WORD,
                 "a name cannot contain a blank",
                 None,
             )),

@@ -3,6 +3,7 @@
 
 use chumsky::prelude::*;
 use gcodec_lexer::TokenKind as T;
+use gcodec_source::codes;
 
 use super::{Ctx, Ex, In};
 use crate::ast::*;
@@ -29,7 +30,7 @@ pub(super) fn skip_mark<'t, 's: 't>(
                 // reading, and the two skip under different switches.
                 Some(n) if n.start != slash.end => Err(SyntaxError::custom(
                     span,
-                    "gcodec::parse::separated_skip_level",
+                    codes::parse::SEPARATED_SKIP_LEVEL,
                     format!(
                         "a blank between the skip mark `/` and the number `{}`",
                         g.text(n)
@@ -43,7 +44,7 @@ pub(super) fn skip_mark<'t, 's: 't>(
                     }),
                     _ => Err(SyntaxError::custom(
                         span,
-                        "gcodec::parse::invalid_skip_level",
+                        codes::parse::INVALID_SKIP_LEVEL,
                         format!("skip level `/{}` is not 0 to 9", g.text(n)),
                         Some("skip levels are `/` and `/0` … `/9`"),
                     )),
@@ -79,7 +80,7 @@ pub(super) fn block_number<'t, 's: 't>(
                 .map_err(|_| {
                     SyntaxError::custom(
                         span,
-                        "gcodec::parse::invalid_block_number",
+                        codes::parse::INVALID_BLOCK_NUMBER,
                         format!("block number `N{}` is not a whole number", g.text(n)),
                         None,
                     )
@@ -105,7 +106,7 @@ pub(super) fn main_block_number<'t, 's: 't>(
                 .map_err(|_| {
                     SyntaxError::custom(
                         span,
-                        "gcodec::parse::invalid_block_number",
+                        codes::parse::INVALID_BLOCK_NUMBER,
                         format!("main block number `:{}` is not a whole number", g.text(n)),
                         None,
                     )

@@ -8,10 +8,11 @@ use chumsky::prelude::*;
 use gcodec_lang::DimensionMode;
 use gcodec_lang::addresses::letter_str;
 use gcodec_lexer::TokenKind as T;
+use gcodec_source::codes;
 
 use super::expressions::{initializer, var_ref};
 use super::numbers::number_value;
-use super::{Ctx, ERR_VALUE, ERR_WORD, Ex, In, args};
+use super::{Ctx, Ex, In, args};
 
 use crate::ast::*;
 use crate::error::SyntaxError;
@@ -184,7 +185,7 @@ fn complete_value(
     match value {
         Some((eq, None)) => Err(SyntaxError::custom(
             SimpleSpan::from(eq.start..span.end.max(eq.end)),
-            ERR_VALUE,
+            codes::parse::INVALID_VALUE,
             format!(
                 "`{}=` is not followed by a complete value",
                 g.text(SimpleSpan::from(letter.start..eq.start)).trim_end()
@@ -244,7 +245,12 @@ impl LetterParts {
 
 /// A malformed word at `s`.
 fn invalid_word<T>(s: SimpleSpan, msg: String, help: &'static str) -> Result<T, SyntaxError> {
-    Err(SyntaxError::custom(s, ERR_WORD, msg, Some(help)))
+    Err(SyntaxError::custom(
+        s,
+        codes::parse::INVALID_WORD,
+        msg,
+        Some(help),
+    ))
 }
 
 /// The one expression the `=` of the word at `span` takes.
@@ -253,7 +259,7 @@ fn single_value(span: SimpleSpan, addr: &str, v: Initializer) -> Result<Expr, Sy
         Initializer::Expr(e) => Ok(e),
         _ => Err(SyntaxError::custom(
             span,
-            ERR_VALUE,
+            codes::parse::INVALID_VALUE,
             format!("address `{addr}` takes one value, not a list"),
             None,
         )),
@@ -265,7 +271,7 @@ fn extension_number(g: Ctx<'_>, n: SimpleSpan) -> Result<u32, SyntaxError> {
     g.text(n).parse::<u32>().map_err(|_| {
         SyntaxError::custom(
             n,
-            ERR_WORD,
+            codes::parse::INVALID_WORD,
             format!("`{}` is not a valid address extension", g.text(n)),
             Some("an address extension is a whole number, e.g. `M2=3`, `X1=10`"),
         )
@@ -512,7 +518,7 @@ pub(super) fn named_word<'t, 's: 't>(
                     _ => {
                         return Err(SyntaxError::custom(
                             span,
-                            ERR_VALUE,
+                            codes::parse::INVALID_VALUE,
                             "a word takes one value, not a list",
                             None,
                         ));
@@ -543,7 +549,7 @@ fn named_address_word(
     let Initializer::Expr(e) = value else {
         return Some(Err(SyntaxError::custom(
             span,
-            ERR_VALUE,
+            codes::parse::INVALID_VALUE,
             format!("address `{}` takes one value, not a list", target.name),
             None,
         )));
@@ -557,7 +563,7 @@ fn named_address_word(
         _ => {
             return Some(Err(SyntaxError::custom(
                 span,
-                ERR_WORD,
+                codes::parse::INVALID_WORD,
                 format!("address `{}` takes one index", target.name),
                 None,
             )));

@@ -136,11 +136,11 @@ pub fn check_parse_of(src: &[u8], parse: &Parse) -> Result<(), String> {
         if d.labels.is_empty() {
             return Err(format!("{}: diagnostic without a label", d.code));
         }
-        if !d.code.starts_with("gcodec::parse::") {
+        if d.code.area() != "parse" {
             return Err(format!("{}: not a parse-stage code", d.code));
         }
         for label in &d.labels {
-            check_span(&file, label.span, d.code)?;
+            check_span(&file, label.span, d.code.name())?;
         }
     }
     Ok(())

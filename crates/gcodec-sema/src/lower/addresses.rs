@@ -18,22 +18,11 @@ use gcodec_lang::DimensionMode;
 use gcodec_lang::ggroups;
 use gcodec_parser::ast::{self, Extension, StatementKind, Word, WordValue};
 use gcodec_profile::AxisKind;
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Diagnostic, Span, codes};
 
 use crate::{tools, values};
 
-use super::{BlockPlan, INVALID_VALUE, Lowering, UNKNOWN_ADDRESS};
-
-pub(super) const MODIFIER_NOT_ALLOWED: &str = "gcodec::lower::modifier_not_allowed";
-pub(super) const EXTENSION_NOT_ALLOWED: &str = "gcodec::lower::extension_not_allowed";
-const MISSING_AXIS: &str = "gcodec::lower::missing_axis";
-const ADDRESS_REPEATED: &str = "gcodec::lower::address_repeated";
-const RESERVED_ADDRESS: &str = "gcodec::lower::reserved_address";
-const AXIS_NUMBER: &str = "gcodec::lower::axis_number";
-const DWELL_NOT_ALONE: &str = "gcodec::lower::dwell_not_alone";
-const DWELL_WITHOUT_TIME: &str = "gcodec::lower::dwell_without_time";
-pub(super) const UNSUPPORTED_G: &str = "gcodec::lower::unsupported_g";
-
+use super::{BlockPlan, Lowering};
 /// What a named address is and where its value goes.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Role {
@@ -249,8 +238,8 @@ impl Lowering<'_> {
             return true;
         }
         self.diagnostics.push(
-            Diagnostic::error(
-                MODIFIER_NOT_ALLOWED,
+            Diagnostic::new(
+                codes::lower::MODIFIER_NOT_ALLOWED,
                 format!("`{}` is not allowed on `{address}`", kind.keyword()),
             )
             .with_label(modifier.span, "dimension modifier")
@@ -268,8 +257,8 @@ impl Lowering<'_> {
             Some(Extension::Index { index, .. }) => index,
             Some(Extension::Number { span: at, .. }) => {
                 self.diagnostics.push(
-                    Diagnostic::error(
-                        EXTENSION_NOT_ALLOWED,
+                    Diagnostic::new(
+                        codes::lower::EXTENSION_NOT_ALLOWED,
                         format!("`{address}` takes its axis in brackets"),
                     )
                     .with_label(*at, "a number")
@@ -279,9 +268,12 @@ impl Lowering<'_> {
             }
             None => {
                 self.diagnostics.push(
-                    Diagnostic::error(MISSING_AXIS, format!("`{address}` needs an axis"))
-                        .with_label(word.address_span(span), "no axis")
-                        .with_help(format!("write `{address}[X]=…` with the axis name")),
+                    Diagnostic::new(
+                        codes::lower::MISSING_AXIS,
+                        format!("`{address}` needs an axis"),
+                    )
+                    .with_label(word.address_span(span), "no axis")
+                    .with_help(format!("write `{address}[X]=…` with the axis name")),
                 );
                 return None;
             }
@@ -300,8 +292,8 @@ impl Lowering<'_> {
                 }
                 if looks_like_axis(&name) {
                     self.diagnostics.push(
-                        Diagnostic::error(
-                            UNKNOWN_ADDRESS,
+                        Diagnostic::new(
+                            codes::lower::UNKNOWN_ADDRESS,
                             format!("`{name}` is not an axis of this machine"),
                         )
                         .with_label(var.span, "unknown axis")
@@ -315,8 +307,8 @@ impl Lowering<'_> {
             }
             ast::ExprKind::Number { .. } => {
                 self.diagnostics.push(
-                    Diagnostic::warning(
-                        AXIS_NUMBER,
+                    Diagnostic::new(
+                        codes::lower::AXIS_NUMBER,
                         format!("`{address}[{}]` names an axis by a number", values::source_text(index)),
                     )
                     .with_label(index.span, "not an axis name")
@@ -335,7 +327,7 @@ impl Lowering<'_> {
     /// the CEAD interpreter's programs use it as the extruder axis.
     pub(super) fn reserved_e(&mut self, span: Span) {
         self.diagnostics.push(
-            Diagnostic::warning(RESERVED_ADDRESS, "`E` is a reserved address of the control")
+            Diagnostic::new(codes::lower::RESERVED_ADDRESS, "`E` is a reserved address of the control")
                 .with_label(span, "reserved")
                 .with_help("SINUMERIK reserves `E` (no axis may be named E, MD20060) and rejects it; programs for the CEAD interpreter use it as the extruder axis. Left out of the instruction list; a profile with an axis `E` lowers it as that axis"),
         );
@@ -356,8 +348,11 @@ impl Lowering<'_> {
                 }
                 Some(_) => {
                     self.diagnostics.push(
-                        Diagnostic::error(INVALID_VALUE, "a spindle number is a whole number 1…99")
-                            .with_label(*span, "not a spindle number"),
+                        Diagnostic::new(
+                            codes::lower::INVALID_VALUE,
+                            "a spindle number is a whole number 1…99",
+                        )
+                        .with_label(*span, "not a spindle number"),
                     );
                     Err(())
                 }
@@ -423,8 +418,8 @@ impl Lowering<'_> {
                 Extension::Number { span, .. } | Extension::Index { span, .. } => *span,
             };
             return self.diagnostics.push(
-                Diagnostic::error(
-                    EXTENSION_NOT_ALLOWED,
+                Diagnostic::new(
+                    codes::lower::EXTENSION_NOT_ALLOWED,
                     format!("`{address}` takes no address extension"),
                 )
                 .with_label(at, "extension")
@@ -484,8 +479,11 @@ impl Lowering<'_> {
                 };
                 if !ok {
                     return self.diagnostics.push(
-                        Diagnostic::error(INVALID_VALUE, "`DL` takes a whole number ≥ 0")
-                            .with_label(span, "not a DL number"),
+                        Diagnostic::new(
+                            codes::lower::INVALID_VALUE,
+                            "`DL` takes a whole number ≥ 0",
+                        )
+                        .with_label(span, "not a DL number"),
                     );
                 }
                 let key = ("DL".to_owned(), None, None);
@@ -553,8 +551,8 @@ impl Lowering<'_> {
     }
 
     fn repeated(&mut self, address: &str, span: Span, first: Span) {
-        let mut d = Diagnostic::error(
-            ADDRESS_REPEATED,
+        let mut d = Diagnostic::new(
+            codes::lower::ADDRESS_REPEATED,
             format!("`{address}` is programmed twice in one block"),
         )
         .with_label(span, "again");
@@ -587,8 +585,8 @@ impl Lowering<'_> {
                         };
                         if !allowed {
                             return self.diagnostics.push(
-                                Diagnostic::error(
-                                    MODIFIER_NOT_ALLOWED,
+                                Diagnostic::new(
+                                    codes::lower::MODIFIER_NOT_ALLOWED,
                                     format!(
                                         "`{}` is not allowed on `{}`",
                                         kind.keyword(),
@@ -664,8 +662,8 @@ impl Lowering<'_> {
                     (Some(kind), Some(arg)) => {
                         if spindle.is_none() {
                             self.diagnostics.push(
-                                Diagnostic::error(
-                                    MODIFIER_NOT_ALLOWED,
+                                Diagnostic::new(
+                                    codes::lower::MODIFIER_NOT_ALLOWED,
                                     format!("`{}` is not allowed on `{address}`", kind.keyword()),
                                 )
                                 .with_label(call.name_span, "dimension modifier")
@@ -682,8 +680,8 @@ impl Lowering<'_> {
                                 | DimensionMode::Acn
                         ) {
                             self.diagnostics.push(
-                                Diagnostic::error(
-                                    MODIFIER_NOT_ALLOWED,
+                                Diagnostic::new(
+                                    codes::lower::MODIFIER_NOT_ALLOWED,
                                     format!("`{}` is not allowed on `{address}`", kind.keyword()),
                                 )
                                 .with_label(call.name_span, "dimension modifier")
@@ -735,7 +733,7 @@ impl Lowering<'_> {
             Some(Extension::Number { value, span: at }) => {
                 if *value > 99 {
                     return self.diagnostics.push(
-                        Diagnostic::error(INVALID_VALUE, "H extensions are 0…99")
+                        Diagnostic::new(codes::lower::INVALID_VALUE, "H extensions are 0…99")
                             .with_label(*at, "out of range"),
                     );
                 }
@@ -745,7 +743,7 @@ impl Lowering<'_> {
                 Some(n) if (0.0..=99.0).contains(&n) && n.fract() == 0.0 => (Some(n as u32), None),
                 Some(_) => {
                     return self.diagnostics.push(
-                        Diagnostic::error(INVALID_VALUE, "H extensions are 0…99")
+                        Diagnostic::new(codes::lower::INVALID_VALUE, "H extensions are 0…99")
                             .with_label(*at, "out of range"),
                     );
                 }
@@ -780,8 +778,11 @@ impl Lowering<'_> {
         };
         if h_value.is_some_and(|v| v.abs() > f64::from(f32::MAX)) {
             return self.diagnostics.push(
-                Diagnostic::error(INVALID_VALUE, "H values range over ±3.4028e38")
-                    .with_label(span, "out of range"),
+                Diagnostic::new(
+                    codes::lower::INVALID_VALUE,
+                    "H values range over ±3.4028e38",
+                )
+                .with_label(span, "out of range"),
             );
         }
         let ext_text = match (&extension, word.extension()) {
@@ -877,8 +878,11 @@ impl Lowering<'_> {
             }
         }
         if !others.is_empty() {
-            let mut d = Diagnostic::error(DWELL_NOT_ALONE, "`G4` must be alone in its block")
-                .with_label(g4, "dwell");
+            let mut d = Diagnostic::new(
+                codes::lower::DWELL_NOT_ALONE,
+                "`G4` must be alone in its block",
+            )
+            .with_label(g4, "dwell");
             for at in others {
                 d = d.with_label(at, "also in the block");
             }
@@ -897,11 +901,12 @@ impl Lowering<'_> {
         };
         if seconds.is_none() && revolutions.is_none() {
             self.diagnostics.push(
-                Diagnostic::error(DWELL_WITHOUT_TIME, "`G4` without a dwell time")
-                    .with_label(g4, "dwell")
-                    .with_help(
-                        "write `G4 F<seconds>` or `G4 S<revolutions of the master spindle>`",
-                    ),
+                Diagnostic::new(
+                    codes::lower::DWELL_WITHOUT_TIME,
+                    "`G4` without a dwell time",
+                )
+                .with_label(g4, "dwell")
+                .with_help("write `G4 F<seconds>` or `G4 S<revolutions of the master spindle>`"),
             );
         }
         Op::Dwell {

@@ -7,16 +7,11 @@ use std::collections::HashMap;
 use gcodec_ail::{Op, Value};
 use gcodec_lang::ggroups;
 use gcodec_parser::ast::{self, CallTarget, JumpTarget, StatementKind};
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Diagnostic, Span, codes};
 
 use crate::values;
 
 use super::{BlockPlan, Lowering};
-
-const TOO_MANY_ARGUMENTS: &str = "gcodec::lower::too_many_arguments";
-const ARGUMENT_NOT_VARIABLE: &str = "gcodec::lower::argument_not_variable";
-const PROC_NOT_FIRST: &str = "gcodec::lower::proc_not_first";
-
 /// A signature the file declares: by a `PROC` of its own or `EXTERN`.
 pub(super) struct Signature {
     /// Per parameter: its name (none in `EXTERN`) and whether it is `VAR`.
@@ -132,8 +127,8 @@ impl Lowering<'_> {
         let declared = signature.span;
         if args.len() > signature.params.len() {
             self.diagnostics.push(
-                Diagnostic::error(
-                    TOO_MANY_ARGUMENTS,
+                Diagnostic::new(
+                    codes::lower::TOO_MANY_ARGUMENTS,
                     format!(
                         "`{upper}` takes {} argument{}, this call passes {}",
                         signature.params.len(),
@@ -156,8 +151,8 @@ impl Lowering<'_> {
         for (name, at) in problems {
             let which = name.map_or_else(String::new, |n| format!(" `{n}`"));
             self.diagnostics.push(
-                Diagnostic::error(
-                    ARGUMENT_NOT_VARIABLE,
+                Diagnostic::new(
+                    codes::lower::ARGUMENT_NOT_VARIABLE,
                     format!("the parameter{which} of `{upper}` is `VAR`: it needs a variable"),
                 )
                 .with_label(at, "not a variable")
@@ -256,7 +251,7 @@ impl Lowering<'_> {
     pub(super) fn procedure(&mut self, proc: &ast::Proc, span: Span, plan: &mut BlockPlan) {
         if self.outline.first_statement != Some(span) {
             self.diagnostics.push(
-                Diagnostic::error(PROC_NOT_FIRST, "`PROC` must open the program")
+                Diagnostic::new(codes::lower::PROC_NOT_FIRST, "`PROC` must open the program")
                     .with_label(span, "after other statements")
                     .with_help("the control accepts `PROC` only in the first block of a program; move it there"),
             );

@@ -4,17 +4,12 @@
 
 use gcodec_ail::{Op, Value};
 use gcodec_parser::ast::{self, Block, GotoKind, StatementKind, StructureKind};
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Diagnostic, Span, codes};
 
 use crate::flow::{self, BlockFlow, Resolved, Role, Search};
 use crate::values;
 
-use super::{BlockPlan, INVALID_VALUE, Lowering, MISSING_JUMP_TARGET, direction};
-
-const CASE_VALUE_NOT_CONSTANT: &str = "gcodec::lower::case_value_not_constant";
-const LABEL_IN_STRUCTURE_BLOCK: &str = "gcodec::lower::label_in_structure_block";
-const SKIPPED_STRUCTURE_BLOCK: &str = "gcodec::lower::skipped_structure_block";
-
+use super::{BlockPlan, Lowering, direction};
 impl<'a> Lowering<'a> {
     /// The labels and jumps a block carries as a jump target and as a
     /// part of structures; the conditions are added by [`Self::statement`].
@@ -81,8 +76,8 @@ impl<'a> Lowering<'a> {
         let element = block.statements.first().map_or(block.span, |s| s.span);
         if let Some(label) = &block.label {
             self.diagnostics.push(
-                Diagnostic::error(
-                    LABEL_IN_STRUCTURE_BLOCK,
+                Diagnostic::new(
+                    codes::lower::LABEL_IN_STRUCTURE_BLOCK,
                     "a block with a control-structure element carries no label",
                 )
                 .with_label(label.span, "label")
@@ -92,8 +87,8 @@ impl<'a> Lowering<'a> {
         }
         if let Some(skip) = &block.skip {
             self.diagnostics.push(
-                Diagnostic::error(
-                    SKIPPED_STRUCTURE_BLOCK,
+                Diagnostic::new(
+                    codes::lower::SKIPPED_STRUCTURE_BLOCK,
                     "a block with a control-structure element cannot be skipped",
                 )
                 .with_label(skip.span, "skip mark")
@@ -269,8 +264,8 @@ impl<'a> Lowering<'a> {
         for arm in &case.arms {
             if values::constant(&arm.value).is_none() {
                 self.diagnostics.push(
-                    Diagnostic::error(
-                        CASE_VALUE_NOT_CONSTANT,
+                    Diagnostic::new(
+                        codes::lower::CASE_VALUE_NOT_CONSTANT,
                         "a `CASE` arm compares with a constant",
                     )
                     .with_label(arm.value.span, "not a constant")
@@ -311,8 +306,8 @@ impl<'a> Lowering<'a> {
                     && (n < 1.0 || n.fract() != 0.0)
                 {
                     self.diagnostics.push(
-                        Diagnostic::error(
-                            INVALID_VALUE,
+                        Diagnostic::new(
+                            codes::lower::INVALID_VALUE,
                             "`P` of a `REPEAT` is a whole number of passes, at least 1",
                         )
                         .with_label(p.span, "not a whole number ≥ 1"),
@@ -338,8 +333,8 @@ impl<'a> Lowering<'a> {
             Some(Err(name)) => {
                 let name = name.clone();
                 self.diagnostics.push(
-                    Diagnostic::warning(
-                        MISSING_JUMP_TARGET,
+                    Diagnostic::new(
+                        codes::lower::MISSING_JUMP_TARGET,
                         format!("`{name}`, where the section of this `{keyword}` starts or ends, is not found"),
                     )
                     .with_label(span, "this repetition")
@@ -393,8 +388,8 @@ impl<'a> Lowering<'a> {
             }
             Resolved::Missing(name) => {
                 self.diagnostics.push(
-                    Diagnostic::warning(
-                        MISSING_JUMP_TARGET,
+                    Diagnostic::new(
+                        codes::lower::MISSING_JUMP_TARGET,
                         format!("`{name}` is not found {}", direction(jump.goto)),
                     )
                     .with_label(span, "this jump")

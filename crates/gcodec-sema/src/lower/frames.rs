@@ -6,15 +6,12 @@ use std::borrow::Cow;
 
 use gcodec_ail::{AxisValue, IndirectAxisValue, Op};
 use gcodec_parser::ast;
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Diagnostic, Span, codes};
 
 use crate::values;
 
 use super::addresses::AxisRef;
-use super::{BlockPlan, Lowering, UNKNOWN_ADDRESS, axis_name};
-
-const FRAME_NOT_ALONE: &str = "gcodec::lower::frame_not_alone";
-
+use super::{BlockPlan, Lowering, axis_name};
 impl Lowering<'_> {
     pub(super) fn frame(
         &mut self,
@@ -25,8 +22,8 @@ impl Lowering<'_> {
     ) {
         // Frame instructions need a block of their own (reference §9.1).
         if block.statements.len() > 1 {
-            let mut diagnostic = Diagnostic::error(
-                FRAME_NOT_ALONE,
+            let mut diagnostic = Diagnostic::new(
+                codes::lower::FRAME_NOT_ALONE,
                 format!("`{}` must be alone in its block", frame.op.keyword()),
             )
             .with_label(span, "frame instruction");
@@ -69,8 +66,8 @@ impl Lowering<'_> {
             }
             if !(self.is_axis(address) || rotation && address.eq_ignore_ascii_case("RPL")) {
                 self.diagnostics.push(
-                    Diagnostic::error(
-                        UNKNOWN_ADDRESS,
+                    Diagnostic::new(
+                        codes::lower::UNKNOWN_ADDRESS,
                         format!("`{address}` is not an axis of this machine"),
                     )
                     .with_label(w.word.address_span(w.span), "not an axis")

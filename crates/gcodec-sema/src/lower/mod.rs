@@ -25,7 +25,7 @@ use gcodec_lang::mfunctions::acts_after_motion;
 use gcodec_lang::motion::MOTION_GROUP;
 use gcodec_parser::ast::{self, Block, GotoKind, Program};
 use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Code, Diagnostic, Severity, Span, codes};
 
 use crate::definitions::Definitions;
 use crate::flow::BlockFlow;
@@ -394,39 +394,26 @@ pub fn refine(document: &mut Document, profile: &Profile, subprogram: bool) {
     }
 }
 
-const NOT_LOWERED: &str = "gcodec::lower::not_lowered";
-const UNKNOWN_G: &str = "gcodec::lower::unknown_g";
-const G_GROUP_CONFLICT: &str = "gcodec::lower::g_group_conflict";
-const UNSUPPORTED_OFFSET: &str = "gcodec::lower::unsupported_offset";
-const DUPLICATE_SUPPRESSION: &str = "gcodec::lower::duplicate_suppression";
-const UNKNOWN_ADDRESS: &str = "gcodec::lower::unknown_address";
-pub(crate) const UNKNOWN_SPINDLE: &str = "gcodec::lower::unknown_spindle";
-const BLOCK_TOO_LONG: &str = "gcodec::lower::block_too_long";
-const REPEATED_AXIS: &str = "gcodec::lower::repeated_axis";
-const MISSING_CIRCLE_DATA: &str = "gcodec::lower::missing_circle_data";
-pub(crate) const INVALID_VALUE: &str = "gcodec::lower::invalid_value";
-const UNKNOWN_SYSTEM_VARIABLE: &str = "gcodec::lower::unknown_system_variable";
-const MISSING_JUMP_TARGET: &str = "gcodec::lower::missing_jump_target";
-pub(crate) const DUPLICATE_LABEL: &str = "gcodec::lower::duplicate_label";
-
 /// The warning for a construct lowering does not translate yet: it is
 /// named, never dropped in silence.
 pub(crate) fn not_lowered(span: Span, what: &str) -> Diagnostic {
-    Diagnostic::warning(NOT_LOWERED, format!("{what} is not lowered yet"))
-        .with_label(span, "left out of the instruction list")
-        .with_help(
-            "gcodec does not translate this construct yet; the program cannot be run as written",
-        )
+    Diagnostic::new(
+        codes::lower::NOT_LOWERED,
+        format!("{what} is not lowered yet"),
+    )
+    .with_label(span, "left out of the instruction list")
+    .with_help("gcodec does not translate this construct yet; the program cannot be run as written")
 }
 
 /// A diagnostic at the severity a profile policy chose: an error or a
 /// warning.
-pub(crate) fn by_policy(error: bool, code: &'static str, message: String) -> Diagnostic {
-    if error {
-        Diagnostic::error(code, message)
+pub(crate) fn by_policy(error: bool, code: &'static Code, message: String) -> Diagnostic {
+    let severity = if error {
+        Severity::Error
     } else {
-        Diagnostic::warning(code, message)
-    }
+        Severity::Warning
+    };
+    Diagnostic::new(code, message).with_severity(severity)
 }
 
 /// The motion of a group 1 command as the registry spells it (`G1`,
@@ -772,8 +759,8 @@ impl<'a> Lowering<'a> {
         let max = *self.profile.program.max_block_length.get_ref();
         if block.span.len() > max {
             self.diagnostics.push(
-                Diagnostic::error(
-                    BLOCK_TOO_LONG,
+                Diagnostic::new(
+                    codes::lower::BLOCK_TOO_LONG,
                     format!(
                         "the block is {} characters long; the control accepts {max}",
                         block.span.len()
@@ -1028,8 +1015,8 @@ impl<'a> Lowering<'a> {
             // as written; the executor reads them by the command then.
             for (axis, span) in std::mem::take(&mut plan.repeated_axes) {
                 self.diagnostics.push(
-                    Diagnostic::error(
-                        REPEATED_AXIS,
+                    Diagnostic::new(
+                        codes::lower::REPEATED_AXIS,
                         format!("`{axis}` is programmed twice in this block"),
                     )
                     .with_label(span, "again")
@@ -1045,8 +1032,8 @@ impl<'a> Lowering<'a> {
             if circle_missing {
                 let code = self.modal[0].unwrap_or("G2");
                 self.diagnostics.push(
-                    Diagnostic::error(
-                        MISSING_CIRCLE_DATA,
+                    Diagnostic::new(
+                        codes::lower::MISSING_CIRCLE_DATA,
                         format!("`{code}` is active, but the block gives no centre, radius or opening angle"),
                     )
                     .with_label(first, "circle end point")
@@ -1128,9 +1115,9 @@ impl<'a> Lowering<'a> {
         let message = "several of G53, G153 and SUPA in one block";
         let diagnostic = match policy {
             DuplicateSuppressionPolicy::FirstWins => return Some(first),
-            DuplicateSuppressionPolicy::Warn => Diagnostic::warning(DUPLICATE_SUPPRESSION, message)
+            DuplicateSuppressionPolicy::Warn => Diagnostic::new(codes::lower::DUPLICATE_SUPPRESSION, message)
                 .with_help("the strongest one acts (SUPA > G153 > G53); write only that one"),
-            DuplicateSuppressionPolicy::Error => Diagnostic::error(DUPLICATE_SUPPRESSION, message)
+            DuplicateSuppressionPolicy::Error => Diagnostic::new(codes::lower::DUPLICATE_SUPPRESSION, message).with_severity(Severity::Error)
                 .with_help("the profile forbids this (`duplicate_suppression_policy = \"error\"`); write only one"),
         };
         let mut diagnostic = diagnostic.with_label(first_span, "first");

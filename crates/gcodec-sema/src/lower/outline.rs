@@ -10,14 +10,14 @@ use std::sync::Arc;
 use gcodec_lang::MClass;
 use gcodec_parser::ast::{self, Block, ControlStructure, StatementKind};
 use gcodec_profile::Profile;
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Diagnostic, Span, codes};
 use rustc_hash::FxHashMap;
 
 use crate::definitions::Definitions;
 use crate::flow::{Flow, FlowBuilder};
 use crate::{mfunc, values};
 
-use super::{DUPLICATE_LABEL, calls, variables};
+use super::{calls, variables};
 
 /// The whole-program facts lowering reads, computed before the blocks.
 pub struct Outline<'d> {
@@ -252,8 +252,8 @@ fn duplicate_labels(flow: &Flow) -> Vec<Diagnostic> {
         .into_iter()
         .map(|(name, blocks)| {
             // The control does not check this (reference §1.7): advice.
-            let mut diagnostic = Diagnostic::advice(
-                DUPLICATE_LABEL,
+            let mut diagnostic = Diagnostic::new(
+                codes::lower::DUPLICATE_LABEL,
                 format!("label `{name}` is defined {} times", blocks.len()),
             )
             .with_label(span(blocks[0]), "first")

@@ -30,21 +30,14 @@ use gcodec_ail::Op;
 use gcodec_lang::{DataType, UnaryOp};
 use gcodec_parser::ast::{self, StatementKind};
 use gcodec_profile::Profile;
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Diagnostic, Span, codes};
 
-use crate::definitions::{Definitions, UNDEFINED_VARIABLE, is_program_end};
-use crate::types::{self, Constant, NameMap, TYPE_MISMATCH, constant_count};
+use crate::definitions::{Definitions, is_program_end};
+use crate::types::{self, Constant, NameMap, constant_count};
 use crate::values;
 use gcodec_lang::sysvars::{self, IndexShape};
 
-use super::{BlockPlan, INVALID_VALUE, Lowering, NOT_LOWERED, UNKNOWN_SYSTEM_VARIABLE};
-
-const MISPLACED_DEFINITION: &str = "gcodec::lower::misplaced_definition";
-const DUPLICATE_DEFINITION: &str = "gcodec::lower::duplicate_definition";
-const INDEX_OUT_OF_RANGE: &str = "gcodec::lower::index_out_of_range";
-const INDEX_COUNT: &str = "gcodec::lower::index_count";
-const SYSTEM_VARIABLE_INDEX: &str = "gcodec::lower::system_variable_index";
-
+use super::{BlockPlan, Lowering};
 /// Array dimensions tracked per variable (the language allows three).
 const MAX_DIMS: usize = 3;
 
@@ -210,8 +203,8 @@ impl<'a> NameCollector<'a> {
                             self.first_executable = None;
                         } else {
                             diagnostics.push(
-                                Diagnostic::error(
-                                    MISPLACED_DEFINITION,
+                                Diagnostic::new(
+                                    codes::lower::MISPLACED_DEFINITION,
                                     "`DEF` after the first executable statement",
                                 )
                                 .with_label(span, "defined here")
@@ -277,7 +270,7 @@ impl<'a> Names<'a> {
         };
         if let Some(first) = section.locals.insert_new(name, local) {
             diagnostics.push(
-                Diagnostic::error(DUPLICATE_DEFINITION, format!("`{name}` is defined twice"))
+                Diagnostic::new(codes::lower::DUPLICATE_DEFINITION, format!("`{name}` is defined twice"))
                     .with_label(span, "defined again here")
                     .with_label(first.span, "first defined here")
                     .with_help("the control rejects a second definition of a name in one program; rename or remove one"),
@@ -414,8 +407,8 @@ impl Lowering<'_> {
     fn check_system_variable(&mut self, var: &ast::VarRef) {
         let Some(known) = sysvars::lookup(&var.name) else {
             self.diagnostics.push(
-                Diagnostic::error(
-                    UNKNOWN_SYSTEM_VARIABLE,
+                Diagnostic::new(
+                    codes::lower::UNKNOWN_SYSTEM_VARIABLE,
                     format!("`{}` is not a system variable of the control", var.name),
                 )
                 .with_label(var.span, "unknown")
@@ -429,8 +422,8 @@ impl Lowering<'_> {
         let count = var.indices.len();
         if !known.shape.accepts(count) {
             self.diagnostics.push(
-                Diagnostic::error(
-                    SYSTEM_VARIABLE_INDEX,
+                Diagnostic::new(
+                    codes::lower::SYSTEM_VARIABLE_INDEX,
                     format!(
                         "`{}` takes {}; {} written",
                         var.name,
@@ -499,8 +492,8 @@ impl Lowering<'_> {
 
     fn system_index_error(&mut self, var: &ast::VarRef, index: &ast::Expr, what: &str) {
         self.diagnostics.push(
-            Diagnostic::error(
-                SYSTEM_VARIABLE_INDEX,
+            Diagnostic::new(
+                codes::lower::SYSTEM_VARIABLE_INDEX,
                 format!("this index of `{}` must be {what}", var.name),
             )
             .with_label(index.span, "wrong kind of index")
@@ -525,8 +518,8 @@ impl Lowering<'_> {
             }
             Resolved::Untyped | Resolved::Axis => {}
             Resolved::Later(defined) => self.diagnostics.push(
-                Diagnostic::error(
-                    UNDEFINED_VARIABLE,
+                Diagnostic::new(
+                    codes::lower::UNDEFINED_VARIABLE,
                     format!("`{}` is used before its definition", var.name),
                 )
                 .with_label(var.span, "not defined yet")
@@ -534,8 +527,8 @@ impl Lowering<'_> {
                 .with_help("the control knows a name from its `DEF` on (alarm 12550); move the `DEF` up"),
             ),
             Resolved::Undefined => self.diagnostics.push(
-                Diagnostic::error(
-                    UNDEFINED_VARIABLE,
+                Diagnostic::new(
+                    codes::lower::UNDEFINED_VARIABLE,
                     format!("`{}` is not defined", var.name),
                 )
                 .with_label(var.span, "unknown name")
@@ -569,8 +562,8 @@ impl Lowering<'_> {
                 )
             };
             self.diagnostics.push(
-                Diagnostic::error(
-                    INDEX_COUNT,
+                Diagnostic::new(
+                    codes::lower::INDEX_COUNT,
                     format!(
                         "`{}` is {declared}; {count} ind{} written",
                         var.name,
@@ -590,8 +583,8 @@ impl Lowering<'_> {
             };
             if value < 0 || value >= i64::from(dim) {
                 self.diagnostics.push(
-                    Diagnostic::error(
-                        INDEX_OUT_OF_RANGE,
+                    Diagnostic::new(
+                        codes::lower::INDEX_OUT_OF_RANGE,
                         format!(
                             "index {value} is outside `{}`: {} indices run from 0 to {}",
                             var.name,
@@ -759,8 +752,8 @@ impl Lowering<'_> {
             [value, count] => (value, Some(count)),
             _ => {
                 self.diagnostics.push(
-                    Diagnostic::error(
-                        INVALID_VALUE,
+                    Diagnostic::new(
+                        codes::lower::INVALID_VALUE,
                         format!("`REP` takes a value and a count; {} arguments are written", args.len()),
                     )
                     .with_label(span, "here")
@@ -777,8 +770,8 @@ impl Lowering<'_> {
             match values::constant(count) {
                 Some(n) if n.fract() != 0.0 || n < 1.0 => {
                     self.diagnostics.push(
-                        Diagnostic::error(
-                            INVALID_VALUE,
+                        Diagnostic::new(
+                            codes::lower::INVALID_VALUE,
                             format!(
                                 "the count of `REP` must be a whole number of at least 1, not {n}"
                             ),
@@ -810,8 +803,8 @@ impl Lowering<'_> {
                 format!(" from element {start} on")
             };
             self.diagnostics.push(
-                Diagnostic::error(
-                    INDEX_OUT_OF_RANGE,
+                Diagnostic::new(
+                    codes::lower::INDEX_OUT_OF_RANGE,
                     format!("{count} values{from} do not fit in `{name}`, which has {total} elements"),
                 )
                 .with_label(span, "too many values")
@@ -919,8 +912,8 @@ impl Lowering<'_> {
         };
         if !known {
             self.diagnostics.push(
-                Diagnostic::error(
-                    UNDEFINED_VARIABLE,
+                Diagnostic::new(
+                    codes::lower::UNDEFINED_VARIABLE,
                     format!("`REDEF` of `{}`, which is not defined", redef.name),
                 )
                 .with_label(span, "unknown name")
@@ -933,8 +926,8 @@ impl Lowering<'_> {
             .map(|a| a.name.to_ascii_uppercase().to_string())
             .collect();
         self.diagnostics.push(
-            Diagnostic::warning(
-                NOT_LOWERED,
+            Diagnostic::new(
+                codes::lower::NOT_LOWERED,
                 format!(
                     "`REDEF {}{}{}` is not lowered yet",
                     redef.name,
@@ -951,8 +944,8 @@ impl Lowering<'_> {
     /// uses are not expanded.
     pub(super) fn define_macro(&mut self, define: &ast::Define, span: Span) {
         self.diagnostics.push(
-            Diagnostic::warning(
-                NOT_LOWERED,
+            Diagnostic::new(
+                codes::lower::NOT_LOWERED,
                 format!(
                     "the macro `{}` is not expanded: macro expansion is not lowered yet",
                     define.name
@@ -978,8 +971,8 @@ fn display_name(var: &ast::VarRef) -> std::borrow::Cow<'_, str> {
 
 /// A list of values for a single value.
 fn not_an_array(name: &str, span: Span) -> Diagnostic {
-    Diagnostic::error(
-        TYPE_MISMATCH,
+    Diagnostic::new(
+        codes::lower::TYPE_MISMATCH,
         format!("`{name}` is a single value: a list of values needs an array"),
     )
     .with_label(span, "a list of values")

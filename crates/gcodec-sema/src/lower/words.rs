@@ -8,19 +8,11 @@ use std::borrow::Cow;
 use gcodec_ail::{AxisValue, Suppression, Value};
 use gcodec_lang::ggroups::{self, GCommand};
 use gcodec_parser::ast::{self, Extension, Word};
-use gcodec_source::{Diagnostic, Span};
+use gcodec_source::{Diagnostic, Span, codes};
 
 use crate::{mfunc, tools, values};
 
-use super::addresses::{EXTENSION_NOT_ALLOWED, UNSUPPORTED_G};
-use super::{
-    BlockPlan, G_GROUP_CONFLICT, INVALID_VALUE, Lowering, UNKNOWN_ADDRESS, UNKNOWN_G,
-    UNSUPPORTED_OFFSET, axis_name,
-};
-
-const COMPUTED_G: &str = "gcodec::lower::computed_g";
-const INVALID_INDIRECT_G: &str = "gcodec::lower::invalid_indirect_g";
-
+use super::{BlockPlan, Lowering, axis_name};
 impl Lowering<'_> {
     pub(super) fn word(&mut self, word: &Word, span: Span, plan: &mut BlockPlan) {
         let address = word.address();
@@ -61,7 +53,7 @@ impl Lowering<'_> {
                     plan.edge = Some((Value::Const(d), span))
                 }
                 (None, Some(_), _) => self.diagnostics.push(
-                    Diagnostic::error(INVALID_VALUE, "cutting edges are D0…D32000")
+                    Diagnostic::new(codes::lower::INVALID_VALUE, "cutting edges are D0…D32000")
                         .with_label(span, "out of range"),
                 ),
                 // `D=EDGES[I]`: computed when the block runs.
@@ -76,8 +68,11 @@ impl Lowering<'_> {
                     plan.edge = Some((values::value(expr), span))
                 }
                 (None, None, _) => self.diagnostics.push(
-                    Diagnostic::error(INVALID_VALUE, "a cutting edge is a whole number")
-                        .with_label(span, "not a whole number"),
+                    Diagnostic::new(
+                        codes::lower::INVALID_VALUE,
+                        "a cutting edge is a whole number",
+                    )
+                    .with_label(span, "not a whole number"),
                 ),
                 _ => self.not_lowered(span, "an extended D number"),
             },
@@ -106,8 +101,8 @@ impl Lowering<'_> {
                         }
                         Some(_) => {
                             return self.diagnostics.push(
-                                Diagnostic::error(
-                                    INVALID_VALUE,
+                                Diagnostic::new(
+                                    codes::lower::INVALID_VALUE,
                                     "a spindle number is a whole number 1…99",
                                 )
                                 .with_label(*span, "not a spindle number"),
@@ -175,8 +170,8 @@ impl Lowering<'_> {
                 if matches!(word.extension(), Some(Extension::Index { .. })) =>
             {
                 self.diagnostics.push(
-                    Diagnostic::error(
-                        EXTENSION_NOT_ALLOWED,
+                    Diagnostic::new(
+                        codes::lower::EXTENSION_NOT_ALLOWED,
                         format!("`{address}[…]` is not an axis"),
                     )
                     .with_label(span, "bracketed extension")
@@ -192,8 +187,8 @@ impl Lowering<'_> {
             "A" | "B" | "C" | "Q" | "U" | "V" | "W" | "X" | "Y" | "Z" => {
                 let name = self.axis_word_name(word);
                 self.diagnostics.push(
-                    Diagnostic::error(
-                        UNKNOWN_ADDRESS,
+                    Diagnostic::new(
+                        codes::lower::UNKNOWN_ADDRESS,
                         format!("`{name}` is not an axis or address of this machine"),
                     )
                     .with_label(word.address_span(span), "unknown here")
@@ -216,8 +211,8 @@ impl Lowering<'_> {
         let member = command.name();
         if let Some(key) = self.g_unsupported(group, member) {
             return self.diagnostics.push(
-                Diagnostic::error(
-                    UNSUPPORTED_G,
+                Diagnostic::new(
+                    codes::lower::UNSUPPORTED_G,
                     format!("this control does not have `{member}`"),
                 )
                 .with_label(span, "not supported")
@@ -240,8 +235,8 @@ impl Lowering<'_> {
                 .is_some_and(|s| *s);
             if !supported {
                 return self.diagnostics.push(
-                    Diagnostic::error(
-                        UNSUPPORTED_OFFSET,
+                    Diagnostic::new(
+                        codes::lower::UNSUPPORTED_OFFSET,
                         format!("`{member}` is not a settable offset of this machine"),
                     )
                     .with_label(span, "not among `supported_group8_offsets`")
@@ -251,8 +246,8 @@ impl Lowering<'_> {
         }
         if let Some((_, _, first_span)) = plan.indirect_g.iter().find(|(g, _, _)| *g == group) {
             return self.diagnostics.push(
-                Diagnostic::error(
-                    G_GROUP_CONFLICT,
+                Diagnostic::new(
+                    codes::lower::G_GROUP_CONFLICT,
                     format!("`{member}` and `G[{group}]=…` are both in G group {group}; a block holds one command of a group"),
                 )
                 .with_label(span, "second command of the group")
@@ -261,8 +256,8 @@ impl Lowering<'_> {
         }
         if let Some((first, first_span)) = plan.g_codes.iter().find(|(c, _)| c.group() == group) {
             return self.diagnostics.push(
-                Diagnostic::error(
-                    G_GROUP_CONFLICT,
+                Diagnostic::new(
+                    codes::lower::G_GROUP_CONFLICT,
                     format!("`{member}` and `{}` are both in G group {group}; a block holds one command of a group", first.name()),
                 )
                 .with_label(span, "second command of the group")
@@ -288,8 +283,8 @@ impl Lowering<'_> {
                     match ggroups::lookup_g(n as u64) {
                         Some((group, index)) => self.g_code(group, index, span, plan),
                         None => self.diagnostics.push(
-                            Diagnostic::error(
-                                UNKNOWN_G,
+                            Diagnostic::new(
+                                codes::lower::UNKNOWN_G,
                                 format!("`G{}` is not a G command of the control", n as u64),
                             )
                             .with_label(span, "unknown G command"),
@@ -299,17 +294,22 @@ impl Lowering<'_> {
                 _ => match value {
                     ast::WordValue::Assigned { expr, .. } if values::constant(expr).is_none() => {
                         self.diagnostics.push(
-                            Diagnostic::error(
-                                COMPUTED_G,
+                            Diagnostic::new(
+                                codes::lower::COMPUTED_G,
                                 "a computed G command needs its group",
                             )
                             .with_label(span, "no G group")
-                            .with_help("program it indirectly as `G[<group>]=<index>`, e.g. `G[8]=KORD`"),
+                            .with_help(
+                                "program it indirectly as `G[<group>]=<index>`, e.g. `G[8]=KORD`",
+                            ),
                         )
                     }
                     _ => self.diagnostics.push(
-                        Diagnostic::error(UNKNOWN_G, "a G command is a whole number ≥ 0")
-                            .with_label(span, "unknown G command"),
+                        Diagnostic::new(
+                            codes::lower::UNKNOWN_G,
+                            "a G command is a whole number ≥ 0",
+                        )
+                        .with_label(span, "unknown G command"),
                     ),
                 },
             },
@@ -352,8 +352,11 @@ impl Lowering<'_> {
             Some(g) if g.fract() == 0.0 && (1.0..=64.0).contains(&g) => g as u8,
             Some(_) => {
                 return self.diagnostics.push(
-                    Diagnostic::error(INVALID_INDIRECT_G, "G groups are numbered 1…64")
-                        .with_label(group_span, "not a G group"),
+                    Diagnostic::new(
+                        codes::lower::INVALID_INDIRECT_G,
+                        "G groups are numbered 1…64",
+                    )
+                    .with_label(group_span, "not a G group"),
                 );
             }
             None => {
@@ -361,7 +364,7 @@ impl Lowering<'_> {
             }
         };
         let invalid = |message: String, help: &'static str| {
-            Diagnostic::error(INVALID_INDIRECT_G, message)
+            Diagnostic::new(codes::lower::INVALID_INDIRECT_G, message)
                 .with_label(span, "indirect G command")
                 .with_help(help)
         };
@@ -415,8 +418,8 @@ impl Lowering<'_> {
         }
         if let Some((first, first_span)) = plan.g_codes.iter().find(|(c, _)| c.group() == group) {
             return self.diagnostics.push(
-                Diagnostic::error(
-                    G_GROUP_CONFLICT,
+                Diagnostic::new(
+                    codes::lower::G_GROUP_CONFLICT,
                     format!("`G[{group}]=…` and `{}` are both in G group {group}; a block holds one command of a group", first.name()),
                 )
                 .with_label(span, "second command of the group")
@@ -425,8 +428,8 @@ impl Lowering<'_> {
         }
         if let Some((_, _, first)) = plan.indirect_g.iter().find(|(g, _, _)| *g == group) {
             return self.diagnostics.push(
-                Diagnostic::error(
-                    G_GROUP_CONFLICT,
+                Diagnostic::new(
+                    codes::lower::G_GROUP_CONFLICT,
                     format!("two commands of G group {group} in one block"),
                 )
                 .with_label(span, "second command of the group")

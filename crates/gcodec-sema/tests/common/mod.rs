@@ -38,7 +38,7 @@ pub fn ops(lowered: &gcodec_sema::Lowered, kind: &str) -> Vec<serde_json::Value>
 
 /// The codes of all diagnostics, in order.
 pub fn codes(lowered: &gcodec_sema::Lowered) -> Vec<&'static str> {
-    lowered.diagnostics.iter().map(|d| d.code).collect()
+    lowered.diagnostics.iter().map(|d| d.code.name()).collect()
 }
 
 /// The codes of the error diagnostics, in order.
@@ -47,7 +47,7 @@ pub fn errors(lowered: &gcodec_sema::Lowered) -> Vec<&'static str> {
         .diagnostics
         .iter()
         .filter(|d| d.is_error())
-        .map(|d| d.code)
+        .map(|d| d.code.name())
         .collect()
 }
 

@@ -2,7 +2,8 @@
 //! `ROUNDUP`, `LN`, `EXP`, `MINVAL`, `MAXVAL`, `BOUND`; REAL results.
 
 use super::{Args, EvalContext, domain, real};
-use crate::value::{RtValue, RunError, codes};
+use crate::value::{RtValue, RunError};
+use gcodec_source::codes;
 
 /// `ABS`, `SQRT`, `POT`, `TRUNC`, `ROUND`, `ROUNDUP`, `LN` and `EXP` of
 /// one REAL (the names [`super::call`] sends here).
@@ -40,7 +41,7 @@ pub(super) fn bound<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue,
     let (lo, hi, x) = (a.real(0)?, a.real(1)?, a.real(2)?);
     if lo > hi {
         return Err(RunError::new(
-            codes::DOMAIN,
+            codes::run::DOMAIN,
             format!("`BOUND({lo}, {hi}, …)`: the minimum is above the maximum"),
         ));
     }

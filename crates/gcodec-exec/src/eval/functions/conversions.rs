@@ -4,8 +4,10 @@
 
 use std::sync::Arc;
 
+use gcodec_source::codes;
+
 use super::{Args, EvalContext, real};
-use crate::value::{RtValue, RunError, codes, real_to_int};
+use crate::value::{RtValue, RunError, real_to_int};
 
 /// `ITOR`, `BTOR`, `RTOI`, `RTOB`, `ITOB` and `BTOI` of one value (the
 /// names [`super::call`] sends here).
@@ -32,7 +34,7 @@ pub(super) fn number<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue
     }
     parsed.map(RtValue::Real).ok_or_else(|| {
         RunError::new(
-            codes::INVALID_NUMBER,
+            codes::run::INVALID_NUMBER,
             format!("`NUMBER`: \"{s}\" is not a number"),
         )
     })
@@ -47,7 +49,7 @@ pub(super) fn axname<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue
         Ok(RtValue::Axis(Arc::from(upper.as_str())))
     } else {
         Err(RunError::new(
-            codes::UNKNOWN_AXIS,
+            codes::run::UNKNOWN_AXIS,
             format!("`AXNAME`: \"{s}\" is not an axis of the machine"),
         ))
     }

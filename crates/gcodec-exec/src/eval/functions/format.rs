@@ -3,8 +3,10 @@
 
 use std::sync::Arc;
 
+use gcodec_source::codes;
+
 use super::{Args, EvalContext};
-use crate::value::{RtValue, RunError, codes};
+use crate::value::{RtValue, RunError};
 
 /// `SPRINT(format, values…)`, its arguments evaluated in order.
 pub(super) fn sprint_call<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
@@ -57,20 +59,20 @@ pub fn sprint(format: &str, values: &[RtValue]) -> Result<String, RunError> {
         let width: usize = width.parse::<usize>().unwrap_or(0).min(200);
         let Some(directive) = chars.next() else {
             return Err(RunError::new(
-                codes::FORMAT,
+                codes::run::FORMAT,
                 "`SPRINT`: the format ends in the middle of a directive",
             ));
         };
         let directive = directive.to_ascii_uppercase();
         if !"DFEGSCBX".contains(directive) {
             return Err(RunError::new(
-                codes::FORMAT,
+                codes::run::FORMAT,
                 format!("`SPRINT`: `%{directive}` is not a format directive"),
             ));
         }
         let Some(v) = next.next() else {
             return Err(RunError::new(
-                codes::ARGUMENT_COUNT,
+                codes::run::ARGUMENT_COUNT,
                 format!("`SPRINT`: no value for the directive `%{directive}`"),
             ));
         };

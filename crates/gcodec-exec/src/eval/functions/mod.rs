@@ -13,9 +13,10 @@ mod trigonometry;
 use std::sync::Arc;
 
 use gcodec_ail::Expr;
+use gcodec_source::codes;
 
 use super::{EvalContext, eval_at};
-use crate::value::{RtValue, RunError, char_text, codes};
+use crate::value::{RtValue, RunError, char_text};
 
 pub use format::sprint;
 
@@ -71,7 +72,7 @@ fn runtime_function<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue,
         .function(a.name, &values)
         .unwrap_or_else(|| {
             Err(RunError::new(
-                codes::UNKNOWN_FUNCTION,
+                codes::run::UNKNOWN_FUNCTION,
                 format!("`{}` is not a function the executor knows", a.name),
             ))
         })
@@ -95,7 +96,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
                 format!("{min} to {max}")
             };
             return Err(RunError::new(
-                codes::ARGUMENT_COUNT,
+                codes::run::ARGUMENT_COUNT,
                 format!("`{}` takes {expected} arguments, not {n}", self.name),
             ));
         }
@@ -110,7 +111,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
         match self.args.get(i) {
             Some(Some(e)) => eval_at(self.ctx, e, self.depth + 1),
             _ => Err(RunError::new(
-                codes::ARGUMENT_COUNT,
+                codes::run::ARGUMENT_COUNT,
                 format!("`{}` needs its argument {}", self.name, i + 1),
             )),
         }
@@ -153,7 +154,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
 
     fn wrong_type(&self, i: usize, v: &RtValue, wanted: &str) -> RunError {
         RunError::new(
-            codes::TYPE_MISMATCH,
+            codes::run::TYPE_MISMATCH,
             format!(
                 "argument {} of `{}` must be {wanted}, not a {}",
                 i + 1,
@@ -165,7 +166,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
 }
 
 fn domain(name: &str, x: f64, why: &str) -> RunError {
-    RunError::new(codes::DOMAIN, format!("`{name}({x})`: {why}"))
+    RunError::new(codes::run::DOMAIN, format!("`{name}({x})`: {why}"))
 }
 
 fn real(v: f64) -> Result<RtValue, RunError> {

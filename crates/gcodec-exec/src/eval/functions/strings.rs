@@ -3,8 +3,10 @@
 
 use std::sync::Arc;
 
+use gcodec_source::codes;
+
 use super::{Args, EvalContext};
-use crate::value::{RtValue, RunError, codes};
+use crate::value::{RtValue, RunError};
 
 /// `STRLEN(s)`: the length in characters (bytes).
 pub(super) fn strlen<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
@@ -69,11 +71,11 @@ fn position(at: Option<usize>) -> RtValue {
 /// `SUBSTR(s, start, len)`: the characters from `start` (0-based) on,
 /// `len` of them or to the end; a part past the end is cut off (a start
 /// at or past the end gives the empty string). A negative start or length
-/// is [`codes::INDEX_OUT_OF_RANGE`].
+/// is [`codes::run::INDEX_OUT_OF_RANGE`].
 fn substring(s: &str, start: i32, len: Option<i32>) -> Result<RtValue, RunError> {
     let bad = |what: &str, v: i32| {
         RunError::new(
-            codes::INDEX_OUT_OF_RANGE,
+            codes::run::INDEX_OUT_OF_RANGE,
             format!("`SUBSTR`: the {what} {v} is negative"),
         )
     };

@@ -3,7 +3,8 @@
 //! 90°, results that are whole degrees).
 
 use super::{Args, EvalContext, domain, real};
-use crate::value::{RtValue, RunError, codes};
+use crate::value::{RtValue, RunError};
+use gcodec_source::codes;
 
 /// `SIN`, `COS`, `TAN`, `ASIN` and `ACOS` of one REAL (the names
 /// [`super::call`] sends here).
@@ -35,7 +36,7 @@ pub(super) fn atan2<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue,
     let (y, x) = (a.real(0)?, a.real(1)?);
     if y == 0.0 && x == 0.0 {
         return Err(RunError::new(
-            codes::DOMAIN,
+            codes::run::DOMAIN,
             "`ATAN2(0, 0)`: no angle without a direction",
         ));
     }

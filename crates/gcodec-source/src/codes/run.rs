@@ -1,0 +1,56 @@
+//! The codes of area `run`: running a program on the simulated channel (`gcodec run`).
+
+super::codes! {
+    "run", "running a program on the simulated channel (`gcodec run`)";
+    JUMP_TARGET_NOT_FOUND = jump_target_not_found, Error, alarm 14080, "a jump target that is not in the program";
+    BLOCK_WITH_ERRORS = block_with_errors, Error, alarm 12080, "the run reaches a block that has errors";
+    FORGOTTEN_INSTRUCTION = forgotten_instruction, Error, "a streamed run coming back to an instruction it forgot";
+    PROGRAM_NOT_FOUND = program_not_found, Error, alarm 14011, "a called program on no search path";
+    PROGRAM_UNREADABLE = program_unreadable, Error, "a called program whose file cannot be read";
+    PROGRAM_AMBIGUOUS = program_ambiguous, Warning, "a directory holding more than one file for a program";
+    PROGRAM_HAS_ERRORS = program_has_errors, Error, "a called program that has errors";
+    CYCLE_NOT_SIMULATED = cycle_not_simulated, Warning, "a standard cycle that is not on the search path";
+    CALL_DEPTH = call_depth, Error, "a call that opens more program levels than the control has";
+    STEP_LIMIT = step_limit, Error, "the run stopped after `--max-steps` blocks";
+    INTERRUPTED = interrupted, Error, "the run interrupted (Ctrl-C)";
+    NOT_SIMULATED = not_simulated, Advice, "a construct the simulation does not model";
+    UNRESOLVED_TOOL = unresolved_tool, Error, "a tool not in the machine's tool table";
+    M6_WITHOUT_PENDING = m6_without_pending, Warning, "a tool change without a selected tool";
+    UNKNOWN_M_FUNCTION = unknown_m_function, Warning, "a computed M function the machine does not know";
+    UNKNOWN_EDGE = unknown_edge, Warning, "a cutting edge the active tool does not have";
+    NO_FEED = no_feed, Warning, "a feed motion without a feed";
+    CYCLE_ALARM = cycle_alarm, Error, "an alarm raised by the program (`SETAL`)";
+    FRAME = frame, Error, "a frame the frame work rejects";
+    DIVISION_BY_ZERO = division_by_zero, Error, "a division by zero";
+    DOMAIN = domain, Error, "a function argument outside the function's domain";
+    TYPE_MISMATCH = type_mismatch, Error, alarm 14096, "a value that cannot be converted to the type needed";
+    OVERFLOW = overflow, Error, "a number outside the range of its type";
+    STRING_TOO_LONG = string_too_long, Error, "a string longer than its variable's `STRING[n]`";
+    UNKNOWN_FUNCTION = unknown_function, Error, "a function the executor does not know";
+    ARGUMENT_COUNT = argument_count, Error, alarm 12340, "a function called with the wrong number of arguments";
+    INDEX_OUT_OF_RANGE = index_out_of_range, Error, alarm 17020, "an index outside the variable's dimension";
+    INDEX_COUNT = index_count, Error, "a variable used with the wrong number of indices";
+    UNDEFINED_VARIABLE = undefined_variable, Error, alarm 12550, "a name that is no variable when it is read or written";
+    SYSTEM_VARIABLE = system_variable, Error, "a system variable the run has no value for";
+    READ_ONLY = read_only, Error, "a write to a system variable that cannot be written";
+    INVALID_NUMBER = invalid_number, Error, "`NUMBER` of a string that is no number";
+    UNKNOWN_AXIS = unknown_axis, Error, "an axis the machine does not have";
+    FORMAT = format, Error, "a bad `SPRINT` format";
+    INVALID_DECLARATION = invalid_declaration, Error, "a declaration with a bad type or dimension";
+    EXPRESSION_TOO_DEEP = expression_too_deep, Error, "an expression nested deeper than the evaluator goes";
+    CIRCLE_DATA = circle_data, Error, "a circle with neither centre, radius nor opening angle";
+    CIRCLE_INTERMEDIATE = circle_intermediate, Error, "a `CIP` circle without an intermediate point";
+    CIRCLE_NON_FINITE = circle_non_finite, Error, "a circle with a value that is not a finite number";
+    CIRCLE_TOLERANCE = circle_tolerance, Error, "a circle tolerance that is negative or not finite";
+    CIRCLE_END_POINT = circle_end_point, Error, alarm 14040, "a circle end point that is not on the circle";
+    CIRCLE_ZERO_RADIUS = circle_zero_radius, Error, "a circle of radius zero";
+    CIRCLE_RADIUS_TOO_SMALL = circle_radius_too_small, Error, "a radius `CR=` smaller than half the chord";
+    CIRCLE_ZERO_CHORD = circle_zero_chord, Error, "a circle whose end point is its start point where a chord is needed";
+    CIRCLE_OPENING_ANGLE = circle_opening_angle, Error, "an opening angle `AR=` outside 0…360";
+    CIRCLE_COLLINEAR = circle_collinear, Error, "a `CIP` circle through three points on one line";
+    CIRCLE_TANGENT_MISSING = circle_tangent_missing, Error, "a `CT` circle whose tangent has no component in the plane";
+    CIRCLE_TANGENT_STRAIGHT = circle_tangent_straight, Error, "a `CT` circle whose end point lies on the tangent";
+    CIRCLE_TURNS = circle_turns, Error, "a `TURN=` that is not a whole number 0…999";
+    CIRCLE_TURNS_CIP = circle_turns_cip, Error, "`TURN=` with a `CIP` circle";
+    CIRCLE_OUT_OF_RANGE = circle_out_of_range, Error, "a circle too large to be computed";
+}
