@@ -1,16 +1,14 @@
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use gcodec_source::{Diagnostic, RenderOptions, SourceFile, codes, render_diagnostics};
+use gcodec_source::codes;
 
-/// Exit code: no error diagnostics.
-pub const EXIT_CLEAN: u8 = 0;
-/// Exit code: at least one error diagnostic in a program.
-pub const EXIT_DIAGNOSTICS: u8 = 1;
-/// Exit code: usage, IO or profile error.
-pub const EXIT_USAGE: u8 = 2;
+use crate::report::{
+    DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
+    read, report,
+};
 
 /// Compile and simulate SINUMERIK 840D sl / 828D part programs.
 #[derive(Debug, Parser)]
@@ -101,24 +99,6 @@ enum ProfileFormat {
     Json,
 }
 
-/// How diagnostics are shown.
-#[derive(Clone, Copy, Debug, clap::Args)]
-pub struct DiagnosticOptions {
-    /// Show at most N diagnostics per file, then count the rest (0: all).
-    /// The exit code counts them all.
-    #[arg(long, value_name = "N", default_value_t = 100)]
-    max_diagnostics: usize,
-}
-
-impl DiagnosticOptions {
-    fn render_options(self) -> RenderOptions {
-        RenderOptions {
-            color: std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
-            limit: (self.max_diagnostics > 0).then_some(self.max_diagnostics),
-        }
-    }
-}
-
 #[derive(Clone, Copy, Debug, ValueEnum)]
 enum Format {
     Text,
@@ -155,29 +135,6 @@ pub fn run(cli: Cli) -> u8 {
             Ok(profile) => show_profile(&profile, format),
             Err(code) => code,
         },
-    }
-}
-
-/// Reads and checks a profile (the built-in one for `None`) in full
-/// ([`gcodec_driver::load_profile`]), reporting its diagnostics against
-/// the profile's text; a bad or unreadable profile is exit code 2.
-pub fn load_profile(
-    path: Option<&Path>,
-    options: DiagnosticOptions,
-) -> Result<gcodec_profile::Profile, u8> {
-    let file = match path {
-        Some(path) => read(path, options)?,
-        None => gcodec_driver::builtin_profile_file(),
-    };
-    match gcodec_driver::load_profile(&file) {
-        Ok((profile, warnings)) => {
-            report(&warnings, Some(&file), options);
-            Ok(profile)
-        }
-        Err(error) => {
-            report(&error.diagnostics, Some(&file), options);
-            Err(EXIT_USAGE)
-        }
     }
 }
 
@@ -223,22 +180,6 @@ fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 
     }
 }
 
-pub fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: DiagnosticOptions) {
-    if diagnostics.is_empty() {
-        return;
-    }
-    let text = render_diagnostics(diagnostics, file, options.render_options());
-    let _ = std::io::stderr().write_all(text.as_bytes());
-}
-
-/// Reads a file; an unreadable one is reported and is exit code 2.
-pub fn read(path: &Path, options: DiagnosticOptions) -> Result<SourceFile, u8> {
-    gcodec_driver::read_source(path).map_err(|d| {
-        report(&[d], None, options);
-        EXIT_USAGE
-    })
-}
-
 fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
     let mut exit = EXIT_CLEAN;
     let mut json = Vec::new();
@@ -277,27 +218,6 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
         exit = EXIT_USAGE;
     }
     exit
-}
-
-/// Reads the definition files in order; an unreadable file or one with
-/// errors is reported and is exit code 2.
-pub fn load_definitions(
-    paths: &[PathBuf],
-    options: DiagnosticOptions,
-) -> Result<gcodec_driver::Definitions, u8> {
-    let mut definitions = gcodec_driver::Definitions::new();
-    let mut bad = false;
-    for path in paths {
-        let file = read(path, options)?;
-        let diagnostics = definitions.load(&file);
-        report(&diagnostics, Some(&file), options);
-        bad |= diagnostics.iter().any(Diagnostic::is_error);
-    }
-    if bad {
-        Err(EXIT_USAGE)
-    } else {
-        Ok(definitions)
-    }
 }
 
 fn lower(

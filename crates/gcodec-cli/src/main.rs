@@ -2,6 +2,7 @@
 //! calls a stage, prints the result and renders diagnostics.
 
 mod commands;
+mod report;
 mod run;
 
 use std::process::ExitCode;

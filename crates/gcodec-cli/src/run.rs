@@ -15,7 +15,7 @@ use gcodec_driver::event::{
 use gcodec_driver::{RunReport, RunSetup, run_main};
 use gcodec_source::{Diagnostic, SourceFile, codes};
 
-use crate::commands::{
+use crate::report::{
     DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
     read, report,
 };

@@ -1,0 +1,94 @@
+//! What every command shares: exit codes, how diagnostics are shown,
+//! reading the files a command is given (programs, profiles, definition
+//! files) and rendering what is wrong with them.
+
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+
+use gcodec_source::{Diagnostic, RenderOptions, SourceFile, render_diagnostics};
+
+/// Exit code: no error diagnostics.
+pub const EXIT_CLEAN: u8 = 0;
+/// Exit code: at least one error diagnostic in a program.
+pub const EXIT_DIAGNOSTICS: u8 = 1;
+/// Exit code: usage, IO or profile error.
+pub const EXIT_USAGE: u8 = 2;
+
+/// How diagnostics are shown.
+#[derive(Clone, Copy, Debug, clap::Args)]
+pub struct DiagnosticOptions {
+    /// Show at most N diagnostics per file, then count the rest (0: all).
+    /// The exit code counts them all.
+    #[arg(long, value_name = "N", default_value_t = 100)]
+    max_diagnostics: usize,
+}
+
+impl DiagnosticOptions {
+    fn render_options(self) -> RenderOptions {
+        RenderOptions {
+            color: std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
+            limit: (self.max_diagnostics > 0).then_some(self.max_diagnostics),
+        }
+    }
+}
+
+/// Reads and checks a profile (the built-in one for `None`) in full
+/// ([`gcodec_driver::load_profile`]), reporting its diagnostics against
+/// the profile's text; a bad or unreadable profile is exit code 2.
+pub fn load_profile(
+    path: Option<&Path>,
+    options: DiagnosticOptions,
+) -> Result<gcodec_profile::Profile, u8> {
+    let file = match path {
+        Some(path) => read(path, options)?,
+        None => gcodec_driver::builtin_profile_file(),
+    };
+    match gcodec_driver::load_profile(&file) {
+        Ok((profile, warnings)) => {
+            report(&warnings, Some(&file), options);
+            Ok(profile)
+        }
+        Err(error) => {
+            report(&error.diagnostics, Some(&file), options);
+            Err(EXIT_USAGE)
+        }
+    }
+}
+
+/// Renders `diagnostics` on stderr, against `file` where they have spans.
+pub fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: DiagnosticOptions) {
+    if diagnostics.is_empty() {
+        return;
+    }
+    let text = render_diagnostics(diagnostics, file, options.render_options());
+    let _ = std::io::stderr().write_all(text.as_bytes());
+}
+
+/// Reads a file; an unreadable one is reported and is exit code 2.
+pub fn read(path: &Path, options: DiagnosticOptions) -> Result<SourceFile, u8> {
+    gcodec_driver::read_source(path).map_err(|d| {
+        report(&[d], None, options);
+        EXIT_USAGE
+    })
+}
+
+/// Reads the definition files in order; an unreadable file or one with
+/// errors is reported and is exit code 2.
+pub fn load_definitions(
+    paths: &[PathBuf],
+    options: DiagnosticOptions,
+) -> Result<gcodec_driver::Definitions, u8> {
+    let mut definitions = gcodec_driver::Definitions::new();
+    let mut bad = false;
+    for path in paths {
+        let file = read(path, options)?;
+        let diagnostics = definitions.load(&file);
+        report(&diagnostics, Some(&file), options);
+        bad |= diagnostics.iter().any(Diagnostic::is_error);
+    }
+    if bad {
+        Err(EXIT_USAGE)
+    } else {
+        Ok(definitions)
+    }
+}
