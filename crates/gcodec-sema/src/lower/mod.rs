@@ -848,8 +848,52 @@ impl<'a> Lowering<'a> {
         self.diagnostics.push(not_lowered(span, what));
     }
 
+    /// Emits a block's instructions in the order the control acts on
+    /// them: the work offset, the G commands, feed, spindles and tools,
+    /// the M functions that act in the block, H functions and the other
+    /// addresses, a dwell, the motion, the M functions that act after it,
+    /// calls, and what must come last (the block's `tail`).
     fn emit_block(&mut self, index: usize, block: &Block, plan: &mut BlockPlan) {
         let tail = std::mem::take(&mut plan.tail);
+        self.emit_work_offset(index, block, plan);
+        let dwell = self.emit_g_commands(index, block, plan);
+        let lead_change = self.emit_feed(index, plan);
+        self.emit_spindles_and_tools(index, plan);
+        let has_motion = !plan.targets.is_empty() || !plan.indirect_targets.is_empty();
+        let deferred =
+            self.profile.tool_change.tool_change_mode == gcodec_profile::ToolChangeMode::DeferredM6;
+        let after = self.emit_m_functions_in_block(index, plan, has_motion, deferred);
+        self.emit_auxiliaries(index, plan);
+        let mut spline = Some(std::mem::take(&mut plan.spline));
+        if !has_motion {
+            // Spline data and transitions without a motion: as addresses.
+            self.unattached_motion_data(
+                index,
+                plan.spline_span,
+                plan.transition.take(),
+                spline.take(),
+            );
+        }
+        if let Some((op, span)) = dwell {
+            self.emit(index, span, op);
+        }
+        if has_motion || plan.circle_span.is_some() {
+            self.emit_motion(index, block, plan, spline, lead_change);
+        }
+        for m in after {
+            self.emit_m(index, m, MTiming::PostMotion, deferred);
+        }
+        for (op, span) in std::mem::take(&mut plan.calls) {
+            self.emit(index, span, op);
+        }
+        for (op, span) in tail {
+            self.emit(index, span, op);
+        }
+    }
+
+    /// The Group 8 selection and the block's suppression, as one
+    /// `work_offset`.
+    fn emit_work_offset(&mut self, index: usize, block: &Block, plan: &BlockPlan) {
         // Work offset: the Group 8 selection and the block's suppression.
         let group8 = plan.g_codes.iter().find(|(c, _)| c.group() == 8);
         let suppression = self.suppression(&plan.suppressions);
@@ -881,6 +925,16 @@ impl<'a> Lowering<'a> {
                 },
             );
         }
+    }
+
+    /// The block's G commands (but Group 8) as modal changes; a `G4` is
+    /// the dwell, returned to go after the addresses.
+    fn emit_g_commands(
+        &mut self,
+        index: usize,
+        block: &Block,
+        plan: &mut BlockPlan,
+    ) -> Option<(Op, Span)> {
         // `G4 F…` / `G4 S…`: the dwell takes the block's F and S.
         let dwell = plan
             .g_codes
@@ -919,6 +973,12 @@ impl<'a> Lowering<'a> {
                 },
             );
         }
+        dwell
+    }
+
+    /// The feed; under `G34`/`G35` with a motion, `F` is the change of the
+    /// thread lead instead, returned for the motion.
+    fn emit_feed(&mut self, index: usize, plan: &mut BlockPlan) -> Option<gcodec_ail::Value> {
         let modal_group1 = self.modal[0];
         let thread_kind = matches!(modal_group1, Some("G34" | "G35"));
         // Under G34/G35 `F` is the change of the thread lead.
@@ -930,6 +990,12 @@ impl<'a> Lowering<'a> {
         if let Some((value, span)) = plan.feed.take() {
             self.emit(index, span, Op::Feed { value });
         }
+        lead_change
+    }
+
+    /// Spindle speeds, tool selections (with the change of a direct `T`),
+    /// the cutting edge and what follows it.
+    fn emit_spindles_and_tools(&mut self, index: usize, plan: &mut BlockPlan) {
         for (spindle, spindle_expr, speed, span) in std::mem::take(&mut plan.spindle) {
             self.emit(
                 index,
@@ -963,10 +1029,18 @@ impl<'a> Lowering<'a> {
         for (op, span) in std::mem::take(&mut plan.after_edge) {
             self.emit(index, span, op);
         }
-        let has_motion = !plan.targets.is_empty() || !plan.indirect_targets.is_empty();
+    }
+
+    /// The M functions that act in the block; those that act after its
+    /// motion are returned.
+    fn emit_m_functions_in_block(
+        &mut self,
+        index: usize,
+        plan: &mut BlockPlan,
+        has_motion: bool,
+        deferred: bool,
+    ) -> Vec<mfunc::MWord> {
         mfunc::check_count(&plan.m_functions, self.profile, &mut self.diagnostics);
-        let deferred =
-            self.profile.tool_change.tool_change_mode == gcodec_profile::ToolChangeMode::DeferredM6;
         // Only blocks with motion and M0/M1/M2/M17/M30 allocate here.
         let mut after = Vec::new();
         for m in std::mem::take(&mut plan.m_functions) {
@@ -976,6 +1050,11 @@ impl<'a> Lowering<'a> {
                 self.emit_m(index, m, MTiming::InBlock, deferred);
             }
         }
+        after
+    }
+
+    /// H functions, the other instructions and the addresses.
+    fn emit_auxiliaries(&mut self, index: usize, plan: &mut BlockPlan) {
         for (op, span) in std::mem::take(&mut plan.h_functions) {
             self.emit(index, span, op);
         }
@@ -985,107 +1064,90 @@ impl<'a> Lowering<'a> {
         for (op, span) in std::mem::take(&mut plan.addresses) {
             self.emit(index, span, op);
         }
-        let mut spline = Some(std::mem::take(&mut plan.spline));
-        if !has_motion {
-            // Spline data and transitions without a motion: as addresses.
-            self.unattached_motion_data(
-                index,
-                plan.spline_span,
-                plan.transition.take(),
-                spline.take(),
-            );
-        }
-        if let Some((op, span)) = dwell {
-            self.emit(index, span, op);
-        }
-        if has_motion || plan.circle_span.is_some() {
-            let first = plan
-                .target_span
-                .or(plan.motion_span)
-                .or(plan.circle_span)
-                .unwrap_or(block.span);
-            let motion = match self.modal[0] {
-                None => MotionKind::Modal,
-                Some(code) => motion_of(code).unwrap_or_else(|| {
-                    self.not_lowered(first, &format!("motion under `{code}`"));
-                    MotionKind::Linear
-                }),
-            };
-            // Under an unknown command the circle data go with the motion
-            // as written; the executor reads them by the command then.
-            for (axis, span) in std::mem::take(&mut plan.repeated_axes) {
-                self.diagnostics.push(
-                    Diagnostic::new(
-                        codes::lower::REPEATED_AXIS,
-                        format!("`{axis}` is programmed twice in this block"),
-                    )
-                    .with_label(span, "again")
-                    .with_help(
-                        "the control rejects the block (alarm 12010); program each axis once",
-                    ),
-                );
-            }
-            let circle_missing = matches!(motion, MotionKind::ArcCw | MotionKind::ArcCcw)
-                && plan.circle.centre.is_empty()
-                && plan.circle.radius.is_none()
-                && plan.circle.opening_angle.is_none();
-            if circle_missing {
-                let code = self.modal[0].unwrap_or("G2");
-                self.diagnostics.push(
-                    Diagnostic::new(
-                        codes::lower::MISSING_CIRCLE_DATA,
-                        format!("`{code}` is active, but the block gives no centre, radius or opening angle"),
-                    )
-                    .with_label(first, "circle end point")
-                    .with_help("program the centre (`I J K`), the radius (`CR=`) or the opening angle (`AR=`), or change to `G0`/`G1` for a straight line"),
-                );
-            }
-            let arc = is_arc(motion) || motion == MotionKind::Modal && plan.circle_span.is_some();
-            let threaded = is_threaded(motion);
-            let circle_data = std::mem::take(&mut plan.circle);
-            // Under a thread or tapping command `I J K` are the lead.
-            let thread = threaded.then(|| gcodec_ail::Thread {
-                lead: circle_data.centre.clone(),
-                lead_change: lead_change.clone(),
-            });
-            let circle = arc.then(|| Box::new(circle_data));
-            let details = gcodec_ail::MotionDetails {
-                indirect_targets: std::mem::take(&mut plan.indirect_targets),
-                spline: spline.filter(|s| s.weight.is_some() || s.interval.is_some()),
-                thread,
-                transition: plan.transition.take().map(|(t, _)| t),
-            };
-            let details = (!details.is_empty()).then(|| Box::new(details));
-            if motion == MotionKind::Modal && self.group1_inherited {
-                self.pending_motions.push(self.document.instructions.len());
-            }
-            self.emit(
-                index,
-                first,
-                Op::Motion {
-                    motion,
-                    // Exactly as long as needed: the plan's vector grew
-                    // to room for four axes, and a large program keeps
-                    // hundreds of thousands of these.
-                    targets: plan.targets.drain(..).collect(),
-                    circle,
-                    details,
-                },
-            );
-        }
-        for m in after {
-            self.emit_m(index, m, MTiming::PostMotion, deferred);
-        }
-        for (op, span) in std::mem::take(&mut plan.calls) {
-            self.emit(index, span, op);
-        }
-        for (op, span) in tail {
-            self.emit(index, span, op);
-        }
     }
 
-    /// An M function, and the tool change when it is the change M code in
-    /// `deferred_m6` mode.
+    /// The block's motion, with its circle, thread and spline data.
+    fn emit_motion(
+        &mut self,
+        index: usize,
+        block: &Block,
+        plan: &mut BlockPlan,
+        spline: Option<gcodec_ail::SplineData>,
+        lead_change: Option<gcodec_ail::Value>,
+    ) {
+        let first = plan
+            .target_span
+            .or(plan.motion_span)
+            .or(plan.circle_span)
+            .unwrap_or(block.span);
+        let motion = match self.modal[0] {
+            None => MotionKind::Modal,
+            Some(code) => motion_of(code).unwrap_or_else(|| {
+                self.not_lowered(first, &format!("motion under `{code}`"));
+                MotionKind::Linear
+            }),
+        };
+        // Under an unknown command the circle data go with the motion
+        // as written; the executor reads them by the command then.
+        for (axis, span) in std::mem::take(&mut plan.repeated_axes) {
+            self.diagnostics.push(
+                Diagnostic::new(
+                    codes::lower::REPEATED_AXIS,
+                    format!("`{axis}` is programmed twice in this block"),
+                )
+                .with_label(span, "again")
+                .with_help("the control rejects the block (alarm 12010); program each axis once"),
+            );
+        }
+        let circle_missing = matches!(motion, MotionKind::ArcCw | MotionKind::ArcCcw)
+            && plan.circle.centre.is_empty()
+            && plan.circle.radius.is_none()
+            && plan.circle.opening_angle.is_none();
+        if circle_missing {
+            let code = self.modal[0].unwrap_or("G2");
+            self.diagnostics.push(
+                Diagnostic::new(
+                    codes::lower::MISSING_CIRCLE_DATA,
+                    format!("`{code}` is active, but the block gives no centre, radius or opening angle"),
+                )
+                .with_label(first, "circle end point")
+                .with_help("program the centre (`I J K`), the radius (`CR=`) or the opening angle (`AR=`), or change to `G0`/`G1` for a straight line"),
+            );
+        }
+        let arc = is_arc(motion) || motion == MotionKind::Modal && plan.circle_span.is_some();
+        let threaded = is_threaded(motion);
+        let circle_data = std::mem::take(&mut plan.circle);
+        // Under a thread or tapping command `I J K` are the lead.
+        let thread = threaded.then(|| gcodec_ail::Thread {
+            lead: circle_data.centre.clone(),
+            lead_change: lead_change.clone(),
+        });
+        let circle = arc.then(|| Box::new(circle_data));
+        let details = gcodec_ail::MotionDetails {
+            indirect_targets: std::mem::take(&mut plan.indirect_targets),
+            spline: spline.filter(|s| s.weight.is_some() || s.interval.is_some()),
+            thread,
+            transition: plan.transition.take().map(|(t, _)| t),
+        };
+        let details = (!details.is_empty()).then(|| Box::new(details));
+        if motion == MotionKind::Modal && self.group1_inherited {
+            self.pending_motions.push(self.document.instructions.len());
+        }
+        self.emit(
+            index,
+            first,
+            Op::Motion {
+                motion,
+                // Exactly as long as needed: the plan's vector grew
+                // to room for four axes, and a large program keeps
+                // hundreds of thousands of these.
+                targets: plan.targets.drain(..).collect(),
+                circle,
+                details,
+            },
+        );
+    }
+
     fn emit_m(&mut self, index: usize, m: mfunc::MWord, timing: MTiming, deferred: bool) {
         let is_change = deferred
             && m.value == Some(*self.profile.tool_change.change_m_code.get_ref())
