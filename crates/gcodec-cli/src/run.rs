@@ -9,8 +9,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::ValueEnum;
 use gcodec_driver::event::{
-    CsvWriter, DiagnosticEvent, Event, EventKind, EventSink, EventSource, JsonlSink,
-    ProgramEndReason, TextSink,
+    CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
 };
 use gcodec_driver::{RunReport, RunSetup, run_main};
 use gcodec_source::{Diagnostic, SourceFile, codes};
@@ -129,7 +128,11 @@ impl<S: EventSink> EventSink for Diagnostics<S> {
         if let EventKind::Diagnostic(d) = &event.kind {
             let options = self.options;
             let file = self.file(&event.source.file);
-            report(&[runtime_diagnostic(d, &event.source, file)], file, options);
+            report(
+                &[gcodec_driver::runtime_diagnostic(d, &event.source, file)],
+                file,
+                options,
+            );
         }
         self.inner.event(event)
     }
@@ -137,30 +140,6 @@ impl<S: EventSink> EventSink for Diagnostics<S> {
     fn finish(&mut self) -> io::Result<()> {
         self.inner.finish()
     }
-}
-
-/// A run-time diagnostic as a [`Diagnostic`]: labelled at its block where
-/// its file is known, its position in the message where not, its alarm
-/// number after the message.
-fn runtime_diagnostic(
-    event: &DiagnosticEvent,
-    source: &EventSource,
-    file: Option<&SourceFile>,
-) -> Diagnostic {
-    let mut message = event.message.to_string();
-    if let Some(alarm) = event.alarm {
-        message.push_str(&format!(" (alarm {alarm})"));
-    }
-    let span = file.and_then(|f| f.line_span(source.line, source.col));
-    if span.is_none() {
-        message = format!("{}:{}:{}: {message}", source.file, source.line, source.col);
-    }
-    let mut diagnostic = Diagnostic::new(event.code, message).with_severity(event.severity);
-    if let Some(span) = span {
-        diagnostic = diagnostic.with_label(span, "the run is here");
-    }
-    diagnostic.help = event.help.clone();
-    diagnostic
 }
 
 /// Events go nowhere (the CSV format writes rows, not events).

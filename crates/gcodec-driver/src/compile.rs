@@ -5,12 +5,13 @@
 use std::sync::Arc;
 
 use gcodec_ail::Document;
-use gcodec_exec::event::{DiagnosticEvent, Event, EventKind, EventSource};
 use gcodec_exec::loader::Loaded;
 use gcodec_exec::program::Program;
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, ProgramKind};
 use gcodec_source::{Diagnostic, SourceFile};
+
+use crate::diagnostics::diagnostic_event;
 
 /// A program compiled: its instructions and what parsing and lowering
 /// found wrong.
@@ -92,25 +93,4 @@ pub fn compile_text(
 ) -> Compiled {
     let file = Arc::new(SourceFile::new(file_name, text));
     compile(file, kind, profile, definitions)
-}
-
-/// A diagnostic of `file` as an event at its primary span (line 1,
-/// column 1 without one).
-fn diagnostic_event(d: Diagnostic, file: &SourceFile, file_name: &Arc<str>) -> Event {
-    let (line, col) = d.span().map_or((1, 1), |span| file.line_col(span.start));
-    Event {
-        kind: EventKind::Diagnostic(DiagnosticEvent {
-            code: d.code,
-            severity: d.severity,
-            message: d.message,
-            alarm: None,
-            help: d.help,
-        }),
-        source: EventSource {
-            file: file_name.clone(),
-            line,
-            col,
-            level: 0,
-        },
-    }
 }

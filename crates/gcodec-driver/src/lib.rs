@@ -16,12 +16,14 @@
 //! options, events and sinks.
 
 pub mod compile;
+mod diagnostics;
 pub mod loader;
 pub mod run;
 mod setup;
 pub mod stream;
 
 pub use compile::{Compiled, compile, compile_text};
+pub use diagnostics::runtime_diagnostic;
 pub use gcodec_ail::{Document, write_listing};
 pub use gcodec_exec::channel::{BlockObserver, RunOptions, RunOutcome};
 pub use gcodec_exec::event;
