@@ -2,7 +2,7 @@
 //! runs a program goes through here, so that the stages are wired in one
 //! place.
 //!
-//! - [`compile`]: parse and lower one program, as a main program or a
+//! - [`compile()`]: parse and lower one program, as a main program or a
 //!   subprogram ([`ProgramKind`]), against a profile and definitions.
 //! - [`load_profile`]: a machine profile checked in full (its form and
 //!   its G codes); [`Definitions`], the global names of definition files.

@@ -65,7 +65,7 @@
 //! # Lowering
 //!
 //! A called program is compiled as `gcodec lower` compiles it
-//! ([`crate::compile`] with the run's profile and definitions), as a
+//! ([`crate::compile()`] with the run's profile and definitions), as a
 //! [`ProgramKind::Subprogram`]: it starts in its caller's (unknown) modal
 //! state whatever its file is called. A program with parse or lowering
 //! errors is still returned ([`Loaded::has_errors`]): the channel decides

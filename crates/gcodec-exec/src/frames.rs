@@ -8,7 +8,7 @@
 //! indices of [`FrameAxes`] and calls [`Frame::apply`]; it composes the
 //! chain of §9.2 with [`Frame::chain`] and maps positions with
 //! [`Frame::to_outer`] / [`Frame::to_inner`]. Errors are [`RunError`]s
-//! (code [`FRAME`] for what frames reject), never panics.
+//! (code [`codes::run::FRAME`] for what frames reject), never panics.
 //!
 //! # The frame and its order
 //!
@@ -700,7 +700,8 @@ impl Frame {
 
     /// A frame from a FRAME value. Every axis with a non-neutral component
     /// must be a channel axis ([`codes::run::UNKNOWN_AXIS`]); a rotation only on
-    /// a geometry axis, a scale not 0, every component finite ([`FRAME`]).
+    /// a geometry axis, a scale not 0, every component finite
+    /// ([`codes::run::FRAME`]).
     pub fn from_value(axes: &FrameAxes, value: &FrameValue) -> Result<Frame, RunError> {
         let mut f = Frame::neutral(axes);
         let mut angles = [0.0; 3];

@@ -73,7 +73,8 @@ pub struct Loaded {
 /// Why a program could not be loaded.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct LoadError {
-    /// [`PROGRAM_NOT_FOUND`] or [`PROGRAM_UNREADABLE`].
+    /// [`codes::run::PROGRAM_NOT_FOUND`](gcodec_source::codes::run::PROGRAM_NOT_FOUND) or
+    /// [`codes::run::PROGRAM_UNREADABLE`](gcodec_source::codes::run::PROGRAM_UNREADABLE).
     pub code: &'static Code,
     /// One sentence naming the program and, when not found, every
     /// directory searched.

@@ -24,7 +24,7 @@ use gcodec_stream::SpentBin;
 /// Lowers the program `src` chunk by chunk against its `outline` (pass 2
 /// of a streamed run); `each` takes the instructions of every chunk, then
 /// those of the program's end. `chunks` are consecutive from the first
-/// block, as [`gcodec_parser::chunks`] cuts them: a chunk out of order is
+/// block, as [`gcodec_stream::chunks`] cuts them: a chunk out of order is
 /// left out. Each chunk comes with its parse diagnostics, which pass 1,
 /// skimming, did not find.
 ///

@@ -5,10 +5,10 @@
 //! summary, an explanation (the markdown file `codes/AREA/NAME.md`, with
 //! a wrong and a right example where a short program can show it) and the
 //! control's alarm number where there is one. Each area is one file of
-//! this module that declares its codes with [`codes!`], so a code cannot
+//! this module that declares its codes with `codes!`, so a code cannot
 //! be declared without being listed, and its name and explanation file
 //! cannot drift apart. `gcodec explain` and `docs/diagnostics.md` are
-//! made from it ([`explain`], [`list`], [`reference`]).
+//! made from it ([`explain`], [`list`], [`reference()`]).
 
 mod text;
 
