@@ -8,7 +8,7 @@ use gcodec_lexer::TokenKind as T;
 use gcodec_source::codes;
 
 use super::expressions::var_ref;
-use super::words::{LetterStatement, letter_statement};
+use super::words::word_only;
 use super::{Ctx, Ex, In};
 use crate::ast::*;
 use crate::error::SyntaxError;
@@ -231,19 +231,11 @@ fn passes_word<'t, 's: 't>(
     g: Ctx<'s>,
     expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
 ) -> impl Parser<'t, In<'t>, Option<SpannedWord>, Ex> + Clone + 't {
-    letter_statement(g, expr).try_map(move |s, span| match s {
-        LetterStatement::Word(w) if w.address() == "P" && w.extension().is_none() => {
-            Ok(Some(SpannedWord {
-                span: g.span(span),
-                word: w,
-            }))
-        }
-        LetterStatement::Invalid => Ok(None),
-        _ => Err(SyntaxError::custom(
-            span,
-            codes::parse::INVALID_WORD,
-            "expected the number of passes `P=n`",
-            None,
-        )),
-    })
+    word_only(
+        g,
+        expr,
+        |w| w.address() == "P" && w.extension().is_none(),
+        "expected the number of passes `P=n`",
+        None,
+    )
 }

@@ -3,9 +3,8 @@
 
 use chumsky::prelude::*;
 use gcodec_lexer::TokenKind as T;
-use gcodec_source::codes;
 
-use super::words::{LetterStatement, letter_statement, named_word};
+use super::words::{named_word, word_only};
 use super::{Ctx, Ex, In};
 use crate::ast::*;
 use crate::error::SyntaxError;
@@ -41,24 +40,17 @@ fn frame_word<'t, 's: 't>(
     g: Ctx<'s>,
     expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
 ) -> impl Parser<'t, In<'t>, Option<SpannedWord>, Ex> + Clone + 't {
-    letter_statement(g, expr.clone())
-        .try_map(move |s, span| match s {
-            LetterStatement::Word(w) => Ok(Some(SpannedWord {
-                span: g.span(span),
-                word: w,
-            })),
-            LetterStatement::Invalid => Ok(None),
-            _ => Err(SyntaxError::custom(
-                span,
-                codes::parse::INVALID_WORD,
-                "frame instructions take axis words only",
-                Some("write e.g. `TRANS X10 Y5` in a block of its own"),
-            )),
+    word_only(
+        g,
+        expr.clone(),
+        |_| true,
+        "frame instructions take axis words only",
+        Some("write e.g. `TRANS X10 Y5` in a block of its own"),
+    )
+    .or(named_word(g, expr).map_with(move |word, e| {
+        Some(SpannedWord {
+            span: g.span(e.span()),
+            word,
         })
-        .or(named_word(g, expr).map_with(move |word, e| {
-            Some(SpannedWord {
-                span: g.span(e.span()),
-                word,
-            })
-        }))
+    }))
 }

@@ -611,3 +611,28 @@ pub(super) fn assignment_or_named_word<'t, 's: 't>(
             )
         })
 }
+
+/// A letter statement that must be one word `accept` takes (`None` when
+/// the word was malformed and its error already emitted); anything else
+/// is `invalid_word` with `message` and `help`.
+pub(super) fn word_only<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+    accept: fn(&Word) -> bool,
+    message: &'static str,
+    help: Option<&'static str>,
+) -> impl Parser<'t, In<'t>, Option<SpannedWord>, Ex> + Clone + 't {
+    letter_statement(g, expr).try_map(move |s, span| match s {
+        LetterStatement::Word(w) if accept(&w) => Ok(Some(SpannedWord {
+            span: g.span(span),
+            word: w,
+        })),
+        LetterStatement::Invalid => Ok(None),
+        _ => Err(SyntaxError::custom(
+            span,
+            codes::parse::INVALID_WORD,
+            message,
+            help,
+        )),
+    })
+}
