@@ -32,6 +32,7 @@ mod flow;
 mod lower;
 mod mfunc;
 pub mod modal;
+mod policy;
 mod profile_check;
 mod tools;
 pub mod types;

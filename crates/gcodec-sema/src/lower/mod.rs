@@ -25,7 +25,7 @@ use gcodec_lang::mfunctions::acts_after_motion;
 use gcodec_lang::motion::MOTION_GROUP;
 use gcodec_parser::ast::{self, Block, GotoKind, Program};
 use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
-use gcodec_source::{Code, Diagnostic, Severity, Span, codes};
+use gcodec_source::{Diagnostic, Severity, Span, codes};
 
 use crate::definitions::Definitions;
 use crate::flow::BlockFlow;
@@ -313,17 +313,6 @@ pub(crate) fn not_lowered(span: Span, what: &str) -> Diagnostic {
     )
     .with_label(span, "left out of the instruction list")
     .with_help("gcodec does not translate this construct yet; the program cannot be run as written")
-}
-
-/// A diagnostic at the severity a profile policy chose: an error or a
-/// warning.
-pub(crate) fn by_policy(error: bool, code: &'static Code, message: String) -> Diagnostic {
-    let severity = if error {
-        Severity::Error
-    } else {
-        Severity::Warning
-    };
-    Diagnostic::new(code, message).with_severity(severity)
 }
 
 /// The motion of a group 1 command as the registry spells it (`G1`,
