@@ -12,7 +12,7 @@
 //!   ([`stream`]), its events handed to an [`event::EventSink`].
 //!
 //! The parts of the lower crates that are the facade's API too are
-//! re-exported: the syntax tree's outline and the AIL listing, the run's
+//! re-exported: the syntax tree as text and the AIL listing, the run's
 //! options, events and sinks.
 
 pub mod compile;
@@ -27,7 +27,7 @@ pub use diagnostics::runtime_diagnostic;
 pub use gcodec_ail::{Document, write_listing};
 pub use gcodec_exec::channel::{BlockObserver, RunOptions, RunOutcome};
 pub use gcodec_exec::event;
-pub use gcodec_parser::{Parse, parse, write_outline};
+pub use gcodec_parser::{Parse, parse, write_tree};
 pub use gcodec_sema::{Definitions, ProgramKind};
 pub use loader::{FileLoader, MemoryLoader, SearchPath, program_name};
 pub use run::{RunReport, RunSetup, globals, run_main};
