@@ -23,7 +23,7 @@ mod tree;
 
 pub use driver::{
     MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, ParsedChunk, block_settles, parse,
-    parse_bytes, parse_bytes_in_segments, parse_bytes_with_grammar_only, parse_chunk, parse_chunks,
+    parse_bytes, parse_bytes_in_chunks, parse_bytes_with_grammar_only, parse_chunk, parse_chunks,
     skim_chunk, skim_chunks,
 };
 pub use structure::Pairing;
