@@ -177,23 +177,24 @@ pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
     read_chunk(src, chunk, Reading::Whole)
 }
 
-/// Reads the lines of `chunk` of `src` for an outline of the program
-/// (pass 1 of a streamed run), much faster than [`parse_chunk`]: each
-/// block is the one [`parse_chunk`] gives, except a *plain* block after
-/// a block that *settles*, with only such plain blocks between them in
-/// the chunk. That block keeps its span, skip mark and block number, and
-/// its statements and comment are left out.
+/// Reads the lines of `chunk` of `src` for lowering's `Outline` of the
+/// program (pass 1 of a streamed run), much faster than [`parse_chunk`]:
+/// each block is the one [`parse_chunk`] gives, except a *plain* block
+/// after a block that leaves the plain lines after it skimmable
+/// ([`plain_lines_skimmable_after`]), with only such plain blocks between
+/// them in the chunk. That block keeps its span, skip mark and block
+/// number, and its statements and comment are left out.
 ///
 /// A plain block holds no label, no keyword but the operators (`AND`,
 /// `DIV`, `TRUE`, …), no `M` word and no skip mark or block number the
 /// grammar must judge: only words, assignments, names, calls by name
-/// and expressions. A block settles when it has statements and none of
-/// them defines, declares or ends anything (`DEF`, `REDEF`, `DEFINE`,
-/// `PROC`, `EXTERN`, `ENDPROC`, `RET`, an `M` word). So a block left out
-/// holds no structure, jump, definition, declaration or program end, and
-/// changes nothing the settling block before it has not already set. The
-/// chunk's diagnostics are not given (`diagnostics` is empty):
-/// [`parse_chunk`] gives them.
+/// and expressions. The plain lines after a block are skimmable when it
+/// has statements and none of them defines, declares or ends anything
+/// (`DEF`, `REDEF`, `DEFINE`, `PROC`, `EXTERN`, `ENDPROC`, `RET`, an `M`
+/// word). So a block left out holds no structure, jump, definition,
+/// declaration or program end, and changes nothing the block before the
+/// plain ones has not already set. The chunk's diagnostics are not given
+/// (`diagnostics` is empty): [`parse_chunk`] gives them.
 pub fn skim_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
     let mut skimmed = read_chunk(src, chunk, Reading::Skim);
     skimmed.diagnostics.clear();
@@ -310,7 +311,7 @@ fn read_chunk_into(
     let mut driver = Driver {
         src,
         reading,
-        settles: false,
+        plain_lines_skimmable: false,
         first_chunk: chunk.bytes.start == 0,
         first_block: chunk.first_block as u32,
         blocks,
@@ -372,17 +373,18 @@ enum Reading {
     GrammarOnly,
     /// With the fast path where it applies, else the grammar.
     Whole,
-    /// As [`skim_chunk`] reads it: a plain line after a block that
-    /// settles is not lexed beyond its skip mark and number.
+    /// As [`skim_chunk`] reads it: a plain line after a block that leaves
+    /// the plain lines after it skimmable is not lexed beyond its skip
+    /// mark and number.
     Skim,
 }
 
 struct Driver<'s, 'b> {
     src: &'s [u8],
     reading: Reading,
-    /// The last block parsed settles what a skim reads (see
-    /// [`skim_chunk`]).
-    settles: bool,
+    /// The last block parsed leaves the plain lines after it skimmable
+    /// ([`plain_lines_skimmable_after`]).
+    plain_lines_skimmable: bool,
     /// Only the chunk at the start of the file may hold the header.
     first_chunk: bool,
     /// The index in the program of the chunk's first block.
@@ -402,10 +404,11 @@ struct Driver<'s, 'b> {
 }
 
 impl<'s> Driver<'s, '_> {
-    /// Skims the lines of `bytes` (see [`skim_chunk`]): a plain line after
-    /// a block that settles becomes a block of its span, skip mark and
-    /// number; every other line is parsed, one at a time, since whether it
-    /// settles decides how the next is read.
+    /// Skims the lines of `bytes` (see [`skim_chunk`]): a plain line while
+    /// plain lines are skimmable becomes a block of its span, skip mark
+    /// and number; every other line is parsed, one at a time, since
+    /// whether it leaves the plain lines after it skimmable decides how
+    /// the next is read.
     fn run_skim(&mut self, bytes: Range<usize>) {
         let src = self.src;
         let mut start = bytes.start;
@@ -413,12 +416,13 @@ impl<'s> Driver<'s, '_> {
             let end =
                 memchr::memchr(b'\n', &src[start..bytes.end]).map_or(bytes.end, |p| start + p + 1);
             let text_end = if src[end - 1] == b'\n' { end - 1 } else { end };
-            let left_out = (self.settles && is_plain(&src[start..text_end]))
+            let left_out = (self.plain_lines_skimmable && is_plain(&src[start..text_end]))
                 .then(|| self.plain_block(start, text_end))
                 .flatten();
             match left_out {
                 Some(block) => {
-                    // A plain block leaves `settles` as it was.
+                    // A plain block leaves `plain_lines_skimmable` as it
+                    // was.
                     if let Some(slot) = self.blocks.get_mut(self.filled) {
                         slot.write(block);
                         self.filled += 1;
@@ -571,7 +575,7 @@ impl<'s> Driver<'s, '_> {
                         .push(self.first_block + self.filled as u32);
                 }
                 if self.reading == Reading::Skim {
-                    self.settles = block_settles(&block);
+                    self.plain_lines_skimmable = plain_lines_skimmable_after(&block);
                 }
                 if let Some(slot) = self.blocks.get_mut(self.filled) {
                     slot.write(block);
@@ -813,9 +817,10 @@ fn with_prefix(mut block: Block, tokens: &[Spanned], ctx: &Ctx<'_>) -> Block {
     block
 }
 
-/// Whether a block settles what a skim reads (see [`skim_chunk`]): it
-/// has statements, and none of them defines, declares or ends anything.
-pub fn block_settles(block: &Block) -> bool {
+/// Whether a skim may leave out the statements of the plain lines after
+/// `block` (see [`skim_chunk`]): it has statements, and none of them
+/// defines, declares or ends anything.
+pub fn plain_lines_skimmable_after(block: &Block) -> bool {
     !block.statements.is_empty()
         && block.statements.iter().all(|s| match &s.kind {
             StatementKind::Def(_)
