@@ -526,19 +526,9 @@ impl<'s> Driver<'s, '_> {
                         line.broken = true;
                     }
                 }
+                // Nothing follows a header on its line: the lexer reads the
+                // header to the line end.
                 kind => {
-                    if line.header.is_some() && !line.broken {
-                        let span = Span::new(tok.start, tok.end);
-                        self.diagnostics.push(
-                            Diagnostic::new(
-                                codes::parse::HEADER_NOT_ALONE,
-                                "a program header line holds nothing but the header",
-                            )
-                            .with_label(span, "unexpected after the header")
-                            .with_help("put the NC blocks on the following lines"),
-                        );
-                        line.broken = true;
-                    }
                     self.tokens
                         .push((kind, SimpleSpan::from(tok.start as usize..tok.end as usize)));
                 }
