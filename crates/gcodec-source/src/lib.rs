@@ -8,6 +8,8 @@
 
 pub mod codes;
 mod diagnostic;
+mod escape;
+mod excerpt;
 mod lines;
 mod render;
 mod source;
@@ -15,6 +17,7 @@ mod span;
 
 pub use codes::Code;
 pub use diagnostic::{Diagnostic, Label, Severity};
+pub use escape::{EscapeControls, escape_controls, is_escaped};
 pub use lines::line_starts;
 pub use render::{RenderOptions, render_diagnostics};
 pub use source::{MAX_SOURCE_LEN, SourceFile, decode};

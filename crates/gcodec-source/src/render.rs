@@ -1,10 +1,16 @@
 //! Rendering diagnostics with miette.
+//!
+//! Everything a report shows that came from a program or a file name
+//! (the message, labels, help, the file's lines and name) has its
+//! control characters escaped (`crate::escape`).
 
+use std::borrow::Cow;
 use std::fmt;
 
-use miette::{GraphicalReportHandler, GraphicalTheme, LabeledSpan, NamedSource, SourceSpan};
+use miette::{GraphicalReportHandler, GraphicalTheme, LabeledSpan};
 
-use crate::source::cp1252;
+use crate::escape::escape_controls;
+use crate::excerpt::Excerpt;
 use crate::{Diagnostic, Severity, SourceFile};
 
 /// How to render diagnostics.
@@ -30,22 +36,23 @@ pub fn render_diagnostics(
         GraphicalTheme::unicode_nocolor()
     };
     let handler = GraphicalReportHandler::new_themed(theme).with_width(100);
-    let display = file.map(DisplaySource::new);
     let mut out = String::new();
     let shown = options
         .limit
         .map_or(diagnostics.len(), |limit| limit.min(diagnostics.len()));
     let (shown, hidden) = diagnostics.split_at(shown);
     for diagnostic in shown {
+        let spans: Vec<_> = diagnostic.labels.iter().map(|l| l.span).collect();
         let report = Report {
             diagnostic,
-            source: display.as_ref(),
+            message: escape_controls(&diagnostic.message),
+            excerpt: file.map(|file| Excerpt::new(file, &spans)),
         };
         if !out.is_empty() {
             out.push('\n');
         }
         if handler.render_report(&mut out, &report).is_err() {
-            out.push_str(&format!("{}: {}\n", diagnostic.code, diagnostic.message));
+            out.push_str(&format!("{}: {}\n", diagnostic.code, report.message));
         }
     }
     if !hidden.is_empty() {
@@ -59,50 +66,12 @@ pub fn render_diagnostics(
     out
 }
 
-/// The file as UTF-8 text for miette, with a map from stored byte offsets to
-/// offsets in the decoded text (they differ where a Latin-1 byte became a
-/// two-byte UTF-8 sequence).
-struct DisplaySource {
-    named: NamedSource<String>,
-    offsets: Option<Vec<u32>>,
-}
-
-impl DisplaySource {
-    fn new(file: &SourceFile) -> Self {
-        let bytes = file.bytes();
-        let (text, offsets) = match std::str::from_utf8(bytes) {
-            Ok(s) => (s.to_owned(), None),
-            Err(_) => {
-                let mut text = String::with_capacity(bytes.len() + bytes.len() / 8);
-                let mut offsets = Vec::with_capacity(bytes.len() + 1);
-                for &b in bytes {
-                    offsets.push(text.len() as u32);
-                    text.push(cp1252(b));
-                }
-                offsets.push(text.len() as u32);
-                (text, Some(offsets))
-            }
-        };
-        Self {
-            named: NamedSource::new(file.name(), text).with_language("SINUMERIK"),
-            offsets,
-        }
-    }
-
-    fn map(&self, offset: u32) -> usize {
-        match &self.offsets {
-            None => offset as usize,
-            Some(map) => map
-                .get(offset as usize)
-                .copied()
-                .unwrap_or_else(|| *map.last().unwrap_or(&0)) as usize,
-        }
-    }
-}
-
 struct Report<'a> {
     diagnostic: &'a Diagnostic,
-    source: Option<&'a DisplaySource>,
+    /// The message, escaped.
+    message: Cow<'a, str>,
+    /// The lines the labels point at, when the file is known.
+    excerpt: Option<Excerpt<'a>>,
 }
 
 impl fmt::Debug for Report<'_> {
@@ -113,7 +82,7 @@ impl fmt::Debug for Report<'_> {
 
 impl fmt::Display for Report<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.diagnostic.message)
+        f.write_str(&self.message)
     }
 }
 
@@ -136,27 +105,32 @@ impl miette::Diagnostic for Report<'_> {
         self.diagnostic
             .help
             .as_deref()
-            .map(|h| Box::new(h) as Box<dyn fmt::Display>)
+            .map(|h| Box::new(escape_controls(h)) as Box<dyn fmt::Display>)
     }
 
     fn source_code(&self) -> Option<&dyn miette::SourceCode> {
-        self.source.map(|s| &s.named as &dyn miette::SourceCode)
+        self.excerpt.as_ref().map(|e| e as &dyn miette::SourceCode)
     }
 
     fn labels(&self) -> Option<Box<dyn Iterator<Item = LabeledSpan> + '_>> {
-        let source = self.source?;
-        Some(Box::new(self.diagnostic.labels.iter().enumerate().map(
-            move |(i, label)| {
-                let start = source.map(label.span.start);
-                let end = source.map(label.span.end).max(start);
-                let span = SourceSpan::from(start..end);
-                let text = label.message.as_deref().map(str::to_owned);
-                if i == 0 {
-                    LabeledSpan::new_primary_with_span(text, span)
-                } else {
-                    LabeledSpan::new_with_span(text, span)
-                }
-            },
-        )))
+        let excerpt = self.excerpt.as_ref()?;
+        Some(Box::new(
+            self.diagnostic
+                .labels
+                .iter()
+                .zip(excerpt.labels())
+                .enumerate()
+                .map(|(i, (label, &span))| {
+                    let text = label
+                        .message
+                        .as_deref()
+                        .map(|m| escape_controls(m).into_owned());
+                    if i == 0 {
+                        LabeledSpan::new_primary_with_span(text, span)
+                    } else {
+                        LabeledSpan::new_with_span(text, span)
+                    }
+                }),
+        ))
     }
 }
