@@ -3,8 +3,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use gcodec_source::codes;
+use gcodec_source::{codes, escape_controls};
 
+use crate::output::{Stdout, after_output, to_stderr};
 use crate::report::{
     DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
     read, report,
@@ -105,6 +106,15 @@ enum Format {
     Json,
 }
 
+impl Format {
+    fn stdout(self) -> Stdout {
+        match self {
+            Self::Text => Stdout::text(),
+            Self::Json => Stdout::data(),
+        }
+    }
+}
+
 pub fn run(cli: Cli) -> u8 {
     match cli.command {
         Command::Parse {
@@ -148,17 +158,19 @@ fn explain(code: Option<&str>, list: bool) -> u8 {
                 let hint = codes::suggest(name)
                     .map(|code| format!("; did you mean `{code}`?"))
                     .unwrap_or_default();
-                eprintln!(
-                    "gcodec: `{name}` is not a diagnostic code{hint}\n\
-                     `gcodec explain --list` lists them"
-                );
+                to_stderr(&format!(
+                    "gcodec: `{}` is not a diagnostic code{hint}\n\
+                     `gcodec explain --list` lists them\n",
+                    escape_controls(name)
+                ));
                 return EXIT_USAGE;
             }
         },
         _ => codes::list(),
     };
-    let _ = std::io::stdout().write_all(text.as_bytes());
-    EXIT_CLEAN
+    let mut out = Stdout::text();
+    let written = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+    after_output(EXIT_CLEAN, written)
 }
 
 fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 {
@@ -170,11 +182,12 @@ fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 
     };
     match text {
         Ok(text) => {
-            let _ = std::io::stdout().write_all(text.as_bytes());
-            EXIT_CLEAN
+            let mut out = Stdout::data();
+            let written = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+            after_output(EXIT_CLEAN, written)
         }
         Err(e) => {
-            eprintln!("gcodec: cannot write the profile: {e}");
+            to_stderr(&format!("gcodec: cannot write the profile: {e}\n"));
             EXIT_USAGE
         }
     }
@@ -183,8 +196,8 @@ fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 
 fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
     let mut exit = EXIT_CLEAN;
     let mut json = Vec::new();
-    let stdout = std::io::stdout();
-    let mut out = std::io::BufWriter::new(stdout.lock());
+    let mut out = format.stdout();
+    let mut written = Ok(());
     for path in files {
         let Ok(file) = read(path, options) else {
             exit = EXIT_USAGE;
@@ -199,25 +212,25 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
             Format::Text => {
                 let mut tree = FmtToIo::new(&mut out);
                 let _ = gcodec_driver::write_tree(&parsed.program, &mut tree);
-                let _ = tree.finish();
+                written = tree.finish();
+                if written.is_err() {
+                    break;
+                }
             }
             Format::Json => json.push(parsed.program),
         }
     }
-    if let Format::Json = format {
+    if let (Format::Json, Ok(())) = (format, &written) {
         let result = if json.len() == 1 {
             serde_json::to_writer_pretty(&mut out, &json[0])
         } else {
             serde_json::to_writer_pretty(&mut out, &json)
         };
-        if result.is_ok() {
-            let _ = writeln!(out);
-        }
+        written = result
+            .map_err(std::io::Error::from)
+            .and_then(|()| writeln!(out));
     }
-    if out.flush().is_err() && exit == EXIT_CLEAN {
-        exit = EXIT_USAGE;
-    }
-    exit
+    after_output(exit, written.and_then(|()| out.flush()))
 }
 
 fn lower(
@@ -242,14 +255,13 @@ fn lower(
     let kind = gcodec_driver::ProgramKind::of_file(file.name());
     let compiled = gcodec_driver::compile(Arc::new(file), kind, &profile, &definitions);
     report(&compiled.diagnostics, Some(&compiled.file), options);
-    let mut exit = if compiled.has_errors() {
+    let exit = if compiled.has_errors() {
         EXIT_DIAGNOSTICS
     } else {
         EXIT_CLEAN
     };
     let document = compiled.document;
-    let stdout = std::io::stdout();
-    let mut out = std::io::BufWriter::new(stdout.lock());
+    let mut out = format.stdout();
     let written = match format {
         Format::Text => {
             let mut listing = FmtToIo::new(&mut out);
@@ -260,9 +272,7 @@ fn lower(
             .map_err(std::io::Error::from)
             .and_then(|()| writeln!(out)),
     };
-    if (written.is_err() || out.flush().is_err()) && exit == EXIT_CLEAN {
-        exit = EXIT_USAGE;
-    }
+    let exit = after_output(exit, written.and_then(|()| out.flush()));
     // The process ends next: freeing a large program's instruction list
     // block by block would only delay the exit.
     std::mem::forget(document);

@@ -2,12 +2,15 @@
 //! calls a stage, prints the result and renders diagnostics.
 
 mod commands;
+mod output;
 mod report;
 mod run;
 
 use std::process::ExitCode;
 
 use clap::Parser;
+
+use crate::report::{EXIT_CLEAN, EXIT_USAGE};
 
 /// mimalloc: about a third of a large lowering went to glibc's malloc and
 /// free. Built without transparent huge pages (the `no_thp` feature): a
@@ -28,6 +31,20 @@ fn main() -> ExitCode {
     // SAFETY: `mi_option_set` only stores the value; mimalloc reads it
     // atomically and it may be called at any time.
     unsafe { libmimalloc_sys::mi_option_set(MI_OPTION_PURGE_DELAY, -1) };
-    let cli = commands::Cli::parse();
-    ExitCode::from(commands::run(cli))
+    let exit = match commands::Cli::try_parse() {
+        Ok(cli) => commands::run(cli),
+        Err(usage) => print_usage(&usage),
+    };
+    ExitCode::from(output::exit_code(exit))
+}
+
+/// What clap says instead of running a command: help and the version on
+/// stdout (exit 0), a usage error on stderr (exit 2).
+fn print_usage(usage: &clap::Error) -> u8 {
+    let printed = usage.print();
+    if usage.use_stderr() {
+        output::stderr_written(printed);
+        return EXIT_USAGE;
+    }
+    output::after_output(EXIT_CLEAN, printed)
 }

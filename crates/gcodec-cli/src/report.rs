@@ -2,10 +2,12 @@
 //! reading the files a command is given (programs, profiles, definition
 //! files) and rendering what is wrong with them.
 
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use gcodec_source::{Diagnostic, RenderOptions, SourceFile, render_diagnostics};
+
+use crate::output::to_stderr;
 
 /// Exit code: no error diagnostics.
 pub const EXIT_CLEAN: u8 = 0;
@@ -60,8 +62,11 @@ pub fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: Di
     if diagnostics.is_empty() {
         return;
     }
-    let text = render_diagnostics(diagnostics, file, options.render_options());
-    let _ = std::io::stderr().write_all(text.as_bytes());
+    to_stderr(&render_diagnostics(
+        diagnostics,
+        file,
+        options.render_options(),
+    ));
 }
 
 /// Reads a file; an unreadable one is reported and is exit code 2.

@@ -11,11 +11,11 @@ use gcodec_driver::event::{
     CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
 };
 use gcodec_driver::{LoadedFiles, RunReport, RunSetup, run_main};
-use gcodec_source::{Diagnostic, codes};
+use gcodec_source::{Diagnostic, escape_controls};
 
+use crate::output::{Stdout, after_output, to_stderr};
 use crate::report::{
-    DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
-    read, report,
+    DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, load_definitions, load_profile, read, report,
 };
 
 /// How events are written.
@@ -178,13 +178,16 @@ pub fn run(args: RunArgs) -> u8 {
     }
     run_options.interrupt = Some(interrupt);
     let file = Arc::new(file);
-    let out = io::stdout().lock();
+    let out = match args.format {
+        RunFormat::Text => Stdout::text(),
+        RunFormat::Jsonl | RunFormat::Csv => Stdout::data(),
+    };
     let (events, mut rows): (Box<dyn EventSink>, _) = match args.format {
         RunFormat::Jsonl => (Box::new(JsonlSink::new(out)), None),
         RunFormat::Text => (Box::new(TextSink::new(out)), None),
         RunFormat::Csv => match CsvWriter::for_profile(out, &setup.profile) {
             Ok(rows) => (Box::new(Discard) as Box<dyn EventSink>, Some(rows)),
-            Err(e) => return output_error(&e),
+            Err(e) => return after_output(EXIT_CLEAN, Err(e)),
         },
     };
     let mut sink = Diagnostics::new(events, setup.loaded_files.clone(), options);
@@ -206,29 +209,23 @@ pub fn run(args: RunArgs) -> u8 {
     let has_errors = diagnostics.iter().any(Diagnostic::is_error);
     let outcome = match outcome {
         Ok(outcome) => outcome,
-        Err(e) => return output_error(&e),
+        Err(e) => return after_output(EXIT_CLEAN, Err(e)),
     };
-    let summary = outcome.summary.to_string();
-    match args.format {
-        RunFormat::Text => {
-            let mut out = io::stdout().lock();
-            let _ = writeln!(out, "\n{summary}");
-        }
-        _ => eprint!("{summary}"),
-    }
-    if has_errors || outcome.errors > 0 || outcome.reason == ProgramEndReason::Alarm {
+    let exit = if has_errors || outcome.errors > 0 || outcome.reason == ProgramEndReason::Alarm {
         EXIT_DIAGNOSTICS
     } else {
         EXIT_CLEAN
-    }
-}
-
-fn output_error(e: &io::Error) -> u8 {
-    if e.kind() == io::ErrorKind::BrokenPipe {
-        return EXIT_CLEAN;
-    }
-    let d = Diagnostic::new(codes::io::WRITE, format!("cannot write the events: {e}"));
-    let text = gcodec_source::render_diagnostics(&[d], None, Default::default());
-    let _ = io::stderr().write_all(text.as_bytes());
-    EXIT_USAGE
+    };
+    let summary = outcome.summary.to_string();
+    let written = match args.format {
+        RunFormat::Text => {
+            let mut out = Stdout::text();
+            writeln!(out, "\n{summary}").and_then(|()| out.flush())
+        }
+        RunFormat::Jsonl | RunFormat::Csv => {
+            to_stderr(&escape_controls(&summary));
+            Ok(())
+        }
+    };
+    after_output(exit, written)
 }

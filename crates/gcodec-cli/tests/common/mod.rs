@@ -43,7 +43,9 @@ where
         .expect("gcodec runs")
 }
 
-fn command<I, S>(args: I) -> Command
+/// The `gcodec` command with `args`, for a test that sets up its own
+/// stdin, stdout and stderr.
+pub fn command<I, S>(args: I) -> Command
 where
     I: IntoIterator<Item = S>,
     S: AsRef<std::ffi::OsStr>,
