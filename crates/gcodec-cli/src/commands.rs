@@ -5,11 +5,9 @@ use std::sync::Arc;
 use clap::{Parser, Subcommand, ValueEnum};
 use gcodec_source::{codes, escape_controls};
 
+use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE};
 use crate::output::{Stdout, after_output, to_stderr};
-use crate::report::{
-    DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
-    read, report,
-};
+use crate::report::{DiagnosticOptions, load_definitions, load_profile, read, report};
 
 /// Compile and simulate SINUMERIK 840D sl / 828D part programs.
 #[derive(Debug, Parser)]

@@ -2,6 +2,7 @@
 //! calls a stage, prints the result and renders diagnostics.
 
 mod commands;
+mod exit;
 mod output;
 mod report;
 mod run;
@@ -10,7 +11,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-use crate::report::{EXIT_CLEAN, EXIT_USAGE};
+use crate::exit::{EXIT_CLEAN, EXIT_USAGE};
 
 /// mimalloc: about a third of a large lowering went to glibc's malloc and
 /// free. Built without transparent huge pages (the `no_thp` feature): a

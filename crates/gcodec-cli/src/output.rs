@@ -12,7 +12,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use gcodec_source::{Diagnostic, EscapeControls, codes, render_diagnostics};
 
-use crate::report::{EXIT_CLEAN, EXIT_USAGE};
+use crate::exit::{EXIT_CLEAN, EXIT_USAGE};
 
 /// Set once a write to stderr failed: stderr is the process's, and so is
 /// this.

@@ -1,20 +1,14 @@
-//! What every command shares: exit codes, how diagnostics are shown,
+//! What every command shares: how diagnostics are shown,
 //! reading the files a command is given (programs, profiles, definition
 //! files) and rendering what is wrong with them.
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
-use gcodec_source::{Diagnostic, RenderOptions, SourceFile, render_diagnostics};
+use gcodec_source::{Diagnostics, RenderOptions, SourceFile, render_kept};
 
+use crate::exit::EXIT_USAGE;
 use crate::output::to_stderr;
-
-/// Exit code: no error diagnostics.
-pub const EXIT_CLEAN: u8 = 0;
-/// Exit code: at least one error diagnostic in a program.
-pub const EXIT_DIAGNOSTICS: u8 = 1;
-/// Exit code: usage, IO or profile error.
-pub const EXIT_USAGE: u8 = 2;
 
 /// How diagnostics are shown.
 #[derive(Clone, Copy, Debug, clap::Args)]
@@ -47,32 +41,28 @@ pub fn load_profile(
     };
     match gcodec_driver::load_profile(&file) {
         Ok((profile, warnings)) => {
-            report(&warnings, Some(&file), options);
+            report(&warnings.into(), Some(&file), options);
             Ok(profile)
         }
         Err(error) => {
-            report(&error.diagnostics, Some(&file), options);
+            report(&error.diagnostics.into(), Some(&file), options);
             Err(EXIT_USAGE)
         }
     }
 }
 
 /// Renders `diagnostics` on stderr, against `file` where they have spans.
-pub fn report(diagnostics: &[Diagnostic], file: Option<&SourceFile>, options: DiagnosticOptions) {
+pub fn report(diagnostics: &Diagnostics, file: Option<&SourceFile>, options: DiagnosticOptions) {
     if diagnostics.is_empty() {
         return;
     }
-    to_stderr(&render_diagnostics(
-        diagnostics,
-        file,
-        options.render_options(),
-    ));
+    to_stderr(&render_kept(diagnostics, file, options.render_options()));
 }
 
 /// Reads a file; an unreadable one is reported and is exit code 2.
 pub fn read(path: &Path, options: DiagnosticOptions) -> Result<SourceFile, u8> {
     gcodec_driver::read_source(path).map_err(|d| {
-        report(&[d], None, options);
+        report(&vec![d].into(), None, options);
         EXIT_USAGE
     })
 }
@@ -89,7 +79,7 @@ pub fn load_definitions(
         let file = read(path, options)?;
         let diagnostics = definitions.load(&file);
         report(&diagnostics, Some(&file), options);
-        bad |= diagnostics.iter().any(Diagnostic::is_error);
+        bad |= diagnostics.has_errors();
     }
     if bad {
         Err(EXIT_USAGE)

@@ -11,12 +11,11 @@ use gcodec_driver::event::{
     CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
 };
 use gcodec_driver::{LoadedFiles, RunReport, RunSetup, run_main};
-use gcodec_source::{Diagnostic, escape_controls};
+use gcodec_source::escape_controls;
 
+use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS};
 use crate::output::{Stdout, after_output, to_stderr};
-use crate::report::{
-    DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, load_definitions, load_profile, read, report,
-};
+use crate::report::{DiagnosticOptions, load_definitions, load_profile, read, report};
 
 /// How events are written.
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -115,7 +114,7 @@ impl<S: EventSink> EventSink for Diagnostics<S> {
             let file = self.files.get(&event.source.file);
             let file = file.as_deref();
             report(
-                &[gcodec_driver::runtime_diagnostic(d, &event.source, file)],
+                &vec![gcodec_driver::runtime_diagnostic(d, &event.source, file)].into(),
                 file,
                 self.options,
             );
@@ -206,7 +205,7 @@ pub fn run(args: RunArgs) -> u8 {
     // The program's own diagnostics, all of them, after the run that
     // went on while it was lowered.
     report(&diagnostics, Some(&*file), options);
-    let has_errors = diagnostics.iter().any(Diagnostic::is_error);
+    let has_errors = diagnostics.has_errors();
     let outcome = match outcome {
         Ok(outcome) => outcome,
         Err(e) => return after_output(EXIT_CLEAN, Err(e)),

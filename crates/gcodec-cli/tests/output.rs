@@ -6,20 +6,17 @@
 mod common;
 
 use std::fs::File;
-use std::path::PathBuf;
 use std::process::{Output, Stdio};
 
 use common::*;
 
 /// A command of each family, with a program that makes them write to
-/// both stdout and stderr where they can.
-fn commands() -> Vec<Vec<String>> {
-    let dir = std::env::temp_dir().join(format!("gcodec-cli-output-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let program: PathBuf = dir.join("BAD.MPF");
+/// both stdout and stderr where they can (written for `test` alone: the
+/// tests run at once).
+fn commands(test: &str) -> Vec<Vec<String>> {
     // A block with a syntax error, which the run stops at: a diagnostic
     // on stderr after the tree, the listing or the first events.
-    std::fs::write(&program, "N10 G0 X10 Y10\nN20 X=\nN30 M30\n").expect("write");
+    let program = temp_file(test, "BAD.MPF", "N10 G0 X10 Y10\nN20 X=\nN30 M30\n");
     let program = program.display().to_string();
     let with = |args: &[&str]| {
         args.iter()
@@ -67,7 +64,7 @@ fn assert_no_panic(args: &[String], out: &Output) {
 
 #[test]
 fn a_closed_stdout_pipe_ends_every_command_quietly_with_0() {
-    for args in commands() {
+    for args in commands("closed-stdout") {
         let out = command(&args)
             .stdout(closed_pipe())
             .output()
@@ -84,7 +81,7 @@ fn a_closed_stdout_pipe_ends_every_command_quietly_with_0() {
 
 #[test]
 fn stdout_on_a_full_disk_is_io_write_and_exit_2() {
-    for args in commands() {
+    for args in commands("full-stdout") {
         let out = command(&args)
             .stdout(dev_full())
             .output()
@@ -104,7 +101,7 @@ fn stdout_on_a_full_disk_is_io_write_and_exit_2() {
 /// writes nothing there keeps its exit code.
 #[test]
 fn stderr_that_cannot_be_written_is_exit_2() {
-    for args in commands() {
+    for args in commands("failed-stderr") {
         let written = command(&args)
             .stdout(Stdio::null())
             .output()
@@ -129,7 +126,7 @@ fn stderr_that_cannot_be_written_is_exit_2() {
 /// prove nothing if none did.
 #[test]
 fn the_program_writes_to_stderr_in_parse_lower_and_run() {
-    for args in commands()
+    for args in commands("stderr-written")
         .iter()
         .filter(|a| ["parse", "lower", "run"].contains(&&*a[0]))
     {

@@ -9,7 +9,7 @@ use gcodec_exec::loader::Loaded;
 use gcodec_exec::program::Program;
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, ProgramKind};
-use gcodec_source::{Diagnostic, SourceFile};
+use gcodec_source::{Diagnostics, SourceFile};
 
 use crate::diagnostics::diagnostic_event;
 
@@ -22,14 +22,15 @@ pub struct Compiled {
     /// The AIL document (always one, even for a program with errors).
     pub document: Document,
     /// Every diagnostic of parsing and lowering, in source order (a
-    /// stable sort: at one place, the parser's come first).
-    pub diagnostics: Vec<Diagnostic>,
+    /// stable sort: at one place, the parser's come first), as many as
+    /// are kept.
+    pub diagnostics: Diagnostics,
 }
 
 impl Compiled {
-    /// True if any diagnostic is an error.
+    /// True if any diagnostic, kept or not, is an error.
     pub fn has_errors(&self) -> bool {
-        self.diagnostics.iter().any(Diagnostic::is_error)
+        self.diagnostics.has_errors()
     }
 
     /// The executor's program named `name` (upper case by convention),
@@ -74,8 +75,8 @@ pub fn compile(
         drop(tree);
     }
     let mut diagnostics = parsed.diagnostics;
-    diagnostics.extend(lowered.diagnostics);
-    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    diagnostics.append(lowered.diagnostics);
+    diagnostics.sort_by_start();
     Compiled {
         file,
         document: lowered.document,

@@ -10,7 +10,7 @@ use gcodec_exec::event::EventSink;
 use gcodec_exec::vars::Global;
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, ProgramKind};
-use gcodec_source::{Diagnostic, SourceFile};
+use gcodec_source::{Diagnostics, SourceFile};
 
 use crate::loaded_files::LoadedFiles;
 use crate::loader::{FileLoader, SearchPath, program_name};
@@ -59,9 +59,9 @@ pub struct RunReport {
     /// How the run ended, or the error that stopped writing its events.
     pub outcome: io::Result<RunOutcome>,
     /// All the main program's own diagnostics (parse, structure, outline,
-    /// lowering), in source order; those of the run and of called
-    /// programs are events.
-    pub diagnostics: Vec<Diagnostic>,
+    /// lowering), in source order, as many as are kept; those of the
+    /// run and of called programs are events.
+    pub diagnostics: Diagnostics,
 }
 
 /// Runs the main program in `file` streamed (its name is the one its

@@ -18,7 +18,7 @@ use gcodec_ail::{ByteRange, Source};
 use gcodec_exec::program::{Program, SourcePage};
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, LoweredChunk, ProgramKind, lower_chunks, outline_chunks};
-use gcodec_source::{Diagnostic, SourceFile};
+use gcodec_source::{Diagnostic, Diagnostics, SourceFile};
 use gcodec_stream::chunks_at;
 
 /// How a streamed run cuts its program.
@@ -59,7 +59,7 @@ pub fn run_streamed<R>(
     definitions: &Definitions,
     options: StreamOptions,
     run: impl FnOnce(Arc<Program>) -> R,
-) -> (R, Vec<Diagnostic>) {
+) -> (R, Diagnostics) {
     let src = file.bytes();
     let chunks = chunks_at(file.line_starts(), src.len(), options.page_lines);
     let (outline, structure_diagnostics) = outline_chunks(
@@ -93,8 +93,8 @@ pub fn run_streamed<R>(
                 sender: Some(sender),
                 file,
                 name: file_name,
-                parse_diagnostics: Vec::new(),
-                diagnostics: Vec::new(),
+                parse_diagnostics: Diagnostics::new(),
+                diagnostics: Diagnostics::new(),
             };
             // The errors pass 1 found go ahead of every page.
             pages.send(SourcePage::new(Vec::new(), known_errors));
@@ -118,10 +118,10 @@ pub fn run_streamed<R>(
     // outline's and the lowering's at one place.
     let (parse_diagnostics, lowering_diagnostics) = lowered;
     let mut diagnostics = parse_diagnostics;
-    diagnostics.extend(structure_diagnostics);
-    diagnostics.extend_from_slice(outline_diagnostics);
-    diagnostics.extend(lowering_diagnostics);
-    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    diagnostics.append(structure_diagnostics.into());
+    diagnostics.append(outline_diagnostics.clone());
+    diagnostics.append(lowering_diagnostics);
+    diagnostics.sort_by_start();
     (result, diagnostics)
 }
 
@@ -131,8 +131,9 @@ struct Pages<'a> {
     sender: Option<SyncSender<SourcePage>>,
     file: &'a SourceFile,
     name: &'a Arc<str>,
-    parse_diagnostics: Vec<Diagnostic>,
-    diagnostics: Vec<Diagnostic>,
+    /// Bounded per file, as they are gathered.
+    parse_diagnostics: Diagnostics,
+    diagnostics: Diagnostics,
 }
 
 impl Pages<'_> {
@@ -143,8 +144,8 @@ impl Pages<'_> {
             self.name,
             chunk.parse_diagnostics.iter().chain(&chunk.diagnostics),
         );
-        self.parse_diagnostics.extend(chunk.parse_diagnostics);
-        self.diagnostics.extend(chunk.diagnostics);
+        self.parse_diagnostics.append(chunk.parse_diagnostics);
+        self.diagnostics.append(chunk.diagnostics);
         self.send(SourcePage::new(chunk.instructions, errors).given_back_to(chunk.spent));
     }
 

@@ -8,7 +8,7 @@ use chumsky::input::Input as _;
 use chumsky::span::SimpleSpan;
 use compact_str::CompactString;
 use gcodec_lexer::{Lexer, TokenKind};
-use gcodec_source::{Diagnostic, SourceFile, Span, codes, decode};
+use gcodec_source::{Diagnostic, Diagnostics, SourceFile, Span, codes, decode};
 
 use crate::ast::*;
 use crate::error::SyntaxError;
@@ -42,13 +42,13 @@ const FLUSH_BYTES_BOUND: usize = FLUSH_LINES * 64;
 #[derive(Clone, Debug)]
 pub struct Parse {
     pub program: Program,
-    pub diagnostics: Vec<Diagnostic>,
+    pub diagnostics: Diagnostics,
 }
 
 impl Parse {
-    /// True if any diagnostic is an error.
+    /// True if any diagnostic, kept or not, is an error.
     pub fn has_errors(&self) -> bool {
-        self.diagnostics.iter().any(Diagnostic::is_error)
+        self.diagnostics.has_errors()
     }
 }
 
@@ -135,18 +135,20 @@ fn parse_in_chunks(name: &str, src: &[u8], reading: Reading, chunks: Vec<Chunk>)
         blocks,
         structures: Vec::new(),
     };
-    let mut diagnostics = Vec::new();
+    let mut diagnostics = Diagnostics::new();
     let mut structure_blocks = Vec::new();
     for findings in found {
         program.header = program.header.take().or(findings.header);
         program.path = program.path.take().or(findings.path);
-        diagnostics.extend(findings.diagnostics);
+        diagnostics.append(findings.diagnostics);
         structure_blocks.extend(findings.structure_blocks);
     }
-    structure::pair(&mut program, &structure_blocks, &mut diagnostics);
+    let mut structure_diagnostics = Vec::new();
+    structure::pair(&mut program, &structure_blocks, &mut structure_diagnostics);
+    diagnostics.append(structure_diagnostics.into());
     // Lexical errors are found while reading and syntax errors per flush:
     // report everything in source order.
-    diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
+    diagnostics.sort_by_start();
     Parse {
         program,
         diagnostics,
@@ -165,7 +167,7 @@ pub struct ParsedChunk {
     /// Lexical and syntax errors, in the order found: not sorted, since
     /// whoever keeps them merges them with others and sorts once (by
     /// span start, a stable sort, as [`parse_bytes`] does).
-    pub diagnostics: Vec<Diagnostic>,
+    pub diagnostics: Diagnostics,
     /// The blocks holding a structure statement, by index in the program.
     pub structure_blocks: Vec<u32>,
 }
@@ -295,7 +297,7 @@ fn split(src: &[u8], threads: usize) -> Vec<Chunk> {
 struct ChunkFindings {
     header: Option<Header>,
     path: Option<PathDirective>,
-    diagnostics: Vec<Diagnostic>,
+    diagnostics: Diagnostics,
     /// Blocks holding a structure statement, by index in the program.
     structure_blocks: Vec<u32>,
 }
@@ -319,7 +321,7 @@ fn read_chunk_into(
         content_seen: false,
         header: None,
         path: None,
-        diagnostics: Vec::new(),
+        diagnostics: Diagnostics::new(),
         structure_blocks: Vec::new(),
         tokens: Vec::with_capacity(token_room(chunk, reading)),
         lines: Vec::with_capacity(FLUSH_LINES),
@@ -397,7 +399,7 @@ struct Driver<'s, 'b> {
     content_seen: bool,
     header: Option<Header>,
     path: Option<PathDirective>,
-    diagnostics: Vec<Diagnostic>,
+    diagnostics: Diagnostics,
     structure_blocks: Vec<u32>,
     tokens: Vec<Spanned>,
     lines: Vec<Line>,

@@ -29,16 +29,18 @@ fn parse_chunk_by_chunk(name: &str, src: &[u8], lines: usize) -> gcodec_parser::
             program.blocks.len(),
             "{name}: chunks in order"
         );
+        let mut structure_diagnostics = Vec::new();
         pairing.feed(
             &mut parsed.blocks,
             parsed.first_block,
             &parsed.structure_blocks,
-            &mut parsed.diagnostics,
+            &mut structure_diagnostics,
         );
         program.header = program.header.take().or(parsed.header);
         program.path = program.path.take().or(parsed.path);
         program.blocks.append(&mut parsed.blocks);
-        diagnostics.append(&mut parsed.diagnostics);
+        diagnostics.extend(parsed.diagnostics);
+        diagnostics.extend(structure_diagnostics);
     }
     let (structures, unclosed) = pairing.finish();
     program.structures = structures;
@@ -46,7 +48,7 @@ fn parse_chunk_by_chunk(name: &str, src: &[u8], lines: usize) -> gcodec_parser::
     diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
     gcodec_parser::Parse {
         program,
-        diagnostics,
+        diagnostics: diagnostics.into(),
     }
 }
 

@@ -106,7 +106,7 @@ fn parse_small(what: &str, src: Vec<u8>) -> Vec<Diagnostic> {
     on_small_stack(what, move || {
         let parse = parse_bytes("nesting.mpf", &src);
         check_invariants(&src, &parse);
-        parse.diagnostics
+        parse.diagnostics.to_vec()
     })
 }
 

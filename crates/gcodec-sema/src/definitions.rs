@@ -15,7 +15,7 @@
 
 use gcodec_lang::DataType;
 use gcodec_parser::ast::{self, StatementKind};
-use gcodec_source::{Diagnostic, SourceFile, Span, codes};
+use gcodec_source::{Diagnostic, Diagnostics, SourceFile, Span, codes};
 
 use crate::types::{self, NameMap, constant_count};
 use gcodec_lang::sysvars;
@@ -74,29 +74,29 @@ impl Definitions {
     /// Parses a definition file and adds what it defines; returns the
     /// parser's diagnostics and the problems of the file. What is defined
     /// correctly is added even when other lines are wrong.
-    pub fn load(&mut self, file: &SourceFile) -> Vec<Diagnostic> {
+    pub fn load(&mut self, file: &SourceFile) -> Diagnostics {
         self.load_bytes(file.name(), file.bytes())
     }
 
     /// [`Definitions::load`] for a file's bytes under a name.
-    pub fn load_bytes(&mut self, name: &str, bytes: &[u8]) -> Vec<Diagnostic> {
+    pub fn load_bytes(&mut self, name: &str, bytes: &[u8]) -> Diagnostics {
         let parsed = gcodec_parser::parse_bytes(name, bytes);
         let mut diagnostics = parsed.diagnostics;
-        diagnostics.extend(self.add_program(&parsed.program));
+        diagnostics.append(self.add_program(&parsed.program));
         diagnostics
     }
 
     /// Definitions from source text: the definitions and the diagnostics
     /// of the file.
-    pub fn from_source(name: &str, text: &str) -> (Self, Vec<Diagnostic>) {
+    pub fn from_source(name: &str, text: &str) -> (Self, Diagnostics) {
         let mut definitions = Self::new();
         let diagnostics = definitions.load_bytes(name, text.as_bytes());
         (definitions, diagnostics)
     }
 
     /// Adds the definitions of a parsed definition file.
-    pub fn add_program(&mut self, program: &ast::Program) -> Vec<Diagnostic> {
-        let mut diagnostics = Vec::new();
+    pub fn add_program(&mut self, program: &ast::Program) -> Diagnostics {
+        let mut diagnostics = Diagnostics::new();
         for block in &program.blocks {
             // One `not_a_definition` per block: `G1 X10` is one mistake.
             let mut reported = false;
@@ -122,7 +122,7 @@ impl Definitions {
         &mut self,
         program: &ast::Program,
         statement: &ast::Statement,
-        diagnostics: &mut Vec<Diagnostic>,
+        diagnostics: &mut Diagnostics,
     ) -> bool {
         match &statement.kind {
             StatementKind::Def(def) => {
@@ -263,7 +263,7 @@ fn check_constant_initializer(
     data_type: DataType,
     name: &str,
     init: &ast::Initializer,
-    diagnostics: &mut Vec<Diagnostic>,
+    diagnostics: &mut Diagnostics,
 ) {
     let items: Vec<&ast::Expr> = match init {
         ast::Initializer::Expr(e) => vec![e],

@@ -9,7 +9,7 @@ use gcodec_lang::MClass;
 use gcodec_lang::mfunctions::{acts_after_motion, standard_class};
 use gcodec_parser::ast::{Extension, Word, WordValue};
 use gcodec_profile::{Policy, Profile};
-use gcodec_source::{Diagnostic, Span, codes};
+use gcodec_source::{Diagnostic, Diagnostics, Span, codes};
 
 use crate::policy::by_policy;
 use crate::tools::{spindle_exists, unknown_spindle};
@@ -51,7 +51,7 @@ pub(crate) fn check(
     span: Span,
     profile: &Profile,
     overrides: &HashMap<u32, MClass>,
-    diagnostics: &mut Vec<Diagnostic>,
+    diagnostics: &mut Diagnostics,
 ) -> Option<MWord> {
     let number = match (whole_number(value), value) {
         (Some(number), _) => number,
@@ -168,7 +168,7 @@ fn extension(
     word: &Word,
     span: Span,
     profile: &Profile,
-    diagnostics: &mut Vec<Diagnostic>,
+    diagnostics: &mut Diagnostics,
 ) -> Option<(Option<u32>, Option<gcodec_ail::Expr>)> {
     let (ext, ext_span) = match word.extension() {
         None => return Some((None, None)),
@@ -217,7 +217,7 @@ fn no_extended_address(span: Span) -> Diagnostic {
 }
 
 /// Reports the M words past the profile's per-block limit.
-pub(crate) fn check_count(words: &[MWord], profile: &Profile, diagnostics: &mut Vec<Diagnostic>) {
+pub(crate) fn check_count(words: &[MWord], profile: &Profile, diagnostics: &mut Diagnostics) {
     let max = *profile.m_functions.max_m_per_block.get_ref() as usize;
     if let Some(first_excess) = words.get(max) {
         diagnostics.push(

@@ -5,7 +5,7 @@
 use gcodec_ail::{Op, SelectorKind, ToolTiming};
 use gcodec_parser::ast::{ExprKind, Extension, Word, WordValue};
 use gcodec_profile::{Profile, ToolChangeMode, UnresolvedToolPolicy};
-use gcodec_source::{Diagnostic, Span, codes};
+use gcodec_source::{Diagnostic, Diagnostics, Span, codes};
 
 use crate::policy::by_policy;
 use crate::values::{source_text, whole_number};
@@ -43,7 +43,7 @@ pub(crate) fn select(
     value: &WordValue,
     span: Span,
     profile: &Profile,
-    diagnostics: &mut Vec<Diagnostic>,
+    diagnostics: &mut Diagnostics,
 ) -> Option<Op> {
     let management = profile.tool_change.tool_management_enabled;
     let spindle = match word.extension() {
@@ -154,7 +154,7 @@ fn resolve(
     kind: SelectorKind,
     value: &str,
     span: Span,
-    diagnostics: &mut Vec<Diagnostic>,
+    diagnostics: &mut Diagnostics,
 ) {
     if profile.tools.is_empty() || value == "0" || kind == SelectorKind::Computed {
         return;

@@ -43,15 +43,16 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
             lower_chunks(src, &chunks, workers, &outline, profile, |mut lowered| {
                 taken += 1;
                 document.instructions.append(&mut lowered.instructions);
-                diagnostics.append(&mut lowered.diagnostics);
-                parse_diagnostics.append(&mut lowered.parse_diagnostics);
+                diagnostics.extend(lowered.diagnostics);
+                parse_diagnostics.extend(lowered.parse_diagnostics);
             });
             let place = format!("{name}, chunks of {lines}, {workers} workers");
             assert_eq!(taken, chunks.len() + 1, "{place}: chunks in order");
             parse_diagnostics.extend(structure_diagnostics);
             parse_diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
             assert_eq!(
-                parsed.diagnostics, parse_diagnostics,
+                parsed.diagnostics[..],
+                parse_diagnostics,
                 "{place}: parse diagnostics differ"
             );
             assert!(
@@ -60,7 +61,8 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
             );
             resolve_from_dataflow(&mut document, profile, outline.is_subprogram());
             assert_eq!(
-                whole.diagnostics, diagnostics,
+                whole.diagnostics[..],
+                diagnostics,
                 "{place}: diagnostics differ"
             );
             assert!(whole.document == document, "{place}: instructions differ");

@@ -11,7 +11,7 @@ use miette::{GraphicalReportHandler, GraphicalTheme, LabeledSpan};
 
 use crate::escape::escape_controls;
 use crate::excerpt::Excerpt;
-use crate::{Diagnostic, Severity, SourceFile};
+use crate::{Diagnostic, Diagnostics, Omitted, Severity, SourceFile};
 
 /// How to render diagnostics.
 #[derive(Clone, Copy, Debug, Default)]
@@ -27,6 +27,25 @@ pub struct RenderOptions {
 /// Renders diagnostics about one file as miette reports, one after another.
 pub fn render_diagnostics(
     diagnostics: &[Diagnostic],
+    file: Option<&SourceFile>,
+    options: RenderOptions,
+) -> String {
+    render(diagnostics, &Omitted::default(), file, options)
+}
+
+/// [`render_diagnostics`] for the diagnostics kept of a file: the line
+/// counting those not shown counts those not kept too.
+pub fn render_kept(
+    diagnostics: &Diagnostics,
+    file: Option<&SourceFile>,
+    options: RenderOptions,
+) -> String {
+    render(diagnostics, diagnostics.omitted(), file, options)
+}
+
+fn render(
+    diagnostics: &[Diagnostic],
+    omitted: &Omitted,
     file: Option<&SourceFile>,
     options: RenderOptions,
 ) -> String {
@@ -55,12 +74,12 @@ pub fn render_diagnostics(
             out.push_str(&format!("{}: {}\n", diagnostic.code, report.message));
         }
     }
-    if !hidden.is_empty() {
-        let errors = hidden.iter().filter(|d| d.is_error()).count();
+    let not_shown = hidden.len() as u64 + omitted.total();
+    if not_shown > 0 {
+        let errors = hidden.iter().filter(|d| d.is_error()).count() as u64 + omitted.errors();
         out.push_str(&format!(
-            "\n… and {} more diagnostics not shown ({errors} errors, {} others)\n",
-            hidden.len(),
-            hidden.len() - errors
+            "\n… and {not_shown} more diagnostics not shown ({errors} errors, {} others)\n",
+            not_shown - errors
         ));
     }
     out

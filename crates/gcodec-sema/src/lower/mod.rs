@@ -25,7 +25,7 @@ use gcodec_lang::mfunctions::acts_after_motion;
 use gcodec_lang::motion::MOTION_GROUP;
 use gcodec_parser::ast::{self, Block, GotoKind, Program};
 use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
-use gcodec_source::{Diagnostic, Severity, Span, codes};
+use gcodec_source::{Diagnostic, Diagnostics, Severity, Span, codes};
 
 use crate::definitions::Definitions;
 use crate::flow::BlockFlow;
@@ -48,13 +48,13 @@ mod words;
 #[derive(Clone, Debug)]
 pub struct Lowered {
     pub document: Document,
-    pub diagnostics: Vec<Diagnostic>,
+    pub diagnostics: Diagnostics,
 }
 
 impl Lowered {
-    /// True if any diagnostic is an error.
+    /// True if any diagnostic, kept or not, is an error.
     pub fn has_errors(&self) -> bool {
-        self.diagnostics.iter().any(Diagnostic::is_error)
+        self.diagnostics.has_errors()
     }
 }
 
@@ -115,7 +115,7 @@ fn lower_outlined(
     outline: &Outline<'_>,
     parts: usize,
 ) -> Lowered {
-    let mut diagnostics = outline.diagnostics().to_vec();
+    let mut diagnostics = outline.diagnostics().clone();
     let subprogram = outline.subprogram;
     let blocks = program.blocks.len();
     let parts = parts.clamp(1, blocks.max(1));
@@ -190,11 +190,11 @@ fn lower_outlined(
     for part in parts {
         let mut instructions = part.document.instructions;
         first.document.instructions.append(&mut instructions);
-        first.diagnostics.extend(part.diagnostics);
+        first.diagnostics.append(part.diagnostics);
     }
     first.end();
     let mut document = first.document;
-    diagnostics.append(&mut first.diagnostics);
+    diagnostics.append(first.diagnostics);
     resolve_from_dataflow(&mut document, profile, subprogram);
     Lowered {
         document,
@@ -358,7 +358,8 @@ struct Lowering<'a> {
     /// Where the block being lowered starts (columns count from there).
     block_start: u32,
     document: Document,
-    diagnostics: Vec<Diagnostic>,
+    /// Bounded per block ([`Diagnostics::begin_block`]).
+    diagnostics: Diagnostics,
     /// Modal code of each G group (index = group − 1) as far as the
     /// program text tells: group 1 is `None` where paths with different
     /// motion commands meet (see [`Self::forget_modal_state`]).
@@ -563,7 +564,7 @@ impl<'a> Lowering<'a> {
                 instructions: Vec::with_capacity(capacity(statements)),
                 ..Document::new()
             },
-            diagnostics: Vec::new(),
+            diagnostics: Diagnostics::new(),
             modal,
             group8,
             modal_call,
@@ -645,6 +646,7 @@ impl<'a> Lowering<'a> {
 
     fn block(&mut self, index: usize, block: &Block) {
         self.block_start = block.span.start;
+        self.diagnostics.begin_block();
         let max = *self.profile.program.max_block_length.get_ref();
         if block.span.len() > max {
             self.diagnostics.push(

@@ -10,7 +10,7 @@ use std::sync::Arc;
 use gcodec_lang::MClass;
 use gcodec_parser::ast::{self, Block, ControlStructure, StatementKind};
 use gcodec_profile::Profile;
-use gcodec_source::{Diagnostic, Span, codes};
+use gcodec_source::{Diagnostic, Diagnostics, Span, codes};
 use rustc_hash::FxHashMap;
 
 use crate::definitions::Definitions;
@@ -42,12 +42,12 @@ pub struct Outline<'d> {
     pub(super) last_block: (usize, u32, u32),
     /// What outlining found wrong (names defined twice or too late) and
     /// advice on labels defined twice.
-    diagnostics: Vec<Diagnostic>,
+    diagnostics: Diagnostics,
 }
 
 impl Outline<'_> {
     /// Outlining's diagnostics: report them with the lowering's.
-    pub fn diagnostics(&self) -> &[Diagnostic] {
+    pub fn diagnostics(&self) -> &Diagnostics {
         &self.diagnostics
     }
 

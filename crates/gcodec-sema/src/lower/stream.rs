@@ -15,7 +15,7 @@ use std::sync::Arc;
 use gcodec_ail::Instruction;
 use gcodec_parser::ast::Block;
 use gcodec_profile::Profile;
-use gcodec_source::Diagnostic;
+use gcodec_source::Diagnostics;
 
 use super::outline::Outline;
 use super::parts::{Entry, PartLedger};
@@ -98,7 +98,7 @@ pub fn lower_chunks(
     each(LoweredChunk {
         instructions: end.document.instructions,
         diagnostics: end.diagnostics,
-        parse_diagnostics: Vec::new(),
+        parse_diagnostics: Diagnostics::new(),
         spent: None,
     });
 }
@@ -125,10 +125,10 @@ pub struct ChunkLowering<'a> {
 pub struct LoweredChunk {
     pub instructions: Vec<Instruction>,
     /// What lowering found wrong.
-    pub diagnostics: Vec<Diagnostic>,
+    pub diagnostics: Diagnostics,
     /// The chunk's lexical and syntax errors ([`lower_chunks`] only: a
     /// [`ChunkLowering`] is given parsed blocks).
-    pub parse_diagnostics: Vec<Diagnostic>,
+    pub parse_diagnostics: Diagnostics,
     /// Where to give the instructions back when done with them: the bin
     /// of the worker that allocated them ([`lower_chunks`] only; not for
     /// a chunk lowered again on the thread that settles the parts, which
@@ -169,7 +169,7 @@ impl<'a> ChunkLowering<'a> {
         LoweredChunk {
             instructions: std::mem::take(&mut self.lowering.document.instructions),
             diagnostics: std::mem::take(&mut self.lowering.diagnostics),
-            parse_diagnostics: Vec::new(),
+            parse_diagnostics: Diagnostics::new(),
             spent: None,
         }
     }

@@ -30,7 +30,7 @@ use gcodec_ail::Op;
 use gcodec_lang::{DataType, UnaryOp};
 use gcodec_parser::ast::{self, StatementKind};
 use gcodec_profile::Profile;
-use gcodec_source::{Diagnostic, Span, codes};
+use gcodec_source::{Diagnostic, Diagnostics, Span, codes};
 
 use crate::definitions::{Definitions, is_program_end};
 use crate::types::{self, Constant, NameMap, constant_count};
@@ -136,7 +136,7 @@ pub(super) struct Names<'a> {
 /// names defined twice.
 pub(super) struct NameCollector<'a> {
     names: Names<'a>,
-    diagnostics: Vec<Diagnostic>,
+    diagnostics: Diagnostics,
     /// Still in the definition part of the section; else the first
     /// executable statement.
     first_executable: Option<Span>,
@@ -158,7 +158,7 @@ impl<'a> NameCollector<'a> {
                 sections: vec![Section::default()],
                 current: AtomicUsize::new(0),
             },
-            diagnostics: Vec::new(),
+            diagnostics: Diagnostics::new(),
             first_executable: None,
             after_end: false,
             new_section_next: false,
@@ -166,7 +166,7 @@ impl<'a> NameCollector<'a> {
     }
 
     /// The names and what was wrong with them.
-    pub(super) fn finish(self) -> (Names<'a>, Vec<Diagnostic>) {
+    pub(super) fn finish(self) -> (Names<'a>, Diagnostics) {
         (self.names, self.diagnostics)
     }
 
@@ -260,7 +260,7 @@ impl<'a> Names<'a> {
         name: &str,
         shape: Shape,
         defined_at: u32,
-        diagnostics: &mut Vec<Diagnostic>,
+        diagnostics: &mut Diagnostics,
     ) {
         let section = self.sections.last_mut().expect("one section");
         let local = Local {
