@@ -22,7 +22,7 @@ use std::sync::Arc;
 
 pub use expr::{Expr, Value, VarKind};
 use gcodec_lang::ggroups::GCommand;
-use gcodec_lang::{DataType, DimensionMode, MClass, MotionKind};
+use gcodec_lang::{DataType, DimensionMode, FrameOp, MClass, MotionKind};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -447,7 +447,8 @@ pub struct HFunction {
 #[serde(deny_unknown_fields)]
 pub struct Frame {
     /// The instruction in upper case (`TRANS`, `AROT`).
-    pub op: String,
+    #[schemars(with = "String")]
+    pub op: FrameOp,
     pub values: Vec<AxisValue>,
     /// Values for axes named when the block runs (`ATRANS AX[_XX]=5`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -47,6 +47,7 @@
 
 use std::sync::Arc;
 
+use gcodec_lang::FrameOp;
 use gcodec_profile::Profile;
 use gcodec_source::codes;
 
@@ -159,70 +160,16 @@ impl FrameAxes {
     }
 }
 
-// ---------------------------------------------------------------------
-// Instructions
-
-/// A programmable frame instruction the executor applies.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum FrameOp {
-    Trans,
-    ATrans,
-    Rot,
-    ARot,
-    Scale,
-    AScale,
-    Mirror,
-    AMirror,
-}
-
-impl FrameOp {
-    /// Every frame instruction.
-    pub const ALL: [FrameOp; 8] = [
-        FrameOp::Trans,
-        FrameOp::ATrans,
-        FrameOp::Rot,
-        FrameOp::ARot,
-        FrameOp::Scale,
-        FrameOp::AScale,
-        FrameOp::Mirror,
-        FrameOp::AMirror,
-    ];
-
-    /// The instruction named `op` (any case), as AIL's `frame.op` writes
-    /// it. `None` for the ones not supported (`ROTS`, `AROTS`, `CROTS`,
-    /// `G58`, `G59`) and anything else: the channel reports them.
-    pub fn parse(op: &str) -> Option<Self> {
-        Self::ALL
-            .into_iter()
-            .find(|k| k.keyword().eq_ignore_ascii_case(op.trim()))
-    }
-
-    /// The instruction as the control spells it.
-    pub const fn keyword(self) -> &'static str {
-        match self {
-            FrameOp::Trans => "TRANS",
-            FrameOp::ATrans => "ATRANS",
-            FrameOp::Rot => "ROT",
-            FrameOp::ARot => "AROT",
-            FrameOp::Scale => "SCALE",
-            FrameOp::AScale => "ASCALE",
-            FrameOp::Mirror => "MIRROR",
-            FrameOp::AMirror => "AMIRROR",
-        }
-    }
-
-    /// `ATRANS`, `AROT`, `ASCALE`, `AMIRROR`: act on the current frame.
-    pub const fn is_additive(self) -> bool {
-        matches!(
-            self,
-            FrameOp::ATrans | FrameOp::ARot | FrameOp::AScale | FrameOp::AMirror
-        )
-    }
-
-    /// `ROT`, `AROT`: the ones that take `RPL=`.
-    pub const fn is_rotation(self) -> bool {
-        matches!(self, FrameOp::Rot | FrameOp::ARot)
-    }
+/// The error of a frame instruction the executor does not simulate (the
+/// solid-angle rotations): the positions after it would be wrong.
+pub fn not_simulated(op: FrameOp) -> RunError {
+    RunError::new(
+        codes::run::FRAME,
+        format!(
+            "`{}` is not simulated: the positions after it would be wrong",
+            op.keyword()
+        ),
+    )
 }
 
 // ---------------------------------------------------------------------
@@ -484,7 +431,8 @@ impl Frame {
     /// act in the frame's own system (`self : instruction`); with no values
     /// they change nothing. Several angles in one `ROT` are RPY: Z, then
     /// Y', then X''. `MIRROR`/`AMIRROR` ignore the values (`MIRROR X0`
-    /// mirrors X; `AMIRROR X0` toggles it).
+    /// mirrors X; `AMIRROR X0` toggles it). The solid-angle rotations
+    /// (`ROTS`, `AROTS`, `CROTS`) are not simulated ([`not_simulated`]).
     ///
     /// On an error the frame is left as it was.
     pub fn apply(
@@ -512,16 +460,17 @@ impl Frame {
             }
         }
         let step = match op {
-            FrameOp::Trans | FrameOp::ATrans => Frame::checked_translation(axes, values),
-            FrameOp::Rot | FrameOp::ARot => rotation_frame(axes, keyword, values, rpl, plane)?,
-            FrameOp::Scale | FrameOp::AScale => scale_frame(axes, keyword, values)?,
-            FrameOp::Mirror | FrameOp::AMirror => {
+            FrameOp::Trans | FrameOp::Atrans => Frame::checked_translation(axes, values),
+            FrameOp::Rot | FrameOp::Arot => rotation_frame(axes, keyword, values, rpl, plane)?,
+            FrameOp::Scale | FrameOp::Ascale => scale_frame(axes, keyword, values)?,
+            FrameOp::Mirror | FrameOp::Amirror => {
                 let mut f = Frame::neutral(axes);
                 for &(i, _) in values {
                     f.axes[i].mirror = true;
                 }
                 f
             }
+            FrameOp::Rots | FrameOp::Arots | FrameOp::Crots => return Err(not_simulated(op)),
         };
         let next = if op.is_additive() {
             self.chain(&step)
@@ -1114,7 +1063,7 @@ mod tests {
         assert!(again.id != shifted.id && again.same_as(&shifted));
         let mut moved = clone.clone();
         moved
-            .apply(&axes, FrameOp::ATrans, &[(1, 1.0)], None, plane)
+            .apply(&axes, FrameOp::Atrans, &[(1, 1.0)], None, plane)
             .unwrap();
         assert!(!moved.same_as(&clone) && moved.id != clone.id);
         assert!(!Frame::neutral(&axes).same_as(&shifted));

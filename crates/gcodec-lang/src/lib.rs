@@ -6,17 +6,18 @@
 //! ([`modal`]), the data types ([`types`]), the operators
 //! ([`operators`]), the dimension modes ([`dimension`]), the motion a
 //! group 1 command makes ([`motion`]), the address letters
-//! ([`addresses`]), the system variables ([`sysvars`]), the built-in
-//! functions ([`functions`]) and the keywords ([`keywords`]). The tests
-//! check every table against the control's catalogue of names
-//! (`tests/catalogue.rs`). The syntax tree, the semantic stage, the AIL and the
-//! executor use these types, so no boundary converts one spelling of a
-//! word into another.
+//! ([`addresses`]), the frame instructions ([`frames`]), the system
+//! variables ([`sysvars`]), the built-in functions ([`functions`]) and the
+//! keywords ([`keywords`]). The tests check every table against the
+//! control's catalogue of names (`tests/catalogue.rs`). The syntax tree,
+//! the semantic stage, the AIL and the executor use these types, so no
+//! boundary converts one spelling of a word into another.
 //!
 //! Depends on no other gcodec crate: it sits below the profile and the AIL.
 
 pub mod addresses;
 pub mod dimension;
+pub mod frames;
 pub mod functions;
 pub mod ggroups;
 pub mod keywords;
@@ -29,6 +30,7 @@ pub mod sysvars;
 pub mod types;
 
 pub use dimension::DimensionMode;
+pub use frames::FrameOp;
 pub use mfunctions::MClass;
 pub use motion::MotionKind;
 pub use operators::{BinaryOp, UnaryOp};

@@ -8,7 +8,7 @@ use gcodec_ail::{
     Address, Frame as FrameInstruction, HFunction, Instruction, MFunction, SelectorKind,
     ToolChangeTrigger, ToolSelect, Value,
 };
-use gcodec_lang::MClass;
+use gcodec_lang::{FrameOp, MClass};
 use gcodec_profile::{Policy, Tool, ToolState, UnresolvedToolPolicy};
 use gcodec_source::{Severity, codes};
 
@@ -20,7 +20,7 @@ use crate::event::{
     SelectionSource, SpindleEvent, SpindleState, StopEvent, StopReason, ToolChangeEvent,
     ToolSelectEvent,
 };
-use crate::frames::FrameOp;
+use crate::frames;
 use crate::program::Program;
 use crate::value::{RtValue, RunError};
 
@@ -281,21 +281,16 @@ impl Channel<'_> {
     }
 
     pub(super) fn frame(&mut self, frame: &FrameInstruction) -> Result<(), RunError> {
-        let op = FrameOp::parse(&frame.op).ok_or_else(|| {
-            RunError::new(
-                codes::run::FRAME,
-                format!(
-                    "`{}` is not simulated: the positions after it would be wrong",
-                    frame.op
-                ),
-            )
-        })?;
+        let op = frame.op;
+        if op.is_solid_angle() {
+            return Err(frames::not_simulated(op));
+        }
         // A translation of a linear axis is a length: in mm from inch.
         let inch = self.state.inch();
         let state = &self.state;
         let scaled = |axis: usize, value: f64| {
             let is_length =
-                matches!(op, FrameOp::Trans | FrameOp::ATrans) && !state.axes[axis].rotary;
+                matches!(op, FrameOp::Trans | FrameOp::Atrans) && !state.axes[axis].rotary;
             (
                 axis,
                 if is_length && inch {
