@@ -21,6 +21,7 @@ use std::borrow::Cow;
 use std::sync::Arc;
 
 pub use expr::{Expr, Value, VarKind};
+use gcodec_lang::addresses::{AddressScope, NamedAddress, TransitionKind};
 use gcodec_lang::ggroups::GCommand;
 use gcodec_lang::{DataType, DimensionMode, FrameOp, MClass, MotionKind};
 use schemars::JsonSchema;
@@ -389,7 +390,8 @@ pub struct Circle {
 #[serde(deny_unknown_fields)]
 pub struct Address {
     /// The address in upper case: `SPOS`, `FA`, `OVR`, `DL`.
-    pub address: String,
+    #[schemars(with = "String")]
+    pub address: NamedAddress,
     /// The axis in brackets, when written as a name (`FA[X]` → `X`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axis: Option<String>,
@@ -408,16 +410,6 @@ pub struct Address {
     pub mode: Option<DimensionMode>,
     /// Whether the value stays in force after the block.
     pub scope: AddressScope,
-}
-
-/// How long an address's value holds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum AddressScope {
-    /// Until programmed again (`FA`, `OVR`, `LIMS`, `RNDM`, `SD`).
-    Modal,
-    /// This block only (`FB`, `SPOS`, `POS`, `FP`).
-    Block,
 }
 
 /// An H auxiliary function (reference §4.5).
@@ -524,19 +516,6 @@ pub struct Thread {
 pub struct Transition {
     pub kind: TransitionKind,
     pub value: Value,
-}
-
-/// Which transition.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum TransitionKind {
-    /// `CHF=`: chamfer, the value is the chamfer's length.
-    Chamfer,
-    /// `CHR=`: chamfer, the value is the leg length in the direction of
-    /// motion.
-    ChamferLeg,
-    /// `RND=`: rounding with this radius.
-    Rounding,
 }
 
 /// The JSON Schema of an AIL document, as checked in under

@@ -3,6 +3,7 @@
 //! designs read and write exactly as they specify.
 
 use gcodec_ail::*;
+use gcodec_lang::addresses::TransitionKind;
 use gcodec_lang::{BinaryOp, DimensionMode, MClass, MotionKind};
 use serde_json::json;
 

@@ -8,6 +8,7 @@ use gcodec_ail::{
     Address, Frame as FrameInstruction, HFunction, Instruction, MFunction, SelectorKind,
     ToolChangeTrigger, ToolSelect, Value,
 };
+use gcodec_lang::addresses::NamedAddress;
 use gcodec_lang::{FrameOp, MClass};
 use gcodec_profile::{Policy, Tool, ToolState, UnresolvedToolPolicy};
 use gcodec_source::{Severity, codes};
@@ -262,8 +263,8 @@ impl Channel<'_> {
     ) -> Result<(), RunError> {
         let env = self.env();
         let value = eval::eval_real(&env, &address.value)?;
-        match address.address.as_str() {
-            "SPOS" | "SPOSA" => {
+        match address.address {
+            NamedAddress::Spos | NamedAddress::Sposa => {
                 let number = self.extension(address.extension, address.extension_expr.as_ref())?;
                 let s = self.state.spindle(number);
                 s.state = SpindleState::Positioned;
@@ -271,6 +272,7 @@ impl Channel<'_> {
                 self.spindle_event(program, instruction, number);
             }
             other => {
+                let other = other.name();
                 let key = format!("address {other}");
                 self.not_simulated(program, instruction, &key, || {
                     format!("`{other}=` has no effect in the simulation")

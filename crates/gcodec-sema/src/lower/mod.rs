@@ -19,7 +19,7 @@ use gcodec_ail::{
     SuppressionScope, ToolChangeTrigger, Value,
 };
 use gcodec_lang::MotionKind;
-use gcodec_lang::addresses::letter_str;
+use gcodec_lang::addresses::{NamedAddress, letter_str};
 use gcodec_lang::ggroups::{self, GCommand};
 use gcodec_lang::mfunctions::acts_after_motion;
 use gcodec_lang::motion::MOTION_GROUP;
@@ -493,7 +493,7 @@ struct Lowering<'a> {
 type SpindleWord = (Option<u32>, Option<Box<gcodec_ail::Expr>>, Value, Span);
 
 /// A named address as written: address, axis, spindle.
-type AddressKey = (String, Option<String>, Option<u32>);
+type AddressKey = (NamedAddress, Option<String>, Option<u32>);
 
 /// A `skip_block` emitted before a block's instructions, waiting for its
 /// end label.
