@@ -23,7 +23,7 @@ use std::sync::Arc;
 pub use expr::{Expr, Value, VarKind};
 use gcodec_lang::addresses::{AddressScope, NamedAddress, TransitionKind};
 use gcodec_lang::ggroups::GCommand;
-use gcodec_lang::{DataType, DimensionMode, FrameOp, MClass, MotionKind};
+use gcodec_lang::{DataType, DimensionMode, FrameOp, MClass, MotionKind, WorkOffsetCode};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -105,7 +105,8 @@ pub enum Op {
         /// known before the program runs (the block is reached from places
         /// with different selections, or starts a subprogram): the
         /// executor knows it then.
-        group8_selected: Option<String>,
+        #[schemars(with = "Option<String>")]
+        group8_selected: Option<WorkOffsetCode>,
         /// The strongest of `G53`, `G153`, `SUPA` in the block.
         suppression: Option<Suppression>,
         /// `block` when there is a suppression.

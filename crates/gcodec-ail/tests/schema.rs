@@ -4,7 +4,7 @@
 
 use gcodec_ail::*;
 use gcodec_lang::addresses::TransitionKind;
-use gcodec_lang::{BinaryOp, DimensionMode, MClass, MotionKind};
+use gcodec_lang::{BinaryOp, DimensionMode, MClass, MotionKind, WorkOffsetCode};
 use serde_json::json;
 
 const SCHEMA_PATH: &str = concat!(
@@ -105,7 +105,7 @@ fn m_function_has_the_seed_001_fields() {
 #[test]
 fn work_offset_has_the_seed_003_fields() {
     let value = round_trip(Op::WorkOffset {
-        group8_selected: Some("g54".into()),
+        group8_selected: Some(WorkOffsetCode::G54),
         suppression: Some(Suppression::G53),
         suppression_scope: Some(SuppressionScope::Block),
     });

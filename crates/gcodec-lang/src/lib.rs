@@ -7,8 +7,9 @@
 //! ([`operators`]), the dimension modes ([`dimension`]), the motion a
 //! group 1 command makes ([`motion`]), the address letters
 //! ([`addresses`]), the frame instructions ([`frames`]), the system
-//! variables ([`sysvars`]), the built-in functions ([`functions`]) and the
-//! keywords ([`keywords`]). The tests check every table against the
+//! variables ([`sysvars`]), the built-in functions ([`functions`]), the
+//! keywords ([`keywords`]) and the Group 8 work offsets
+//! ([`work_offsets`]). The tests check every table against the
 //! control's catalogue of names (`tests/catalogue.rs`). The syntax tree,
 //! the semantic stage, the AIL and the executor use these types, so no
 //! boundary converts one spelling of a word into another.
@@ -28,6 +29,7 @@ mod names;
 pub mod operators;
 pub mod sysvars;
 pub mod types;
+pub mod work_offsets;
 
 pub use dimension::DimensionMode;
 pub use frames::FrameOp;
@@ -35,3 +37,4 @@ pub use mfunctions::MClass;
 pub use motion::MotionKind;
 pub use operators::{BinaryOp, UnaryOp};
 pub use types::DataType;
+pub use work_offsets::WorkOffsetCode;

@@ -5,6 +5,7 @@
 use std::cell::{Ref, RefCell};
 use std::sync::Arc;
 
+use gcodec_lang::WorkOffsetCode;
 use gcodec_lang::ggroups;
 use gcodec_lang::modal::GROUP_COUNT;
 use gcodec_profile::reset_defaults;
@@ -17,7 +18,7 @@ use crate::eval::{
 };
 use gcodec_ail::Suppression;
 
-use crate::event::{AxisName, Plane, SpindleState, WorkOffsetCode};
+use crate::event::{AxisName, Plane, SpindleState};
 use crate::frames::{Frame, FrameAxes, chain_values, frame_function};
 use crate::value::{FrameValue, RtValue, RunError};
 
@@ -278,7 +279,7 @@ impl MachineState {
 
     /// `$P_UIFRNUM`: the index of the Group 8 selection.
     pub fn group8_index(&self) -> u8 {
-        gcodec_profile::group8_number_index(self.group8.0).unwrap_or(0)
+        self.group8.index().unwrap_or(0)
     }
 
     /// Workpiece coordinates (mm, radius) of the machine position `machine`

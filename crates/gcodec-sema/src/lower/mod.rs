@@ -18,11 +18,11 @@ use gcodec_ail::{
     AxisValue, ByteRange, Circle, Document, Instruction, MTiming, Op, Source, Suppression,
     SuppressionScope, ToolChangeTrigger, Value,
 };
-use gcodec_lang::MotionKind;
 use gcodec_lang::addresses::{NamedAddress, letter_str};
 use gcodec_lang::ggroups::{self, GCommand};
 use gcodec_lang::mfunctions::acts_after_motion;
 use gcodec_lang::motion::MOTION_GROUP;
+use gcodec_lang::{MotionKind, WorkOffsetCode};
 use gcodec_parser::ast::{self, Block, GotoKind, Program};
 use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
 use gcodec_source::{Code, Diagnostic, Severity, Span, codes};
@@ -276,16 +276,13 @@ impl Lowering<'_> {
                 }
             }
         }
-        let selected = before
-            .group8
-            .and_then(gcodec_profile::group8_code)
-            .map(|code| code.to_ascii_lowercase());
+        let selected = before.group8.and_then(WorkOffsetCode::of_index);
         for &i in &self.pending_offsets {
             if let Op::WorkOffset {
                 group8_selected, ..
             } = &mut self.document.instructions[i].op
             {
-                group8_selected.clone_from(&selected);
+                *group8_selected = selected;
             }
         }
         true
@@ -388,7 +385,7 @@ pub fn refine(document: &mut Document, profile: &Profile, subprogram: bool) {
             }
             Op::WorkOffset {
                 group8_selected, ..
-            } => *group8_selected = state.get(8).map(str::to_ascii_lowercase),
+            } => *group8_selected = state.get(8).and_then(WorkOffsetCode::parse),
             _ => {}
         }
     }
@@ -908,10 +905,7 @@ impl<'a> Lowering<'a> {
                 .map(|(_, s)| *s)
                 .or(plan.suppressions.first().map(|(_, s)| *s))
                 .unwrap_or(block.span);
-            let selected = self
-                .group8
-                .and_then(gcodec_profile::group8_code)
-                .map(|code| code.to_ascii_lowercase());
+            let selected = self.group8.and_then(WorkOffsetCode::of_index);
             if selected.is_none() && self.group8_inherited {
                 self.pending_offsets.push(self.document.instructions.len());
             }
