@@ -3,9 +3,10 @@
 
 use std::borrow::Cow;
 
+use gcodec_lang::functions::Function;
 use gcodec_lang::{BinaryOp, UnaryOp};
 use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// A number known when lowering, or an expression evaluated at run time.
 /// In JSON a constant is a plain number.
@@ -39,7 +40,8 @@ pub enum Expr {
     },
     /// A built-in or user function.
     Call {
-        name: String,
+        #[schemars(with = "String")]
+        name: Callee,
         args: Vec<Option<Expr>>,
     },
     Unary {
@@ -64,4 +66,44 @@ pub enum VarKind {
     System,
     /// An axis name used as a value (`AX[X]`, frame functions).
     Axis,
+}
+
+/// What a call calls: a predefined function of the vocabulary, or a name
+/// it does not list (a user function, or one the executor reports as
+/// unknown). In JSON it is the name in upper case (`"SIN"`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Callee {
+    Predefined(Function),
+    Other(String),
+}
+
+impl Callee {
+    /// The callee of the function named `name` (any case); another name
+    /// is kept in upper case.
+    pub fn named(name: &str) -> Self {
+        match Function::named(name) {
+            Some(function) => Callee::Predefined(function),
+            None => Callee::Other(name.to_ascii_uppercase()),
+        }
+    }
+
+    pub fn name(&self) -> &str {
+        match self {
+            Callee::Predefined(function) => function.name(),
+            Callee::Other(name) => name,
+        }
+    }
+}
+
+impl Serialize for Callee {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for Callee {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = std::borrow::Cow::<'de, str>::deserialize(deserializer)?;
+        Ok(Callee::named(&name))
+    }
 }

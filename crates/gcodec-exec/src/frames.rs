@@ -48,6 +48,7 @@
 use std::sync::Arc;
 
 use gcodec_lang::FrameOp;
+use gcodec_lang::functions::Function;
 use gcodec_profile::Profile;
 use gcodec_source::codes;
 
@@ -836,20 +837,20 @@ fn scale_zero(what: &str, axis: &str) -> RunError {
 /// translation), `CFINE(axis, value, …)` (fine translation), `CROT(axis,
 /// angle, …)` (RPY, geometry axes), `CSCALE(axis, factor, …)`,
 /// `CMIRROR(axis, …)` and `INVFRAME(frame)`; with no arguments the first
-/// five give the neutral frame. `CRPL`, `CROTS`, `ADDFRAME`, `MEAFRAME` are
-/// known but not supported ([`codes::run::UNKNOWN_FUNCTION`] saying so). `None`:
-/// `name` is no frame function.
+/// five give the neutral frame. `CRPL`, `CROTS`, `MEAFRAME` are known but
+/// not supported ([`codes::run::UNKNOWN_FUNCTION`] saying so). `None`:
+/// `function` is no frame function.
 pub fn frame_function(
     axes: &FrameAxes,
-    name: &str,
+    function: Function,
     args: &[Option<RtValue>],
 ) -> Option<Result<RtValue, RunError>> {
-    let upper = name.trim().to_ascii_uppercase();
-    let frame = match upper.as_str() {
-        "CTRANS" | "CFINE" | "CROT" | "CSCALE" => {
-            pairs(axes, &upper, args).and_then(|values| match upper.as_str() {
-                "CTRANS" => Frame::translation(axes, &values),
-                "CFINE" => {
+    let name = function.name();
+    let frame = match function {
+        Function::Ctrans | Function::Cfine | Function::Crot | Function::Cscale => {
+            pairs(axes, name, args).and_then(|values| match function {
+                Function::Ctrans => Frame::translation(axes, &values),
+                Function::Cfine => {
                     let mut f = Frame::translation(axes, &values)?;
                     for a in &mut f.axes {
                         a.fine = a.coarse;
@@ -857,19 +858,19 @@ pub fn frame_function(
                     }
                     Ok(f)
                 }
-                "CROT" => {
-                    check_values(axes, &upper, &values)?;
+                Function::Crot => {
+                    check_values(axes, name, &values)?;
                     // Checked with every frame function's result below.
-                    rotation_frame(axes, &upper, &values, None, Plane::G17)
+                    rotation_frame(axes, name, &values, None, Plane::G17)
                 }
                 _ => {
-                    check_values(axes, &upper, &values)?;
-                    scale_frame(axes, &upper, &values)
+                    check_values(axes, name, &values)?;
+                    scale_frame(axes, name, &values)
                 }
             })
         }
-        "CMIRROR" => (0..args.len())
-            .map(|k| axis_arg(axes, &upper, args, k))
+        Function::Cmirror => (0..args.len())
+            .map(|k| axis_arg(axes, name, args, k))
             .collect::<Result<Vec<usize>, RunError>>()
             .map(|indices| {
                 let mut f = Frame::neutral(axes);
@@ -878,7 +879,7 @@ pub fn frame_function(
                 }
                 f
             }),
-        "INVFRAME" => match args {
+        Function::Invframe => match args {
             [Some(RtValue::Frame(v))] => Frame::from_value(axes, v).map(|f| f.inverse()),
             [Some(other)] => Err(RunError::type_mismatch(other, "FRAME")),
             _ => Err(RunError::new(
@@ -886,14 +887,14 @@ pub fn frame_function(
                 "`INVFRAME` takes one frame",
             )),
         },
-        "CRPL" | "CROTS" | "ADDFRAME" | "MEAFRAME" => Err(RunError::new(
+        Function::Crpl | Function::Crots | Function::Meaframe => Err(RunError::new(
             codes::run::UNKNOWN_FUNCTION,
-            format!("`{upper}` is not supported by the executor yet"),
+            format!("`{name}` is not supported by the executor yet"),
         )),
         _ => return None,
     };
     Some(frame.and_then(|f| {
-        f.check(&upper)?;
+        f.check(name)?;
         Ok(RtValue::Frame(Arc::new(f.to_value(axes))))
     }))
 }

@@ -8,6 +8,7 @@ use gcodec_exec::frames::{Frame, FrameAxes, chain_values, frame_function};
 use gcodec_exec::geometry::Plane;
 use gcodec_exec::value::{FrameAxis, FrameValue, RtValue, RunError};
 use gcodec_lang::FrameOp;
+use gcodec_lang::functions::Function;
 use std::sync::Arc;
 
 use gcodec_source::codes;
@@ -746,8 +747,10 @@ fn from_value_rejects_what_no_frame_holds() {
     }
 }
 
+/// The frame function named `name` (any case, as lowering reads it).
 fn call(axes: &FrameAxes, name: &str, args: &[Option<RtValue>]) -> Result<FrameValue, RunError> {
-    match frame_function(axes, name, args).expect("a frame function") {
+    let function = Function::named(name).expect("a predefined function");
+    match frame_function(axes, function, args).expect("a frame function") {
         Ok(RtValue::Frame(f)) => Ok((*f).clone()),
         Ok(other) => panic!("{name}: not a frame: {other:?}"),
         Err(e) => Err(e),
@@ -871,10 +874,10 @@ fn frame_function_errors() {
     assert_eq!(code("CMIRROR", &[num(1.0)]), codes::run::TYPE_MISMATCH);
     assert_eq!(code("INVFRAME", &[]), codes::run::ARGUMENT_COUNT);
     assert_eq!(code("INVFRAME", &[num(1.0)]), codes::run::TYPE_MISMATCH);
-    for name in ["CRPL", "CROTS", "ADDFRAME", "MEAFRAME"] {
+    for name in ["CRPL", "CROTS", "MEAFRAME"] {
         assert_eq!(code(name, &[]), codes::run::UNKNOWN_FUNCTION, "{name}");
     }
-    assert!(frame_function(&axes, "SIN", &[num(1.0)]).is_none());
+    assert!(frame_function(&axes, Function::Sin, &[num(1.0)]).is_none());
     // A value naming an axis the channel does not have.
     let q = FrameValue {
         axes: vec![FrameAxis {

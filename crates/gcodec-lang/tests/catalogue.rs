@@ -145,7 +145,7 @@ fn functions_are_the_controls() {
     let Some(dir) = catalogue_dir() else { return };
     let ours: BTreeSet<String> = functions::FUNCTIONS
         .iter()
-        .map(|(name, _)| name.to_string())
+        .map(|(_, name, _)| name.to_string())
         .collect();
     check(
         "functions",

@@ -79,7 +79,7 @@ pub(crate) fn tree(expr: &ast::Expr) -> ail::Expr {
         ExprKind::Bool { value } => ail::Expr::Bool { value: *value },
         ExprKind::Var { var } => variable(var),
         ExprKind::Call(call) => ail::Expr::Call {
-            name: call.name.to_ascii_uppercase().to_string(),
+            name: ail::Callee::named(&call.name),
             args: call.args.iter().map(|a| a.as_ref().map(tree)).collect(),
         },
         ExprKind::Unary { op, operand } => ail::Expr::Unary {

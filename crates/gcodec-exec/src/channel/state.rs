@@ -6,6 +6,7 @@ use std::cell::{Ref, RefCell};
 use std::sync::Arc;
 
 use gcodec_lang::WorkOffsetCode;
+use gcodec_lang::functions::Function;
 use gcodec_lang::ggroups;
 use gcodec_lang::modal::GROUP_COUNT;
 use gcodec_profile::reset_defaults;
@@ -482,8 +483,12 @@ impl RuntimeInterface for MachineState {
         }
     }
 
-    fn function(&self, name: &str, args: &[Option<RtValue>]) -> Option<Result<RtValue, RunError>> {
-        frame_function(&self.frame_axes, name, args)
+    fn function(
+        &self,
+        function: Function,
+        args: &[Option<RtValue>],
+    ) -> Option<Result<RtValue, RunError>> {
+        frame_function(&self.frame_axes, function, args)
     }
 
     fn chain_frames(&self, lhs: &FrameValue, rhs: &FrameValue) -> Result<FrameValue, RunError> {

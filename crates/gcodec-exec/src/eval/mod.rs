@@ -25,6 +25,7 @@ mod profile_variables;
 use std::sync::Arc;
 
 use gcodec_ail::{Expr, Value, VarKind};
+use gcodec_lang::functions::Function;
 use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_profile::Profile;
 use gcodec_source::codes;
@@ -82,7 +83,7 @@ pub trait RuntimeInterface {
     /// know it either ([`codes::run::UNKNOWN_FUNCTION`]).
     fn function(
         &self,
-        _name: &str,
+        _function: Function,
         _args: &[Option<RtValue>],
     ) -> Option<Result<RtValue, RunError>> {
         None
