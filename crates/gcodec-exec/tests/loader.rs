@@ -585,26 +585,9 @@ fn a_loader_is_usable_as_a_trait_object() {
     );
 }
 
-/// The shared corpus beside the checkout (`../shared/corpus`) or
-/// `GCODEC_CORPUS_DIR`; `None`, with a notice, where it is absent.
-fn corpus_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("GCODEC_CORPUS_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus"));
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "notice: corpus not found at {}; the corpus cycle test is skipped",
-            dir.display()
-        );
-        None
-    }
-}
-
 #[test]
 fn the_corpus_cycles_load_from_their_directory() {
-    let Some(corpus) = corpus_dir() else {
+    let Some(corpus) = gcodec_testkit::corpus_dir() else {
         return;
     };
     let root = corpus.join("real/PDubovikov+SinumerikLanguage/SinumerikLanguage");

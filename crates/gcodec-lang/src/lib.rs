@@ -5,11 +5,11 @@
 //! M functions ([`mfunctions`]), the group count of the modal state
 //! ([`modal`]), the data types ([`types`]), the operators
 //! ([`operators`]), the dimension modes ([`dimension`]), the motion a
-//! group 1 command makes ([`motion`]), the address letters
-//! ([`addresses`]), the frame instructions ([`frames`]), the system
+//! group 1 command makes ([`motion`]), the address letters and named
+//! addresses ([`addresses`]), the frame instructions ([`frames`]), the system
 //! variables ([`sysvars`]), the built-in functions ([`functions`]), the
-//! keywords ([`keywords`]) and the Group 8 work offsets
-//! ([`work_offsets`]). The tests check every table against the
+//! predefined procedures ([`procedures`]), the keywords ([`keywords`]) and
+//! the Group 8 work offsets ([`work_offsets`]). The tests check every table against the
 //! control's catalogue of names (`tests/catalogue.rs`). The syntax tree,
 //! the semantic stage, the AIL and the executor use these types, so no
 //! boundary converts one spelling of a word into another.
@@ -27,6 +27,7 @@ pub mod modal;
 pub mod motion;
 mod names;
 pub mod operators;
+pub mod procedures;
 pub mod sysvars;
 pub mod types;
 pub mod work_offsets;
