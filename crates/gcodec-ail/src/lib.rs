@@ -20,7 +20,7 @@ mod expr;
 use std::borrow::Cow;
 use std::sync::Arc;
 
-pub use expr::{Callee, Expr, Value, VarKind};
+pub use expr::{Callee, Expr, Value, VarKind, VarName};
 use gcodec_lang::addresses::{AddressScope, NamedAddress, TransitionKind};
 use gcodec_lang::ggroups::GCommand;
 use gcodec_lang::{DataType, DimensionMode, FrameOp, MClass, MotionKind, WorkOffsetCode};

@@ -137,7 +137,7 @@ fn constants_are_plain_numbers_and_expressions_are_trees() {
                     operator: BinaryOp::Add,
                     lhs: Box::new(Expr::Var {
                         var_kind: VarKind::RParameter,
-                        name: "R".into(),
+                        name: VarName::Text("R".into()),
                         indices: vec![Expr::Number { value: 1.0 }],
                     }),
                     rhs: Box::new(Expr::Number { value: 5.0 }),

@@ -7,7 +7,7 @@ use std::borrow::Cow;
 use std::cell::Cell;
 use std::collections::HashMap;
 
-use gcodec_ail::{Callee, Expr, Op, Value, VarKind};
+use gcodec_ail::{Callee, Expr, Op, Value, VarKind, VarName};
 use gcodec_exec::eval::{
     self, Env, NoMachine, RuntimeInterface, assign, assign_list, declare, eval, sprint,
 };
@@ -67,7 +67,7 @@ fn bool_(v: bool) -> Expr {
 fn r(i: f64) -> Expr {
     Expr::Var {
         var_kind: VarKind::RParameter,
-        name: Cow::Borrowed("R"),
+        name: VarName::Text(Cow::Borrowed("R")),
         indices: vec![n(i)],
     }
 }
@@ -75,7 +75,7 @@ fn r(i: f64) -> Expr {
 fn var(name: &str, indices: Vec<Expr>) -> Expr {
     Expr::Var {
         var_kind: VarKind::User,
-        name: Cow::Owned(name.to_owned()),
+        name: VarName::Text(Cow::Owned(name.to_owned())),
         indices,
     }
 }
@@ -83,7 +83,7 @@ fn var(name: &str, indices: Vec<Expr>) -> Expr {
 fn sys(name: &str, indices: Vec<Expr>) -> Expr {
     Expr::Var {
         var_kind: VarKind::System,
-        name: Cow::Owned(name.to_owned()),
+        name: VarName::named(Cow::Owned(name.to_owned())),
         indices,
     }
 }
@@ -695,7 +695,7 @@ fn r_parameters_have_the_default_count() {
     vars.set_r(5, 7.0).unwrap();
     let idx = Expr::Var {
         var_kind: VarKind::RParameter,
-        name: "R".into(),
+        name: VarName::Text("R".into()),
         indices: vec![bin(B::Add, r(1.0), n(2.0))],
     };
     assert_eq!(

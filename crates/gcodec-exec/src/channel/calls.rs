@@ -518,7 +518,7 @@ impl Channel<'_> {
                         param: param.clone(),
                         target: VarRef {
                             kind: *var_kind,
-                            name: name.to_string(),
+                            name: name.as_str().to_owned(),
                             indices: evaluated,
                         },
                     }
