@@ -60,7 +60,9 @@
 //! directory is listed once, every name is resolved once per calling
 //! directory (misses too), and every program (by its canonical path) is
 //! read, parsed and lowered once. A cycle called a million times costs
-//! two hash lookups per call after the first.
+//! two hash lookups per call after the first. A loader given
+//! [`LoadedFiles`] ([`FileLoader::with_loaded_files`]) records each file
+//! it reads there, so that the run's diagnostics are labelled from it.
 //!
 //! # Lowering
 //!
@@ -86,6 +88,7 @@ use gcodec_source::{Severity, SourceFile, codes};
 use rustc_hash::FxHashMap;
 
 use crate::compile;
+use crate::loaded_files::LoadedFiles;
 
 /// The longest program name looked for, in bytes (the control allows
 /// far fewer). Longer names are not found.
@@ -537,6 +540,8 @@ pub struct FileLoader {
     callers: FxHashMap<PathBuf, CallerDir>,
     /// Canonical file → the program (or why it cannot be read).
     programs: FxHashMap<PathBuf, Outcome>,
+    /// Where each program file read is recorded (`None`: nowhere).
+    loaded_files: Option<LoadedFiles>,
 }
 
 impl FileLoader {
@@ -554,7 +559,15 @@ impl FileLoader {
             listings: FxHashMap::default(),
             callers: FxHashMap::default(),
             programs: FxHashMap::default(),
+            loaded_files: None,
         }
+    }
+
+    /// Recording each program file it reads in `files`, for labelling the
+    /// run's diagnostics without reading the file again.
+    pub fn with_loaded_files(mut self, files: LoadedFiles) -> Self {
+        self.loaded_files = Some(files);
+        self
     }
 
     /// The search path of a caller in `caller_file`: each directory once,
@@ -601,8 +614,12 @@ impl FileLoader {
             }
             let result = match SourceFile::read(&path) {
                 Ok(file) => {
+                    let file = Arc::new(file);
+                    if let Some(files) = &self.loaded_files {
+                        files.insert(Arc::clone(&file));
+                    }
                     let mut loaded = compile(
-                        Arc::new(file),
+                        file,
                         ProgramKind::Subprogram,
                         &self.profile,
                         &self.definitions,

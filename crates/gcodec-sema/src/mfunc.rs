@@ -11,7 +11,7 @@ use gcodec_parser::ast::{Extension, Word, WordValue};
 use gcodec_profile::{Policy, Profile};
 use gcodec_source::{Diagnostic, Span, codes};
 
-use crate::lower::by_policy;
+use crate::policy::by_policy;
 use crate::tools::{spindle_exists, unknown_spindle};
 use crate::values::{constant, source_text, tree, whole_number};
 /// Largest M value (the M-function design: a 32-bit non-negative INT).

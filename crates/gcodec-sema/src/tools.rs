@@ -7,7 +7,7 @@ use gcodec_parser::ast::{ExprKind, Extension, Word, WordValue};
 use gcodec_profile::{Profile, ToolChangeMode, UnresolvedToolPolicy};
 use gcodec_source::{Diagnostic, Span, codes};
 
-use crate::lower::by_policy;
+use crate::policy::by_policy;
 use crate::values::{source_text, whole_number};
 /// Whether the machine has spindle `number`.
 pub(crate) fn spindle_exists(profile: &Profile, number: u32) -> bool {

@@ -1,9 +1,10 @@
 //! A streamed run outlines a program chunk by chunk, then lowers it chunk
-//! by chunk again: the chunks' instructions, refined, are the document of
-//! lowering the whole program, and their diagnostics its diagnostics.
+//! by chunk again: the chunks' instructions, filled in from the dataflow,
+//! are the document of lowering the whole program, and their diagnostics its diagnostics.
 
 use gcodec_sema::{
-    ChunkLowering, Definitions, ProgramKind, lower_chunks, lower_in_parts, outline_chunks, refine,
+    ChunkLowering, Definitions, ProgramKind, lower_chunks, lower_in_parts, outline_chunks,
+    resolve_from_dataflow,
 };
 use gcodec_stream::chunks;
 
@@ -20,7 +21,7 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
         let chunks = chunks(src, lines);
         // Chunks lowered as parts on one thread and on three workers
         // taking turns: the instructions a `ChunkLowering` gives, in
-        // order, before refinement.
+        // order, before the dataflow fills them in.
         let in_order = in_order(name, src, &chunks, profile, &definitions);
         for workers in [1, 3] {
             // Pass 1: the outline, the chunks skimmed and their trees
@@ -57,7 +58,7 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
                 in_order == document,
                 "{place}: instructions differ from lowering in order"
             );
-            refine(&mut document, profile, outline.is_subprogram());
+            resolve_from_dataflow(&mut document, profile, outline.is_subprogram());
             assert_eq!(
                 whole.diagnostics, diagnostics,
                 "{place}: diagnostics differ"

@@ -25,18 +25,20 @@ use gcodec_lang::motion::MOTION_GROUP;
 use gcodec_lang::{MotionKind, WorkOffsetCode};
 use gcodec_parser::ast::{self, Block, GotoKind, Program};
 use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
-use gcodec_source::{Code, Diagnostic, Severity, Span, codes};
+use gcodec_source::{Diagnostic, Severity, Span, codes};
 
 use crate::definitions::Definitions;
 use crate::flow::BlockFlow;
 use crate::mfunc;
 use outline::{Outline, ProgramKind};
+use parts::{Entry, OpenEntry};
 
 mod addresses;
 mod calls;
 mod control;
 mod frames;
 pub(crate) mod outline;
+mod parts;
 mod statements;
 pub(crate) mod stream;
 mod variables;
@@ -134,7 +136,12 @@ fn lower_outlined(
     let total: usize = statements.iter().sum();
     let lower_part = |k: usize, range: std::ops::Range<usize>| {
         let reserve = if k == 0 { total } else { statements[k] };
-        let mut lowering = Lowering::new(outline, profile, reserve, k > 0);
+        let entry = if k == 0 {
+            Entry::ProgramStart
+        } else {
+            Entry::AfterOpenPart
+        };
+        let mut lowering = Lowering::new(outline, profile, reserve, entry);
         for index in range {
             lowering.block(index, &program.blocks[index]);
         }
@@ -166,8 +173,8 @@ fn lower_outlined(
             all
         })
     };
-    if !stitch(&mut lowered) {
-        // A case the parts cannot settle between them (a modal call in
+    if !parts::settle_parts(&mut lowered) {
+        // A case the ledger cannot fill in (a modal call in
         // force across a boundary, an inherited thread or OEM command):
         // lower in one run.
         return lower_outlined(program, profile, outline, 1);
@@ -188,110 +195,16 @@ fn lower_outlined(
     first.end();
     let mut document = first.document;
     diagnostics.append(&mut first.diagnostics);
-    refine(&mut document, profile, subprogram);
+    resolve_from_dataflow(&mut document, profile, subprogram);
     Lowered {
         document,
         diagnostics,
     }
 }
 
-/// Settles what the parts after the first left open because they start
-/// in the state the part before them ends in: the motion command and the
-/// Group 8 selection. False if a part needs more than that.
-fn stitch(parts: &mut [Lowering<'_>]) -> bool {
-    let Some((first, rest)) = parts.split_first_mut() else {
-        return true;
-    };
-    let mut carry = first.carry(Carry::default());
-    for part in rest {
-        if !part.settle(carry) {
-            return false;
-        }
-        carry = part.carry(carry);
-    }
-    true
-}
-
-/// What a part of a lowering leaves to the part after it, where that part
-/// was lowered as inheriting ([`Lowering::new`]).
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Carry {
-    /// The motion command (group 1), `None` where unknown.
-    group1: Option<&'static str>,
-    /// The Group 8 selection, `None` where unknown.
-    group8: Option<u8>,
-    /// `MCALL NAME` is in force.
-    modal_call: bool,
-}
-
-impl Lowering<'_> {
-    /// The state after this part, given `before`, the state before it.
-    fn carry(&self, before: Carry) -> Carry {
-        Carry {
-            group1: if self.group1_inherited {
-                before.group1
-            } else {
-                self.modal[0]
-            },
-            group8: if self.group8_inherited {
-                before.group8
-            } else {
-                self.group8
-            },
-            modal_call: self.modal_call,
-        }
-    }
-
-    /// Settles what this part, lowered as inheriting, left open, given the
-    /// state before it: the motions and work offsets that read the
-    /// inherited motion command and Group 8 selection. False where that
-    /// is not all one run would have done differently: a modal call in
-    /// force before the part, a motion under an inherited command that is
-    /// not lowered, a thread reading `F` as its lead change, or an arc
-    /// without circle data (one run reports it). The part must then be
-    /// lowered again, continuing from `before`.
-    fn settle(&mut self, before: Carry) -> bool {
-        if before.modal_call {
-            return false;
-        }
-        if let (false, Some(code)) = (self.pending_motions.is_empty(), before.group1) {
-            let Some(kind) = motion_of(code).filter(|_| !matches!(code, "G34" | "G35")) else {
-                return false;
-            };
-            for &i in &self.pending_motions {
-                if let Op::Motion {
-                    motion,
-                    circle,
-                    details,
-                    ..
-                } = &mut self.document.instructions[i].op
-                {
-                    let no_circle = circle.as_ref().is_none_or(|c| {
-                        c.centre.is_empty() && c.radius.is_none() && c.opening_angle.is_none()
-                    });
-                    if matches!(kind, MotionKind::ArcCw | MotionKind::ArcCcw) && no_circle {
-                        return false;
-                    }
-                    settle_motion(motion, circle, details, kind);
-                }
-            }
-        }
-        let selected = before.group8.and_then(WorkOffsetCode::of_index);
-        for &i in &self.pending_offsets {
-            if let Op::WorkOffset {
-                group8_selected, ..
-            } = &mut self.document.instructions[i].op
-            {
-                *group8_selected = selected;
-            }
-        }
-        true
-    }
-}
-
 /// Gives a motion whose command was open the command `kind`, moving its
 /// `I J K` to where that command reads them.
-fn settle_motion(
+fn assign_motion_command(
     motion: &mut MotionKind,
     circle: &mut Option<Box<gcodec_ail::Circle>>,
     details: &mut Option<Box<gcodec_ail::MotionDetails>>,
@@ -340,9 +253,9 @@ fn is_threaded(kind: MotionKind) -> bool {
 /// Fills in what lowering left to run time because paths meet
 /// (`motion: modal`, `group8_selected: null`) where the dataflow over the
 /// whole document ([`crate::modal`]) shows every path agrees. Straight-line
-/// programs have nothing to refine and skip the analysis.
+/// programs have nothing to fill in and skip the analysis.
 #[doc(hidden)]
-pub fn refine(document: &mut Document, profile: &Profile, subprogram: bool) {
+pub fn resolve_from_dataflow(document: &mut Document, profile: &Profile, subprogram: bool) {
     let open = |op: &Op| match op {
         Op::Motion { motion, .. } => *motion == MotionKind::Modal,
         Op::WorkOffset {
@@ -380,7 +293,7 @@ pub fn refine(document: &mut Document, profile: &Profile, subprogram: bool) {
                     .index(MOTION_GROUP)
                     .and_then(|index| MotionKind::of_command(MOTION_GROUP, index))
                 {
-                    settle_motion(motion, circle, details, kind);
+                    assign_motion_command(motion, circle, details, kind);
                 }
             }
             Op::WorkOffset {
@@ -400,17 +313,6 @@ pub(crate) fn not_lowered(span: Span, what: &str) -> Diagnostic {
     )
     .with_label(span, "left out of the instruction list")
     .with_help("gcodec does not translate this construct yet; the program cannot be run as written")
-}
-
-/// A diagnostic at the severity a profile policy chose: an error or a
-/// warning.
-pub(crate) fn by_policy(error: bool, code: &'static Code, message: String) -> Diagnostic {
-    let severity = if error {
-        Severity::Error
-    } else {
-        Severity::Warning
-    };
-    Diagnostic::new(code, message).with_severity(severity)
 }
 
 /// The motion of a group 1 command as the registry spells it (`G1`,
@@ -465,15 +367,9 @@ struct Lowering<'a> {
     group8: Option<u8>,
     /// `MCALL NAME` is in force: the subprogram runs after every motion.
     modal_call: bool,
-    /// A part after the first starts in the state the part before it ends
-    /// in: group 1 and the Group 8 selection are that state until the part
-    /// sets or forgets them.
-    group1_inherited: bool,
-    group8_inherited: bool,
-    /// Motions and work offsets that depend on the inherited state
-    /// (indices into `document.instructions`), settled by [`stitch`].
-    pending_motions: Vec<usize>,
-    pending_offsets: Vec<usize>,
+    /// What reads the state a part started in where that is not known
+    /// yet, for the [`parts::PartLedger`].
+    open: OpenEntry,
     /// The Group 8 indices the machine has.
     group8_supported: [bool; 100],
     /// The plan of the block before, emptied ([`BlockPlan::reset`]): one
@@ -628,25 +524,35 @@ impl BlockPlan {
 }
 
 impl<'a> Lowering<'a> {
-    /// The lowering of a part of `program` with room for the instructions
-    /// of about `statements` statements; `inherits` for a part after the
-    /// first, which starts in the state the part before it ends in. The
-    /// first part of a subprogram starts in its caller's state: the
-    /// motion command and the Group 8 selection are unknown.
+    /// The lowering of a part of `program`, starting at `entry`, with
+    /// room for the instructions of about `statements` statements.
     fn new(
         outline: &'a Outline<'a>,
         profile: &'a Profile,
         statements: usize,
-        inherits: bool,
+        entry: Entry,
     ) -> Self {
         let mut modal = gcodec_profile::reset_defaults(profile);
         let mut group8 =
             gcodec_profile::group8_index(profile.work_offsets.default_group8_offset.get_ref());
-        // A part after the first starts in the state the part before it
-        // ends in, a subprogram in its caller's: neither is known here.
-        if inherits || outline.subprogram {
-            modal[0] = None;
-            group8 = None;
+        let mut modal_call = false;
+        match entry {
+            // A subprogram starts in its caller's state: the motion
+            // command and the Group 8 selection are not known here.
+            Entry::ProgramStart if outline.subprogram => {
+                modal[0] = None;
+                group8 = None;
+            }
+            Entry::ProgramStart => {}
+            Entry::AfterOpenPart => {
+                modal[0] = None;
+                group8 = None;
+            }
+            Entry::After(state) => {
+                modal[0] = state.group1;
+                group8 = state.group8;
+                modal_call = state.modal_call;
+            }
         }
         Self {
             outline,
@@ -660,25 +566,12 @@ impl<'a> Lowering<'a> {
             diagnostics: Vec::new(),
             modal,
             group8,
-            modal_call: false,
-            group1_inherited: inherits,
-            group8_inherited: inherits,
-            pending_motions: Vec::new(),
-            pending_offsets: Vec::new(),
+            modal_call,
+            open: OpenEntry::at(entry),
             group8_supported: profile.work_offsets.supported_group8(),
             plan: None,
             flow_at: 0,
         }
-    }
-
-    /// A lowering that continues a program after a part whose end state
-    /// is `carry`, as one run over the parts before would be there.
-    fn resumed(outline: &'a Outline<'a>, profile: &'a Profile, carry: Carry) -> Self {
-        let mut lowering = Self::new(outline, profile, 0, false);
-        lowering.modal[0] = carry.group1;
-        lowering.group8 = carry.group8;
-        lowering.modal_call = carry.modal_call;
-        lowering
     }
 
     /// What control flow says about block `index`, found from where the
@@ -731,13 +624,12 @@ impl<'a> Lowering<'a> {
     }
 
     /// From here on the motion command and the Group 8 selection are not
-    /// known from the text alone; [`refine`] recovers what the dataflow
+    /// known from the text alone; [`resolve_from_dataflow`] recovers what the dataflow
     /// over the whole document knows.
     fn forget_modal_state(&mut self) {
         self.modal[0] = None;
         self.group8 = None;
-        self.group1_inherited = false;
-        self.group8_inherited = false;
+        self.open.forget();
     }
 
     /// The program's end, after its last block.
@@ -898,7 +790,7 @@ impl<'a> Lowering<'a> {
             && let Some(selected) = gcodec_profile::group8_index(code.name())
         {
             self.group8 = Some(selected);
-            self.group8_inherited = false;
+            self.open.set_group8();
         }
         if group8.is_some() || suppression.is_some() {
             let span = group8
@@ -906,8 +798,9 @@ impl<'a> Lowering<'a> {
                 .or(plan.suppressions.first().map(|(_, s)| *s))
                 .unwrap_or(block.span);
             let selected = self.group8.and_then(WorkOffsetCode::of_index);
-            if selected.is_none() && self.group8_inherited {
-                self.pending_offsets.push(self.document.instructions.len());
+            if selected.is_none() && self.open.group8_is_entry() {
+                self.open
+                    .read_by_work_offset(self.document.instructions.len());
             }
             self.emit(
                 index,
@@ -945,7 +838,7 @@ impl<'a> Lowering<'a> {
             if modal {
                 self.modal[usize::from(group) - 1] = Some(code);
                 if group == 1 {
-                    self.group1_inherited = false;
+                    self.open.set_group1();
                 }
             }
             self.emit(
@@ -1124,8 +1017,8 @@ impl<'a> Lowering<'a> {
             transition: plan.transition.take().map(|(t, _)| t),
         };
         let details = (!details.is_empty()).then(|| Box::new(details));
-        if motion == MotionKind::Modal && self.group1_inherited {
-            self.pending_motions.push(self.document.instructions.len());
+        if motion == MotionKind::Modal && self.open.group1_is_entry() {
+            self.open.read_by_motion(self.document.instructions.len());
         }
         self.emit(
             index,

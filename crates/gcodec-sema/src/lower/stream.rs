@@ -4,9 +4,9 @@
 //!
 //! The chunks' instructions, one after the other, followed by
 //! [`ChunkLowering::finish`]'s end, are the instructions lowering the whole
-//! program in one part gives, before the modal refinement (`refine`): a
-//! motion after a join says `modal`, which the executor settles from its
-//! own state. A test checks this for every fixture and corpus program.
+//! program in one part gives, before what the dataflow fills in
+//! (`resolve_from_dataflow`): a motion after a join says `modal`, which
+//! the executor resolves from its own state. A test checks this for every fixture and corpus program.
 //! [`lower_chunks`] is pass 2 of a streamed run, after
 //! [`super::outline::outline_chunks`].
 
@@ -18,7 +18,8 @@ use gcodec_profile::Profile;
 use gcodec_source::Diagnostic;
 
 use super::outline::Outline;
-use super::{Carry, Lowering, capacity};
+use super::parts::{Entry, PartLedger};
+use super::{Lowering, capacity};
 use gcodec_stream::SpentBin;
 
 /// Lowers the program `src` chunk by chunk against its `outline` (pass 2
@@ -31,9 +32,9 @@ use gcodec_stream::SpentBin;
 /// Each of `workers` threads parses and lowers its chunks
 /// ([`gcodec_stream::map_chunks`]; on one, this thread), each as a part
 /// that starts in the state the chunk before it ends in, as
-/// [`super::lower_in_parts`] lowers its parts; the parts are settled here
-/// in order, and a part that cannot be settled (`Lowering::settle`) is
-/// lowered again here, continuing from the chunk before. So a chunk's
+/// [`super::lower_in_parts`] lowers its parts; the part ledger takes
+/// them here in order, and a part it cannot fill in is lowered again
+/// here, continuing from the chunk before. So a chunk's
 /// tree is lowered on the core that parsed it, and the instructions are
 /// those a [`ChunkLowering`] gives.
 pub fn lower_chunks(
@@ -52,7 +53,7 @@ pub fn lower_chunks(
         parsed.diagnostics
     };
     let mut next = 0;
-    let mut carry: Option<Carry> = None;
+    let mut ledger = PartLedger::default();
     gcodec_stream::map_chunks(
         chunks,
         workers,
@@ -60,7 +61,12 @@ pub fn lower_chunks(
             // What the run is done with is freed here, where it was
             // allocated (see `spent.rs`).
             SpentBin::free_this_threads();
-            let mut lowering = Lowering::new(outline, profile, 0, chunk.first_block > 0);
+            let entry = if chunk.first_block > 0 {
+                Entry::AfterOpenPart
+            } else {
+                Entry::ProgramStart
+            };
+            let mut lowering = Lowering::new(outline, profile, 0, entry);
             let parse_diagnostics = lower_part(chunk, &mut lowering);
             let spent = Some(SpentBin::of_this_thread());
             (chunk, lowering, parse_diagnostics, spent)
@@ -70,16 +76,15 @@ pub fn lower_chunks(
                 return;
             }
             next = chunk.first_block + chunk.blocks;
-            if let Some(before) = carry
-                && !lowering.settle(before)
-            {
-                lowering = Lowering::resumed(outline, profile, before);
+            if !ledger.take(&mut lowering) {
+                lowering = Lowering::new(outline, profile, 0, ledger.entry());
                 parse_diagnostics = lower_part(chunk, &mut lowering);
                 // Lowered on this thread, which frees its bin only when it
                 // works a chunk itself: the run frees these.
                 spent = None;
+                // Lowered from a known state: nothing is left open.
+                ledger.take(&mut lowering);
             }
-            carry = Some(lowering.carry(carry.unwrap_or_default()));
             each(LoweredChunk {
                 instructions: lowering.document.instructions,
                 diagnostics: lowering.diagnostics,
@@ -88,7 +93,7 @@ pub fn lower_chunks(
             });
         },
     );
-    let mut end = Lowering::new(outline, profile, 0, false);
+    let mut end = Lowering::new(outline, profile, 0, Entry::ProgramStart);
     end.end();
     each(LoweredChunk {
         instructions: end.document.instructions,
@@ -135,7 +140,7 @@ impl<'a> ChunkLowering<'a> {
     /// Lowers the program `outline` describes for the machine `profile`
     /// describes.
     pub fn new(outline: &'a Outline<'a>, profile: &'a Profile) -> Self {
-        let lowering = Lowering::new(outline, profile, 0, false);
+        let lowering = Lowering::new(outline, profile, 0, Entry::ProgramStart);
         Self { lowering, next: 0 }
     }
 
