@@ -7,7 +7,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::names::compare_ignore_case;
+use crate::names::name_table;
 
 /// An upper-case ASCII letter as a string (`?` for any other byte).
 pub fn letter_str(letter: u8) -> &'static str {
@@ -77,80 +77,53 @@ const fn setting(scope: AddressScope, axis: bool, spindle: bool) -> AddressRole 
     }
 }
 
-/// Declares [`NamedAddress`] and [`NAMED_ADDRESSES`] from one list, so a
-/// variant's place in the table is its discriminant.
-macro_rules! named_addresses {
-    ($($variant:ident $name:literal $role:expr,)*) => {
-        /// A named address, by its place in [`NAMED_ADDRESSES`].
-        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-        pub enum NamedAddress {
-            $($variant,)*
-        }
-
-        /// The named addresses with their names and roles, sorted by name
-        /// for binary search (a test keeps it so). `CR`, `AR`, `TURN` are
-        /// circle data and `RPL` belongs to the frame instructions; `PO[…]`
-        /// is not listed.
-        pub const NAMED_ADDRESSES: &[(NamedAddress, &str, AddressRole)] = &[
-            $((NamedAddress::$variant, $name, $role),)*
-        ];
-    };
-}
-
 use AddressScope::{Block as B, Modal as M};
 
-named_addresses! {
-    Acc "ACC" setting(M, true, false),
-    Adis "ADIS" setting(M, false, false),
-    Adispos "ADISPOS" setting(M, false, false),
-    Ang "ANG" AddressRole::Target,
-    Ap "AP" AddressRole::Target,
-    Ax "AX" AddressRole::IndirectAxis,
-    Chf "CHF" AddressRole::Transition(TransitionKind::Chamfer),
-    Chr "CHR" AddressRole::Transition(TransitionKind::ChamferLeg),
-    Disc "DISC" setting(M, false, false),
-    Discl "DISCL" setting(B, false, false),
-    Disr "DISR" setting(B, false, false),
-    Dite "DITE" setting(M, false, false),
-    Dits "DITS" setting(M, false, false),
-    Dl "DL" AddressRole::AdditiveOffset,
-    Fa "FA" setting(M, true, false),
-    Fad "FAD" setting(B, false, false),
-    Fb "FB" setting(B, false, false),
-    Fl "FL" setting(M, true, false),
-    Fp "FP" setting(B, false, false),
-    Fz "FZ" setting(M, false, false),
-    Lims "LIMS" setting(M, false, false),
-    Offn "OFFN" setting(M, false, false),
-    Ovr "OVR" setting(M, false, false),
-    Ovra "OVRA" setting(M, true, false),
-    Pl "PL" AddressRole::Interval,
-    Pos "POS" setting(B, true, false),
-    Posa "POSA" setting(B, true, false),
-    Pw "PW" AddressRole::Weight,
-    Rnd "RND" AddressRole::Transition(TransitionKind::Rounding),
-    Rndm "RNDM" setting(M, false, false),
-    Rp "RP" AddressRole::Target,
-    Sd "SD" setting(M, false, false),
-    Sf "SF" setting(M, false, false),
-    Spos "SPOS" setting(B, false, true),
-    Sposa "SPOSA" setting(B, false, true),
+name_table! {
+    /// A named address, by its place in [`NAMED_ADDRESSES`].
+    enum NamedAddress;
+    /// The named addresses with their names and roles, sorted by name.
+    /// `CR`, `AR`, `TURN` are circle data and `RPL` belongs to the frame
+    /// instructions; `PO[…]` is not listed.
+    table NAMED_ADDRESSES: (AddressRole);
+    Acc "ACC", setting(M, true, false);
+    Adis "ADIS", setting(M, false, false);
+    Adispos "ADISPOS", setting(M, false, false);
+    Ang "ANG", AddressRole::Target;
+    Ap "AP", AddressRole::Target;
+    Ax "AX", AddressRole::IndirectAxis;
+    Chf "CHF", AddressRole::Transition(TransitionKind::Chamfer);
+    Chr "CHR", AddressRole::Transition(TransitionKind::ChamferLeg);
+    Disc "DISC", setting(M, false, false);
+    Discl "DISCL", setting(B, false, false);
+    Disr "DISR", setting(B, false, false);
+    Dite "DITE", setting(M, false, false);
+    Dits "DITS", setting(M, false, false);
+    Dl "DL", AddressRole::AdditiveOffset;
+    Fa "FA", setting(M, true, false);
+    Fad "FAD", setting(B, false, false);
+    Fb "FB", setting(B, false, false);
+    Fl "FL", setting(M, true, false);
+    Fp "FP", setting(B, false, false);
+    Fz "FZ", setting(M, false, false);
+    Lims "LIMS", setting(M, false, false);
+    Offn "OFFN", setting(M, false, false);
+    Ovr "OVR", setting(M, false, false);
+    Ovra "OVRA", setting(M, true, false);
+    Pl "PL", AddressRole::Interval;
+    Pos "POS", setting(B, true, false);
+    Posa "POSA", setting(B, true, false);
+    Pw "PW", AddressRole::Weight;
+    Rnd "RND", AddressRole::Transition(TransitionKind::Rounding);
+    Rndm "RNDM", setting(M, false, false);
+    Rp "RP", AddressRole::Target;
+    Sd "SD", setting(M, false, false);
+    Sf "SF", setting(M, false, false);
+    Spos "SPOS", setting(B, false, true);
+    Sposa "SPOSA", setting(B, false, true);
 }
 
 impl NamedAddress {
-    /// The named address `name` (any case).
-    pub fn named(name: &str) -> Option<Self> {
-        NAMED_ADDRESSES
-            .binary_search_by(|(_, entry, _)| compare_ignore_case(entry, name))
-            .ok()
-            .map(|i| NAMED_ADDRESSES[i].0)
-    }
-
-    /// The name in upper case (`SPOS`).
-    pub fn name(self) -> &'static str {
-        NAMED_ADDRESSES[self as usize].1
-    }
-
     /// What the address is.
     pub fn role(self) -> AddressRole {
         NAMED_ADDRESSES[self as usize].2

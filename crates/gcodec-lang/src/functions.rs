@@ -2,94 +2,67 @@
 //! type of their results. In AIL JSON a function is its name (`"SIN"`).
 
 use crate::DataType;
-use crate::names::compare_ignore_case;
+use crate::names::name_table;
 
-/// Declares [`Function`] and [`FUNCTIONS`] from one list, so a variant's
-/// place in the table is its discriminant.
-macro_rules! functions {
-    ($($variant:ident $name:literal $ty:expr,)*) => {
-        /// A predefined function, by its place in [`FUNCTIONS`].
-        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-        pub enum Function {
-            $($variant,)*
-        }
-
-        /// Built-in functions with their names and result types, sorted by
-        /// name for binary search (a test keeps it so).
-        pub const FUNCTIONS: &[(Function, &str, DataType)] = &[
-            $((Function::$variant, $name, $ty),)*
-        ];
-    };
-}
-
-functions! {
-    Abs "ABS" DataType::Real,
-    Acos "ACOS" DataType::Real,
-    Asin "ASIN" DataType::Real,
-    Atan2 "ATAN2" DataType::Real,
-    Axname "AXNAME" DataType::Axis,
-    Axstring "AXSTRING" DataType::String { length: None },
-    Axtospi "AXTOSPI" DataType::Int,
-    Bound "BOUND" DataType::Real,
-    Btoi "BTOI" DataType::Int,
-    Btor "BTOR" DataType::Real,
-    Cfine "CFINE" DataType::Frame,
-    Cmirror "CMIRROR" DataType::Frame,
-    Cos "COS" DataType::Real,
-    Crot "CROT" DataType::Frame,
-    Crots "CROTS" DataType::Frame,
-    Crpl "CRPL" DataType::Frame,
-    Cscale "CSCALE" DataType::Frame,
-    Ctrans "CTRANS" DataType::Frame,
-    Exp "EXP" DataType::Real,
-    Index "INDEX" DataType::Int,
-    Invframe "INVFRAME" DataType::Frame,
-    Isaxis "ISAXIS" DataType::Bool,
-    Isfile "ISFILE" DataType::Bool,
-    Isnumber "ISNUMBER" DataType::Bool,
-    Isvar "ISVAR" DataType::Bool,
-    Itob "ITOB" DataType::Bool,
-    Itor "ITOR" DataType::Real,
-    Ln "LN" DataType::Real,
-    Match "MATCH" DataType::Int,
-    Maxval "MAXVAL" DataType::Real,
-    Meaframe "MEAFRAME" DataType::Frame,
-    Mindex "MINDEX" DataType::Int,
-    Minval "MINVAL" DataType::Real,
-    Number "NUMBER" DataType::Real,
-    Pot "POT" DataType::Real,
-    Rindex "RINDEX" DataType::Int,
-    Round "ROUND" DataType::Real,
-    Roundup "ROUNDUP" DataType::Real,
-    Rtob "RTOB" DataType::Bool,
-    Rtoi "RTOI" DataType::Int,
-    Sin "SIN" DataType::Real,
-    Spi "SPI" DataType::Axis,
-    Sprint "SPRINT" DataType::String { length: None },
-    Sqrt "SQRT" DataType::Real,
-    Strlen "STRLEN" DataType::Int,
-    Substr "SUBSTR" DataType::String { length: None },
-    Tan "TAN" DataType::Real,
-    Tolower "TOLOWER" DataType::String { length: None },
-    Toupper "TOUPPER" DataType::String { length: None },
-    Trunc "TRUNC" DataType::Real,
+name_table! {
+    /// A predefined function, by its place in [`FUNCTIONS`].
+    enum Function;
+    /// Built-in functions with their names and result types, sorted by
+    /// name.
+    table FUNCTIONS: (DataType);
+    Abs "ABS", DataType::Real;
+    Acos "ACOS", DataType::Real;
+    Asin "ASIN", DataType::Real;
+    Atan2 "ATAN2", DataType::Real;
+    Axname "AXNAME", DataType::Axis;
+    Axstring "AXSTRING", DataType::String { length: None };
+    Axtospi "AXTOSPI", DataType::Int;
+    Bound "BOUND", DataType::Real;
+    Btoi "BTOI", DataType::Int;
+    Btor "BTOR", DataType::Real;
+    Cfine "CFINE", DataType::Frame;
+    Cmirror "CMIRROR", DataType::Frame;
+    Cos "COS", DataType::Real;
+    Crot "CROT", DataType::Frame;
+    Crots "CROTS", DataType::Frame;
+    Crpl "CRPL", DataType::Frame;
+    Cscale "CSCALE", DataType::Frame;
+    Ctrans "CTRANS", DataType::Frame;
+    Exp "EXP", DataType::Real;
+    Index "INDEX", DataType::Int;
+    Invframe "INVFRAME", DataType::Frame;
+    Isaxis "ISAXIS", DataType::Bool;
+    Isfile "ISFILE", DataType::Bool;
+    Isnumber "ISNUMBER", DataType::Bool;
+    Isvar "ISVAR", DataType::Bool;
+    Itob "ITOB", DataType::Bool;
+    Itor "ITOR", DataType::Real;
+    Ln "LN", DataType::Real;
+    Match "MATCH", DataType::Int;
+    Maxval "MAXVAL", DataType::Real;
+    Meaframe "MEAFRAME", DataType::Frame;
+    Mindex "MINDEX", DataType::Int;
+    Minval "MINVAL", DataType::Real;
+    Number "NUMBER", DataType::Real;
+    Pot "POT", DataType::Real;
+    Rindex "RINDEX", DataType::Int;
+    Round "ROUND", DataType::Real;
+    Roundup "ROUNDUP", DataType::Real;
+    Rtob "RTOB", DataType::Bool;
+    Rtoi "RTOI", DataType::Int;
+    Sin "SIN", DataType::Real;
+    Spi "SPI", DataType::Axis;
+    Sprint "SPRINT", DataType::String { length: None };
+    Sqrt "SQRT", DataType::Real;
+    Strlen "STRLEN", DataType::Int;
+    Substr "SUBSTR", DataType::String { length: None };
+    Tan "TAN", DataType::Real;
+    Tolower "TOLOWER", DataType::String { length: None };
+    Toupper "TOUPPER", DataType::String { length: None };
+    Trunc "TRUNC", DataType::Real;
 }
 
 impl Function {
-    /// The function named `name` (any case); `None` for user functions
-    /// and names the table does not list.
-    pub fn named(name: &str) -> Option<Self> {
-        FUNCTIONS
-            .binary_search_by(|(_, entry, _)| compare_ignore_case(entry, name))
-            .ok()
-            .map(|i| FUNCTIONS[i].0)
-    }
-
-    /// The name in upper case (`SIN`).
-    pub fn name(self) -> &'static str {
-        FUNCTIONS[self as usize].1
-    }
-
     /// The type of the result.
     pub fn result_type(self) -> DataType {
         FUNCTIONS[self as usize].2

@@ -3,103 +3,74 @@
 //! never looked up on the search path. `MSG` and `STOPRE` are not
 //! listed: lowering makes them a message and a stop of their own.
 
-use crate::names::compare_ignore_case;
+use crate::names::name_table;
 
-/// Declares [`Procedure`] and [`PROCEDURES`] from one list, so a
-/// variant's place in the table is its discriminant.
-macro_rules! procedures {
-    ($($variant:ident $name:literal,)*) => {
-        /// A predefined procedure, by its place in [`PROCEDURES`].
-        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-        pub enum Procedure {
-            $($variant,)*
-        }
-
-        /// The predefined procedures with their names, sorted by name for
-        /// binary search (a test keeps it so).
-        pub const PROCEDURES: &[(Procedure, &str)] = &[
-            $((Procedure::$variant, $name),)*
-        ];
-    };
-}
-
-procedures! {
-    Activate "ACTIVATE",
-    Cancel "CANCEL",
-    Clearm "CLEARM",
-    Contdcon "CONTDCON",
-    Contpron "CONTPRON",
-    Corrof "CORROF",
-    Coupdel "COUPDEL",
-    Coupof "COUPOF",
-    Coupon "COUPON",
-    Cprot "CPROT",
-    Cprotdef "CPROTDEF",
-    Ctabdef "CTABDEF",
-    Ctabend "CTABEND",
-    Deldtg "DELDTG",
-    Delete "DELETE",
-    Egofc "EGOFC",
-    Egofs "EGOFS",
-    Egon "EGON",
-    Execstring "EXECSTRING",
-    Exectab "EXECTAB",
-    Fgref "FGREF",
-    Fgroup "FGROUP",
-    Get "GET",
-    Getd "GETD",
-    Leadof "LEADOF",
-    Leadon "LEADON",
-    Newconf "NEWCONF",
-    Nprot "NPROT",
-    Nprotdef "NPROTDEF",
-    Preseton "PRESETON",
-    Presetons "PRESETONS",
-    Prota "PROTA",
-    Protd "PROTD",
-    Putftoc "PUTFTOC",
-    Putftocf "PUTFTOCF",
-    Read "READ",
-    Release "RELEASE",
-    Setal "SETAL",
-    Setm "SETM",
-    Setms "SETMS",
-    Setpiece "SETPIECE",
-    Spcof "SPCOF",
-    Spcon "SPCON",
-    Startfifo "STARTFIFO",
-    Stopfifo "STOPFIFO",
-    Tangof "TANGOF",
-    Tangon "TANGON",
-    Toffof "TOFFOF",
-    Toffon "TOFFON",
-    Traang "TRAANG",
-    Tracyl "TRACYL",
-    Trafoof "TRAFOOF",
-    Transmit "TRANSMIT",
-    Traori "TRAORI",
-    Waitc "WAITC",
-    Waite "WAITE",
-    Waitm "WAITM",
-    Waitmc "WAITMC",
-    Waitp "WAITP",
-    Waits "WAITS",
-    Write "WRITE",
-}
-
-impl Procedure {
-    /// The procedure named `name` (any case).
-    pub fn named(name: &str) -> Option<Self> {
-        PROCEDURES
-            .binary_search_by(|(_, entry)| compare_ignore_case(entry, name))
-            .ok()
-            .map(|i| PROCEDURES[i].0)
-    }
-
-    /// The name in upper case (`SETAL`).
-    pub fn name(self) -> &'static str {
-        PROCEDURES[self as usize].1
-    }
+name_table! {
+    /// A predefined procedure, by its place in [`PROCEDURES`].
+    enum Procedure;
+    /// The predefined procedures with their names, sorted by name.
+    table PROCEDURES: ();
+    Activate "ACTIVATE";
+    Cancel "CANCEL";
+    Clearm "CLEARM";
+    Contdcon "CONTDCON";
+    Contpron "CONTPRON";
+    Corrof "CORROF";
+    Coupdel "COUPDEL";
+    Coupof "COUPOF";
+    Coupon "COUPON";
+    Cprot "CPROT";
+    Cprotdef "CPROTDEF";
+    Ctabdef "CTABDEF";
+    Ctabend "CTABEND";
+    Deldtg "DELDTG";
+    Delete "DELETE";
+    Egofc "EGOFC";
+    Egofs "EGOFS";
+    Egon "EGON";
+    Execstring "EXECSTRING";
+    Exectab "EXECTAB";
+    Fgref "FGREF";
+    Fgroup "FGROUP";
+    Get "GET";
+    Getd "GETD";
+    Leadof "LEADOF";
+    Leadon "LEADON";
+    Newconf "NEWCONF";
+    Nprot "NPROT";
+    Nprotdef "NPROTDEF";
+    Preseton "PRESETON";
+    Presetons "PRESETONS";
+    Prota "PROTA";
+    Protd "PROTD";
+    Putftoc "PUTFTOC";
+    Putftocf "PUTFTOCF";
+    Read "READ";
+    Release "RELEASE";
+    Setal "SETAL";
+    Setm "SETM";
+    Setms "SETMS";
+    Setpiece "SETPIECE";
+    Spcof "SPCOF";
+    Spcon "SPCON";
+    Startfifo "STARTFIFO";
+    Stopfifo "STOPFIFO";
+    Tangof "TANGOF";
+    Tangon "TANGON";
+    Toffof "TOFFOF";
+    Toffon "TOFFON";
+    Traang "TRAANG";
+    Tracyl "TRACYL";
+    Trafoof "TRAFOOF";
+    Transmit "TRANSMIT";
+    Traori "TRAORI";
+    Waitc "WAITC";
+    Waite "WAITE";
+    Waitm "WAITM";
+    Waitmc "WAITMC";
+    Waitp "WAITP";
+    Waits "WAITS";
+    Write "WRITE";
 }
 
 #[cfg(test)]
