@@ -25,7 +25,7 @@ enum Command {
         /// `.mpf` / `.spf` files to parse.
         #[arg(required = true)]
         files: Vec<PathBuf>,
-        /// Output: an indented outline, or the syntax tree as JSON.
+        /// Output: the syntax tree as indented text, or as JSON.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
         #[command(flatten)]
@@ -198,9 +198,9 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
         }
         match format {
             Format::Text => {
-                let mut outline = FmtToIo::new(&mut out);
-                let _ = gcodec_driver::write_outline(&parsed.program, &mut outline);
-                let _ = outline.finish();
+                let mut tree = FmtToIo::new(&mut out);
+                let _ = gcodec_driver::write_tree(&parsed.program, &mut tree);
+                let _ = tree.finish();
             }
             Format::Json => json.push(parsed.program),
         }

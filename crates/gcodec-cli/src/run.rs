@@ -1,9 +1,8 @@
 //! `gcodec run`: runs a program on the machine a profile describes and
 //! streams its events (jsonl, a text trace, or one CSV row per block).
 
-use std::collections::HashMap;
 use std::io::{self, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -11,8 +10,8 @@ use clap::ValueEnum;
 use gcodec_driver::event::{
     CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
 };
-use gcodec_driver::{RunReport, RunSetup, run_main};
-use gcodec_source::{Diagnostic, SourceFile, codes};
+use gcodec_driver::{LoadedFiles, RunReport, RunSetup, run_main};
+use gcodec_source::{Diagnostic, codes};
 
 use crate::report::{
     DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
@@ -95,43 +94,30 @@ fn parse_skip_levels(text: &str) -> Result<SkipLevels, String> {
 struct Diagnostics<S> {
     inner: S,
     options: DiagnosticOptions,
-    /// The main program, and the called programs read once a diagnostic
-    /// points into them (`None`: the file cannot be read).
-    main: Arc<SourceFile>,
-    called: HashMap<Arc<str>, Option<SourceFile>>,
+    /// The files of the programs the run has loaded, which the
+    /// diagnostics point into.
+    files: LoadedFiles,
 }
 
 impl<S: EventSink> Diagnostics<S> {
-    fn new(inner: S, main: Arc<SourceFile>, options: DiagnosticOptions) -> Self {
+    fn new(inner: S, files: LoadedFiles, options: DiagnosticOptions) -> Self {
         Self {
             inner,
             options,
-            main,
-            called: HashMap::new(),
+            files,
         }
-    }
-
-    /// The file an event's position is in, where it can be read.
-    fn file(&mut self, name: &Arc<str>) -> Option<&SourceFile> {
-        if **name == *self.main.name() {
-            return Some(&self.main);
-        }
-        self.called
-            .entry(Arc::clone(name))
-            .or_insert_with(|| SourceFile::read(Path::new(&**name)).ok())
-            .as_ref()
     }
 }
 
 impl<S: EventSink> EventSink for Diagnostics<S> {
     fn event(&mut self, event: &Event) -> io::Result<()> {
         if let EventKind::Diagnostic(d) = &event.kind {
-            let options = self.options;
-            let file = self.file(&event.source.file);
+            let file = self.files.get(&event.source.file);
+            let file = file.as_deref();
             report(
                 &[gcodec_driver::runtime_diagnostic(d, &event.source, file)],
                 file,
-                options,
+                self.options,
             );
         }
         self.inner.event(event)
@@ -202,7 +188,7 @@ pub fn run(args: RunArgs) -> u8 {
             Err(e) => return output_error(&e),
         },
     };
-    let mut sink = Diagnostics::new(events, Arc::clone(&file), options);
+    let mut sink = Diagnostics::new(events, setup.loaded_files.clone(), options);
     let observer = rows.as_mut().map(|rows| rows as _);
     let RunReport {
         outcome,

@@ -59,14 +59,14 @@ fn assert_span(span: &Value) {
 }
 
 #[test]
-fn clean_file_text_outline_exits_0() {
+fn clean_file_text_tree_exits_0() {
     let path = fixture("frames.mpf");
     let out = gcodec(["parse".as_ref(), path.as_os_str()]);
     assert_eq!(code(&out), EXIT_CLEAN, "stderr:\n{}", stderr(&out));
     assert_eq!(stderr(&out), "", "no diagnostics for a clean file");
     let text = stdout(&out);
-    assert!(text.contains("TRANS X10 Y5"), "outline:\n{text}");
-    assert!(text.contains("N120 M30"), "outline:\n{text}");
+    assert!(text.contains("TRANS X10 Y5"), "tree:\n{text}");
+    assert!(text.contains("N120 M30"), "tree:\n{text}");
 }
 
 #[test]
@@ -285,7 +285,7 @@ fn several_files_json_is_an_array() {
 }
 
 #[test]
-fn several_files_text_outlines_each_and_worst_exit_wins() {
+fn several_files_text_trees_each_and_worst_exit_wins() {
     let good = fixture("frames.mpf");
     let bad = fixture("errors/unclosed_while.mpf");
     let out = gcodec(["parse".as_ref(), good.as_os_str(), bad.as_os_str()]);

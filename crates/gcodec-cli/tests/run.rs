@@ -8,7 +8,9 @@ use serde_json::Value;
 
 mod common;
 
-use common::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, code, gcodec, stderr, stdout, temp_file};
+use common::{
+    EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, code, gcodec, gcodec_in, stderr, stdout, temp_file,
+};
 
 fn example(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -130,6 +132,39 @@ fn a_missing_subprogram_is_an_alarm_naming_the_search_path() {
     let err = stderr(&out);
     assert!(err.contains("gcodec::run::program_not_found"), "{err}");
     assert!(err.contains("NOT_THERE") && err.contains("extra"), "{err}");
+    assert_eq!(events(&out).last().expect("end")["reason"], "alarm");
+}
+
+#[test]
+fn a_run_time_error_in_a_called_program_is_labelled_in_its_file() {
+    let main = temp_file(
+        "run-called-error",
+        "main.mpf",
+        "N10 G1 X1 F100\nN20 SUB_DIV\nN30 M30\n",
+    );
+    let dir = main.parent().expect("dir");
+    temp_file(
+        "run-called-error",
+        "SUB_DIV.SPF",
+        "N10 R1=0\nN20 R2=5/R1\nN30 M17\n",
+    );
+    let out = gcodec_in(dir, ["run", "main.mpf"]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    // The subprogram's own lines, around the block the run stopped in.
+    let labelled = "\
+gcodec::run::division_by_zero
+
+  × `/` by zero
+   ╭─[./SUB_DIV.SPF:2:5]
+ 1 │ N10 R1=0
+ 2 │ N20 R2=5/R1
+   ·     ───┬───
+   ·        ╰── the run is here
+ 3 │ N30 M17
+   ╰────
+";
+    let err = stderr(&out);
+    assert!(err.starts_with(labelled), "{err}");
     assert_eq!(events(&out).last().expect("end")["reason"], "alarm");
 }
 

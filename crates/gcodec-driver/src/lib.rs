@@ -9,14 +9,17 @@
 //! - [`loader`]: the programs a running program calls, found on a search
 //!   path ([`FileLoader`]) or given as text ([`MemoryLoader`]).
 //! - [`run_main`]: a main program run as `gcodec run` runs it, streamed
-//!   ([`stream`]), its events handed to an [`event::EventSink`].
+//!   ([`stream`]), its events handed to an [`event::EventSink`], the
+//!   files it loads kept in [`LoadedFiles`] for labelling its diagnostic
+//!   events ([`runtime_diagnostic`]).
 //!
 //! The parts of the lower crates that are the facade's API too are
-//! re-exported: the syntax tree's outline and the AIL listing, the run's
+//! re-exported: the syntax tree as text and the AIL listing, the run's
 //! options, events and sinks.
 
 pub mod compile;
 mod diagnostics;
+mod loaded_files;
 pub mod loader;
 pub mod run;
 mod setup;
@@ -27,8 +30,9 @@ pub use diagnostics::runtime_diagnostic;
 pub use gcodec_ail::{Document, write_listing};
 pub use gcodec_exec::channel::{BlockObserver, RunOptions, RunOutcome};
 pub use gcodec_exec::event;
-pub use gcodec_parser::{Parse, parse, write_outline};
+pub use gcodec_parser::{Parse, parse, write_tree};
 pub use gcodec_sema::{Definitions, ProgramKind};
+pub use loaded_files::LoadedFiles;
 pub use loader::{FileLoader, MemoryLoader, SearchPath, program_name};
 pub use run::{RunReport, RunSetup, globals, run_main};
 pub use setup::{ProfileError, builtin_profile_file, load_profile, read_source};

@@ -79,8 +79,10 @@
 //! directory is listed once, every name is resolved once per calling
 //! directory (misses too), and every program (by its place on the search
 //! path: the canonical directory and the file's name) is read, parsed and
-//! lowered once. A cycle called a million times costs
-//! two hash lookups per call after the first.
+//! lowered once. A cycle called a million times costs two hash lookups per
+//! call after the first. A loader given
+//! [`LoadedFiles`] ([`FileLoader::with_loaded_files`]) records each file
+//! it reads there, so that the run's diagnostics are labelled from it.
 //!
 //! # Lowering
 //!
@@ -106,6 +108,7 @@ use gcodec_source::{ReadError, Severity, SourceFile, codes};
 use rustc_hash::FxHashMap;
 
 use crate::compile;
+use crate::loaded_files::LoadedFiles;
 
 /// The longest program name looked for, in bytes (the control allows
 /// far fewer). Longer names are not found.
@@ -571,6 +574,8 @@ pub struct FileLoader {
     programs: FxHashMap<PathBuf, Outcome>,
     /// The canonical `link_target_paths` that exist.
     link_roots: Vec<PathBuf>,
+    /// Where each program file read is recorded (`None`: nowhere).
+    loaded_files: Option<LoadedFiles>,
 }
 
 impl FileLoader {
@@ -593,7 +598,15 @@ impl FileLoader {
             callers: FxHashMap::default(),
             programs: FxHashMap::default(),
             link_roots,
+            loaded_files: None,
         }
+    }
+
+    /// Recording each program file it reads in `files`, for labelling the
+    /// run's diagnostics without reading the file again.
+    pub fn with_loaded_files(mut self, files: LoadedFiles) -> Self {
+        self.loaded_files = Some(files);
+        self
     }
 
     /// The search path of a caller in `caller_file`: each directory once,
@@ -644,8 +657,12 @@ impl FileLoader {
             }
             let result = match self.read_confined(&path, dirs) {
                 Ok(file) => {
+                    let file = Arc::new(file);
+                    if let Some(files) = &self.loaded_files {
+                        files.insert(Arc::clone(&file));
+                    }
                     let mut loaded = compile(
-                        Arc::new(file),
+                        file,
                         ProgramKind::Subprogram,
                         &self.profile,
                         &self.definitions,

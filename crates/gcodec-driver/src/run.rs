@@ -12,6 +12,7 @@ use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, ProgramKind};
 use gcodec_source::{Diagnostic, SourceFile};
 
+use crate::loaded_files::LoadedFiles;
 use crate::loader::{FileLoader, SearchPath, program_name};
 use crate::stream::{StreamOptions, run_streamed};
 
@@ -29,6 +30,10 @@ pub struct RunSetup {
     pub search_dirs: Vec<PathBuf>,
     pub options: RunOptions,
     pub stream: StreamOptions,
+    /// Where the run records the file of each program it loads, the main
+    /// program's first: a sink labelling the run's diagnostic events as
+    /// they happen finds them there (a clone of it shares the files).
+    pub loaded_files: LoadedFiles,
 }
 
 impl RunSetup {
@@ -43,6 +48,7 @@ impl RunSetup {
             definitions: Arc::new(Definitions::new()),
             search_dirs: Vec::new(),
             stream: StreamOptions::default(),
+            loaded_files: LoadedFiles::new(),
         }
     }
 }
@@ -74,7 +80,9 @@ pub fn run_main(
         search,
         Arc::clone(&setup.profile),
         Arc::clone(&setup.definitions),
-    );
+    )
+    .with_loaded_files(setup.loaded_files.clone());
+    setup.loaded_files.insert(Arc::clone(&file));
     let name = program_name(Path::new(file.name()));
     let kind = ProgramKind::of_file(file.name());
     let globals = globals(&setup.definitions);

@@ -2,6 +2,7 @@
 //! each, so that one malformed block never hides the rest of the program.
 
 use std::mem::MaybeUninit;
+use std::ops::Range;
 
 use chumsky::input::Input as _;
 use chumsky::span::SimpleSpan;
@@ -26,15 +27,16 @@ pub const MAX_EXPRESSION_DEPTH: usize = 64;
 /// at most 512 characters, so real programs stay far below it.
 pub const MAX_OPERATORS_PER_BLOCK: usize = 1000;
 
-/// Blocks handed to one instance of the block grammar. The grammar borrows
-/// the token buffer, so the buffer is refilled per chunk rather than held
-/// for the whole file: memory stays proportional to the AST.
-const CHUNK_LINES: usize = 2048;
+/// Lines handed to one instance of the block grammar at a time (a
+/// flush). The grammar borrows the token buffer, so the buffer is refilled
+/// per flush rather than held for the whole file: memory stays
+/// proportional to the AST.
+const FLUSH_LINES: usize = 2048;
 
-/// The bytes of a segment whose tokens [`run_segment`] makes room for at
-/// the start (the flush comes after [`CHUNK_LINES`] lines, about 32 bytes
-/// each in real programs); longer segments grow the buffer.
-const FLUSH_BYTES_BOUND: usize = CHUNK_LINES * 64;
+/// The bytes of a chunk whose tokens [`read_chunk_into`] makes room for at
+/// the start (the flush comes after [`FLUSH_LINES`] lines, about 32 bytes
+/// each in real programs); longer chunks grow the buffer.
+const FLUSH_BYTES_BOUND: usize = FLUSH_LINES * 64;
 
 /// The result of parsing: always a program, plus what was wrong with it.
 #[derive(Clone, Debug)]
@@ -67,15 +69,16 @@ pub fn parse_bytes_with_grammar_only(name: &str, src: &[u8]) -> Parse {
     parse_with(name, src, Reading::GrammarOnly)
 }
 
-/// Files at least this large are parsed on several threads, one segment of
+/// Files at least this large are parsed on several threads, one chunk of
 /// whole lines each (no token crosses a line end).
 const PARALLEL_MIN_BYTES: usize = 4 << 20;
 
-/// Parses in exactly `threads` segments whatever the file size: the
-/// reference for tests that the split does not change the result.
+/// Parses in exactly `threads` chunks, one a thread, whatever the file
+/// size: the reference for tests that the split does not change the
+/// result.
 #[doc(hidden)]
-pub fn parse_bytes_in_segments(name: &str, src: &[u8], threads: usize) -> Parse {
-    parse_segments(name, src, Reading::Whole, split(src, threads.max(1)))
+pub fn parse_bytes_in_chunks(name: &str, src: &[u8], threads: usize) -> Parse {
+    parse_in_chunks(name, src, Reading::Whole, split(src, threads))
 }
 
 fn parse_with(name: &str, src: &[u8], reading: Reading) -> Parse {
@@ -85,33 +88,30 @@ fn parse_with(name: &str, src: &[u8], reading: Reading) -> Parse {
     } else {
         std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
     };
-    parse_segments(name, src, reading, split(src, threads))
+    parse_in_chunks(name, src, reading, split(src, threads))
 }
 
-fn parse_segments(name: &str, src: &[u8], reading: Reading, segments: Vec<Segment>) -> Parse {
+/// Parses the whole of `src`, each of `chunks` on a thread of its own.
+fn parse_in_chunks(name: &str, src: &[u8], reading: Reading, chunks: Vec<Chunk>) -> Parse {
     // One block per line: the program's blocks are allocated once, and each
-    // segment fills its own run of them, so no second copy of the tree is
+    // chunk fills its own run of them, so no second copy of the tree is
     // ever alive (a merge would hold both at once).
-    let lines: Vec<usize> = segments
-        .iter()
-        .map(|s| line_count(&src[s.start..s.end]))
-        .collect();
-    let total: usize = lines.iter().sum();
+    let total: usize = chunks.iter().map(|c| c.blocks).sum();
     let mut blocks: Vec<Block> = Vec::with_capacity(total);
-    // Each segment writes its blocks straight into its run of the vector's
+    // Each chunk writes its blocks straight into its run of the vector's
     // spare capacity, so the first touch of those pages happens on the
-    // segment's own thread rather than in a serial fill beforehand.
-    let mut slots = runs(&mut blocks.spare_capacity_mut()[..total], &lines);
-    let parts: Vec<Segmented> = if segments.len() == 1 {
+    // chunk's own thread rather than in a serial fill beforehand.
+    let mut slots = runs(&mut blocks.spare_capacity_mut()[..total], &chunks);
+    let found: Vec<ChunkFindings> = if chunks.len() == 1 {
         let slot = slots.pop().unwrap_or_default();
-        vec![run_segment(src, segments[0], slot, reading)]
+        vec![read_chunk_into(src, &chunks[0], slot, reading)]
     } else {
         std::thread::scope(|scope| {
-            let handles: Vec<_> = segments
+            let handles: Vec<_> = chunks
                 .iter()
                 .zip(slots)
-                .map(|(&segment, slot)| {
-                    scope.spawn(move || run_segment(src, segment, slot, reading))
+                .map(|(chunk, slot)| {
+                    scope.spawn(move || read_chunk_into(src, chunk, slot, reading))
                 })
                 .collect();
             handles
@@ -123,10 +123,10 @@ fn parse_segments(name: &str, src: &[u8], reading: Reading, segments: Vec<Segmen
         })
     };
     // SAFETY: `blocks` has capacity for `total`, the runs cover the first
-    // `total` slots, and `run_segment` writes every slot of its run before
-    // it returns. Had a segment thread panicked, `resume_unwind` above
-    // would have left before this point and the written blocks would only
-    // leak.
+    // `total` slots, and `read_chunk_into` writes every slot of its run
+    // before it returns. Had a chunk's thread panicked, `resume_unwind`
+    // above would have left before this point and the written blocks would
+    // only leak.
     unsafe { blocks.set_len(total) };
     let mut program = Program {
         file: name.to_owned(),
@@ -137,16 +137,14 @@ fn parse_segments(name: &str, src: &[u8], reading: Reading, segments: Vec<Segmen
     };
     let mut diagnostics = Vec::new();
     let mut structure_blocks = Vec::new();
-    let mut first_block = 0u32;
-    for (part, lines) in parts.into_iter().zip(&lines) {
-        program.header = program.header.take().or(part.header);
-        program.path = program.path.take().or(part.path);
-        diagnostics.extend(part.diagnostics);
-        structure_blocks.extend(part.structure_blocks.iter().map(|b| first_block + b));
-        first_block += *lines as u32;
+    for findings in found {
+        program.header = program.header.take().or(findings.header);
+        program.path = program.path.take().or(findings.path);
+        diagnostics.extend(findings.diagnostics);
+        structure_blocks.extend(findings.structure_blocks);
     }
     structure::pair(&mut program, &structure_blocks, &mut diagnostics);
-    // Lexical errors are found while reading and syntax errors per chunk:
+    // Lexical errors are found while reading and syntax errors per flush:
     // report everything in source order.
     diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
     Parse {
@@ -179,23 +177,24 @@ pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
     read_chunk(src, chunk, Reading::Whole)
 }
 
-/// Reads the lines of `chunk` of `src` for an outline of the program
-/// (pass 1 of a streamed run), much faster than [`parse_chunk`]: each
-/// block is the one [`parse_chunk`] gives, except a *plain* block after
-/// a block that *settles*, with only such plain blocks between them in
-/// the chunk. That block keeps its span, skip mark and block number, and
-/// its statements and comment are left out.
+/// Reads the lines of `chunk` of `src` for lowering's `Outline` of the
+/// program (pass 1 of a streamed run), much faster than [`parse_chunk`]:
+/// each block is the one [`parse_chunk`] gives, except a *plain* block
+/// after a block that leaves the plain lines after it skimmable
+/// ([`plain_lines_skimmable_after`]), with only such plain blocks between
+/// them in the chunk. That block keeps its span, skip mark and block
+/// number, and its statements and comment are left out.
 ///
 /// A plain block holds no label, no keyword but the operators (`AND`,
 /// `DIV`, `TRUE`, …), no `M` word and no skip mark or block number the
 /// grammar must judge: only words, assignments, names, calls by name
-/// and expressions. A block settles when it has statements and none of
-/// them defines, declares or ends anything (`DEF`, `REDEF`, `DEFINE`,
-/// `PROC`, `EXTERN`, `ENDPROC`, `RET`, an `M` word). So a block left out
-/// holds no structure, jump, definition, declaration or program end, and
-/// changes nothing the settling block before it has not already set. The
-/// chunk's diagnostics are not given (`diagnostics` is empty):
-/// [`parse_chunk`] gives them.
+/// and expressions. The plain lines after a block are skimmable when it
+/// has statements and none of them defines, declares or ends anything
+/// (`DEF`, `REDEF`, `DEFINE`, `PROC`, `EXTERN`, `ENDPROC`, `RET`, an `M`
+/// word). So a block left out holds no structure, jump, definition,
+/// declaration or program end, and changes nothing the block before the
+/// plain ones has not already set. The chunk's diagnostics are not given
+/// (`diagnostics` is empty): [`parse_chunk`] gives them.
 pub fn skim_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
     let mut skimmed = read_chunk(src, chunk, Reading::Skim);
     skimmed.diagnostics.clear();
@@ -204,27 +203,22 @@ pub fn skim_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
 
 fn read_chunk(src: &[u8], chunk: &Chunk, reading: Reading) -> ParsedChunk {
     let mut blocks: Vec<Block> = Vec::with_capacity(chunk.blocks);
-    let segment = Segment {
-        start: chunk.bytes.start,
-        end: chunk.bytes.end,
-    };
-    let part = run_segment(
+    let found = read_chunk_into(
         src,
-        segment,
+        chunk,
         &mut blocks.spare_capacity_mut()[..chunk.blocks],
         reading,
     );
-    // SAFETY: `run_segment` wrote every one of the `chunk.blocks` slots
+    // SAFETY: `read_chunk_into` wrote every one of the `chunk.blocks` slots
     // (one block per line; `chunks` counted the lines).
     unsafe { blocks.set_len(chunk.blocks) };
-    let first = chunk.first_block as u32;
     ParsedChunk {
         first_block: chunk.first_block,
         blocks,
-        header: part.header,
-        path: part.path,
-        diagnostics: part.diagnostics,
-        structure_blocks: part.structure_blocks.iter().map(|b| first + b).collect(),
+        header: found.header,
+        path: found.path,
+        diagnostics: found.diagnostics,
+        structure_blocks: found.structure_blocks,
     }
 }
 
@@ -240,12 +234,13 @@ pub fn skim_chunks(src: &[u8], chunks: &[Chunk], workers: usize, each: impl FnMu
     map_chunks(chunks, workers, |chunk| skim_chunk(src, chunk), each);
 }
 
-/// `slots` cut into consecutive runs of the given lengths.
-fn runs<'a, T>(mut slots: &'a mut [T], lengths: &[usize]) -> Vec<&'a mut [T]> {
-    lengths
+/// `slots` cut into consecutive runs, one per chunk of `chunks`, a slot
+/// per block.
+fn runs<'a, T>(mut slots: &'a mut [T], chunks: &[Chunk]) -> Vec<&'a mut [T]> {
+    chunks
         .iter()
-        .map(|&n| {
-            let (run, rest) = std::mem::take(&mut slots).split_at_mut(n);
+        .map(|chunk| {
+            let (run, rest) = std::mem::take(&mut slots).split_at_mut(chunk.blocks);
             slots = rest;
             run
         })
@@ -257,25 +252,13 @@ fn line_count(src: &[u8]) -> usize {
     memchr::memchr_iter(b'\n', src).count() + usize::from(src.last().is_some_and(|&b| b != b'\n'))
 }
 
-/// A byte range of whole lines.
-#[derive(Clone, Copy)]
-struct Segment {
-    start: usize,
-    end: usize,
-}
-
-/// Cuts `src` into `threads` segments of whole lines (fewer where lines
-/// are long).
-fn split(src: &[u8], threads: usize) -> Vec<Segment> {
-    let whole = vec![Segment {
-        start: 0,
-        end: src.len(),
-    }];
-    if threads < 2 {
-        return whole;
-    }
-    let mut segments = Vec::with_capacity(threads);
+/// Cuts `src` into `threads` chunks of whole lines of about as many bytes
+/// each (fewer where lines are long).
+fn split(src: &[u8], threads: usize) -> Vec<Chunk> {
+    let threads = threads.max(1);
+    let mut chunks = Vec::with_capacity(threads);
     let mut start = 0usize;
+    let mut first_block = 0usize;
     for i in 1..=threads {
         let end = if i == threads {
             src.len()
@@ -287,35 +270,50 @@ fn split(src: &[u8], threads: usize) -> Vec<Segment> {
             }
         };
         if end > start {
-            segments.push(Segment { start, end });
+            let blocks = line_count(&src[start..end]);
+            chunks.push(Chunk {
+                bytes: start..end,
+                first_block,
+                blocks,
+            });
+            first_block += blocks;
             start = end;
         }
     }
-    if segments.is_empty() { whole } else { segments }
+    if chunks.is_empty() {
+        // No bytes: one empty chunk, as `gcodec_stream::chunks` gives.
+        chunks.push(Chunk {
+            bytes: 0..0,
+            first_block: 0,
+            blocks: 0,
+        });
+    }
+    chunks
 }
 
-/// What a segment found besides its blocks.
-struct Segmented {
+/// What reading a chunk found besides its blocks.
+struct ChunkFindings {
     header: Option<Header>,
     path: Option<PathDirective>,
     diagnostics: Vec<Diagnostic>,
-    /// Blocks holding a structure statement, by index in the segment.
+    /// Blocks holding a structure statement, by index in the program.
     structure_blocks: Vec<u32>,
 }
 
-/// Parses one segment into `blocks`, one per line, and writes every slot
-/// of `blocks`.
-fn run_segment(
+/// Reads the lines of `chunk` into `blocks`, one per line, and writes
+/// every slot of `blocks`.
+fn read_chunk_into(
     src: &[u8],
-    segment: Segment,
+    chunk: &Chunk,
     blocks: &mut [MaybeUninit<Block>],
     reading: Reading,
-) -> Segmented {
+) -> ChunkFindings {
     let mut driver = Driver {
         src,
         reading,
-        settles: false,
-        first_segment: segment.start == 0,
+        plain_lines_skimmable: false,
+        first_chunk: chunk.bytes.start == 0,
+        first_block: chunk.first_block as u32,
         blocks,
         filled: 0,
         content_seen: false,
@@ -323,21 +321,21 @@ fn run_segment(
         path: None,
         diagnostics: Vec::new(),
         structure_blocks: Vec::new(),
-        tokens: Vec::with_capacity(token_room(segment, reading)),
-        lines: Vec::with_capacity(CHUNK_LINES),
+        tokens: Vec::with_capacity(token_room(chunk, reading)),
+        lines: Vec::with_capacity(FLUSH_LINES),
     };
     if reading == Reading::Skim {
-        driver.run_skim(segment);
+        driver.run_skim(chunk.bytes.clone());
     } else {
-        driver.run(segment);
+        driver.run(chunk.bytes.clone());
     }
     debug_assert_eq!(driver.filled, driver.blocks.len(), "one block per line");
-    // Should a segment ever hold fewer blocks than lines, the rest are
+    // Should a chunk ever hold fewer blocks than lines, the rest are
     // empty blocks: every slot is written either way.
     for slot in &mut driver.blocks[driver.filled..] {
         slot.write(Block::default());
     }
-    Segmented {
+    ChunkFindings {
         header: driver.header,
         path: driver.path,
         diagnostics: driver.diagnostics,
@@ -345,14 +343,14 @@ fn run_segment(
     }
 }
 
-/// Room for a segment's tokens up to its first flush. Lines of real
+/// Room for a chunk's tokens up to its first flush. Lines of real
 /// programs hold a token per 4–6 bytes; growing the buffer from a fixed
-/// size copied it three times per chunk. A skim reads the lines it
+/// size copied it three times per flush. A skim reads the lines it
 /// parses one at a time.
-fn token_room(segment: Segment, reading: Reading) -> usize {
+fn token_room(chunk: &Chunk, reading: Reading) -> usize {
     match reading {
         Reading::Skim => 64,
-        _ => (segment.end - segment.start).min(FLUSH_BYTES_BOUND) / 4 + 64,
+        _ => chunk.bytes.len().min(FLUSH_BYTES_BOUND) / 4 + 64,
     }
 }
 
@@ -375,20 +373,23 @@ enum Reading {
     GrammarOnly,
     /// With the fast path where it applies, else the grammar.
     Whole,
-    /// As [`skim_chunk`] reads it: a plain line after a block that
-    /// settles is not lexed beyond its skip mark and number.
+    /// As [`skim_chunk`] reads it: a plain line after a block that leaves
+    /// the plain lines after it skimmable is not lexed beyond its skip
+    /// mark and number.
     Skim,
 }
 
 struct Driver<'s, 'b> {
     src: &'s [u8],
     reading: Reading,
-    /// The last block parsed settles what a skim reads (see
-    /// [`skim_chunk`]).
-    settles: bool,
-    /// Only the segment at the start of the file may hold the header.
-    first_segment: bool,
-    /// Slots for this segment's blocks, one per line, written in order:
+    /// The last block parsed leaves the plain lines after it skimmable
+    /// ([`plain_lines_skimmable_after`]).
+    plain_lines_skimmable: bool,
+    /// Only the chunk at the start of the file may hold the header.
+    first_chunk: bool,
+    /// The index in the program of the chunk's first block.
+    first_block: u32,
+    /// Slots for this chunk's blocks, one per line, written in order:
     /// the first `filled` are initialised.
     blocks: &'b mut [MaybeUninit<Block>],
     filled: usize,
@@ -403,29 +404,31 @@ struct Driver<'s, 'b> {
 }
 
 impl<'s> Driver<'s, '_> {
-    /// Skims `segment` (see [`skim_chunk`]): a plain line after a block that
-    /// settles becomes a block of its span, skip mark and number; every other
-    /// line is parsed, one at a time, since whether it settles decides how the
-    /// next is read.
-    fn run_skim(&mut self, segment: Segment) {
+    /// Skims the lines of `bytes` (see [`skim_chunk`]): a plain line while
+    /// plain lines are skimmable becomes a block of its span, skip mark
+    /// and number; every other line is parsed, one at a time, since
+    /// whether it leaves the plain lines after it skimmable decides how
+    /// the next is read.
+    fn run_skim(&mut self, bytes: Range<usize>) {
         let src = self.src;
-        let mut start = segment.start;
-        while start < segment.end {
-            let end = memchr::memchr(b'\n', &src[start..segment.end])
-                .map_or(segment.end, |p| start + p + 1);
+        let mut start = bytes.start;
+        while start < bytes.end {
+            let end =
+                memchr::memchr(b'\n', &src[start..bytes.end]).map_or(bytes.end, |p| start + p + 1);
             let text_end = if src[end - 1] == b'\n' { end - 1 } else { end };
-            let left_out = (self.settles && is_plain(&src[start..text_end]))
+            let left_out = (self.plain_lines_skimmable && is_plain(&src[start..text_end]))
                 .then(|| self.plain_block(start, text_end))
                 .flatten();
             match left_out {
                 Some(block) => {
-                    // A plain block leaves `settles` as it was.
+                    // A plain block leaves `plain_lines_skimmable` as it
+                    // was.
                     if let Some(slot) = self.blocks.get_mut(self.filled) {
                         slot.write(block);
                         self.filled += 1;
                     }
                 }
-                None => self.run(Segment { start, end }),
+                None => self.run(start..end),
             }
             start = end;
         }
@@ -472,9 +475,10 @@ impl<'s> Driver<'s, '_> {
         Some(block(prefix.skip, prefix.number))
     }
 
-    fn run(&mut self, segment: Segment) {
+    /// Parses the lines of `bytes`.
+    fn run(&mut self, bytes: Range<usize>) {
         let src = self.src;
-        let base = segment.start as u32;
+        let base = bytes.start as u32;
         let mut line = Line {
             tokens: 0..0,
             start: base,
@@ -483,7 +487,7 @@ impl<'s> Driver<'s, '_> {
             header: None,
             broken: false,
         };
-        for mut tok in Lexer::new(&src[segment.start..segment.end]) {
+        for mut tok in Lexer::new(&src[bytes.start..bytes.end]) {
             tok.start += base;
             tok.end += base;
             match tok.kind {
@@ -503,7 +507,7 @@ impl<'s> Driver<'s, '_> {
                         broken: false,
                     };
                     self.lines.push(std::mem::replace(&mut line, next));
-                    if self.lines.len() >= CHUNK_LINES {
+                    if self.lines.len() >= FLUSH_LINES {
                         self.flush();
                         // The buffer starts afresh for the line just begun.
                         line.tokens = 0..0;
@@ -522,26 +526,16 @@ impl<'s> Driver<'s, '_> {
                         line.broken = true;
                     }
                 }
+                // Nothing follows a header on its line: the lexer reads the
+                // header to the line end.
                 kind => {
-                    if line.header.is_some() && !line.broken {
-                        let span = Span::new(tok.start, tok.end);
-                        self.diagnostics.push(
-                            Diagnostic::new(
-                                codes::parse::HEADER_NOT_ALONE,
-                                "a program header line holds nothing but the header",
-                            )
-                            .with_label(span, "unexpected after the header")
-                            .with_help("put the NC blocks on the following lines"),
-                        );
-                        line.broken = true;
-                    }
                     self.tokens
                         .push((kind, SimpleSpan::from(tok.start as usize..tok.end as usize)));
                 }
             }
         }
         // The last line has no line end.
-        line.end = segment.end as u32;
+        line.end = bytes.end as u32;
         line.tokens.end = self.tokens.len();
         if line.start < line.end {
             self.lines.push(line);
@@ -567,10 +561,11 @@ impl<'s> Driver<'s, '_> {
                     .iter()
                     .any(|s| structure::is_structure_statement(&s.kind))
                 {
-                    self.structure_blocks.push(self.filled as u32);
+                    self.structure_blocks
+                        .push(self.first_block + self.filled as u32);
                 }
                 if self.reading == Reading::Skim {
-                    self.settles = block_settles(&block);
+                    self.plain_lines_skimmable = plain_lines_skimmable_after(&block);
                 }
                 if let Some(slot) = self.blocks.get_mut(self.filled) {
                     slot.write(block);
@@ -677,7 +672,7 @@ impl<'s> Driver<'s, '_> {
     fn note_header(&mut self, span: Span) {
         let text = decode(&self.src[span.start as usize + 1..span.end as usize]);
         let text = text.trim_end();
-        if !self.first_segment || self.header.is_some() || self.content_seen {
+        if !self.first_chunk || self.header.is_some() || self.content_seen {
             self.diagnostics.push(
                 Diagnostic::new(
                     codes::parse::MISPLACED_HEADER,
@@ -812,9 +807,10 @@ fn with_prefix(mut block: Block, tokens: &[Spanned], ctx: &Ctx<'_>) -> Block {
     block
 }
 
-/// Whether a block settles what a skim reads (see [`skim_chunk`]): it
-/// has statements, and none of them defines, declares or ends anything.
-pub fn block_settles(block: &Block) -> bool {
+/// Whether a skim may leave out the statements of the plain lines after
+/// `block` (see [`skim_chunk`]): it has statements, and none of them
+/// defines, declares or ends anything.
+pub fn plain_lines_skimmable_after(block: &Block) -> bool {
     !block.statements.is_empty()
         && block.statements.iter().all(|s| match &s.kind {
             StatementKind::Def(_)

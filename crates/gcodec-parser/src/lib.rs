@@ -18,13 +18,13 @@ mod driver;
 mod error;
 mod fast;
 mod grammar;
-mod outline;
 mod structure;
+mod tree;
 
 pub use driver::{
-    MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, ParsedChunk, block_settles, parse,
-    parse_bytes, parse_bytes_in_segments, parse_bytes_with_grammar_only, parse_chunk, parse_chunks,
-    skim_chunk, skim_chunks,
+    MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, ParsedChunk, parse, parse_bytes,
+    parse_bytes_in_chunks, parse_bytes_with_grammar_only, parse_chunk, parse_chunks,
+    plain_lines_skimmable_after, skim_chunk, skim_chunks,
 };
-pub use outline::{write_expr, write_outline};
 pub use structure::Pairing;
+pub use tree::{write_expr, write_tree};

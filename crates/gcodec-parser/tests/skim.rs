@@ -1,15 +1,16 @@
-//! Skimming a chunk for an outline (`skim_chunk`) leaves out only what no
-//! outline reads: every block it keeps is the parsed block, and every block
-//! it leaves out keeps the parsed block's span, skip mark and number, holds
-//! only words (no `M`), assignments, calls by name and frames, and follows
-//! a block that settles, with only left-out blocks between.
+//! Skimming a chunk for lowering's `Outline` (`skim_chunk`) leaves out
+//! only what no `Outline` reads: every block it keeps is the parsed block,
+//! and every block it leaves out keeps the parsed block's span, skip mark
+//! and number, holds only words (no `M`), assignments, calls by name and
+//! frames, and follows a block that leaves the plain lines after it
+//! skimmable, with only left-out blocks between.
 
 #[path = "../benches/program/mod.rs"]
 #[allow(dead_code)]
 mod program;
 
 use gcodec_parser::ast::StatementKind;
-use gcodec_parser::{block_settles, parse_chunk, skim_chunk};
+use gcodec_parser::{parse_chunk, plain_lines_skimmable_after, skim_chunk};
 use gcodec_stream::chunks;
 use proptest::prelude::*;
 
@@ -34,21 +35,21 @@ fn assert_skim_agrees(name: &str, src: &[u8], lines: usize) -> usize {
         assert_eq!(parsed.blocks.len(), skimmed.blocks.len(), "{name}");
         assert_eq!(parsed.structure_blocks, skimmed.structure_blocks, "{name}");
         assert!(skimmed.diagnostics.is_empty(), "{name}");
-        let mut settled = false;
+        let mut skimmable = false;
         for (i, (whole, skim)) in parsed.blocks.iter().zip(&skimmed.blocks).enumerate() {
             if whole == skim {
                 // A block without statements or label reads the same
                 // parsed or left out, and either way leaves the state as
                 // it was.
                 if !whole.statements.is_empty() || whole.label.is_some() {
-                    settled = block_settles(whole);
+                    skimmable = plain_lines_skimmable_after(whole);
                 }
                 continue;
             }
             left_out += 1;
             assert!(
-                settled,
-                "{}: left out after a block that does not settle",
+                skimmable,
+                "{}: left out after a block that leaves no line skimmable",
                 place(i)
             );
             assert_eq!(whole.span, skim.span, "{}", place(i));
@@ -159,7 +160,7 @@ fn edge_cases_skim_as_they_parse() {
     for chunk_lines in [1, 2, 3, 1024] {
         assert_skim_agrees("edges", src.as_bytes(), chunk_lines);
     }
-    // Blocks settle and are left out here: the test sees both kinds.
+    // Blocks are left out here and others kept: the test sees both kinds.
     assert!(assert_skim_agrees("edges", src.as_bytes(), 1024) >= 5);
 }
 

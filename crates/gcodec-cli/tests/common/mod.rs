@@ -2,7 +2,7 @@
 
 #![allow(dead_code)]
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// Exit codes documented in `commands.rs`.
@@ -27,12 +27,33 @@ where
     I: IntoIterator<Item = S>,
     S: AsRef<std::ffi::OsStr>,
 {
-    Command::new(env!("CARGO_BIN_EXE_gcodec"))
-        .args(args)
-        .env("RUST_BACKTRACE", "1")
-        .env_remove("NO_COLOR")
+    command(args).output().expect("gcodec runs")
+}
+
+/// [`gcodec`] run in the directory `dir`, so that the file names it
+/// prints are as short as the arguments.
+pub fn gcodec_in<I, S>(dir: &Path, args: I) -> Output
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<std::ffi::OsStr>,
+{
+    command(args)
+        .current_dir(dir)
         .output()
         .expect("gcodec runs")
+}
+
+fn command<I, S>(args: I) -> Command
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<std::ffi::OsStr>,
+{
+    let mut command = Command::new(env!("CARGO_BIN_EXE_gcodec"));
+    command
+        .args(args)
+        .env("RUST_BACKTRACE", "1")
+        .env_remove("NO_COLOR");
+    command
 }
 
 pub fn stdout(out: &Output) -> String {

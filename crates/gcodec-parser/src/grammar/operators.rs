@@ -1,7 +1,7 @@
 //! The operator table of expressions: for every binary and unary operator
 //! its token, its text, its binding power and how it associates. The
 //! chumsky pratt parser ([`super::expressions`]), the fast path
-//! (`crate::fast`), the driver's operator count and the outline all read
+//! (`crate::fast`), the driver's operator count and the text tree all read
 //! it, so the precedence they apply cannot drift apart.
 //!
 //! Rows are keyed on [`BinaryOp`] and [`UnaryOp`] and follow the enums'
@@ -69,7 +69,7 @@ pub(crate) const PRECEDENCES: [Precedence; 11] = [
 pub(crate) struct BinaryOperator {
     pub op: BinaryOp,
     pub token: T,
-    /// As written in a program (and in the outline).
+    /// As written in a program (and in the text tree).
     pub text: &'static str,
     pub precedence: Precedence,
 }
@@ -79,7 +79,7 @@ pub(crate) struct BinaryOperator {
 pub(crate) struct UnaryOperator {
     pub op: UnaryOp,
     pub token: T,
-    /// As written in a program (and in the outline).
+    /// As written in a program (and in the text tree).
     pub text: &'static str,
 }
 

@@ -32,7 +32,7 @@ use gcodec_stream::SpentBin;
 /// Each of `workers` threads parses and lowers its chunks
 /// ([`gcodec_stream::map_chunks`]; on one, this thread), each as a part
 /// that starts in the state the chunk before it ends in, as
-/// [`super::lower_in_parts`] lowers its parts; a [`PartLedger`] takes
+/// [`super::lower_in_parts`] lowers its parts; the part ledger takes
 /// them here in order, and a part it cannot fill in is lowered again
 /// here, continuing from the chunk before. So a chunk's
 /// tree is lowered on the core that parsed it, and the instructions are

@@ -14,7 +14,6 @@ super::codes! {
     SEPARATED_SKIP_LEVEL = separated_skip_level, Error, "a blank between the skip mark and its level";
     INVALID_BLOCK_NUMBER = invalid_block_number, Error, "a main-block number that is not a whole number";
     MISPLACED_HEADER = misplaced_header, Error, "a `%` program header elsewhere than on the first line";
-    HEADER_NOT_ALONE = header_not_alone, Error, "a program header line holding more than the header";
     NESTING_TOO_DEEP = nesting_too_deep, Error, "brackets nested more than 64 deep in one block";
     BLOCK_TOO_COMPLEX = block_too_complex, Error, "more than 1000 operators in one block";
     UNCLOSED_STRUCTURE = unclosed_structure, Error, "a control structure opened and never closed";

@@ -1,13 +1,13 @@
-//! Large files are parsed in segments of whole lines on several threads,
-//! and a streamed run parses them in chunks with the structures paired as
+//! Large files are parsed in chunks of whole lines, one a thread, and a
+//! streamed run parses them chunk by chunk with the structures paired as
 //! the chunks come: neither split may change the tree or the diagnostics.
 
 use gcodec_parser::ast::Program;
-use gcodec_parser::{Pairing, parse_bytes_in_segments, parse_chunk};
+use gcodec_parser::{Pairing, parse_bytes_in_chunks, parse_chunk};
 use gcodec_stream::chunks;
 
 /// Parses `src` chunk by chunk, pairing structures as the chunks come.
-fn parse_in_chunks(name: &str, src: &[u8], lines: usize) -> gcodec_parser::Parse {
+fn parse_chunk_by_chunk(name: &str, src: &[u8], lines: usize) -> gcodec_parser::Parse {
     let mut pairing = Pairing::default();
     let mut program = Program {
         file: name.to_owned(),
@@ -51,9 +51,9 @@ fn parse_in_chunks(name: &str, src: &[u8], lines: usize) -> gcodec_parser::Parse
 }
 
 fn assert_split_invariant(name: &str, src: &[u8]) {
-    let whole = parse_bytes_in_segments(name, src, 1);
+    let whole = parse_bytes_in_chunks(name, src, 1);
     for lines in [1, 2, 7, 1000] {
-        let chunked = parse_in_chunks(name, src, lines);
+        let chunked = parse_chunk_by_chunk(name, src, lines);
         assert_eq!(
             whole.program, chunked.program,
             "{name} in chunks of {lines}"
@@ -64,22 +64,25 @@ fn assert_split_invariant(name: &str, src: &[u8]) {
         );
     }
     for threads in [2, 3, 7] {
-        let split = parse_bytes_in_segments(name, src, threads);
-        assert_eq!(whole.program, split.program, "{name} in {threads} segments");
+        let split = parse_bytes_in_chunks(name, src, threads);
+        assert_eq!(
+            whole.program, split.program,
+            "{name} in {threads} chunks on threads"
+        );
         assert_eq!(
             whole.diagnostics, split.diagnostics,
-            "{name} in {threads} segments"
+            "{name} in {threads} chunks on threads"
         );
     }
 }
 
 #[test]
-fn fixtures_and_corpus_parse_the_same_in_segments() {
+fn fixtures_and_corpus_parse_the_same_in_chunks() {
     gcodec_testkit::each_program(assert_split_invariant);
 }
 
 #[test]
-fn structures_headers_and_errors_across_segment_boundaries() {
+fn structures_headers_and_errors_across_chunk_boundaries() {
     let mut src = String::from("%_N_SPLIT_MPF\n;$PATH=/_N_MPF_DIR\n");
     for i in 0..300 {
         src.push_str(&format!("N{i} IF R1>{i}\nG1 X{i} Y-{i}.5 ; move\n"));
@@ -92,7 +95,7 @@ fn structures_headers_and_errors_across_segment_boundaries() {
     }
     src.push_str("M30"); // no final line end
     assert_split_invariant("split.mpf", src.as_bytes());
-    let whole = parse_bytes_in_segments("split.mpf", src.as_bytes(), 5);
+    let whole = parse_bytes_in_chunks("split.mpf", src.as_bytes(), 5);
     assert_eq!(
         whole.program.path.as_ref().map(|p| p.path.as_str()),
         Some("/_N_MPF_DIR")
@@ -101,7 +104,7 @@ fn structures_headers_and_errors_across_segment_boundaries() {
 }
 
 #[test]
-fn empty_and_tiny_inputs_in_many_segments() {
+fn empty_and_tiny_inputs_in_many_chunks() {
     for src in ["", "\n", "G1", "G1\n", "\n\n\n", "IF 1\n"] {
         assert_split_invariant(src, src.as_bytes());
     }

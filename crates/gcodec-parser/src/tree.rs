@@ -1,4 +1,5 @@
-//! A readable, indented outline of a parsed program (`gcodec parse`).
+//! The syntax tree of a parsed program as readable, indented text, one
+//! line per block (`gcodec parse`).
 
 use std::fmt::{self, Write};
 
@@ -8,7 +9,7 @@ use gcodec_source::Span;
 
 /// Writes one line per non-empty block: line number, block number and
 /// label, then the statements, indented by control-structure depth.
-pub fn write_outline(program: &Program, out: &mut impl Write) -> fmt::Result {
+pub fn write_tree(program: &Program, out: &mut impl Write) -> fmt::Result {
     writeln!(out, "program {}", program.file)?;
     if let Some(h) = &program.header {
         writeln!(out, "  header %{}", h.text)?;
@@ -382,9 +383,8 @@ fn write_var(v: &VarRef, out: &mut impl Write) -> fmt::Result {
     Ok(())
 }
 
-/// Expressions are written fully parenthesised so the outline shows how
-/// precedence grouped them.
-/// Writes an expression fully parenthesised, as the outline shows it.
+/// Writes an expression fully parenthesised, as the text tree shows it:
+/// the brackets show how precedence grouped it.
 pub fn write_expr(e: &Expr, out: &mut impl Write) -> fmt::Result {
     match &e.kind {
         ExprKind::Number { value, .. } => write!(out, "{value}"),
