@@ -71,6 +71,17 @@ fn flat_stderr(out: &Output) -> String {
         .join(" ")
 }
 
+/// Asserts that `out` exited with `exit` and that its stderr says each
+/// of `fragments`; the stderr, unwrapped.
+fn assert_reported(out: &Output, exit: i32, fragments: &[&str]) -> String {
+    let err = flat_stderr(out);
+    assert_eq!(code(out), exit, "{err}");
+    for fragment in fragments {
+        assert!(err.contains(fragment), "no {fragment:?} in: {err}");
+    }
+    err
+}
+
 /// The built-in profile with `settings` at the start of its `[program]`
 /// section, in `dir`.
 fn profile_with(dir: &Path, settings: &str) -> PathBuf {
@@ -100,10 +111,8 @@ fn a_fifo_or_a_device_given_as_file_is_refused_without_reading_it() {
     for file in [fifo.as_path(), Path::new("/dev/zero"), &link] {
         for command in ["parse", "lower", "run"] {
             let out = gcodec_within(args(&[command], &[file]), LIMIT);
-            assert_eq!(code(&out), EXIT_USAGE, "{command} {}", file.display());
-            let err = flat_stderr(&out);
-            assert!(err.contains("gcodec::io::not_a_file"), "{err}");
-            assert!(err.contains("not a regular file"), "{err}");
+            let fragments = ["gcodec::io::not_a_file", "not a regular file"];
+            assert_reported(&out, EXIT_USAGE, &fragments);
         }
     }
 }
@@ -116,11 +125,12 @@ fn a_file_larger_than_the_profile_allows_is_refused_before_it_is_read() {
     let fits = write(&dir, "FITS.MPF", "G1 X1 F100\nM30\n");
     for command in ["lower", "run"] {
         let out = gcodec(args(&[command, "--profile"], &[&profile, &program]));
-        assert_eq!(code(&out), EXIT_USAGE, "{command}");
-        let err = flat_stderr(&out);
-        assert!(err.contains("gcodec::io::too_large"), "{err}");
-        assert!(err.contains("110 bytes, more than the 64 allowed"), "{err}");
-        assert!(err.contains("max_file_size"), "{err}");
+        let fragments = [
+            "gcodec::io::too_large",
+            "110 bytes, more than the 64 allowed",
+            "max_file_size",
+        ];
+        assert_reported(&out, EXIT_USAGE, &fragments);
         let out = gcodec(args(&[command, "--profile"], &[&profile, &fits]));
         assert_eq!(code(&out), EXIT_CLEAN, "{command}: {}", stderr(&out));
     }
@@ -130,10 +140,9 @@ fn a_file_larger_than_the_profile_allows_is_refused_before_it_is_read() {
     let main = write(&dir, "MAIN.MPF", "N10 G1 X1 F100\nN20 BIGSUB\nN30 M30\n");
     write(&dir, "BIGSUB.SPF", "G1 X1 F100\n".repeat(10));
     let out = gcodec(args(&["run", "--profile"], &[&profile, &main]));
-    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
-    let err = flat_stderr(&out);
-    assert!(err.contains("gcodec::io::too_large"), "{err}");
-    assert!(err.contains("N20 BIGSUB"), "labelled at the call: {err}");
+    // Labelled at the call.
+    let fragments = ["gcodec::io::too_large", "N20 BIGSUB"];
+    assert_reported(&out, EXIT_DIAGNOSTICS, &fragments);
 }
 
 #[test]
@@ -178,11 +187,7 @@ fn a_utf8_byte_order_mark_changes_nothing() {
     }
     // The error is found where it is, counted from the byte after the mark.
     let out = gcodec(args(&["parse"], &[&marked]));
-    assert!(
-        stderr(&out).contains("MARKED.MPF:1504:"),
-        "{}",
-        stderr(&out)
-    );
+    assert_reported(&out, EXIT_DIAGNOSTICS, &["MARKED.MPF:1504:"]);
 }
 
 #[test]
@@ -207,10 +212,8 @@ fn a_utf16_file_is_named_as_such() {
         let file = write(&dir, name, bytes);
         for command in ["parse", "lower", "run"] {
             let out = gcodec(args(&[command], &[&file]));
-            assert_eq!(code(&out), EXIT_USAGE, "{command} {name}");
-            let err = flat_stderr(&out);
-            assert!(err.contains("gcodec::io::utf16"), "{err}");
-            assert!(err.contains(&format!("UTF-16 text ({what}")), "{err}");
+            let named = format!("UTF-16 text ({what}");
+            let err = assert_reported(&out, EXIT_USAGE, &["gcodec::io::utf16", &named]);
             assert!(!err.contains("invalid_character"), "{err}");
         }
     }
@@ -218,12 +221,7 @@ fn a_utf16_file_is_named_as_such() {
     let main = write(&dir, "MAIN.MPF", "N10 WIDE\nN20 M30\n");
     write(&dir, "WIDE.SPF", [&b"\xFF\xFE"[..], &little].concat());
     let out = gcodec(args(&["run"], &[&main]));
-    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
-    assert!(
-        stderr(&out).contains("gcodec::io::utf16"),
-        "{}",
-        stderr(&out)
-    );
+    assert_reported(&out, EXIT_DIAGNOSTICS, &["gcodec::io::utf16", "N10 WIDE"]);
 }
 
 #[cfg(unix)]
@@ -264,19 +262,17 @@ fn a_link_out_of_the_search_path_is_refused_naming_it() {
     for (call, target) in [("LINKED", "shared/X.SPF"), ("PASSWD", "/etc/passwd")] {
         let shop = Shop::new(&format!("link-{call}"), call);
         let out = gcodec(args(&["run"], &[&shop.main]));
-        assert_eq!(code(&out), EXIT_DIAGNOSTICS, "{call}");
-        let err = flat_stderr(&out);
-        assert!(err.contains("gcodec::io::outside_search_path"), "{err}");
-        assert!(
-            err.contains(&format!("{call}.SPF`, a symbolic link to")),
-            "{err}"
-        );
-        assert!(err.contains(target), "{err}");
-        assert!(err.contains("link_target_paths"), "{err}");
-        assert!(
-            err.contains(&format!("N20 {call}")),
-            "labelled at the call: {err}"
-        );
+        let link = format!("{call}.SPF`, a symbolic link to");
+        // Labelled at the call.
+        let at_call = format!("N20 {call}");
+        let fragments = [
+            "gcodec::io::outside_search_path",
+            &link,
+            target,
+            "link_target_paths",
+            &at_call,
+        ];
+        let err = assert_reported(&out, EXIT_DIAGNOSTICS, &fragments);
         assert!(!stdout(&out).contains("the shared NEXT"), "{call}");
         assert!(!err.contains("root:"), "{err}");
     }
@@ -300,8 +296,7 @@ fn a_link_into_the_profiles_link_target_paths_runs_and_calls_from_its_folder() {
     let shop = Shop::new("link-allowed-passwd", "PASSWD");
     let profile = shop.profile("link_target_paths = [\"shared\"]");
     let out = gcodec(args(&["run", "--profile"], &[&profile, &shop.main]));
-    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
-    assert!(flat_stderr(&out).contains("gcodec::io::outside_search_path"));
+    assert_reported(&out, EXIT_DIAGNOSTICS, &["gcodec::io::outside_search_path"]);
 }
 
 #[cfg(unix)]
@@ -311,14 +306,13 @@ fn a_fifo_on_the_search_path_is_an_error_at_the_call_not_a_hang() {
     let main = write(&dir, "MAIN.MPF", "N10 G1 X1 F100\nN20 FIFO\nN30 M30\n");
     mkfifo(&dir.join("FIFO.SPF"));
     let out = gcodec_within(args(&["run"], &[&main]), LIMIT);
-    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
-    let err = flat_stderr(&out);
-    assert!(err.contains("gcodec::io::not_a_file"), "{err}");
-    assert!(
-        err.contains("a FIFO (named pipe), not a regular file"),
-        "{err}"
-    );
-    assert!(err.contains("N20 FIFO"), "labelled at the call: {err}");
+    // Labelled at the call.
+    let fragments = [
+        "gcodec::io::not_a_file",
+        "a FIFO (named pipe), not a regular file",
+        "N20 FIFO",
+    ];
+    assert_reported(&out, EXIT_DIAGNOSTICS, &fragments);
 }
 
 #[cfg(unix)]
@@ -343,16 +337,9 @@ fn a_called_program_that_cannot_be_read_is_unreadable_not_missing() {
     }
     for (main, call) in cases {
         let out = gcodec(args(&["run"], &[&main]));
-        assert_eq!(code(&out), EXIT_DIAGNOSTICS, "{call}");
-        let err = flat_stderr(&out);
-        assert!(
-            err.contains("gcodec::run::program_unreadable"),
-            "{call}: {err}"
-        );
+        let unread = format!("{call}.SPF`, which cannot be read");
+        let fragments = ["gcodec::run::program_unreadable", &unread];
+        let err = assert_reported(&out, EXIT_DIAGNOSTICS, &fragments);
         assert!(!err.contains("program_not_found"), "{call}: {err}");
-        assert!(
-            err.contains(&format!("{call}.SPF`, which cannot be read")),
-            "{err}"
-        );
     }
 }

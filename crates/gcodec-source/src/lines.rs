@@ -15,7 +15,7 @@ pub const MAX_SOURCE_LEN: usize = u32::MAX as usize - 1;
 
 /// Sources from this size on are read and have their lines found on two
 /// threads.
-pub(crate) const PARALLEL_FROM: usize = 1 << 22;
+const PARALLEL_FROM: usize = 1 << 22;
 
 /// The offset of every line's start: 0, then every offset after a `\n`
 /// (the table [`crate::SourceFile::line_starts`] holds).
@@ -110,12 +110,12 @@ fn push_line_starts(part: &[u8], base: usize, starts: &mut Vec<u32>) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// A large source, with a line end just before, at or after the
     /// middle where it is split.
-    fn large_sources() -> Vec<Vec<u8>> {
+    pub(crate) fn large_sources() -> Vec<Vec<u8>> {
         let mut base = Vec::new();
         while base.len() < PARALLEL_FROM + 100 {
             base.extend_from_slice(b"N10 G1 X1 Y2\r\n");
@@ -132,7 +132,8 @@ mod tests {
             .collect()
     }
 
-    fn one_scan(bytes: &[u8]) -> Vec<u32> {
+    /// The line table of `bytes`, by the plainest scan.
+    pub(crate) fn one_scan(bytes: &[u8]) -> Vec<u32> {
         let mut expected = vec![0];
         expected.extend(
             (0..bytes.len())

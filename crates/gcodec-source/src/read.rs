@@ -285,7 +285,7 @@ fn utf16_without_mark(bytes: &[u8]) -> Option<&'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lines::PARALLEL_FROM;
+    use crate::lines::tests::{large_sources, one_scan};
 
     /// A directory of its own under the system's temporary directory.
     struct TempDir(std::path::PathBuf);
@@ -312,16 +312,6 @@ mod tests {
         }
     }
 
-    fn one_scan(bytes: &[u8]) -> Vec<u32> {
-        let mut expected = vec![0];
-        expected.extend(
-            (0..bytes.len())
-                .filter(|&i| bytes[i] == b'\n')
-                .map(|i| i as u32 + 1),
-        );
-        expected
-    }
-
     /// A large file read in halves has its bytes and the table of one
     /// scan, with or without a byte-order mark, a line end just before, at
     /// or after the middle where it is split; a file over the limit is
@@ -329,15 +319,7 @@ mod tests {
     #[test]
     fn a_large_file_is_read_whole_with_its_lines() {
         let temp = TempDir::new("large");
-        let mut base = Vec::new();
-        while base.len() < PARALLEL_FROM + 100 {
-            base.extend_from_slice(b"N10 G1 X1 Y2\r\n");
-        }
-        base.push(b'Z');
-        let middle = base.len() / 2;
-        for (i, at) in [middle - 1, middle, middle + 1].into_iter().enumerate() {
-            let mut text = base.clone();
-            text[at] = b'\n';
+        for (i, text) in large_sources().into_iter().enumerate() {
             for bom in [&b""[..], UTF8_BOM] {
                 let stored = [bom, &text].concat();
                 let path = temp.file(&format!("large{i}.mpf"), &stored);
