@@ -6,8 +6,8 @@ use clap::{Parser, Subcommand, ValueEnum};
 use gcodec_source::codes;
 
 use crate::report::{
-    DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, load_definitions, load_profile,
-    read, report,
+    DiagnosticOptions, EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, builtin_max_file_size,
+    load_definitions, load_profile, read, report,
 };
 
 /// Compile and simulate SINUMERIK 840D sl / 828D part programs.
@@ -185,8 +185,9 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
     let mut json = Vec::new();
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
+    let max_len = builtin_max_file_size();
     for path in files {
-        let Ok(file) = read(path, options) else {
+        let Ok(file) = read(path, max_len, options) else {
             exit = EXIT_USAGE;
             continue;
         };
@@ -231,11 +232,12 @@ fn lower(
         Ok(p) => p,
         Err(code) => return code,
     };
-    let definitions = match load_definitions(definitions, options) {
+    let max_len = *profile.program.max_file_size.get_ref();
+    let definitions = match load_definitions(definitions, max_len, options) {
         Ok(d) => d,
         Err(code) => return code,
     };
-    let file = match read(path, options) {
+    let file = match read(path, max_len, options) {
         Ok(f) => f,
         Err(code) => return code,
     };

@@ -314,7 +314,9 @@ impl Channel<'_> {
                     message.push_str("; ");
                     message.push_str(&help);
                 }
-                Err(RunError::new(codes::run::PROGRAM_NOT_FOUND, message))
+                // Its own code: not found, unreadable, a link outside the
+                // search path, a FIFO, too large.
+                Err(RunError::new(error.code, message))
             }
         }
     }
