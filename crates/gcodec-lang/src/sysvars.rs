@@ -43,6 +43,7 @@
 //! `;$PATH=…` in a file header is a comment, not a variable, and is not
 //! listed.
 
+use crate::DataType;
 use crate::names::compare_ignore_case;
 
 /// The indices a system variable takes in brackets.
@@ -452,6 +453,50 @@ const fn bytes_equal(a: &[u8], b: &[u8]) -> bool {
     true
 }
 
+/// System variables of known type, sorted by name.
+const SYSTEM_TYPES: &[(&str, DataType)] = &[
+    ("$AA_IM", DataType::Real),
+    ("$AA_IW", DataType::Real),
+    ("$AA_MW", DataType::Real),
+    ("$AN_CEC_INPUT_AXIS", DataType::Axis),
+    ("$AN_CEC_OUTPUT_AXIS", DataType::Axis),
+    ("$C_TS", DataType::String { length: None }),
+    ("$PI", DataType::Real),
+    ("$P_AXN1", DataType::Axis),
+    ("$P_AXN2", DataType::Axis),
+    ("$P_AXN3", DataType::Axis),
+    ("$P_EP", DataType::Real),
+    ("$P_F", DataType::Real),
+    ("$P_PROG", DataType::String { length: None }),
+    ("$P_TOOLNO", DataType::Int),
+    ("$P_TOOLP", DataType::Int),
+    ("$P_TOOLR", DataType::Real),
+    ("$R", DataType::Real),
+    ("$R<n>", DataType::Real),
+];
+
+impl SysVar {
+    /// The type of this variable read or written with `count` indices,
+    /// where its shape or the reference settles it; `None` where it is
+    /// not known (never an error).
+    pub fn data_type(&self, count: usize) -> Option<DataType> {
+        use DataType::*;
+        match (self.shape, count) {
+            // A whole frame, or one of an array of frames; a component is REAL.
+            (IndexShape::Frame, 0) | (IndexShape::FrameComponent, 1) => return Some(Frame),
+            (IndexShape::Frame, 2) | (IndexShape::FrameComponent, 3) => return Some(Real),
+            _ => {}
+        }
+        if self.name.starts_with("$TC_DP") {
+            return Some(Real);
+        }
+        SYSTEM_TYPES
+            .binary_search_by(|(entry, _)| entry.cmp(&self.name))
+            .ok()
+            .map(|i| SYSTEM_TYPES[i].1)
+    }
+}
+
 /// All listed variables, sorted by name (without the `$R<n>` form).
 pub fn all() -> &'static [SysVar] {
     TABLE
@@ -511,6 +556,13 @@ fn strip_dollars(name: &str) -> Option<&str> {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn system_type_table_is_sorted() {
+        for pair in SYSTEM_TYPES.windows(2) {
+            assert!(pair[0].0 < pair[1].0, "{} {}", pair[0].0, pair[1].0);
+        }
+    }
     use super::*;
     use std::path::{Path, PathBuf};
 
