@@ -20,9 +20,10 @@ mod expr;
 use std::borrow::Cow;
 use std::sync::Arc;
 
-pub use expr::{Expr, Value, VarKind};
+pub use expr::{Callee, Expr, Value, VarKind, VarName};
+use gcodec_lang::addresses::{AddressScope, NamedAddress, TransitionKind};
 use gcodec_lang::ggroups::GCommand;
-use gcodec_lang::{DataType, DimensionMode, MClass, MotionKind};
+use gcodec_lang::{DataType, DimensionMode, FrameOp, MClass, MotionKind, WorkOffsetCode};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -104,7 +105,8 @@ pub enum Op {
         /// known before the program runs (the block is reached from places
         /// with different selections, or starts a subprogram): the
         /// executor knows it then.
-        group8_selected: Option<String>,
+        #[schemars(with = "Option<String>")]
+        group8_selected: Option<WorkOffsetCode>,
         /// The strongest of `G53`, `G153`, `SUPA` in the block.
         suppression: Option<Suppression>,
         /// `block` when there is a suppression.
@@ -389,7 +391,8 @@ pub struct Circle {
 #[serde(deny_unknown_fields)]
 pub struct Address {
     /// The address in upper case: `SPOS`, `FA`, `OVR`, `DL`.
-    pub address: String,
+    #[schemars(with = "String")]
+    pub address: NamedAddress,
     /// The axis in brackets, when written as a name (`FA[X]` → `X`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axis: Option<String>,
@@ -408,16 +411,6 @@ pub struct Address {
     pub mode: Option<DimensionMode>,
     /// Whether the value stays in force after the block.
     pub scope: AddressScope,
-}
-
-/// How long an address's value holds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum AddressScope {
-    /// Until programmed again (`FA`, `OVR`, `LIMS`, `RNDM`, `SD`).
-    Modal,
-    /// This block only (`FB`, `SPOS`, `POS`, `FP`).
-    Block,
 }
 
 /// An H auxiliary function (reference §4.5).
@@ -447,7 +440,8 @@ pub struct HFunction {
 #[serde(deny_unknown_fields)]
 pub struct Frame {
     /// The instruction in upper case (`TRANS`, `AROT`).
-    pub op: String,
+    #[schemars(with = "String")]
+    pub op: FrameOp,
     pub values: Vec<AxisValue>,
     /// Values for axes named when the block runs (`ATRANS AX[_XX]=5`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -523,19 +517,6 @@ pub struct Thread {
 pub struct Transition {
     pub kind: TransitionKind,
     pub value: Value,
-}
-
-/// Which transition.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum TransitionKind {
-    /// `CHF=`: chamfer, the value is the chamfer's length.
-    Chamfer,
-    /// `CHR=`: chamfer, the value is the leg length in the direction of
-    /// motion.
-    ChamferLeg,
-    /// `RND=`: rounding with this radius.
-    Rounding,
 }
 
 /// The JSON Schema of an AIL document, as checked in under

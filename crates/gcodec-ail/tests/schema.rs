@@ -3,7 +3,8 @@
 //! designs read and write exactly as they specify.
 
 use gcodec_ail::*;
-use gcodec_lang::{BinaryOp, DimensionMode, MClass, MotionKind};
+use gcodec_lang::addresses::TransitionKind;
+use gcodec_lang::{BinaryOp, DimensionMode, MClass, MotionKind, WorkOffsetCode};
 use serde_json::json;
 
 const SCHEMA_PATH: &str = concat!(
@@ -104,7 +105,7 @@ fn m_function_has_the_seed_001_fields() {
 #[test]
 fn work_offset_has_the_seed_003_fields() {
     let value = round_trip(Op::WorkOffset {
-        group8_selected: Some("g54".into()),
+        group8_selected: Some(WorkOffsetCode::G54),
         suppression: Some(Suppression::G53),
         suppression_scope: Some(SuppressionScope::Block),
     });
@@ -136,7 +137,7 @@ fn constants_are_plain_numbers_and_expressions_are_trees() {
                     operator: BinaryOp::Add,
                     lhs: Box::new(Expr::Var {
                         var_kind: VarKind::RParameter,
-                        name: "R".into(),
+                        name: VarName::Text("R".into()),
                         indices: vec![Expr::Number { value: 1.0 }],
                     }),
                     rhs: Box::new(Expr::Number { value: 5.0 }),

@@ -7,7 +7,9 @@ use gcodec_source::{codes, escape_controls};
 
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE};
 use crate::output::{Stdout, after_output, to_stderr};
-use crate::report::{DiagnosticOptions, load_definitions, load_profile, read, report};
+use crate::report::{
+    DiagnosticOptions, builtin_max_file_size, load_definitions, load_profile, read, report,
+};
 
 /// Compile and simulate SINUMERIK 840D sl / 828D part programs.
 #[derive(Debug, Parser)]
@@ -196,8 +198,9 @@ fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
     let mut json = Vec::new();
     let mut out = format.stdout();
     let mut written = Ok(());
+    let max_len = builtin_max_file_size();
     for path in files {
-        let Ok(file) = read(path, options) else {
+        let Ok(file) = read(path, max_len, options) else {
             exit = EXIT_USAGE;
             continue;
         };
@@ -242,11 +245,12 @@ fn lower(
         Ok(p) => p,
         Err(code) => return code,
     };
-    let definitions = match load_definitions(definitions, options) {
+    let max_len = *profile.program.max_file_size.get_ref();
+    let definitions = match load_definitions(definitions, max_len, options) {
         Ok(d) => d,
         Err(code) => return code,
     };
-    let file = match read(path, options) {
+    let file = match read(path, max_len, options) {
         Ok(f) => f,
         Err(code) => return code,
     };

@@ -36,7 +36,8 @@ pub fn load_profile(
     options: DiagnosticOptions,
 ) -> Result<gcodec_profile::Profile, u8> {
     let file = match path {
-        Some(path) => read(path, options)?,
+        // A profile is read before any profile says how large a file may be.
+        Some(path) => read(path, builtin_max_file_size(), options)?,
         None => gcodec_driver::builtin_profile_file(),
     };
     match gcodec_driver::load_profile(&file) {
@@ -59,24 +60,34 @@ pub fn report(diagnostics: &Diagnostics, file: Option<&SourceFile>, options: Dia
     to_stderr(&render_kept(diagnostics, file, options.render_options()));
 }
 
-/// Reads a file; an unreadable one is reported and is exit code 2.
-pub fn read(path: &Path, options: DiagnosticOptions) -> Result<SourceFile, u8> {
-    gcodec_driver::read_source(path).map_err(|d| {
+/// The largest file read where no profile is chosen (`gcodec parse`, a
+/// profile's own file): the built-in profile's `[program] max_file_size`.
+pub fn builtin_max_file_size() -> u64 {
+    gcodec_profile::builtin().map_or(gcodec_source::DEFAULT_MAX_FILE_SIZE, |profile| {
+        *profile.program.max_file_size.get_ref()
+    })
+}
+
+/// Reads a file of at most `max_len` bytes; an unreadable one is reported
+/// and is exit code 2.
+pub fn read(path: &Path, max_len: u64, options: DiagnosticOptions) -> Result<SourceFile, u8> {
+    gcodec_driver::read_source(path, max_len).map_err(|d| {
         report(&vec![d].into(), None, options);
         EXIT_USAGE
     })
 }
 
-/// Reads the definition files in order; an unreadable file or one with
-/// errors is reported and is exit code 2.
+/// Reads the definition files in order, at most `max_len` bytes each;
+/// an unreadable file or one with errors is reported and is exit code 2.
 pub fn load_definitions(
     paths: &[PathBuf],
+    max_len: u64,
     options: DiagnosticOptions,
 ) -> Result<gcodec_driver::Definitions, u8> {
     let mut definitions = gcodec_driver::Definitions::new();
     let mut bad = false;
     for path in paths {
-        let file = read(path, options)?;
+        let file = read(path, max_len, options)?;
         let diagnostics = definitions.load(&file);
         report(&diagnostics, Some(&file), options);
         bad |= diagnostics.has_errors();

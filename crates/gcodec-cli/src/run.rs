@@ -143,11 +143,12 @@ pub fn run(args: RunArgs) -> u8 {
         Ok(p) => Arc::new(p),
         Err(code) => return code,
     };
-    let definitions = match load_definitions(&args.definitions, options) {
+    let max_len = *profile.program.max_file_size.get_ref();
+    let definitions = match load_definitions(&args.definitions, max_len, options) {
         Ok(d) => Arc::new(d),
         Err(code) => return code,
     };
-    let file = match read(&args.file, options) {
+    let file = match read(&args.file, max_len, options) {
         Ok(f) => f,
         Err(code) => return code,
     };

@@ -26,6 +26,25 @@
 //! (the same canonical path) is searched once. The first directory that
 //! holds the program wins.
 //!
+//! # Links and special files
+//!
+//! A program's file may be a symbolic link, but only to a file inside
+//! a directory of the caller's search path (at any depth) or of the
+//! profile's `[program] link_target_paths` (relative ones as for
+//! `subprogram_paths`): its real path (every link resolved) is checked
+//! before it is opened, and a link elsewhere is
+//! `gcodec::io::outside_search_path`, naming the link and its target. The
+//! program keeps the link's name, so the calls it makes search the link's
+//! directory, not its target's. What is read is the real path, so the
+//! link cannot be swapped between the check and the read.
+//!
+//! The file is read as [`SourceFile::read_capped`] reads it, at most the
+//! profile's `[program] max_file_size` bytes: a FIFO or a device is
+//! `gcodec::io::not_a_file` (before anything is read from it), a larger
+//! file `gcodec::io::too_large`, UTF-16 text `gcodec::io::utf16`; any other
+//! failure to read it (no permission, a broken link) is
+//! `gcodec::run::program_unreadable`.
+//!
 //! # Matching names to files
 //!
 //! Program names are compared case-insensitively (ASCII) and otherwise
@@ -58,9 +77,10 @@
 //!
 //! A run sees the file system as it was at the first look: every
 //! directory is listed once, every name is resolved once per calling
-//! directory (misses too), and every program (by its canonical path) is
-//! read, parsed and lowered once. A cycle called a million times costs
-//! two hash lookups per call after the first. A loader given
+//! directory (misses too), and every program (by its place on the search
+//! path: the canonical directory and the file's name) is read, parsed and
+//! lowered once. A cycle called a million times costs two hash lookups per
+//! call after the first. A loader given
 //! [`LoadedFiles`] ([`FileLoader::with_loaded_files`]) records each file
 //! it reads there, so that the run's diagnostics are labelled from it.
 //!
@@ -84,7 +104,7 @@ use gcodec_exec::loader::{LoadError, LoadRequest, Loaded, ProgramLoader};
 use gcodec_exec::program::Program;
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, ProgramKind};
-use gcodec_source::{Severity, SourceFile, codes};
+use gcodec_source::{ReadError, Severity, SourceFile, codes};
 use rustc_hash::FxHashMap;
 
 use crate::compile;
@@ -109,6 +129,8 @@ pub struct SearchPath {
     profile_dirs: Vec<PathBuf>,
     /// `--subprogram-path`, as given.
     extra_dirs: Vec<PathBuf>,
+    /// The profile's `link_target_paths`, resolved.
+    link_dirs: Vec<PathBuf>,
 }
 
 impl SearchPath {
@@ -117,12 +139,13 @@ impl SearchPath {
         Self::default()
     }
 
-    /// With the profile's `[program] subprogram_paths`, replacing any set
-    /// before. A relative path is taken against the directory of
-    /// `profile_file` (the profile's TOML) when it is given, else against
-    /// the current directory.
+    /// With the profile's `[program] subprogram_paths` and
+    /// `link_target_paths`, replacing any set before. A relative path is
+    /// taken against the directory of `profile_file` (the profile's TOML)
+    /// when it is given, else against the current directory.
     pub fn with_profile(mut self, profile: &Profile, profile_file: Option<&Path>) -> Self {
         self.profile_dirs = resolve_profile_paths(&profile.program.subprogram_paths, profile_file);
+        self.link_dirs = resolve_profile_paths(&profile.program.link_target_paths, profile_file);
         self
     }
 
@@ -143,6 +166,12 @@ impl SearchPath {
             .iter()
             .chain(&self.extra_dirs)
             .map(PathBuf::as_path)
+    }
+
+    /// The directories, besides those searched, that a program's file may
+    /// be a symbolic link into.
+    pub fn link_dirs(&self) -> impl Iterator<Item = &Path> {
+        self.link_dirs.iter().map(PathBuf::as_path)
     }
 
     /// Every directory searched for a call from the program in
@@ -510,6 +539,8 @@ impl DirIndex {
 struct SearchDir {
     /// As configured (for messages and the program's file name).
     shown: PathBuf,
+    /// Its canonical path (`shown` where it has none).
+    canonical: PathBuf,
     index: Arc<DirIndex>,
 }
 
@@ -538,8 +569,11 @@ pub struct FileLoader {
     listings: FxHashMap<PathBuf, Arc<DirIndex>>,
     /// Calling program's directory → its search path and resolved names.
     callers: FxHashMap<PathBuf, CallerDir>,
-    /// Canonical file → the program (or why it cannot be read).
+    /// A file's place on the search path (canonical directory and file
+    /// name) → the program (or why it cannot be read).
     programs: FxHashMap<PathBuf, Outcome>,
+    /// The canonical `link_target_paths` that exist.
+    link_roots: Vec<PathBuf>,
     /// Where each program file read is recorded (`None`: nowhere).
     loaded_files: Option<LoadedFiles>,
 }
@@ -552,6 +586,10 @@ impl FileLoader {
         profile: impl Into<Arc<Profile>>,
         definitions: impl Into<Arc<Definitions>>,
     ) -> Self {
+        let link_roots = search
+            .link_dirs()
+            .filter_map(|dir| fs::canonicalize(dir).ok())
+            .collect();
         Self {
             search,
             profile: profile.into(),
@@ -559,6 +597,7 @@ impl FileLoader {
             listings: FxHashMap::default(),
             callers: FxHashMap::default(),
             programs: FxHashMap::default(),
+            link_roots,
             loaded_files: None,
         }
     }
@@ -585,8 +624,12 @@ impl FileLoader {
                 .entry(key.clone())
                 .or_insert_with(|| Arc::new(DirIndex::list(&shown)))
                 .clone();
-            seen.push(key);
-            dirs.push(SearchDir { shown, index });
+            seen.push(key.clone());
+            dirs.push(SearchDir {
+                shown,
+                canonical: key,
+                index,
+            });
         }
         CallerDir {
             dirs,
@@ -608,11 +651,11 @@ impl FileLoader {
                 continue;
             };
             let path = dir.shown.join(&found.file_name);
-            let canonical = fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
-            if let Some(outcome) = self.programs.get(&canonical) {
+            let place = dir.canonical.join(&found.file_name);
+            if let Some(outcome) = self.programs.get(&place) {
                 return cached(outcome);
             }
-            let result = match SourceFile::read(&path) {
+            let result = match self.read_confined(&path, dirs) {
                 Ok(file) => {
                     let file = Arc::new(file);
                     if let Some(files) = &self.loaded_files {
@@ -632,22 +675,92 @@ impl FileLoader {
                     }
                     Ok(loaded)
                 }
-                Err(e) => Err(LoadError {
-                    code: codes::run::PROGRAM_UNREADABLE,
-                    message: format!(
-                        "{} `{}` is `{}`, which cannot be read: {e}",
-                        what(request),
-                        shown(request.name),
-                        path.display()
-                    ),
-                    searched,
-                    help: Some("check that the file is readable".to_owned()),
-                }),
+                Err(Unread::Outside(target)) => Err(outside(request, &path, &target, searched)),
+                Err(Unread::Read(e)) => Err(unreadable(request, &path, &e, searched)),
             };
-            self.programs.insert(canonical, to_cache(&result));
+            self.programs.insert(place, to_cache(&result));
             return result;
         }
         Err(not_found(request, wanted, dirs, searched))
+    }
+
+    /// Reads the program's file at `path`, found in one of `dirs`, if its
+    /// real path is inside them or the link directories; named `path`.
+    fn read_confined(&self, path: &Path, dirs: &[SearchDir]) -> Result<SourceFile, Unread> {
+        let real = fs::canonicalize(path).map_err(|e| Unread::Read(e.into()))?;
+        let inside = dirs
+            .iter()
+            .filter(|dir| dir.index.problem.is_none())
+            .map(|dir| &dir.canonical)
+            .chain(&self.link_roots)
+            .any(|root| real.starts_with(root));
+        if !inside {
+            return Err(Unread::Outside(real));
+        }
+        // The real path, so a link swapped after the check is not followed.
+        let max_len = *self.profile.program.max_file_size.get_ref();
+        SourceFile::read_capped(&real, max_len)
+            .map(|file| file.named(path))
+            .map_err(Unread::Read)
+    }
+}
+
+/// Why a program's file was not read.
+enum Unread {
+    /// It is a link to this real path, outside the directories allowed.
+    Outside(PathBuf),
+    Read(ReadError),
+}
+
+fn outside(
+    request: &LoadRequest<'_>,
+    link: &Path,
+    target: &Path,
+    searched: Vec<PathBuf>,
+) -> LoadError {
+    LoadError {
+        code: codes::io::OUTSIDE_SEARCH_PATH,
+        message: format!(
+            "{} `{}` is `{}`, a symbolic link to `{}`, which is outside the search path",
+            what(request),
+            shown(request.name),
+            link.display(),
+            target.display()
+        ),
+        searched,
+        help: Some(
+            "list the directory the link points into in the profile's `[program] \
+             link_target_paths`, or put the file itself on the search path"
+                .to_owned(),
+        ),
+    }
+}
+
+/// A found file that cannot be read: the read error's own code, but an
+/// IO error is the run's `program_unreadable`.
+fn unreadable(
+    request: &LoadRequest<'_>,
+    path: &Path,
+    error: &ReadError,
+    searched: Vec<PathBuf>,
+) -> LoadError {
+    let (code, help) = match error {
+        ReadError::Io(_) => (
+            codes::run::PROGRAM_UNREADABLE,
+            "check that the file is readable",
+        ),
+        _ => (error.code(), error.help()),
+    };
+    LoadError {
+        code,
+        message: format!(
+            "{} `{}` is `{}`, which cannot be read: {error}",
+            what(request),
+            shown(request.name),
+            path.display()
+        ),
+        searched,
+        help: Some(help.to_owned()),
     }
 }
 

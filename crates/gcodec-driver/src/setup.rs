@@ -6,14 +6,14 @@ use std::path::Path;
 use gcodec_profile::Profile;
 use gcodec_source::{Diagnostic, SourceFile, codes};
 
-/// Reads a file; one that cannot be read is `gcodec::io::read`.
-pub fn read_source(path: &Path) -> Result<SourceFile, Diagnostic> {
-    SourceFile::read(path).map_err(|e| {
-        Diagnostic::new(
-            codes::io::READ,
-            format!("cannot read `{}`: {e}", path.display()),
-        )
-        .with_help("check the path and that the file is readable")
+/// Reads a file named on the command line, at most `max_len` bytes (the
+/// profile's `[program] max_file_size`); one that cannot be read is
+/// `gcodec::io::read`, a FIFO or a device `gcodec::io::not_a_file`, a
+/// larger file `gcodec::io::too_large`, UTF-16 text `gcodec::io::utf16`.
+pub fn read_source(path: &Path, max_len: u64) -> Result<SourceFile, Diagnostic> {
+    SourceFile::read_capped(path, max_len).map_err(|e| {
+        Diagnostic::new(e.code(), format!("cannot read `{}`: {e}", path.display()))
+            .with_help(e.help())
     })
 }
 

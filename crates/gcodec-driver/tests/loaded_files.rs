@@ -27,8 +27,9 @@ fn a_run_keeps_the_main_and_each_called_program_file() {
     std::fs::write(&main, "N10 SUB_DIV\nN20 M30\n").expect("write");
     std::fs::write(dir.join("SUB_DIV.SPF"), "N10 R1=0\nN20 R2=5/R1\nN30 M17\n").expect("write");
     let (profile, _) = load_profile(&builtin_profile_file()).expect("built-in profile");
+    let max_len = *profile.program.max_file_size.get_ref();
     let setup = RunSetup::new(profile);
-    let main = Arc::new(read_source(&main).expect("read"));
+    let main = Arc::new(read_source(&main, max_len).expect("read"));
     let mut sink = DiagnosticFiles::default();
     run_main(Arc::clone(&main), &setup, &mut sink, None);
     let files = &setup.loaded_files;

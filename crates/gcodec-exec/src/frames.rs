@@ -47,6 +47,8 @@
 
 use std::sync::Arc;
 
+use gcodec_lang::FrameOp;
+use gcodec_lang::functions::Function;
 use gcodec_profile::Profile;
 use gcodec_source::codes;
 
@@ -159,70 +161,16 @@ impl FrameAxes {
     }
 }
 
-// ---------------------------------------------------------------------
-// Instructions
-
-/// A programmable frame instruction the executor applies.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum FrameOp {
-    Trans,
-    ATrans,
-    Rot,
-    ARot,
-    Scale,
-    AScale,
-    Mirror,
-    AMirror,
-}
-
-impl FrameOp {
-    /// Every frame instruction.
-    pub const ALL: [FrameOp; 8] = [
-        FrameOp::Trans,
-        FrameOp::ATrans,
-        FrameOp::Rot,
-        FrameOp::ARot,
-        FrameOp::Scale,
-        FrameOp::AScale,
-        FrameOp::Mirror,
-        FrameOp::AMirror,
-    ];
-
-    /// The instruction named `op` (any case), as AIL's `frame.op` writes
-    /// it. `None` for the ones not supported (`ROTS`, `AROTS`, `CROTS`,
-    /// `G58`, `G59`) and anything else: the channel reports them.
-    pub fn parse(op: &str) -> Option<Self> {
-        Self::ALL
-            .into_iter()
-            .find(|k| k.keyword().eq_ignore_ascii_case(op.trim()))
-    }
-
-    /// The instruction as the control spells it.
-    pub const fn keyword(self) -> &'static str {
-        match self {
-            FrameOp::Trans => "TRANS",
-            FrameOp::ATrans => "ATRANS",
-            FrameOp::Rot => "ROT",
-            FrameOp::ARot => "AROT",
-            FrameOp::Scale => "SCALE",
-            FrameOp::AScale => "ASCALE",
-            FrameOp::Mirror => "MIRROR",
-            FrameOp::AMirror => "AMIRROR",
-        }
-    }
-
-    /// `ATRANS`, `AROT`, `ASCALE`, `AMIRROR`: act on the current frame.
-    pub const fn is_additive(self) -> bool {
-        matches!(
-            self,
-            FrameOp::ATrans | FrameOp::ARot | FrameOp::AScale | FrameOp::AMirror
-        )
-    }
-
-    /// `ROT`, `AROT`: the ones that take `RPL=`.
-    pub const fn is_rotation(self) -> bool {
-        matches!(self, FrameOp::Rot | FrameOp::ARot)
-    }
+/// The error of a frame instruction the executor does not simulate (the
+/// solid-angle rotations): the positions after it would be wrong.
+pub fn not_simulated(op: FrameOp) -> RunError {
+    RunError::new(
+        codes::run::FRAME,
+        format!(
+            "`{}` is not simulated: the positions after it would be wrong",
+            op.keyword()
+        ),
+    )
 }
 
 // ---------------------------------------------------------------------
@@ -484,7 +432,8 @@ impl Frame {
     /// act in the frame's own system (`self : instruction`); with no values
     /// they change nothing. Several angles in one `ROT` are RPY: Z, then
     /// Y', then X''. `MIRROR`/`AMIRROR` ignore the values (`MIRROR X0`
-    /// mirrors X; `AMIRROR X0` toggles it).
+    /// mirrors X; `AMIRROR X0` toggles it). The solid-angle rotations
+    /// (`ROTS`, `AROTS`, `CROTS`) are not simulated ([`not_simulated`]).
     ///
     /// On an error the frame is left as it was.
     pub fn apply(
@@ -512,16 +461,17 @@ impl Frame {
             }
         }
         let step = match op {
-            FrameOp::Trans | FrameOp::ATrans => Frame::checked_translation(axes, values),
-            FrameOp::Rot | FrameOp::ARot => rotation_frame(axes, keyword, values, rpl, plane)?,
-            FrameOp::Scale | FrameOp::AScale => scale_frame(axes, keyword, values)?,
-            FrameOp::Mirror | FrameOp::AMirror => {
+            FrameOp::Trans | FrameOp::Atrans => Frame::checked_translation(axes, values),
+            FrameOp::Rot | FrameOp::Arot => rotation_frame(axes, keyword, values, rpl, plane)?,
+            FrameOp::Scale | FrameOp::Ascale => scale_frame(axes, keyword, values)?,
+            FrameOp::Mirror | FrameOp::Amirror => {
                 let mut f = Frame::neutral(axes);
                 for &(i, _) in values {
                     f.axes[i].mirror = true;
                 }
                 f
             }
+            FrameOp::Rots | FrameOp::Arots | FrameOp::Crots => return Err(not_simulated(op)),
         };
         let next = if op.is_additive() {
             self.chain(&step)
@@ -887,20 +837,20 @@ fn scale_zero(what: &str, axis: &str) -> RunError {
 /// translation), `CFINE(axis, value, …)` (fine translation), `CROT(axis,
 /// angle, …)` (RPY, geometry axes), `CSCALE(axis, factor, …)`,
 /// `CMIRROR(axis, …)` and `INVFRAME(frame)`; with no arguments the first
-/// five give the neutral frame. `CRPL`, `CROTS`, `ADDFRAME`, `MEAFRAME` are
-/// known but not supported ([`codes::run::UNKNOWN_FUNCTION`] saying so). `None`:
-/// `name` is no frame function.
+/// five give the neutral frame. `CRPL`, `CROTS`, `MEAFRAME` are known but
+/// not supported ([`codes::run::UNKNOWN_FUNCTION`] saying so). `None`:
+/// `function` is no frame function.
 pub fn frame_function(
     axes: &FrameAxes,
-    name: &str,
+    function: Function,
     args: &[Option<RtValue>],
 ) -> Option<Result<RtValue, RunError>> {
-    let upper = name.trim().to_ascii_uppercase();
-    let frame = match upper.as_str() {
-        "CTRANS" | "CFINE" | "CROT" | "CSCALE" => {
-            pairs(axes, &upper, args).and_then(|values| match upper.as_str() {
-                "CTRANS" => Frame::translation(axes, &values),
-                "CFINE" => {
+    let name = function.name();
+    let frame = match function {
+        Function::Ctrans | Function::Cfine | Function::Crot | Function::Cscale => {
+            pairs(axes, name, args).and_then(|values| match function {
+                Function::Ctrans => Frame::translation(axes, &values),
+                Function::Cfine => {
                     let mut f = Frame::translation(axes, &values)?;
                     for a in &mut f.axes {
                         a.fine = a.coarse;
@@ -908,19 +858,19 @@ pub fn frame_function(
                     }
                     Ok(f)
                 }
-                "CROT" => {
-                    check_values(axes, &upper, &values)?;
+                Function::Crot => {
+                    check_values(axes, name, &values)?;
                     // Checked with every frame function's result below.
-                    rotation_frame(axes, &upper, &values, None, Plane::G17)
+                    rotation_frame(axes, name, &values, None, Plane::G17)
                 }
                 _ => {
-                    check_values(axes, &upper, &values)?;
-                    scale_frame(axes, &upper, &values)
+                    check_values(axes, name, &values)?;
+                    scale_frame(axes, name, &values)
                 }
             })
         }
-        "CMIRROR" => (0..args.len())
-            .map(|k| axis_arg(axes, &upper, args, k))
+        Function::Cmirror => (0..args.len())
+            .map(|k| axis_arg(axes, name, args, k))
             .collect::<Result<Vec<usize>, RunError>>()
             .map(|indices| {
                 let mut f = Frame::neutral(axes);
@@ -929,7 +879,7 @@ pub fn frame_function(
                 }
                 f
             }),
-        "INVFRAME" => match args {
+        Function::Invframe => match args {
             [Some(RtValue::Frame(v))] => Frame::from_value(axes, v).map(|f| f.inverse()),
             [Some(other)] => Err(RunError::type_mismatch(other, "FRAME")),
             _ => Err(RunError::new(
@@ -937,14 +887,14 @@ pub fn frame_function(
                 "`INVFRAME` takes one frame",
             )),
         },
-        "CRPL" | "CROTS" | "ADDFRAME" | "MEAFRAME" => Err(RunError::new(
+        Function::Crpl | Function::Crots | Function::Meaframe => Err(RunError::new(
             codes::run::UNKNOWN_FUNCTION,
-            format!("`{upper}` is not supported by the executor yet"),
+            format!("`{name}` is not supported by the executor yet"),
         )),
         _ => return None,
     };
     Some(frame.and_then(|f| {
-        f.check(&upper)?;
+        f.check(name)?;
         Ok(RtValue::Frame(Arc::new(f.to_value(axes))))
     }))
 }
@@ -1114,7 +1064,7 @@ mod tests {
         assert!(again.id != shifted.id && again.same_as(&shifted));
         let mut moved = clone.clone();
         moved
-            .apply(&axes, FrameOp::ATrans, &[(1, 1.0)], None, plane)
+            .apply(&axes, FrameOp::Atrans, &[(1, 1.0)], None, plane)
             .unwrap();
         assert!(!moved.same_as(&clone) && moved.id != clone.id);
         assert!(!Frame::neutral(&axes).same_as(&shifted));

@@ -73,8 +73,10 @@ pub struct Loaded {
 /// Why a program could not be loaded.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct LoadError {
-    /// [`codes::run::PROGRAM_NOT_FOUND`](gcodec_source::codes::run::PROGRAM_NOT_FOUND) or
-    /// [`codes::run::PROGRAM_UNREADABLE`](gcodec_source::codes::run::PROGRAM_UNREADABLE).
+    /// [`codes::run::PROGRAM_NOT_FOUND`](gcodec_source::codes::run::PROGRAM_NOT_FOUND),
+    /// [`codes::run::PROGRAM_UNREADABLE`](gcodec_source::codes::run::PROGRAM_UNREADABLE),
+    /// or the `io` code of a file that is not read (a link outside the
+    /// search path, a FIFO or a device, a file too large, UTF-16 text).
     pub code: &'static Code,
     /// One sentence naming the program and, when not found, every
     /// directory searched.

@@ -7,12 +7,13 @@ use std::borrow::Cow;
 use std::cell::Cell;
 use std::collections::HashMap;
 
-use gcodec_ail::{Expr, Op, Value, VarKind};
+use gcodec_ail::{Callee, Expr, Op, Value, VarKind, VarName};
 use gcodec_exec::eval::{
     self, Env, NoMachine, RuntimeInterface, assign, assign_list, declare, eval, sprint,
 };
 use gcodec_exec::value::{RtValue, RunError};
 use gcodec_exec::vars::{DEFAULT_R_PARAMETERS, Init, Scope, Variables};
+use gcodec_lang::functions::Function;
 use gcodec_lang::{BinaryOp as B, DataType, UnaryOp as U};
 use gcodec_profile::Profile;
 use gcodec_source::codes;
@@ -66,7 +67,7 @@ fn bool_(v: bool) -> Expr {
 fn r(i: f64) -> Expr {
     Expr::Var {
         var_kind: VarKind::RParameter,
-        name: Cow::Borrowed("R"),
+        name: VarName::Text(Cow::Borrowed("R")),
         indices: vec![n(i)],
     }
 }
@@ -74,7 +75,7 @@ fn r(i: f64) -> Expr {
 fn var(name: &str, indices: Vec<Expr>) -> Expr {
     Expr::Var {
         var_kind: VarKind::User,
-        name: Cow::Owned(name.to_owned()),
+        name: VarName::Text(Cow::Owned(name.to_owned())),
         indices,
     }
 }
@@ -82,14 +83,14 @@ fn var(name: &str, indices: Vec<Expr>) -> Expr {
 fn sys(name: &str, indices: Vec<Expr>) -> Expr {
     Expr::Var {
         var_kind: VarKind::System,
-        name: Cow::Owned(name.to_owned()),
+        name: VarName::named(Cow::Owned(name.to_owned())),
         indices,
     }
 }
 
 fn call(name: &str, args: Vec<Expr>) -> Expr {
     Expr::Call {
-        name: name.to_owned(),
+        name: Callee::named(name),
         args: args.into_iter().map(Some).collect(),
     }
 }
@@ -452,35 +453,43 @@ fn function_errors_have_codes() {
         codes::run::TYPE_MISMATCH
     );
     let omitted = Expr::Call {
-        name: "ATAN2".into(),
+        name: Callee::named("ATAN2"),
         args: vec![Some(n(1.0)), None],
     };
     assert_eq!(err(omitted).code, codes::run::ARGUMENT_COUNT);
 }
 
-/// A runtime that adds one function: the executor's hook for frame and
-/// tool-management functions.
-struct WithTwice;
+/// A runtime that provides one predefined function the evaluator does not
+/// compute itself: the executor's hook for frame and tool-management
+/// functions.
+struct WithIsAxis;
 
-impl RuntimeInterface for WithTwice {
-    fn function(&self, name: &str, args: &[Option<RtValue>]) -> Option<Result<RtValue, RunError>> {
-        (name == "TWICE").then(|| {
-            let x = args[0].as_ref().unwrap().to_real()?;
-            Ok(RtValue::Real(2.0 * x))
-        })
+impl RuntimeInterface for WithIsAxis {
+    fn function(
+        &self,
+        function: Function,
+        _args: &[Option<RtValue>],
+    ) -> Option<Result<RtValue, RunError>> {
+        (function == Function::Isaxis).then_some(Ok(RtValue::Bool(true)))
     }
 }
 
 #[test]
 fn the_runtime_provides_further_functions() {
     let vars = Variables::default();
-    let e = call("TWICE", vec![n(4.0)]);
+    let e = call("ISAXIS", vec![n(1.0)]);
     assert_eq!(
-        eval(&Env::new(&vars, &WithTwice), &e),
-        Ok(RtValue::Real(8.0))
+        eval(&Env::new(&vars, &WithIsAxis), &e),
+        Ok(RtValue::Bool(true))
     );
     assert_eq!(
         eval(&Env::new(&vars, &NoMachine), &e).unwrap_err().code,
+        codes::run::UNKNOWN_FUNCTION
+    );
+    // A name the vocabulary does not list is no function of the runtime.
+    let user = call("TWICE", vec![n(4.0)]);
+    assert_eq!(
+        eval(&Env::new(&vars, &WithIsAxis), &user).unwrap_err().code,
         codes::run::UNKNOWN_FUNCTION
     );
 }
@@ -686,7 +695,7 @@ fn r_parameters_have_the_default_count() {
     vars.set_r(5, 7.0).unwrap();
     let idx = Expr::Var {
         var_kind: VarKind::RParameter,
-        name: "R".into(),
+        name: VarName::Text("R".into()),
         indices: vec![bin(B::Add, r(1.0), n(2.0))],
     };
     assert_eq!(

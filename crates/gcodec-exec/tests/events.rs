@@ -7,6 +7,7 @@ use std::borrow::Cow;
 use std::sync::Arc;
 
 use gcodec_exec::event::*;
+use gcodec_lang::WorkOffsetCode;
 use gcodec_source::{Severity, codes};
 use serde_json::{Value as Json, json};
 

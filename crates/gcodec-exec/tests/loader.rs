@@ -474,6 +474,136 @@ fn a_file_that_cannot_be_read_is_an_error_of_its_own() {
     assert_eq!(error.code, "gcodec::run::program_not_found");
 }
 
+/// Writes `text` to `path`, making its directory.
+fn write(path: &Path, text: impl AsRef<[u8]>) {
+    std::fs::create_dir_all(path.parent().expect("a directory")).expect("mkdir");
+    std::fs::write(path, text).expect("write");
+}
+
+#[cfg(unix)]
+#[test]
+fn links_are_followed_only_into_the_search_path_and_the_link_targets() {
+    use std::os::unix::fs::symlink;
+    let temp = TempDir::new("links");
+    let (sp, other, shared) = (
+        temp.0.join("sp"),
+        temp.0.join("other"),
+        temp.0.join("shared"),
+    );
+    write(&sp.join("REAL.SPF"), "M17\n");
+    write(&sp.join("sub/DEEP.SPF"), "M17\n");
+    write(&shared.join("X.SPF"), "NEXT\nM17\n");
+    for dir in [&sp, &other, &shared] {
+        write(&dir.join("NEXT.SPF"), "M17\n");
+    }
+    symlink(sp.join("REAL.SPF"), sp.join("ALIAS.SPF")).expect("symlink");
+    symlink("sub/DEEP.SPF", sp.join("DEEPER.SPF")).expect("symlink");
+    symlink("/etc/passwd", sp.join("PASSWD.SPF")).expect("symlink");
+    for machine in [&sp, &other] {
+        symlink(shared.join("X.SPF"), machine.join("LINKED.SPF")).expect("symlink");
+    }
+    let from_sp = sp.join("MAIN.MPF").display().to_string();
+    let from_other = other.join("MAIN.MPF").display().to_string();
+
+    // Inside the search path (at any depth): followed, named by the link.
+    let mut loader = loader(SearchPath::new());
+    let alias = load(&mut loader, "ALIAS", &from_sp);
+    assert_eq!(Path::new(&*alias.program.file), sp.join("ALIAS.SPF"));
+    assert_eq!(alias.program.text(), b"M17\n");
+    load(&mut loader, "DEEPER", &from_sp);
+    // Outside: refused, naming the link and its target.
+    for (name, target) in [
+        ("LINKED", shared.join("X.SPF")),
+        ("PASSWD", "/etc/passwd".into()),
+    ] {
+        let error = load_err(&mut loader, name, &from_sp);
+        assert_eq!(error.code, "gcodec::io::outside_search_path", "{name}");
+        let link = sp.join(format!("{name}.SPF"));
+        assert!(
+            error.message.contains(&format!("`{}`", link.display())),
+            "{}",
+            error.message
+        );
+        assert!(
+            error.message.contains(&target.display().to_string()),
+            "{}",
+            error.message
+        );
+        assert_eq!(error.searched, std::slice::from_ref(&sp));
+        assert_eq!(load_err(&mut loader, name, &from_sp), error, "cached");
+    }
+    // A target in a later directory of the search path is inside it.
+    let mut loader = self::loader(SearchPath::new().with_dirs([&shared]));
+    load(&mut loader, "LINKED", &from_sp);
+
+    // The profile's link targets, relative to its file.
+    let mut profile = profile();
+    profile.program.link_target_paths = vec!["shared".to_owned()];
+    let search = SearchPath::new().with_profile(&profile, Some(&temp.0.join("machine.toml")));
+    assert_eq!(search.link_dirs().collect::<Vec<_>>(), [shared.as_path()]);
+    let mut loader = FileLoader::new(search, profile, Definitions::new());
+    assert_eq!(
+        load_err(&mut loader, "PASSWD", &from_sp).code,
+        "gcodec::io::outside_search_path"
+    );
+    // Each link is a program of its own, named by the link, and calls
+    // from it search the link's directory.
+    for machine in [&sp, &other] {
+        let caller = if machine == &sp {
+            &from_sp
+        } else {
+            &from_other
+        };
+        let linked = load(&mut loader, "LINKED", caller);
+        assert_eq!(Path::new(&*linked.program.file), machine.join("LINKED.SPF"));
+        let next = load(&mut loader, "NEXT", &linked.program.file);
+        assert_eq!(Path::new(&*next.program.file), machine.join("NEXT.SPF"));
+    }
+    let first = load(&mut loader, "LINKED", &from_sp);
+    let second = load(&mut loader, "LINKED", &from_other);
+    assert!(!Arc::ptr_eq(&first.program, &second.program));
+}
+
+#[cfg(unix)]
+#[test]
+fn special_large_and_utf16_files_are_refused_and_a_byte_order_mark_dropped() {
+    let temp = TempDir::new("special");
+    let caller_file = temp.0.join("MAIN.MPF").display().to_string();
+    let fifo = temp.0.join("FIFO.SPF");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    write(&temp.0.join("BIG.SPF"), "G1 X1 F100\n".repeat(4));
+    write(&temp.0.join("WIDE.SPF"), b"\xFF\xFEM\x001\x007\x00\n\x00");
+    write(&temp.0.join("MARKED.SPF"), b"\xEF\xBB\xBFG1 X1 F100\nM17\n");
+    let toml =
+        gcodec_profile::BUILTIN_TOML.replace("\n[program]\n", "\n[program]\nmax_file_size = 40\n");
+    let profile = gcodec_profile::load(&toml).expect("the built-in profile, limited");
+    assert_eq!(*profile.program.max_file_size.get_ref(), 40);
+    // On a thread, so that a FIFO that blocked would fail the test.
+    let (sender, receiver) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut loader = FileLoader::new(SearchPath::new(), profile, Definitions::new());
+        let results: Vec<_> = ["FIFO", "BIG", "WIDE", "MARKED"]
+            .into_iter()
+            .map(|name| loader.load(&request(name, &caller_file)))
+            .collect();
+        let _ = sender.send(results);
+    });
+    let results = receiver
+        .recv_timeout(std::time::Duration::from_secs(30))
+        .expect("the loader does not block on a FIFO");
+    let [fifo, big, wide, marked] = &results[..] else {
+        panic!("{results:?}");
+    };
+    let code = |result: &Result<Loaded, LoadError>| result.as_ref().err().map(|e| e.code);
+    assert_eq!(code(fifo), Some(gcodec_source::codes::io::NOT_A_FILE));
+    assert_eq!(code(big), Some(gcodec_source::codes::io::TOO_LARGE));
+    assert_eq!(code(wide), Some(gcodec_source::codes::io::UTF16));
+    let marked = marked.as_ref().expect("a byte-order mark is dropped");
+    assert_eq!(marked.program.text(), b"G1 X1 F100\nM17\n");
+    assert!(!marked.has_errors, "{:?}", marked.diagnostics);
+}
+
 #[test]
 fn two_files_for_one_program_are_reported() {
     let mut loader = loader(with_lib());
@@ -585,26 +715,9 @@ fn a_loader_is_usable_as_a_trait_object() {
     );
 }
 
-/// The shared corpus beside the checkout (`../shared/corpus`) or
-/// `GCODEC_CORPUS_DIR`; `None`, with a notice, where it is absent.
-fn corpus_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("GCODEC_CORPUS_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus"));
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "notice: corpus not found at {}; the corpus cycle test is skipped",
-            dir.display()
-        );
-        None
-    }
-}
-
 #[test]
 fn the_corpus_cycles_load_from_their_directory() {
-    let Some(corpus) = corpus_dir() else {
+    let Some(corpus) = gcodec_testkit::corpus_dir() else {
         return;
     };
     let root = corpus.join("real/PDubovikov+SinumerikLanguage/SinumerikLanguage");

@@ -10,3 +10,44 @@ pub(crate) fn compare_ignore_case(upper: &str, key: &str) -> Ordering {
         .bytes()
         .cmp(key.bytes().map(|b| b.to_ascii_uppercase()))
 }
+
+/// Declares a closed set of names from one list: the enum (a variant's
+/// discriminant is its place in the table), the table of each variant,
+/// its name and the columns after it, sorted by name for binary search
+/// (the module's tests keep it so), and `named` and `name`.
+macro_rules! name_table {
+    (
+        $(#[$enum_doc:meta])* enum $Enum:ident;
+        $(#[$table_doc:meta])* table $TABLE:ident: ($($column:ty),*);
+        $($variant:ident $name:literal $(, $value:expr)*;)*
+    ) => {
+        $(#[$enum_doc])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum $Enum {
+            $($variant,)*
+        }
+
+        $(#[$table_doc])*
+        pub const $TABLE: &[($Enum, &str, $($column),*)] = &[
+            $(($Enum::$variant, $name, $($value),*),)*
+        ];
+
+        impl $Enum {
+            /// The one named `name` (any case); `None` for a name the
+            /// table does not list.
+            pub fn named(name: &str) -> Option<Self> {
+                $TABLE
+                    .binary_search_by(|entry| $crate::names::compare_ignore_case(entry.1, name))
+                    .ok()
+                    .map(|i| $TABLE[i].0)
+            }
+
+            /// The name in upper case.
+            pub fn name(self) -> &'static str {
+                $TABLE[self as usize].1
+            }
+        }
+    };
+}
+
+pub(crate) use name_table;

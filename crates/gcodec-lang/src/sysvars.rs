@@ -43,6 +43,7 @@
 //! `;$PATH=…` in a file header is a comment, not a variable, and is not
 //! listed.
 
+use crate::DataType;
 use crate::names::compare_ignore_case;
 
 /// The indices a system variable takes in brackets.
@@ -170,7 +171,7 @@ static R_NUMBERED: SysVar = var(
 /// test `table_is_sorted_without_duplicates` keeps it so. One entry per
 /// line, so it is left out of rustfmt.
 #[rustfmt::skip]
-static TABLE: &[SysVar] = &[
+const TABLE: &[SysVar] = &[
     // $A…: main-run (actual) values (§7.4). Reading them stops preprocessing.
     var("$AA_IM", Axis, RO, "axis position in the machine coordinate system (setpoint)"),
     var("$AA_IW", Axis, RO, "axis position in the workpiece coordinate system (setpoint)"),
@@ -348,6 +349,154 @@ static TABLE: &[SysVar] = &[
     var("$TC_TPG9", Number, RW, "grinding: parameter number for radius calculation"),
 ];
 
+/// A listed system variable by its place in the registry: what the AIL
+/// carries and the executor matches, so no name is compared when a
+/// program runs. In JSON it is the name ([`SysVarId::name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SysVarId(u16);
+
+impl SysVarId {
+    // The variables the executor gives values to.
+    pub const AA_IM: Self = Self::listed("$AA_IM");
+    pub const AA_IW: Self = Self::listed("$AA_IW");
+    pub const MC_MM_NUM_R_PARAM: Self = Self::listed("$MC_MM_NUM_R_PARAM");
+    pub const MC_TOOL_CHANGE_MODE: Self = Self::listed("$MC_TOOL_CHANGE_MODE");
+    pub const PI: Self = Self::listed("$PI");
+    pub const P_ACTFRAME: Self = Self::listed("$P_ACTFRAME");
+    pub const P_AXN1: Self = Self::listed("$P_AXN1");
+    pub const P_AXN2: Self = Self::listed("$P_AXN2");
+    pub const P_AXN3: Self = Self::listed("$P_AXN3");
+    pub const P_EP: Self = Self::listed("$P_EP");
+    pub const P_F: Self = Self::listed("$P_F");
+    pub const P_GG: Self = Self::listed("$P_GG");
+    pub const P_IFRAME: Self = Self::listed("$P_IFRAME");
+    pub const P_MC: Self = Self::listed("$P_MC");
+    pub const P_PFRAME: Self = Self::listed("$P_PFRAME");
+    pub const P_TOOL: Self = Self::listed("$P_TOOL");
+    pub const P_TOOLNO: Self = Self::listed("$P_TOOLNO");
+    pub const P_TOOLP: Self = Self::listed("$P_TOOLP");
+    pub const P_UIFR: Self = Self::listed("$P_UIFR");
+    pub const P_UIFRNUM: Self = Self::listed("$P_UIFRNUM");
+    pub const R: Self = Self::listed("$R");
+    /// `$TC_DP1`…`$TC_DP25`, the tool offset parameters, in their order.
+    pub const TC_DP: [Self; 25] = [
+        Self::listed("$TC_DP1"),
+        Self::listed("$TC_DP2"),
+        Self::listed("$TC_DP3"),
+        Self::listed("$TC_DP4"),
+        Self::listed("$TC_DP5"),
+        Self::listed("$TC_DP6"),
+        Self::listed("$TC_DP7"),
+        Self::listed("$TC_DP8"),
+        Self::listed("$TC_DP9"),
+        Self::listed("$TC_DP10"),
+        Self::listed("$TC_DP11"),
+        Self::listed("$TC_DP12"),
+        Self::listed("$TC_DP13"),
+        Self::listed("$TC_DP14"),
+        Self::listed("$TC_DP15"),
+        Self::listed("$TC_DP16"),
+        Self::listed("$TC_DP17"),
+        Self::listed("$TC_DP18"),
+        Self::listed("$TC_DP19"),
+        Self::listed("$TC_DP20"),
+        Self::listed("$TC_DP21"),
+        Self::listed("$TC_DP22"),
+        Self::listed("$TC_DP23"),
+        Self::listed("$TC_DP24"),
+        Self::listed("$TC_DP25"),
+    ];
+
+    /// The variable spelled exactly `name` (upper case, one `$`), if the
+    /// registry lists it; `None` for other spellings (`$$P_UIFR`,
+    /// `$p_uifr`, `$R5`), which [`lookup`] reads as the same variable.
+    pub fn exactly(name: &str) -> Option<Self> {
+        let at = TABLE.binary_search_by(|entry| entry.name.cmp(name)).ok()?;
+        Some(Self(at as u16))
+    }
+
+    /// The registry's entry.
+    pub fn var(self) -> &'static SysVar {
+        &TABLE[usize::from(self.0)]
+    }
+
+    /// The name with one `$`, in upper case (`$P_UIFR`).
+    pub fn name(self) -> &'static str {
+        self.var().name
+    }
+
+    /// The listed variable `name`, found when the constants above are
+    /// compiled: a name the registry lacks stops the build, never a run.
+    const fn listed(name: &str) -> Self {
+        let mut at = 0;
+        while at < TABLE.len() {
+            if bytes_equal(TABLE[at].name.as_bytes(), name.as_bytes()) {
+                return Self(at as u16);
+            }
+            at += 1;
+        }
+        panic!("a system variable the registry does not list");
+    }
+}
+
+const fn bytes_equal(a: &[u8], b: &[u8]) -> bool {
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
+
+/// System variables of known type, sorted by name.
+const SYSTEM_TYPES: &[(&str, DataType)] = &[
+    ("$AA_IM", DataType::Real),
+    ("$AA_IW", DataType::Real),
+    ("$AA_MW", DataType::Real),
+    ("$AN_CEC_INPUT_AXIS", DataType::Axis),
+    ("$AN_CEC_OUTPUT_AXIS", DataType::Axis),
+    ("$C_TS", DataType::String { length: None }),
+    ("$PI", DataType::Real),
+    ("$P_AXN1", DataType::Axis),
+    ("$P_AXN2", DataType::Axis),
+    ("$P_AXN3", DataType::Axis),
+    ("$P_EP", DataType::Real),
+    ("$P_F", DataType::Real),
+    ("$P_PROG", DataType::String { length: None }),
+    ("$P_TOOLNO", DataType::Int),
+    ("$P_TOOLP", DataType::Int),
+    ("$P_TOOLR", DataType::Real),
+    ("$R", DataType::Real),
+    ("$R<n>", DataType::Real),
+];
+
+impl SysVar {
+    /// The type of this variable read or written with `count` indices,
+    /// where its shape or the reference settles it; `None` where it is
+    /// not known (never an error).
+    pub fn data_type(&self, count: usize) -> Option<DataType> {
+        use DataType::*;
+        match (self.shape, count) {
+            // A whole frame, or one of an array of frames; a component is REAL.
+            (IndexShape::Frame, 0) | (IndexShape::FrameComponent, 1) => return Some(Frame),
+            (IndexShape::Frame, 2) | (IndexShape::FrameComponent, 3) => return Some(Real),
+            _ => {}
+        }
+        if self.name.starts_with("$TC_DP") {
+            return Some(Real);
+        }
+        SYSTEM_TYPES
+            .binary_search_by(|(entry, _)| entry.cmp(&self.name))
+            .ok()
+            .map(|i| SYSTEM_TYPES[i].1)
+    }
+}
+
 /// All listed variables, sorted by name (without the `$R<n>` form).
 pub fn all() -> &'static [SysVar] {
     TABLE
@@ -407,6 +556,13 @@ fn strip_dollars(name: &str) -> Option<&str> {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn system_type_table_is_sorted() {
+        for pair in SYSTEM_TYPES.windows(2) {
+            assert!(pair[0].0 < pair[1].0, "{} {}", pair[0].0, pair[1].0);
+        }
+    }
     use super::*;
     use std::path::{Path, PathBuf};
 
@@ -459,6 +615,21 @@ mod tests {
             "$ P_UIFR",
         ] {
             assert_eq!(lookup(not), None, "{not:?}");
+        }
+    }
+
+    #[test]
+    fn ids_name_their_entries_exactly() {
+        for entry in TABLE {
+            let id = SysVarId::exactly(entry.name).unwrap();
+            assert_eq!(id.var(), entry);
+            assert_eq!(id.name(), entry.name);
+        }
+        assert_eq!(SysVarId::P_UIFR.name(), "$P_UIFR");
+        assert_eq!(SysVarId::TC_DP[0].name(), "$TC_DP1");
+        assert_eq!(SysVarId::TC_DP[24].name(), "$TC_DP25");
+        for not in ["$$P_UIFR", "$p_uifr", "P_UIFR", "$R5", "$P_UIFR[1]", ""] {
+            assert_eq!(SysVarId::exactly(not), None, "{not}");
         }
     }
 

@@ -1,34 +1,23 @@
 //! The vocabulary's tables against the control's catalogue of names
-//! (`../shared/reference/catalogue` beside the checkout, or
-//! `GCODEC_CATALOGUE_DIR`; skipped with a notice where it is absent):
-//! every name gcodec knows is one the control knows, or is listed here
-//! with the reason it is not in the catalogue. What the catalogue has and
-//! gcodec lacks is printed (issue 16 fills it in).
+//! (`catalogue` in the shared reference, `gcodec_testkit::reference_dir`;
+//! skipped with a notice where it is absent): every name gcodec knows is
+//! one the control knows, or is listed here with the reason it is not in
+//! the catalogue. What the catalogue has and gcodec lacks is printed
+//! (issue 16 fills it in).
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
+use gcodec_lang::addresses::NAMED_ADDRESSES;
 use gcodec_lang::ggroups::G_GROUPS;
 use gcodec_lang::keywords::{KEYWORDS, WORD_CONSTANTS, WORD_OPERATORS};
+use gcodec_lang::procedures::PROCEDURES;
 use gcodec_lang::{functions, sysvars};
 
-/// The catalogue beside the checkout or at `GCODEC_CATALOGUE_DIR`; `None`,
-/// with a notice, where it is absent.
+/// The catalogue in the shared reference; `None`, with a notice, where
+/// it is absent.
 fn catalogue_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("GCODEC_CATALOGUE_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/reference/catalogue")
-        });
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "notice: catalogue not found at {}; catalogue checks skipped",
-            dir.display()
-        );
-        None
-    }
+    gcodec_testkit::reference_dir().map(|dir| dir.join("catalogue"))
 }
 
 /// The names of one catalogue list: the first column, upper case, without
@@ -145,7 +134,7 @@ fn functions_are_the_controls() {
     let Some(dir) = catalogue_dir() else { return };
     let ours: BTreeSet<String> = functions::FUNCTIONS
         .iter()
-        .map(|(name, _)| name.to_string())
+        .map(|(_, name, _)| name.to_string())
         .collect();
     check(
         "functions",
@@ -175,6 +164,54 @@ fn system_variables_are_the_controls() {
         &[(
             "$R",
             "`$R[n]`, the R parameters as an array (reference §7.2)",
+        )],
+    );
+}
+
+#[test]
+fn named_addresses_are_the_controls() {
+    let Some(dir) = catalogue_dir() else { return };
+    let ours: BTreeSet<String> = NAMED_ADDRESSES
+        .iter()
+        .map(|(_, name, _)| name.to_string())
+        .collect();
+    // The catalogue lists `AX` with the keywords.
+    check(
+        "named addresses",
+        &ours,
+        &names(&dir, "addresses.txt"),
+        &names(&dir, "keywords.txt"),
+        &[],
+    );
+}
+
+#[test]
+fn procedures_are_the_controls() {
+    let Some(dir) = catalogue_dir() else { return };
+    let ours: BTreeSet<String> = PROCEDURES
+        .iter()
+        .map(|(_, name)| name.to_string())
+        .collect();
+    // The catalogue lists `CTABEND` with the keywords, `FGREF` with the
+    // addresses, `PROTD` with the functions and `STARTFIFO`, `STOPFIFO`
+    // with the commands.
+    let elsewhere: BTreeSet<String> = [
+        "keywords.txt",
+        "addresses.txt",
+        "functions.txt",
+        "commands.txt",
+    ]
+    .into_iter()
+    .flat_map(|file| names(&dir, file))
+    .collect();
+    check(
+        "procedures",
+        &ours,
+        &names(&dir, "procedures.txt"),
+        &elsewhere,
+        &[(
+            "ACTIVATE",
+            "a procedure without effect in the simulation (SPEC §11, calls); not in the lists of 05/2017",
         )],
     );
 }

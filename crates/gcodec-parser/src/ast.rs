@@ -15,7 +15,7 @@ use std::borrow::Cow;
 
 use compact_str::CompactString;
 use gcodec_lang::addresses::letter_str;
-use gcodec_lang::{BinaryOp, DimensionMode, UnaryOp};
+use gcodec_lang::{BinaryOp, DimensionMode, FrameOp, UnaryOp};
 use gcodec_source::Span;
 use serde::Serialize;
 
@@ -720,63 +720,6 @@ pub struct Case {
 pub struct CaseArm {
     pub value: Expr,
     pub jump: Jump,
-}
-
-/// Programmable frame instructions.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "UPPERCASE")]
-pub enum FrameOp {
-    Trans,
-    Atrans,
-    Rot,
-    Arot,
-    Rots,
-    Arots,
-    Crots,
-    Scale,
-    Ascale,
-    Mirror,
-    Amirror,
-}
-
-impl FrameOp {
-    const ALL: [FrameOp; 11] = [
-        FrameOp::Trans,
-        FrameOp::Atrans,
-        FrameOp::Rot,
-        FrameOp::Arot,
-        FrameOp::Rots,
-        FrameOp::Arots,
-        FrameOp::Crots,
-        FrameOp::Scale,
-        FrameOp::Ascale,
-        FrameOp::Mirror,
-        FrameOp::Amirror,
-    ];
-
-    /// The instruction as the control spells it.
-    pub const fn keyword(self) -> &'static str {
-        match self {
-            FrameOp::Trans => "TRANS",
-            FrameOp::Atrans => "ATRANS",
-            FrameOp::Rot => "ROT",
-            FrameOp::Arot => "AROT",
-            FrameOp::Rots => "ROTS",
-            FrameOp::Arots => "AROTS",
-            FrameOp::Crots => "CROTS",
-            FrameOp::Scale => "SCALE",
-            FrameOp::Ascale => "ASCALE",
-            FrameOp::Mirror => "MIRROR",
-            FrameOp::Amirror => "AMIRROR",
-        }
-    }
-
-    /// The frame instruction named `name` (case-insensitive).
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL
-            .into_iter()
-            .find(|op| op.keyword().eq_ignore_ascii_case(name))
-    }
 }
 
 /// A frame statement.

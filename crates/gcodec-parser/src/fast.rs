@@ -18,6 +18,7 @@
 
 use chumsky::span::SimpleSpan;
 use compact_str::CompactString;
+use gcodec_lang::FrameOp;
 use gcodec_lang::addresses::letter_str;
 use gcodec_lexer::TokenKind as T;
 

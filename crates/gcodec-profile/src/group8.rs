@@ -1,6 +1,7 @@
-//! Group 8 (settable work offset) codes and the ranges profiles name them
-//! by. The index is the control's own: `$P_UIFR[n]` and `$P_UIFRNUM` count
-//! `G500` as 0, `G54`…`G57` as 1…4 and `G505`…`G599` as 5…99.
+//! The Group 8 (settable work offset) codes profiles name and the ranges
+//! they name them by, as `$P_UIFR` indices ([`WorkOffsetCode::index`]).
+
+use gcodec_lang::WorkOffsetCode;
 
 /// The index of a Group 8 code (`G500`, `G54`, `g505`), if it is one.
 pub fn group8_index(code: &str) -> Option<u8> {
@@ -8,27 +9,7 @@ pub fn group8_index(code: &str) -> Option<u8> {
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) || digits.len() > 3 {
         return None;
     }
-    group8_number_index(digits.parse::<u16>().ok()?)
-}
-
-/// The index of the Group 8 command `G<number>` (`54` → 1), if it is one.
-pub fn group8_number_index(number: u16) -> Option<u8> {
-    match number {
-        500 => Some(0),
-        n @ 54..=57 => Some((n - 53) as u8),
-        n @ 505..=599 => Some((n - 500) as u8),
-        _ => None,
-    }
-}
-
-/// The code of a Group 8 index (`0` → `G500`, `1` → `G54`, `5` → `G505`).
-pub fn group8_code(index: u8) -> Option<String> {
-    match index {
-        0 => Some("G500".to_owned()),
-        1..=4 => Some(format!("G{}", 53 + u16::from(index))),
-        5..=99 => Some(format!("G{}", 500 + u16::from(index))),
-        _ => None,
-    }
+    WorkOffsetCode(digits.parse().ok()?).index()
 }
 
 /// An inclusive range of Group 8 indices, from `"G54"` or `"G505-G599"`.
@@ -63,10 +44,9 @@ mod tests {
             assert_eq!(group8_index(not), None, "{not}");
         }
         for i in 0..100 {
-            let code = group8_code(i).unwrap();
+            let code = WorkOffsetCode::of_index(i).unwrap().to_string();
             assert_eq!(group8_index(&code), Some(i), "{code}");
         }
-        assert_eq!(group8_code(100), None);
     }
 
     #[test]

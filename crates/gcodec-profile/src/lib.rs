@@ -19,7 +19,7 @@ mod reset;
 mod schema;
 mod validate;
 
-pub use group8::{group8_code, group8_index, group8_number_index, group8_range};
+pub use group8::{group8_index, group8_range};
 pub use m_classes::m_class;
 pub use reset::reset_defaults;
 pub use schema::*;

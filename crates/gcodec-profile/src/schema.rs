@@ -343,6 +343,15 @@ pub struct ProgramSettings {
     /// Folders searched for subprograms, relative to the profile's folder.
     #[serde(default)]
     pub subprogram_paths: Vec<String>,
+    /// Folders a symbolic link on the search path may point into besides
+    /// the search path's own (a shared cycle folder linked into each
+    /// machine's folder), relative to the profile's folder.
+    #[serde(default)]
+    pub link_target_paths: Vec<String>,
+    /// The largest program file read, in bytes: the main program, called
+    /// programs and definition files.
+    #[serde(default = "default_max_file_size")]
+    pub max_file_size: Spanned<u64>,
     /// Whether `M0` ends a simulated run (it waits for NC start on the
     /// machine); `false` lets runs go on, as `gcodec run --no-stop`.
     #[serde(default = "yes")]
@@ -364,6 +373,8 @@ impl Default for ProgramSettings {
             max_block_length: default_max_block_length(),
             max_feed: default_max_feed(),
             subprogram_paths: Vec::new(),
+            link_target_paths: Vec::new(),
+            max_file_size: default_max_file_size(),
             stop_at_m0: true,
             circle_error_const: default_circle_error_const(),
             circle_error_factor: default_circle_error_factor(),
@@ -454,6 +465,10 @@ fn default_duplicate_suppression_policy() -> DuplicateSuppressionPolicy {
 
 fn default_max_block_length() -> Spanned<u32> {
     spanned(512)
+}
+
+fn default_max_file_size() -> Spanned<u64> {
+    spanned(gcodec_source::DEFAULT_MAX_FILE_SIZE)
 }
 
 fn default_max_feed() -> Spanned<f64> {

@@ -3,7 +3,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use gcodec_source::{Code, Diagnostic, codes};
+use gcodec_source::{Code, Diagnostic, MAX_SOURCE_LEN, codes};
 use toml::Spanned;
 
 use crate::group8::{group8_index, group8_range};
@@ -403,6 +403,14 @@ fn check_program(p: &ProgramSettings, out: &mut Vec<Diagnostic>) {
             codes::profile::OUT_OF_RANGE,
             &p.max_block_length,
             "a block length must be above 0".into(),
+            "here",
+        ));
+    }
+    if !(1..=MAX_SOURCE_LEN as u64).contains(p.max_file_size.get_ref()) {
+        out.push(error(
+            codes::profile::OUT_OF_RANGE,
+            &p.max_file_size,
+            format!("a file size limit is 1…{MAX_SOURCE_LEN} bytes"),
             "here",
         ));
     }

@@ -122,6 +122,30 @@ fn defaults_fill_what_a_profile_leaves_out() {
 const MACHINE: &str = "[machine]\nname = \"m\"\ncontrol = \"840d_sl\"\n";
 
 #[test]
+fn file_size_limit_and_link_targets() {
+    let p = load(MACHINE).expect("minimal profile");
+    assert_eq!(
+        *p.program.max_file_size.get_ref(),
+        gcodec_source::DEFAULT_MAX_FILE_SIZE
+    );
+    assert!(*p.program.max_file_size.get_ref() >= 256 << 20);
+    assert!(p.program.link_target_paths.is_empty());
+    let p = load(&format!(
+        "{MACHINE}[program]\nmax_file_size = 4294967294\nlink_target_paths = [\"/shop/cycles\"]\n"
+    ))
+    .expect("the largest limit");
+    assert_eq!(p.program.link_target_paths, ["/shop/cycles"]);
+    for bad in ["0", "4294967295", "-1"] {
+        let diagnostics =
+            load(&format!("{MACHINE}[program]\nmax_file_size = {bad}\n")).expect_err(bad);
+        assert!(
+            diagnostics.iter().all(|d| !d.labels.is_empty()),
+            "{bad}: {diagnostics:#?}"
+        );
+    }
+}
+
+#[test]
 fn toml_syntax_error() {
     insta::assert_snapshot!(rejected("[machine\nname = 1\n"));
 }

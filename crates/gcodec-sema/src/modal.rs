@@ -484,6 +484,10 @@ struct StateTable {
 
 const STEP_BITS: u32 = 12;
 
+/// The multiplier of FxHash: it spreads the keys of the direct-mapped
+/// step cache over its slots.
+const FX_SEED: u64 = 0x51_7c_c1_b7_27_22_0a_95;
+
 impl StateTable {
     fn new(motions_matter: bool) -> Self {
         Self {
@@ -570,56 +574,6 @@ enum Control<'d> {
     Repeat(&'d RepeatSection),
 }
 
-/// The registry index of `code` if it is a member of `group`, else 0.
-fn member_index(group: u8, code: &str) -> u8 {
-    match ggroups::lookup(code) {
-        Some((found, index)) if found == group => index,
-        _ => 0,
-    }
-}
-
-/// [`member_index`] behind a small direct-mapped cache keyed by the
-/// code's bytes (every Group 8 code fits 8): `group8_selected` is an owned
-/// string per instruction, and a document's are a few distinct codes, so
-/// the cache skips nearly every lookup.
-struct Lookups {
-    /// (bytes, length, group, index); length `u8::MAX` is empty.
-    slots: Box<[(u64, u8, u8, u8); LOOKUP_SLOTS]>,
-}
-
-/// The multiplier of FxHash: it spreads the keys of the direct-mapped
-/// cache over its slots.
-const FX_SEED: u64 = 0x51_7c_c1_b7_27_22_0a_95;
-
-const LOOKUP_SLOTS: usize = 256;
-
-impl Lookups {
-    fn new() -> Self {
-        Self {
-            slots: Box::new([(0, u8::MAX, 0, 0); LOOKUP_SLOTS]),
-        }
-    }
-
-    fn member_index(&mut self, group: u8, code: &str) -> u8 {
-        let bytes = code.as_bytes();
-        if bytes.len() > 8 {
-            return member_index(group, code);
-        }
-        let mut word = [0; 8];
-        word[..bytes.len()].copy_from_slice(bytes);
-        let word = u64::from_le_bytes(word);
-        let len = bytes.len() as u8;
-        let hash = (word ^ u64::from(group) << 56 ^ u64::from(len) << 48).wrapping_mul(FX_SEED);
-        let slot = &mut self.slots[(hash >> 56) as usize % LOOKUP_SLOTS];
-        if (slot.0, slot.1, slot.2) == (word, len, group) {
-            return slot.3;
-        }
-        let index = member_index(group, code);
-        *slot = (word, len, group, index);
-        index
-    }
-}
-
 /// One entry of [`Graph::events`]: a line starts (`code` `LINE`), or an
 /// instruction that may change the state (`code` from [`code`]).
 #[derive(Clone, Copy)]
@@ -666,7 +620,6 @@ impl<'d> Graph<'d> {
     /// One pass over the instructions. Every `Op` is listed so that a new
     /// kind is a compile error here.
     fn new(instructions: &'d [Instruction]) -> Self {
-        let mut lookups = Lookups::new();
         let mut events = Vec::with_capacity(instructions.len());
         let mut blocks: Vec<Block<'d>> = Vec::new();
         let mut labels = Vec::new();
@@ -743,7 +696,9 @@ impl<'d> Graph<'d> {
                     // `null`: a suppression alone, the selection unknown to
                     // lowering; a suppression never changes the selection.
                     if let Some(selected) = group8_selected {
-                        let selected = lookups.member_index(8, selected);
+                        // The registry lists group 8 in `$P_UIFR` order
+                        // from index 1.
+                        let selected = selected.index().map_or(0, |uifr| uifr + 1);
                         let kind = if suppression.is_some() {
                             SUPPRESSED
                         } else {

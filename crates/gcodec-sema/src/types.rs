@@ -1,5 +1,6 @@
-//! The static types of expressions: the data type a declaration names,
-//! and what is known about the types of system variables.
+//! The static types of expressions: the data type a declaration names
+//! (the types of system variables are the vocabulary's,
+//! `gcodec_lang::sysvars::SysVar::data_type`).
 //!
 //! Also the case-insensitive name map the variable checks use: names are
 //! upper-cased into a stack buffer for each lookup, so a lookup allocates
@@ -9,8 +10,6 @@ use gcodec_lang::DataType;
 use gcodec_parser::ast;
 use gcodec_source::{Diagnostic, Span, codes};
 use rustc_hash::FxHashMap;
-
-use gcodec_lang::sysvars::{self, IndexShape};
 
 /// The type a `DEF` or a `PROC` parameter names; the length of
 /// `STRING[n]` when it is a constant.
@@ -33,48 +32,6 @@ pub fn from_ast(kind: &ast::TypeKind) -> DataType {
 pub(crate) fn constant_count(expr: &ast::Expr) -> Option<u32> {
     let value = crate::values::constant(expr)?;
     (value.fract() == 0.0 && value >= 1.0 && value <= f64::from(u32::MAX)).then_some(value as u32)
-}
-
-/// System variables of known type, sorted by name.
-const SYSTEM_TYPES: &[(&str, DataType)] = &[
-    ("$AA_IM", DataType::Real),
-    ("$AA_IW", DataType::Real),
-    ("$AA_MW", DataType::Real),
-    ("$AN_CEC_INPUT_AXIS", DataType::Axis),
-    ("$AN_CEC_OUTPUT_AXIS", DataType::Axis),
-    ("$C_TS", DataType::String { length: None }),
-    ("$PI", DataType::Real),
-    ("$P_AXN1", DataType::Axis),
-    ("$P_AXN2", DataType::Axis),
-    ("$P_AXN3", DataType::Axis),
-    ("$P_EP", DataType::Real),
-    ("$P_F", DataType::Real),
-    ("$P_PROG", DataType::String { length: None }),
-    ("$P_TOOLNO", DataType::Int),
-    ("$P_TOOLP", DataType::Int),
-    ("$P_TOOLR", DataType::Real),
-    ("$R", DataType::Real),
-    ("$R<n>", DataType::Real),
-];
-
-/// The type of a system variable read or written with `count` indices,
-/// where the registry's shape or the reference settles it; `None` where
-/// it is not known (never an error).
-pub(crate) fn system_variable_type(var: &sysvars::SysVar, count: usize) -> Option<DataType> {
-    use DataType::*;
-    match (var.shape, count) {
-        // A whole frame, or one of an array of frames; a component is REAL.
-        (IndexShape::Frame, 0) | (IndexShape::FrameComponent, 1) => return Some(Frame),
-        (IndexShape::Frame, 2) | (IndexShape::FrameComponent, 3) => return Some(Real),
-        _ => {}
-    }
-    if var.name.starts_with("$TC_DP") {
-        return Some(Real);
-    }
-    SYSTEM_TYPES
-        .binary_search_by(|(entry, _)| entry.cmp(&var.name))
-        .ok()
-        .map(|i| SYSTEM_TYPES[i].1)
 }
 
 /// What is known of a value beyond its type when it is a constant.
@@ -252,13 +209,6 @@ impl<V> NameMap<V> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn system_type_table_is_sorted() {
-        for pair in SYSTEM_TYPES.windows(2) {
-            assert!(pair[0].0 < pair[1].0, "{} {}", pair[0].0, pair[1].0);
-        }
-    }
 
     #[test]
     fn name_map_ignores_case() {

@@ -79,7 +79,7 @@ pub(crate) fn tree(expr: &ast::Expr) -> ail::Expr {
         ExprKind::Bool { value } => ail::Expr::Bool { value: *value },
         ExprKind::Var { var } => variable(var),
         ExprKind::Call(call) => ail::Expr::Call {
-            name: call.name.to_ascii_uppercase().to_string(),
+            name: ail::Callee::named(&call.name),
             args: call.args.iter().map(|a| a.as_ref().map(tree)).collect(),
         },
         ExprKind::Unary { op, operand } => ail::Expr::Unary {
@@ -103,8 +103,13 @@ pub(crate) fn variable(var: &ast::VarRef) -> ail::Expr {
             ast::VarKind::System => ail::VarKind::System,
         },
         name: match var.kind {
-            ast::VarKind::RParameter => Cow::Borrowed("R"),
-            _ => Cow::Owned(var.name.to_ascii_uppercase().to_string()),
+            ast::VarKind::RParameter => ail::VarName::Text(Cow::Borrowed("R")),
+            ast::VarKind::Name => {
+                ail::VarName::Text(Cow::Owned(var.name.to_ascii_uppercase().to_string()))
+            }
+            ast::VarKind::System => {
+                ail::VarName::named(Cow::Owned(var.name.to_ascii_uppercase().to_string()))
+            }
         },
         indices: var.indices.iter().map(tree).collect(),
     }

@@ -321,7 +321,7 @@ fn frames_stand_alone_and_name_axes() {
     let frames: Vec<(String, usize)> = ops(&l)
         .into_iter()
         .filter_map(|op| match op {
-            Op::Frame(f) => Some((f.op.clone(), f.values.len())),
+            Op::Frame(f) => Some((f.op.keyword().to_owned(), f.values.len())),
             _ => None,
         })
         .collect();
@@ -431,7 +431,7 @@ fn frame_values_for_axes_named_in_brackets() {
     let Some(Op::Frame(frame)) = ops(&l).into_iter().find(|op| matches!(op, Op::Frame(_))) else {
         panic!("{}", listing(&l));
     };
-    assert_eq!(frame.op, "ATRANS");
+    assert_eq!(frame.op.keyword(), "ATRANS");
     assert_eq!(frame.values.len(), 1);
     assert_eq!(frame.values[0].axis, "Y");
     assert_eq!(frame.indirect_values.len(), 1);

@@ -187,7 +187,7 @@ fn frames() {
         .iter()
         .filter_map(|i| match &i.op {
             Op::Frame(f) => Some((
-                f.op.clone(),
+                f.op.keyword().to_owned(),
                 f.values.iter().map(|v| v.axis.to_string()).collect(),
             )),
             _ => None,

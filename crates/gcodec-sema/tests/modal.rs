@@ -9,6 +9,7 @@ mod program;
 use std::sync::Arc;
 
 use gcodec_ail::{ByteRange, Document, Instruction, Op, Source, Value};
+use gcodec_lang::WorkOffsetCode;
 use gcodec_profile::Profile;
 use gcodec_sema::modal::{LineState, ModalState, ModalStates, Start};
 
@@ -487,7 +488,7 @@ fn random_documents_terminate() {
                 7 => Op::Return { values: Vec::new() },
                 8 => Op::CancelModalCall,
                 9 => Op::WorkOffset {
-                    group8_selected: Some("g55".into()),
+                    group8_selected: Some(WorkOffsetCode(55)),
                     suppression: None,
                     suppression_scope: None,
                 },
@@ -621,7 +622,7 @@ mod reference {
                 suppression,
                 ..
             } => {
-                let selected = member_index(8, selected);
+                let selected = member_index(8, &selected.to_string());
                 if suppression.is_none() || !(state.0[7] != 0 && state.0[7] == selected) {
                     state.0[7] = if suppression.is_none() { selected } else { 0 };
                 }
@@ -915,9 +916,8 @@ fn the_analysis_agrees_with_a_reference_on_random_documents() {
                 }
                 11 => Op::CancelModalCall,
                 12 => Op::WorkOffset {
-                    group8_selected: [None, Some("g55".into()), Some("G54".into())]
-                        [next(3) as usize]
-                        .clone(),
+                    group8_selected: [None, Some(WorkOffsetCode(55)), Some(WorkOffsetCode::G54)]
+                        [next(3) as usize],
                     suppression: (next(2) == 0).then_some(gcodec_ail::Suppression::G53),
                     suppression_scope: None,
                 },

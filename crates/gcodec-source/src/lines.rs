@@ -5,9 +5,13 @@
 //! table), so on large files both are split over two threads: each reads
 //! its half of the file and finds the lines in it.
 
+#[cfg(unix)]
 use std::fs::File;
-use std::io::{self, Read};
-use std::path::Path;
+#[cfg(unix)]
+use std::io;
+
+/// Files larger than this cannot be addressed by 32-bit spans.
+pub const MAX_SOURCE_LEN: usize = u32::MAX as usize - 1;
 
 /// Sources from this size on are read and have their lines found on two
 /// threads.
@@ -38,61 +42,40 @@ pub fn line_starts(bytes: &[u8]) -> Vec<u32> {
     starts
 }
 
-/// The bytes of the file at `path` and their [`line_starts`]; an
-/// `InvalidData` error if it is longer than `max_len`.
-pub(crate) fn read_with_lines(path: &Path, max_len: usize) -> io::Result<(Vec<u8>, Vec<u32>)> {
-    let too_large = || {
-        io::Error::new(
-            io::ErrorKind::InvalidData,
-            format!("file is larger than {max_len} bytes"),
-        )
-    };
-    let mut file = File::open(path)?;
-    let metadata = file.metadata()?;
-    // A regular file's length is known; a pipe's or a device's is not.
-    let len = usize::try_from(metadata.len()).unwrap_or(usize::MAX);
-    if metadata.is_file() && len > max_len {
-        return Err(too_large());
-    }
-    #[cfg(unix)]
-    if metadata.is_file()
-        && len >= PARALLEL_FROM
-        && let Some(read) = read_in_halves(&file, len)?
-    {
-        return Ok(read);
-    }
-    let mut bytes = Vec::new();
-    file.read_to_end(&mut bytes)?;
-    if bytes.len() > max_len {
-        return Err(too_large());
-    }
-    let starts = line_starts(&bytes);
-    Ok((bytes, starts))
-}
-
-/// Reads the `len` bytes of `file`, each half on its own thread, finding
-/// the lines as it goes; `None` if the file grew meanwhile (the caller
-/// then reads it whole).
+/// Reads the bytes of `file` from `offset` to `len`, each half on its own
+/// thread, finding the lines as it goes; `None` for fewer bytes than are
+/// worth two threads, or if the file grew meanwhile (the caller then
+/// reads it in one go).
 #[cfg(unix)]
-fn read_in_halves(file: &File, len: usize) -> io::Result<Option<(Vec<u8>, Vec<u32>)>> {
+pub(crate) fn read_large(
+    file: &File,
+    offset: u64,
+    len: u64,
+) -> io::Result<Option<(Vec<u8>, Vec<u32>)>> {
     use std::os::unix::fs::FileExt;
-    let mut bytes = vec![0; len];
-    let middle = len / 2;
+    let Ok(count) = usize::try_from(len.saturating_sub(offset)) else {
+        return Ok(None);
+    };
+    if count < PARALLEL_FROM {
+        return Ok(None);
+    }
+    let mut bytes = vec![0; count];
+    let middle = count / 2;
     let (first, second) = bytes.split_at_mut(middle);
     let starts = in_halves::<io::Error>(
         |starts| {
-            file.read_exact_at(first, 0)?;
+            file.read_exact_at(first, offset)?;
             push_line_starts(first, 0, starts);
             Ok(())
         },
         |starts| {
-            file.read_exact_at(second, middle as u64)?;
+            file.read_exact_at(second, offset + middle as u64)?;
             push_line_starts(second, middle, starts);
             Ok(())
         },
-        len,
+        count,
     )?;
-    let grew = file.read_at(&mut [0], len as u64)? > 0;
+    let grew = file.read_at(&mut [0], len)? > 0;
     Ok((!grew).then_some((bytes, starts)))
 }
 
@@ -127,12 +110,12 @@ fn push_line_starts(part: &[u8], base: usize, starts: &mut Vec<u32>) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// A large source, with a line end just before, at or after the
     /// middle where it is split.
-    fn large_sources() -> Vec<Vec<u8>> {
+    pub(crate) fn large_sources() -> Vec<Vec<u8>> {
         let mut base = Vec::new();
         while base.len() < PARALLEL_FROM + 100 {
             base.extend_from_slice(b"N10 G1 X1 Y2\r\n");
@@ -149,7 +132,8 @@ mod tests {
             .collect()
     }
 
-    fn one_scan(bytes: &[u8]) -> Vec<u32> {
+    /// The line table of `bytes`, by the plainest scan.
+    pub(crate) fn one_scan(bytes: &[u8]) -> Vec<u32> {
         let mut expected = vec![0];
         expected.extend(
             (0..bytes.len())
@@ -165,23 +149,5 @@ mod tests {
         for bytes in large_sources() {
             assert_eq!(line_starts(&bytes), one_scan(&bytes));
         }
-    }
-
-    /// A large file read in halves has its bytes and the table of one
-    /// scan; a file over the limit is refused.
-    #[test]
-    fn a_large_file_is_read_whole_with_its_lines() {
-        let dir = std::env::temp_dir().join(format!("gcodec-lines-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        for (i, bytes) in large_sources().into_iter().enumerate() {
-            let path = dir.join(format!("large{i}.mpf"));
-            std::fs::write(&path, &bytes).unwrap();
-            let (read, starts) = read_with_lines(&path, usize::MAX).unwrap();
-            assert!(read == bytes, "the bytes of {}", path.display());
-            assert_eq!(starts, one_scan(&bytes));
-            let refused = read_with_lines(&path, bytes.len() - 1).unwrap_err();
-            assert_eq!(refused.kind(), io::ErrorKind::InvalidData);
-        }
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -1,9 +1,12 @@
 use std::path::{Path, PathBuf};
 
 use crate::Span;
-use crate::lines::{line_starts, read_with_lines};
+use crate::lines::{MAX_SOURCE_LEN, line_starts};
+use crate::read::{DEFAULT_MAX_FILE_SIZE, ReadError, UTF8_BOM, read_program};
 
-/// One part program as read from disk: its name and its bytes.
+/// One part program as read from disk: its name and its bytes (after a
+/// UTF-8 byte-order mark, which is not part of the program: spans count
+/// from the byte after it).
 #[derive(Clone, Debug)]
 pub struct SourceFile {
     name: String,
@@ -12,17 +15,18 @@ pub struct SourceFile {
     line_starts: Vec<u32>,
 }
 
-/// Files larger than this cannot be addressed by 32-bit spans.
-pub const MAX_SOURCE_LEN: usize = u32::MAX as usize - 1;
-
 impl SourceFile {
-    /// A source held in memory, named `name` in diagnostics and dumps.
+    /// A source held in memory, named `name` in diagnostics and dumps; a
+    /// leading UTF-8 byte-order mark is dropped, as when a file is read.
     ///
     /// # Panics
     /// Never for files up to [`MAX_SOURCE_LEN`] bytes; callers reading from
     /// disk use [`SourceFile::read`], which reports larger files as an error.
     pub fn new(name: impl Into<String>, bytes: impl Into<Vec<u8>>) -> Self {
         let mut bytes = bytes.into();
+        if bytes.starts_with(UTF8_BOM) {
+            bytes.drain(..UTF8_BOM.len());
+        }
         if bytes.len() > MAX_SOURCE_LEN {
             // Spans are u32: keep the addressable prefix rather than wrap.
             bytes.truncate(MAX_SOURCE_LEN);
@@ -36,15 +40,33 @@ impl SourceFile {
         }
     }
 
-    /// Reads a file from disk.
-    pub fn read(path: &Path) -> std::io::Result<Self> {
-        let (bytes, line_starts) = read_with_lines(path, MAX_SOURCE_LEN)?;
+    /// Reads a program's file from disk, if it is a regular file of at
+    /// most [`DEFAULT_MAX_FILE_SIZE`] bytes (see [`SourceFile::read_capped`]).
+    pub fn read(path: &Path) -> Result<Self, ReadError> {
+        Self::read_capped(path, DEFAULT_MAX_FILE_SIZE)
+    }
+
+    /// Reads a program's file from disk: a regular file only (a FIFO or a
+    /// device is [`ReadError::NotAFile`], before anything is read from
+    /// it) of at most `max_len` bytes (checked before reading, and no
+    /// more is read), not UTF-16 text; a leading UTF-8 byte-order mark is
+    /// dropped.
+    pub fn read_capped(path: &Path, max_len: u64) -> Result<Self, ReadError> {
+        let (bytes, line_starts) = read_program(path, max_len)?;
         Ok(Self {
             name: path.display().to_string(),
             path: Some(path.to_path_buf()),
             bytes,
             line_starts,
         })
+    }
+
+    /// The same file named by another path that leads to it (a symbolic
+    /// link to the file read), in diagnostics and as its path.
+    pub fn named(mut self, path: &Path) -> Self {
+        self.name = path.display().to_string();
+        self.path = Some(path.to_path_buf());
+        self
     }
 
     /// The name used in diagnostics and dumps (the path as given).
@@ -149,6 +171,17 @@ mod tests {
         assert_eq!(f.line_col(3), (2, 1));
         assert_eq!(f.line_col(7), (4, 1));
         assert_eq!(f.line_col(9), (4, 3));
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_no_part_of_the_text() {
+        let file = SourceFile::new("t.mpf", "\u{feff}G0 X1\nM30");
+        assert_eq!(file.bytes(), b"G0 X1\nM30");
+        assert_eq!(file.line_starts(), [0, 6]);
+        assert_eq!(file.line_col(0), (1, 1));
+        // Only at the start.
+        let file = SourceFile::new("t.mpf", "G0\n\u{feff}M30");
+        assert_eq!(file.bytes().len(), 9);
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! dev-dependency only, never a dependency of a library.
 //!
 //! - [`paths`]: where the programs are (the repository, the shared
-//!   corpus) and how a corpus program is shown.
+//!   corpus and reference) and how a corpus program is shown.
 //! - [`fixtures`]: a fixture of `tests/fixtures/KIND/`, its `; KIND:` line
 //!   and its snapshot (the scheme is in `tests/fixtures/README.md`).
 //! - [`profiles`]: the shipped profiles and small test machines.
@@ -19,5 +19,5 @@ pub mod profiles;
 
 pub use compile::lower_clean;
 pub use fixtures::{Fixture, Header};
-pub use paths::{all_programs, corpus_dir, each_program, programs, repo, shown};
+pub use paths::{all_programs, corpus_dir, each_program, programs, reference_dir, repo, shown};
 pub use profiles::{machine, profile};

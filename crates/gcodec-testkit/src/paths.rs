@@ -1,5 +1,5 @@
-//! Where the programs are: the repository, its fixtures and examples, and
-//! the shared corpus.
+//! Where the programs are: the repository, its fixtures and examples, the
+//! shared corpus and the shared reference.
 
 use std::path::{Path, PathBuf};
 
@@ -11,14 +11,27 @@ pub fn repo() -> PathBuf {
 /// The shared corpus beside the checkout (`../shared/corpus`) or
 /// `GCODEC_CORPUS_DIR`; `None`, with a notice, where it is absent.
 pub fn corpus_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("GCODEC_CORPUS_DIR")
+    shared_dir("GCODEC_CORPUS_DIR", "corpus")
+}
+
+/// The shared reference beside the checkout (`../shared/reference`: the
+/// control's catalogue of names, the language notes) or
+/// `GCODEC_REFERENCE_DIR`; `None`, with a notice, where it is absent.
+pub fn reference_dir() -> Option<PathBuf> {
+    shared_dir("GCODEC_REFERENCE_DIR", "reference")
+}
+
+/// `../shared/NAME` beside the checkout, or the directory the variable
+/// `var` names; `None`, with a notice, where it is absent.
+fn shared_dir(var: &str, name: &str) -> Option<PathBuf> {
+    let dir = std::env::var_os(var)
         .map(PathBuf::from)
-        .unwrap_or_else(|| repo().join("../shared/corpus"));
+        .unwrap_or_else(|| repo().join("../shared").join(name));
     if dir.is_dir() {
         Some(dir)
     } else {
         eprintln!(
-            "notice: corpus not found at {}; corpus checks skipped",
+            "notice: {name} not found at {}; {name} checks skipped",
             dir.display()
         );
         None

@@ -10,6 +10,7 @@
 use std::sync::Arc;
 
 use gcodec_ail::{Call, Declare, Expr, Instruction, Op, Parameter, RepeatSection, Value, VarKind};
+use gcodec_lang::procedures::Procedure;
 use gcodec_source::{Severity, codes};
 
 use super::{Channel, Flow, Level, LevelKind};
@@ -122,76 +123,10 @@ fn argument_value(value: &RtValue) -> ArgumentValue {
     }
 }
 
-/// Predefined procedures of the control (reference §7.6 "Procedures"):
-/// they are no subprograms, are never looked up on the search path, and
-/// (but `SETAL`) do not change what the simulation shows: each is
-/// reported once as advice.
-const PREDEFINED_PROCEDURES: &[&str] = &[
-    "ACTIVATE",
-    "CANCEL",
-    "CLEARM",
-    "CONTDCON",
-    "CONTPRON",
-    "CORROF",
-    "COUPDEL",
-    "COUPOF",
-    "COUPON",
-    "CPROT",
-    "CPROTDEF",
-    "CTABDEF",
-    "CTABEND",
-    "DELDTG",
-    "DELETE",
-    "EGOFC",
-    "EGOFS",
-    "EGON",
-    "EXECSTRING",
-    "EXECTAB",
-    "FGREF",
-    "FGROUP",
-    "GET",
-    "GETD",
-    "LEADOF",
-    "LEADON",
-    "NEWCONF",
-    "NPROT",
-    "NPROTDEF",
-    "PRESETON",
-    "PRESETONS",
-    "PROTA",
-    "PROTD",
-    "PUTFTOC",
-    "PUTFTOCF",
-    "READ",
-    "RELEASE",
-    "SETM",
-    "SETMS",
-    "SETPIECE",
-    "SPCOF",
-    "SPCON",
-    "STARTFIFO",
-    "STOPFIFO",
-    "TANGOF",
-    "TANGON",
-    "TOFFOF",
-    "TOFFON",
-    "TRAANG",
-    "TRACYL",
-    "TRAFOOF",
-    "TRANSMIT",
-    "TRAORI",
-    "WAITC",
-    "WAITE",
-    "WAITM",
-    "WAITMC",
-    "WAITP",
-    "WAITS",
-    "WRITE",
-];
-
 impl Channel<'_> {
     /// `SETAL(n)` raises alarm `n` (the run ends); the other predefined
-    /// procedures are reported once. `None` when `target` is none.
+    /// procedures do not change what the simulation shows and are
+    /// reported once. `None` when `target` is none.
     fn predefined(
         &mut self,
         program: &Arc<Program>,
@@ -199,7 +134,8 @@ impl Channel<'_> {
         target: &str,
         call: &Call,
     ) -> Option<Result<Flow, RunError>> {
-        if target == "SETAL" {
+        let procedure = Procedure::named(target)?;
+        if procedure == Procedure::Setal {
             let env = self.env();
             let number = call
                 .args
@@ -223,9 +159,6 @@ impl Channel<'_> {
             });
             self.emit_at(program, instruction, event);
             return Some(Ok(Flow::End(ProgramEndReason::Alarm)));
-        }
-        if !PREDEFINED_PROCEDURES.contains(&target) {
-            return None;
         }
         self.not_simulated(program, instruction, target, || {
             format!("the predefined procedure `{target}` has no effect in the simulation")
@@ -381,7 +314,9 @@ impl Channel<'_> {
                     message.push_str("; ");
                     message.push_str(&help);
                 }
-                Err(RunError::new(codes::run::PROGRAM_NOT_FOUND, message))
+                // Its own code: not found, unreadable, a link outside the
+                // search path, a FIFO, too large.
+                Err(RunError::new(error.code, message))
             }
         }
     }
@@ -585,7 +520,7 @@ impl Channel<'_> {
                         param: param.clone(),
                         target: VarRef {
                             kind: *var_kind,
-                            name: name.to_string(),
+                            name: name.as_str().to_owned(),
                             indices: evaluated,
                         },
                     }

@@ -8,7 +8,8 @@ use gcodec_ail::{
     Address, Frame as FrameInstruction, HFunction, Instruction, MFunction, SelectorKind,
     ToolChangeTrigger, ToolSelect, Value,
 };
-use gcodec_lang::MClass;
+use gcodec_lang::addresses::NamedAddress;
+use gcodec_lang::{FrameOp, MClass};
 use gcodec_profile::{Policy, Tool, ToolState, UnresolvedToolPolicy};
 use gcodec_source::{Severity, codes};
 
@@ -20,7 +21,7 @@ use crate::event::{
     SelectionSource, SpindleEvent, SpindleState, StopEvent, StopReason, ToolChangeEvent,
     ToolSelectEvent,
 };
-use crate::frames::FrameOp;
+use crate::frames;
 use crate::program::Program;
 use crate::value::{RtValue, RunError};
 
@@ -262,8 +263,8 @@ impl Channel<'_> {
     ) -> Result<(), RunError> {
         let env = self.env();
         let value = eval::eval_real(&env, &address.value)?;
-        match address.address.as_str() {
-            "SPOS" | "SPOSA" => {
+        match address.address {
+            NamedAddress::Spos | NamedAddress::Sposa => {
                 let number = self.extension(address.extension, address.extension_expr.as_ref())?;
                 let s = self.state.spindle(number);
                 s.state = SpindleState::Positioned;
@@ -271,6 +272,7 @@ impl Channel<'_> {
                 self.spindle_event(program, instruction, number);
             }
             other => {
+                let other = other.name();
                 let key = format!("address {other}");
                 self.not_simulated(program, instruction, &key, || {
                     format!("`{other}=` has no effect in the simulation")
@@ -281,21 +283,16 @@ impl Channel<'_> {
     }
 
     pub(super) fn frame(&mut self, frame: &FrameInstruction) -> Result<(), RunError> {
-        let op = FrameOp::parse(&frame.op).ok_or_else(|| {
-            RunError::new(
-                codes::run::FRAME,
-                format!(
-                    "`{}` is not simulated: the positions after it would be wrong",
-                    frame.op
-                ),
-            )
-        })?;
+        let op = frame.op;
+        if op.is_solid_angle() {
+            return Err(frames::not_simulated(op));
+        }
         // A translation of a linear axis is a length: in mm from inch.
         let inch = self.state.inch();
         let state = &self.state;
         let scaled = |axis: usize, value: f64| {
             let is_length =
-                matches!(op, FrameOp::Trans | FrameOp::ATrans) && !state.axes[axis].rotary;
+                matches!(op, FrameOp::Trans | FrameOp::Atrans) && !state.axes[axis].rotary;
             (
                 axis,
                 if is_length && inch {

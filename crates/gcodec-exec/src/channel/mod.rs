@@ -28,6 +28,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use gcodec_ail::{Instruction, Op};
+use gcodec_lang::WorkOffsetCode;
 use gcodec_lang::ggroups;
 use gcodec_profile::Profile;
 use gcodec_source::{Code, Severity, codes};
@@ -39,7 +40,7 @@ pub use summary::{RunSummary, ToolSummary};
 use crate::eval::{self, Env};
 use crate::event::{
     BlockRow, CallKind, DiagnosticEvent, Event, EventKind, EventSink, EventSource, MessageEvent,
-    ModalChangeEvent, ProgramEndEvent, ProgramEndReason, StopEvent, StopReason, WorkOffsetCode,
+    ModalChangeEvent, ProgramEndEvent, ProgramEndReason, StopEvent, StopReason,
 };
 use crate::geometry::CircleTolerance;
 use crate::loader::ProgramLoader;
@@ -580,7 +581,7 @@ impl<'r> Channel<'r> {
                 suppression,
                 ..
             } => {
-                if let Some(code) = group8_selected.as_deref().and_then(WorkOffsetCode::parse) {
+                if let Some(code) = *group8_selected {
                     self.select_work_offset(program, instruction, code);
                 }
                 self.state.suppression = *suppression;
@@ -759,15 +760,16 @@ impl<'r> Channel<'r> {
         let n = eval::eval_value(&self.env(), index)?.to_int()?;
         let member = u8::try_from(n)
             .ok()
-            .and_then(|n| Some((n, ggroups::member(group, n)?)));
-        let Some((index, code)) = member else {
+            .filter(|&n| ggroups::member(group, n).is_some());
+        let Some(index) = member else {
             return Err(RunError::new(
                 codes::run::INDEX_OUT_OF_RANGE,
                 format!("`G[{group}]={n}`: group {group} has no command at index {n}"),
             ));
         };
         if group == 8 {
-            if let Some(selected) = WorkOffsetCode::parse(code) {
+            // The registry lists group 8 in `$P_UIFR` order from index 1.
+            if let Some(selected) = index.checked_sub(1).and_then(WorkOffsetCode::of_index) {
                 self.select_work_offset(program, instruction, selected);
             }
         } else if ggroups::is_modal(group) {
@@ -784,7 +786,7 @@ impl<'r> Channel<'r> {
     ) {
         self.state.group8 = code;
         // The registry lists group 8 in `$P_UIFR` order from index 1.
-        if let Some(uifr) = gcodec_profile::group8_number_index(code.0) {
+        if let Some(uifr) = code.index() {
             self.set_modal(program, instruction, 8, uifr + 1);
         }
     }

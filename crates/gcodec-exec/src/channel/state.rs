@@ -5,8 +5,11 @@
 use std::cell::{Ref, RefCell};
 use std::sync::Arc;
 
+use gcodec_lang::WorkOffsetCode;
+use gcodec_lang::functions::Function;
 use gcodec_lang::ggroups;
 use gcodec_lang::modal::GROUP_COUNT;
+use gcodec_lang::sysvars::SysVarId;
 use gcodec_profile::reset_defaults;
 use gcodec_profile::{AxisKind, Profile};
 use gcodec_source::codes;
@@ -15,9 +18,9 @@ use crate::eval::{
     RuntimeInterface, machine_axis_number, profile_offsets, profile_system_variable,
     settable_offset,
 };
-use gcodec_ail::Suppression;
+use gcodec_ail::{Suppression, VarName};
 
-use crate::event::{AxisName, Plane, SpindleState, WorkOffsetCode};
+use crate::event::{AxisName, Plane, SpindleState};
 use crate::frames::{Frame, FrameAxes, chain_values, frame_function};
 use crate::value::{FrameValue, RtValue, RunError};
 
@@ -278,7 +281,7 @@ impl MachineState {
 
     /// `$P_UIFRNUM`: the index of the Group 8 selection.
     pub fn group8_index(&self) -> u8 {
-        gcodec_profile::group8_number_index(self.group8.0).unwrap_or(0)
+        self.group8.index().unwrap_or(0)
     }
 
     /// Workpiece coordinates (mm, radius) of the machine position `machine`
@@ -374,7 +377,8 @@ impl RuntimeInterface for MachineState {
 
     /// The channel's own state first; the profile's defaults for the rest
     /// ([`profile_system_variable`]).
-    fn system_variable(&self, name: &str, indices: &[RtValue]) -> Result<RtValue, RunError> {
+    fn system_variable(&self, var: &VarName, indices: &[RtValue]) -> Result<RtValue, RunError> {
+        let name = var.as_str();
         let one_axis = |what: &str| -> Result<usize, RunError> {
             match indices {
                 [axis] => self.axis_argument(name, axis),
@@ -384,31 +388,31 @@ impl RuntimeInterface for MachineState {
                 )),
             }
         };
-        match (name, indices) {
-            ("$P_TOOLNO", []) => Ok(RtValue::Int(
+        let Some(id) = var.system() else {
+            return profile_system_variable(Some(&self.profile), var, indices);
+        };
+        match (id, indices) {
+            (SysVarId::P_TOOLNO, []) => Ok(RtValue::Int(
                 self.active_tool.as_ref().map_or(0, |t| t.number as i32),
             )),
-            ("$P_TOOLP", []) => Ok(RtValue::Int(
+            (SysVarId::P_TOOLP, []) => Ok(RtValue::Int(
                 self.pending
                     .as_ref()
                     .and_then(|p| p.tool.as_ref())
                     .map_or(0, |t| t.number as i32),
             )),
-            ("$P_TOOL", []) => Ok(RtValue::Int(self.edge as i32)),
-            ("$P_F", []) => Ok(RtValue::Real(self.feed)),
-            ("$P_S", []) => Ok(RtValue::Real(
-                self.master_spindle().map_or(0.0, |s| s.speed),
-            )),
-            ("$P_MC", []) => Ok(RtValue::Bool(self.modal_call.is_some())),
-            ("$P_UIFRNUM", []) => Ok(RtValue::Int(i32::from(self.group8_index()))),
-            ("$P_PFRAME", []) => Ok(self.frame_value(&self.programmable)),
-            ("$P_IFRAME", []) => Ok(self.frame_value(self.active_settable())),
-            ("$P_ACTFRAME", []) => Ok(self.frame_value(&self.total_frame())),
-            ("$P_UIFR", [n]) => {
+            (SysVarId::P_TOOL, []) => Ok(RtValue::Int(self.edge as i32)),
+            (SysVarId::P_F, []) => Ok(RtValue::Real(self.feed)),
+            (SysVarId::P_MC, []) => Ok(RtValue::Bool(self.modal_call.is_some())),
+            (SysVarId::P_UIFRNUM, []) => Ok(RtValue::Int(i32::from(self.group8_index()))),
+            (SysVarId::P_PFRAME, []) => Ok(self.frame_value(&self.programmable)),
+            (SysVarId::P_IFRAME, []) => Ok(self.frame_value(self.active_settable())),
+            (SysVarId::P_ACTFRAME, []) => Ok(self.frame_value(&self.total_frame())),
+            (SysVarId::P_UIFR, [n]) => {
                 let slot = self.supported_settable(n.to_int()?)?;
                 Ok(self.frame_value(&self.settable[slot]))
             }
-            ("$P_UIFR", [n, axis, component]) => {
+            (SysVarId::P_UIFR, [n, axis, component]) => {
                 let slot = self.supported_settable(n.to_int()?)?;
                 let frame = self.settable[slot].to_value(&self.frame_axes);
                 let axis = self.axis_argument(name, axis)?;
@@ -416,7 +420,7 @@ impl RuntimeInterface for MachineState {
                     .component_of(&self.axes[axis].name, component)
                     .map(RtValue::Real)
             }
-            ("$P_GG", [n]) => {
+            (SysVarId::P_GG, [n]) => {
                 let n = n.to_int()?;
                 let group = u8::try_from(n).ok().filter(|g| (1..=64).contains(g));
                 let Some(group) = group else {
@@ -428,35 +432,36 @@ impl RuntimeInterface for MachineState {
                 let index = self.modal_index(group).map_or(0, i32::from);
                 Ok(RtValue::Int(index))
             }
-            ("$AA_IM" | "$VA_IM", _) => {
+            (SysVarId::AA_IM, _) => {
                 let axis = one_axis("the machine position")?;
                 Ok(RtValue::Real(self.machine[axis]))
             }
-            ("$AA_IW" | "$P_EP", _) => {
+            (SysVarId::AA_IW | SysVarId::P_EP, _) => {
                 let axis = one_axis("the workpiece position")?;
                 let mut wcs = vec![0.0; self.axes.len()];
                 self.to_workpiece(&self.total_frame(), &self.machine, &mut wcs);
                 Ok(RtValue::Real(self.as_programmed(axis, wcs[axis])))
             }
-            _ => profile_system_variable(Some(&self.profile), name, indices),
+            _ => profile_system_variable(Some(&self.profile), var, indices),
         }
     }
 
     fn set_system_variable(
         &mut self,
-        name: &str,
+        var: &VarName,
         indices: &[RtValue],
         value: &RtValue,
     ) -> Result<(), RunError> {
-        match (name, indices) {
-            ("$P_PFRAME", []) => {
+        let name = var.as_str();
+        match (var.system(), indices) {
+            (Some(SysVarId::P_PFRAME), []) => {
                 let RtValue::Frame(f) = value else {
                     return Err(RunError::type_mismatch(value, "FRAME"));
                 };
                 self.programmable = Frame::from_value(&self.frame_axes, f)?;
                 Ok(())
             }
-            ("$P_UIFR", [n]) => {
+            (Some(SysVarId::P_UIFR), [n]) => {
                 let n = n.to_int()?;
                 let RtValue::Frame(f) = value else {
                     return Err(RunError::type_mismatch(value, "FRAME"));
@@ -466,7 +471,7 @@ impl RuntimeInterface for MachineState {
                 self.settable[slot] = frame;
                 Ok(())
             }
-            ("$P_UIFR", [n, axis, component]) => {
+            (Some(SysVarId::P_UIFR), [n, axis, component]) => {
                 let slot = settable_offset(n.to_int()?, |i| i < self.settable.len())?;
                 let axis = self.axis_argument(name, axis)?;
                 let mut frame = self.settable[slot].to_value(&self.frame_axes);
@@ -481,8 +486,12 @@ impl RuntimeInterface for MachineState {
         }
     }
 
-    fn function(&self, name: &str, args: &[Option<RtValue>]) -> Option<Result<RtValue, RunError>> {
-        frame_function(&self.frame_axes, name, args)
+    fn function(
+        &self,
+        function: Function,
+        args: &[Option<RtValue>],
+    ) -> Option<Result<RtValue, RunError>> {
+        frame_function(&self.frame_axes, function, args)
     }
 
     fn chain_frames(&self, lhs: &FrameValue, rhs: &FrameValue) -> Result<FrameValue, RunError> {

@@ -2,14 +2,17 @@
 //! [`assign_list`] (`assign_list`: `SET(…)`, `(…)`, `REP(…)`) and
 //! [`declare`] (`declare`: a `DEF`).
 
-use gcodec_ail::{AssignList, Declare, Expr, Value, VarKind};
+use gcodec_ail::{AssignList, Declare, Expr, Value, VarKind, VarName};
+use gcodec_lang::sysvars::SysVarId;
 use gcodec_source::codes;
 
-use super::{Env, EvalContext, RuntimeInterface, eval_value, int_indices, system_indices};
+use super::{
+    Env, EvalContext, RuntimeInterface, eval_value, int_indices, numbered_r, system_indices,
+};
 use crate::value::{RtValue, RunError};
 use crate::vars::{Init, Scope, Variables, undefined};
 
-fn target_parts(target: &Expr) -> Result<(VarKind, &str, &[Expr]), RunError> {
+fn target_parts(target: &Expr) -> Result<(VarKind, &VarName, &[Expr]), RunError> {
     match target {
         Expr::Var {
             var_kind,
@@ -35,7 +38,7 @@ pub fn assign(
     let (kind, name, indices) = target_parts(target)?;
     let env = Env::new(vars, &*rt);
     let v = eval_value(&env, value)?;
-    if kind == VarKind::System && !(name.starts_with("$R") && is_r_system(name)) {
+    if kind == VarKind::System && !is_r_system(name) {
         let idx = system_indices(&env, indices, 0)?;
         return rt.set_system_variable(name, &idx, &v);
     }
@@ -45,30 +48,35 @@ pub fn assign(
 }
 
 /// `$R`, `$R5`: the R parameters.
-fn is_r_system(name: &str) -> bool {
-    let rest = &name[2..];
-    rest.is_empty() || rest.bytes().all(|b| b.is_ascii_digit())
+fn is_r_system(name: &VarName) -> bool {
+    match name {
+        VarName::System(id) => *id == SysVarId::R,
+        VarName::Text(text) => text
+            .strip_prefix("$R")
+            .is_some_and(|rest| rest.bytes().all(|b| b.is_ascii_digit())),
+    }
 }
 
 /// The kind, name and indices a write goes to (`$R5` → `R[5]`).
 fn resolve_target<'n, 'b, C: EvalContext + ?Sized>(
     ctx: &C,
     kind: VarKind,
-    name: &'n str,
+    name: &'n VarName,
     indices: &[Expr],
     buf: &'b mut [i32; 4],
 ) -> Result<(VarKind, &'n str, &'b [i32]), RunError> {
     if kind == VarKind::System {
-        let rest = &name[2..];
-        if !rest.is_empty() {
-            buf[0] = rest.parse::<i32>().map_err(|_| undefined(name))?;
+        if let VarName::Text(text) = name
+            && text.len() > 2
+        {
+            buf[0] = numbered_r(text).ok_or_else(|| undefined(text))?;
             return Ok((VarKind::RParameter, "R", &buf[..1]));
         }
         let idx = int_indices(ctx, indices, 0, buf)?;
         return Ok((VarKind::RParameter, "R", idx));
     }
     let idx = int_indices(ctx, indices, 0, buf)?;
-    Ok((kind, name, idx))
+    Ok((kind, name.as_str(), idx))
 }
 
 /// `assign_list`: consecutive elements from the target on (`SET(…)`,
@@ -79,10 +87,10 @@ pub fn assign_list(
     list: &AssignList,
 ) -> Result<(), RunError> {
     let (kind, name, indices) = target_parts(&list.target)?;
-    if kind == VarKind::System && !(name.starts_with("$R") && is_r_system(name)) {
+    if kind == VarKind::System && !is_r_system(name) {
         return Err(RunError::new(
             codes::run::TYPE_MISMATCH,
-            format!("a list of values cannot be assigned to `{name}`"),
+            format!("a list of values cannot be assigned to `{}`", name.as_str()),
         ));
     }
     let env = Env::new(vars, rt);

@@ -24,7 +24,9 @@ mod profile_variables;
 
 use std::sync::Arc;
 
-use gcodec_ail::{Expr, Value, VarKind};
+use gcodec_ail::{Expr, Value, VarKind, VarName};
+use gcodec_lang::functions::Function;
+use gcodec_lang::sysvars::SysVarId;
 use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_profile::Profile;
 use gcodec_source::codes;
@@ -57,9 +59,10 @@ pub trait RuntimeInterface {
         None
     }
 
-    /// Reads a system variable (`name` upper case with its `$`). The
-    /// default is [`profile_system_variable`].
-    fn system_variable(&self, name: &str, indices: &[RtValue]) -> Result<RtValue, RunError> {
+    /// Reads a system variable (a listed one by its id, another by its
+    /// name, upper case with its `$`). The default is
+    /// [`profile_system_variable`].
+    fn system_variable(&self, name: &VarName, indices: &[RtValue]) -> Result<RtValue, RunError> {
         profile_system_variable(self.profile(), name, indices)
     }
 
@@ -67,13 +70,16 @@ pub trait RuntimeInterface {
     /// ([`codes::run::READ_ONLY`]).
     fn set_system_variable(
         &mut self,
-        name: &str,
+        name: &VarName,
         _indices: &[RtValue],
         _value: &RtValue,
     ) -> Result<(), RunError> {
         Err(RunError::new(
             codes::run::READ_ONLY,
-            format!("the system variable `{name}` cannot be written here"),
+            format!(
+                "the system variable `{}` cannot be written here",
+                name.as_str()
+            ),
         ))
     }
 
@@ -82,7 +88,7 @@ pub trait RuntimeInterface {
     /// know it either ([`codes::run::UNKNOWN_FUNCTION`]).
     fn function(
         &self,
-        _name: &str,
+        _function: Function,
         _args: &[Option<RtValue>],
     ) -> Option<Result<RtValue, RunError>> {
         None
@@ -261,7 +267,7 @@ fn eval_unary<C: EvalContext + ?Sized>(
 fn eval_var<C: EvalContext + ?Sized>(
     ctx: &C,
     kind: VarKind,
-    name: &str,
+    name: &VarName,
     indices: &[Expr],
     depth: usize,
 ) -> Result<RtValue, RunError> {
@@ -273,8 +279,9 @@ fn eval_var<C: EvalContext + ?Sized>(
     }
     match kind {
         VarKind::System => system_var(ctx, name, indices, depth),
-        VarKind::Axis if indices.is_empty() => Ok(RtValue::axis(name)),
+        VarKind::Axis if indices.is_empty() => Ok(RtValue::axis(name.as_str())),
         kind => {
+            let name = name.as_str();
             let mut buf = [0i32; 4];
             let idx = int_indices(ctx, indices, depth, &mut buf)?;
             if kind == VarKind::RParameter {
@@ -336,7 +343,9 @@ fn system_indices<C: EvalContext + ?Sized>(
             var_kind: VarKind::User | VarKind::Axis,
             name,
             indices,
-        } if indices.is_empty() && !ctx.variables().is_defined(name) => Ok(RtValue::axis(name)),
+        } if indices.is_empty() && !ctx.variables().is_defined(name.as_str()) => {
+            Ok(RtValue::axis(name.as_str()))
+        }
         e => eval_at(ctx, e, depth + 1),
     };
     if indices.len() > INLINE_INDICES {
@@ -379,30 +388,39 @@ impl std::ops::Deref for SystemIndices {
 #[inline(never)]
 fn system_var<C: EvalContext + ?Sized>(
     ctx: &C,
-    name: &str,
+    name: &VarName,
     indices: &[Expr],
     depth: usize,
 ) -> Result<RtValue, RunError> {
-    // The R parameters as system variables (`$R1`, `$R[5]`).
-    if let Some(rest) = name.strip_prefix("$R") {
-        if rest.is_empty() {
+    match name {
+        // The R parameters as system variables (`$R[5]`, `$R1`).
+        VarName::System(SysVarId::R) => {
             let mut buf = [0i32; 4];
             let idx = int_indices(ctx, indices, depth, &mut buf)?;
             return ctx.variables().read(VarKind::RParameter, "R", idx);
         }
-        if indices.is_empty()
-            && let Ok(n) = rest.parse::<i32>()
-        {
-            return ctx.variables().read(VarKind::RParameter, "R", &[n]);
+        VarName::Text(text) => {
+            if indices.is_empty()
+                && let Some(n) = numbered_r(text)
+            {
+                return ctx.variables().read(VarKind::RParameter, "R", &[n]);
+            }
         }
-    }
-    if name == "$MC_MM_NUM_R_PARAM" && indices.is_empty() {
-        return Ok(RtValue::Int(
-            i32::try_from(ctx.variables().r_count()).unwrap_or(i32::MAX),
-        ));
+        VarName::System(SysVarId::MC_MM_NUM_R_PARAM) if indices.is_empty() => {
+            return Ok(RtValue::Int(
+                i32::try_from(ctx.variables().r_count()).unwrap_or(i32::MAX),
+            ));
+        }
+        VarName::System(_) => {}
     }
     let idx = system_indices(ctx, indices, depth)?;
     ctx.runtime().system_variable(name, &idx)
+}
+
+/// The number of `$R<n>`, an R parameter named by number (the form
+/// synchronized actions use), which the AIL carries as its text.
+pub(crate) fn numbered_r(name: &str) -> Option<i32> {
+    name.strip_prefix("$R")?.parse().ok()
 }
 
 fn unary(op: UnaryOp, v: RtValue) -> Result<RtValue, RunError> {

@@ -5,6 +5,8 @@
 use std::f64::consts::PI;
 use std::sync::Arc;
 
+use gcodec_ail::VarName;
+use gcodec_lang::sysvars::SysVarId;
 use gcodec_profile::{Profile, ToolChangeMode};
 use gcodec_source::codes;
 
@@ -29,10 +31,12 @@ use crate::value::{FrameAxis, FrameValue, RtValue, RunError};
 /// Any other variable is [`codes::run::SYSTEM_VARIABLE`] naming it.
 pub fn profile_system_variable(
     profile: Option<&Profile>,
-    name: &str,
+    var: &VarName,
     indices: &[RtValue],
 ) -> Result<RtValue, RunError> {
-    if name == "$PI" {
+    let name = var.as_str();
+    let id = var.system();
+    if id == Some(SysVarId::PI) {
         no_indices(name, indices)?;
         return Ok(RtValue::Real(PI));
     }
@@ -42,21 +46,28 @@ pub fn profile_system_variable(
             format!("the system variable `{name}` has no value without a machine profile"),
         ));
     };
-    match name {
-        "$P_TOOLNO" | "$P_TOOLP" | "$P_TOOL" => {
+    let Some(id) = id else {
+        return Err(no_value(name));
+    };
+    match id {
+        SysVarId::P_TOOLNO | SysVarId::P_TOOLP | SysVarId::P_TOOL => {
             no_indices(name, indices)?;
             Ok(RtValue::Int(0))
         }
-        "$MC_TOOL_CHANGE_MODE" => {
+        SysVarId::MC_TOOL_CHANGE_MODE => {
             no_indices(name, indices)?;
             Ok(RtValue::Int(match profile.tool_change.tool_change_mode {
                 ToolChangeMode::Direct => 0,
                 ToolChangeMode::DeferredM6 => 1,
             }))
         }
-        "$P_AXN1" | "$P_AXN2" | "$P_AXN3" => {
+        SysVarId::P_AXN1 | SysVarId::P_AXN2 | SysVarId::P_AXN3 => {
             no_indices(name, indices)?;
-            let n = usize::from(name.as_bytes()[6] - b'1');
+            let n = match id {
+                SysVarId::P_AXN1 => 0,
+                SysVarId::P_AXN2 => 1,
+                _ => 2,
+            };
             profile
                 .axes
                 .iter()
@@ -70,22 +81,21 @@ pub fn profile_system_variable(
                     )
                 })
         }
-        "$P_UIFR" => settable_frame(profile, name, indices),
-        _ => {
-            if let Some(k) = name.strip_prefix("$TC_DP")
-                && let Ok(k) = k.parse::<u32>()
-                && (1..=25).contains(&k)
-            {
-                return tool_parameter(profile, name, k, indices);
-            }
-            Err(RunError::new(
-                codes::run::SYSTEM_VARIABLE,
-                format!(
-                    "the system variable `{name}` has no value here: the machine profile does not give it"
-                ),
-            ))
-        }
+        SysVarId::P_UIFR => settable_frame(profile, name, indices),
+        _ => match SysVarId::TC_DP.iter().position(|&dp| dp == id) {
+            Some(k) => tool_parameter(profile, name, k + 1, indices),
+            None => Err(no_value(name)),
+        },
     }
+}
+
+fn no_value(name: &str) -> RunError {
+    RunError::new(
+        codes::run::SYSTEM_VARIABLE,
+        format!(
+            "the system variable `{name}` has no value here: the machine profile does not give it"
+        ),
+    )
 }
 
 fn no_indices(name: &str, indices: &[RtValue]) -> Result<(), RunError> {
@@ -165,7 +175,7 @@ pub(crate) fn profile_offsets(
 fn tool_parameter(
     profile: &Profile,
     name: &str,
-    k: u32,
+    k: usize,
     indices: &[RtValue],
 ) -> Result<RtValue, RunError> {
     let [t, d] = indices else {

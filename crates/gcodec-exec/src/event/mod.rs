@@ -56,7 +56,7 @@ pub use csv::{BlockRow, CsvWriter, MAIN_MODAL_GROUPS, ModalColumn};
 pub use jsonl::JsonlSink;
 pub use sinks::{CountingSink, VecSink};
 pub use text::{TextSink, write_trace_line};
-pub use work_offset::{SuppressionMask, WorkOffsetCode, WorkOffsetContext};
+pub use work_offset::{SuppressionMask, WorkOffsetContext};
 
 /// One runtime event: what happened and where.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]

@@ -2,12 +2,10 @@
 //! whether it acts, and what the block suppresses, with the JSON
 //! spellings the work-offset design gives them.
 
-use std::borrow::Cow;
-use std::fmt;
-
 use gcodec_ail::Suppression;
-use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use gcodec_lang::WorkOffsetCode;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 /// The effective work-offset context of a block: the modal
 /// Group 8 selection and what the block's `G53`/`G153`/`SUPA` suppresses.
@@ -40,64 +38,6 @@ impl Default for WorkOffsetContext {
     /// `G500` without suppression, the registry's reset state.
     fn default() -> Self {
         Self::new(WorkOffsetCode::G500, None)
-    }
-}
-
-/// A Group 8 command by its number (`G54` is 54, `G505` is 505). Every member
-/// of group 8 is `G` and a number, so the number is the whole identity; in JSON
-/// it is the lower-case code of the work-offset design (`"g54"`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct WorkOffsetCode(pub u16);
-
-impl WorkOffsetCode {
-    /// `G500`: no settable work offset.
-    pub const G500: Self = Self(500);
-    /// `G54`.
-    pub const G54: Self = Self(54);
-
-    /// Reads `G54`, `g54`, `G505`; `None` for anything else.
-    pub fn parse(code: &str) -> Option<Self> {
-        let digits = code.strip_prefix(['g', 'G'])?;
-        if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-            return None;
-        }
-        digits.parse().ok().map(Self)
-    }
-}
-
-impl fmt::Display for WorkOffsetCode {
-    /// The work-offset design's spelling: `g54`.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "g{}", self.0)
-    }
-}
-
-impl Serialize for WorkOffsetCode {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.collect_str(self)
-    }
-}
-
-impl<'de> Deserialize<'de> for WorkOffsetCode {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let text = Cow::<str>::deserialize(deserializer)?;
-        Self::parse(&text).ok_or_else(|| {
-            serde::de::Error::custom(format!("`{text}` is not a Group 8 code like `g54`"))
-        })
-    }
-}
-
-impl JsonSchema for WorkOffsetCode {
-    fn schema_name() -> Cow<'static, str> {
-        "WorkOffsetCode".into()
-    }
-
-    fn json_schema(_: &mut SchemaGenerator) -> Schema {
-        json_schema!({
-            "description": "A Group 8 command in lower case: `g500`, `g54`…`g57`, `g505`…`g599`.",
-            "type": "string",
-            "pattern": "^g[0-9]+$",
-        })
     }
 }
 

@@ -2,6 +2,7 @@
 //! frame operation and the axis words it takes.
 
 use chumsky::prelude::*;
+use gcodec_lang::FrameOp;
 use gcodec_lexer::TokenKind as T;
 
 use super::words::{named_word, word_only};

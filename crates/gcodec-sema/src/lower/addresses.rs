@@ -10,11 +10,9 @@
 
 use std::borrow::Cow;
 
-use gcodec_ail::{
-    Address, AddressScope, AxisValue, HFunction, IndirectAxisValue, MTiming, Op, TransitionKind,
-    Value,
-};
+use gcodec_ail::{Address, AxisValue, HFunction, IndirectAxisValue, MTiming, Op, Value};
 use gcodec_lang::DimensionMode;
+use gcodec_lang::addresses::{AddressRole, AddressScope, NamedAddress, TransitionKind};
 use gcodec_lang::ggroups;
 use gcodec_parser::ast::{self, Extension, StatementKind, Word, WordValue};
 use gcodec_profile::AxisKind;
@@ -23,86 +21,6 @@ use gcodec_source::{Diagnostic, Span, codes};
 use crate::{tools, values};
 
 use super::{BlockPlan, Lowering};
-/// What a named address is and where its value goes.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Role {
-    /// An `address` instruction; `axis`: written `NAME[axis]=`;
-    /// `spindle`: takes a spindle number (`SPOS[2]=`).
-    Setting {
-        scope: AddressScope,
-        axis: bool,
-        spindle: bool,
-    },
-    /// Part of the end point of the block's motion: `AP`, `RP`, `ANG`.
-    Target,
-    /// `AX[axis]=`: an axis target named in brackets.
-    IndirectAxis,
-    Transition(TransitionKind),
-    /// `PW=`.
-    Weight,
-    /// `PL=`.
-    Interval,
-    /// `DL=`: emitted after the cutting edge.
-    AdditiveOffset,
-}
-
-const fn setting(scope: AddressScope, axis: bool, spindle: bool) -> Role {
-    Role::Setting {
-        scope,
-        axis,
-        spindle,
-    }
-}
-
-use AddressScope::{Block as B, Modal as M};
-
-/// The named addresses the lowering knows (reference §2.6, §2.7, §3.3).
-/// `CR`, `AR`, `TURN` are circle data (words.rs); `PO[…]` is not lowered.
-const NAMED: &[(&str, Role)] = &[
-    ("ACC", setting(M, true, false)),
-    ("ADIS", setting(M, false, false)),
-    ("ADISPOS", setting(M, false, false)),
-    ("ANG", Role::Target),
-    ("AP", Role::Target),
-    ("AX", Role::IndirectAxis),
-    ("CHF", Role::Transition(TransitionKind::Chamfer)),
-    ("CHR", Role::Transition(TransitionKind::ChamferLeg)),
-    ("DISC", setting(M, false, false)),
-    ("DISCL", setting(B, false, false)),
-    ("DISR", setting(B, false, false)),
-    ("DITE", setting(M, false, false)),
-    ("DITS", setting(M, false, false)),
-    ("DL", Role::AdditiveOffset),
-    ("FA", setting(M, true, false)),
-    ("FAD", setting(B, false, false)),
-    ("FB", setting(B, false, false)),
-    ("FL", setting(M, true, false)),
-    ("FP", setting(B, false, false)),
-    ("FZ", setting(M, false, false)),
-    ("LIMS", setting(M, false, false)),
-    ("OFFN", setting(M, false, false)),
-    ("OVR", setting(M, false, false)),
-    ("OVRA", setting(M, true, false)),
-    ("PL", Role::Interval),
-    ("POS", setting(B, true, false)),
-    ("POSA", setting(B, true, false)),
-    ("PW", Role::Weight),
-    ("RND", Role::Transition(TransitionKind::Rounding)),
-    ("RNDM", setting(M, false, false)),
-    ("RP", Role::Target),
-    ("SD", setting(M, false, false)),
-    ("SF", setting(M, false, false)),
-    ("SPOS", setting(B, false, true)),
-    ("SPOSA", setting(B, false, true)),
-];
-
-fn role(address: &str) -> Option<Role> {
-    NAMED
-        .iter()
-        .find(|(name, _)| name.eq_ignore_ascii_case(address))
-        .map(|(_, r)| *r)
-}
-
 /// Which dimension modifiers an address accepts (reference §2.5).
 #[derive(Clone, Copy)]
 pub(super) enum Modifiers {
@@ -165,7 +83,7 @@ impl Lowering<'_> {
                 },
                 _ => Modifiers::Axis(None),
             },
-            _ if role(address).is_some() => Modifiers::None,
+            _ if NamedAddress::named(address).is_some() => Modifiers::None,
             "E" => Modifiers::Axis(self.axis_kind("E")),
             _ if address.len() == 1
                 && matches!(
@@ -386,20 +304,18 @@ impl Lowering<'_> {
         span: Span,
         plan: &mut BlockPlan,
     ) -> bool {
-        let address = word.address();
-        let Some(role) = role(address) else {
+        let Some(address) = NamedAddress::named(word.address()) else {
             return false;
         };
         let (v, mode) = values::word_value(value);
-        self.place_address(address, role, word.extension(), v, mode, word, span, plan);
+        self.place_address(address, word.extension(), v, mode, word, span, plan);
         true
     }
 
     #[allow(clippy::too_many_arguments)]
     fn place_address(
         &mut self,
-        address: &str,
-        role: Role,
+        address: NamedAddress,
         extension: Option<&Extension>,
         value: Value,
         mode: Option<DimensionMode>,
@@ -407,11 +323,13 @@ impl Lowering<'_> {
         span: Span,
         plan: &mut BlockPlan,
     ) {
+        let role = address.role();
+        let name = address.name();
         let takes_extension = matches!(
             role,
-            Role::IndirectAxis
-                | Role::Setting { axis: true, .. }
-                | Role::Setting { spindle: true, .. }
+            AddressRole::IndirectAxis
+                | AddressRole::Setting { axis: true, .. }
+                | AddressRole::Setting { spindle: true, .. }
         );
         if !takes_extension && let Some(ext) = extension {
             let at = match ext {
@@ -420,7 +338,7 @@ impl Lowering<'_> {
             return self.diagnostics.push(
                 Diagnostic::new(
                     codes::lower::EXTENSION_NOT_ALLOWED,
-                    format!("`{address}` takes no address extension"),
+                    format!("`{name}` takes no address extension"),
                 )
                 .with_label(at, "extension")
                 .with_help(
@@ -429,7 +347,7 @@ impl Lowering<'_> {
             );
         }
         match role {
-            Role::Setting {
+            AddressRole::Setting {
                 scope,
                 axis,
                 spindle,
@@ -451,16 +369,16 @@ impl Lowering<'_> {
                 } else {
                     (None, None)
                 };
-                let key = (address.to_owned(), axis_name.clone(), ext);
+                let key = (address, axis_name.clone(), ext);
                 if axis_expr.is_none() && ext_expr.is_none() {
                     if let Some((_, first)) = plan.address_keys.iter().find(|(k, _)| *k == key) {
-                        return self.repeated(address, span, *first);
+                        return self.repeated(name, span, *first);
                     }
                     plan.address_keys.push((key, span));
                 }
                 plan.addresses.push((
                     Op::Address(Box::new(Address {
-                        address: address.to_owned(),
+                        address,
                         axis: axis_name,
                         axis_expr,
                         extension: ext,
@@ -472,7 +390,7 @@ impl Lowering<'_> {
                     span,
                 ));
             }
-            Role::AdditiveOffset => {
+            AddressRole::AdditiveOffset => {
                 let ok = match &value {
                     Value::Const(d) => *d >= 0.0 && d.fract() == 0.0,
                     Value::Expr(_) => true,
@@ -486,14 +404,14 @@ impl Lowering<'_> {
                         .with_label(span, "not a DL number"),
                     );
                 }
-                let key = ("DL".to_owned(), None, None);
+                let key = (address, None, None);
                 if let Some((_, first)) = plan.address_keys.iter().find(|(k, _)| *k == key) {
-                    return self.repeated(address, span, *first);
+                    return self.repeated(name, span, *first);
                 }
                 plan.address_keys.push((key, span));
                 plan.after_edge.push((
                     Op::Address(Box::new(Address {
-                        address: "DL".to_owned(),
+                        address,
                         axis: None,
                         axis_expr: None,
                         extension: None,
@@ -505,15 +423,15 @@ impl Lowering<'_> {
                     span,
                 ));
             }
-            Role::Target => plan.add_target(
+            AddressRole::Target => plan.add_target(
                 AxisValue {
-                    axis: Cow::Owned(address.to_owned()),
+                    axis: Cow::Borrowed(name),
                     value,
                     mode,
                 },
                 span,
             ),
-            Role::IndirectAxis => match self.bracket_axis(word, span) {
+            AddressRole::IndirectAxis => match self.bracket_axis(word, span) {
                 Some(AxisRef::Named(name)) => plan.add_target(
                     AxisValue {
                         axis: Cow::Owned(name),
@@ -529,20 +447,20 @@ impl Lowering<'_> {
                 }
                 None => {}
             },
-            Role::Transition(kind) => {
+            AddressRole::Transition(kind) => {
                 if let Some((_, first)) = &plan.transition {
                     return self.repeated("CHF/CHR/RND", span, *first);
                 }
                 plan.transition = Some((gcodec_ail::Transition { kind, value }, span));
             }
-            Role::Weight | Role::Interval => {
-                let slot = if role == Role::Weight {
+            AddressRole::Weight | AddressRole::Interval => {
+                let slot = if role == AddressRole::Weight {
                     &mut plan.spline.weight
                 } else {
                     &mut plan.spline.interval
                 };
                 if slot.is_some() {
-                    return self.repeated(address, span, span);
+                    return self.repeated(name, span, span);
                 }
                 *slot = Some(value);
                 plan.spline_span.get_or_insert(span);
@@ -651,7 +569,7 @@ impl Lowering<'_> {
                 }
             }
         };
-        let Some(role) = role(address) else {
+        let Some(named) = NamedAddress::named(address) else {
             return false;
         };
         self.check_variables(expr);
@@ -707,16 +625,7 @@ impl Lowering<'_> {
                 expr: Box::new(expr.clone()),
             },
         );
-        self.place_address(
-            address,
-            role,
-            extension.as_ref(),
-            value,
-            mode,
-            &word,
-            span,
-            plan,
-        );
+        self.place_address(named, extension.as_ref(), value, mode, &word, span, plan);
         true
     }
 
@@ -827,9 +736,9 @@ impl Lowering<'_> {
         spline: Option<gcodec_ail::SplineData>,
     ) {
         let span = spline_span.unwrap_or_default();
-        let address = |name: &str, value: Value| {
+        let address = |address: NamedAddress, value: Value| {
             Op::Address(Box::new(Address {
-                address: name.to_owned(),
+                address,
                 axis: None,
                 axis_expr: None,
                 extension: None,
@@ -841,19 +750,19 @@ impl Lowering<'_> {
         };
         if let Some(spline) = spline {
             if let Some(v) = spline.weight {
-                self.emit(index, span, address("PW", v));
+                self.emit(index, span, address(NamedAddress::Pw, v));
             }
             if let Some(v) = spline.interval {
-                self.emit(index, span, address("PL", v));
+                self.emit(index, span, address(NamedAddress::Pl, v));
             }
         }
         if let Some((t, at)) = transition {
-            let name = match t.kind {
-                TransitionKind::Chamfer => "CHF",
-                TransitionKind::ChamferLeg => "CHR",
-                TransitionKind::Rounding => "RND",
+            let named = match t.kind {
+                TransitionKind::Chamfer => NamedAddress::Chf,
+                TransitionKind::ChamferLeg => NamedAddress::Chr,
+                TransitionKind::Rounding => NamedAddress::Rnd,
             };
-            self.emit(index, at, address(name, t.value));
+            self.emit(index, at, address(named, t.value));
         }
     }
 

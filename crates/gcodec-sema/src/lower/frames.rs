@@ -34,7 +34,7 @@ impl Lowering<'_> {
                 "the control rejects the block; put the frame instruction in a block of its own",
             ));
         }
-        let rotation = matches!(frame.op, ast::FrameOp::Rot | ast::FrameOp::Arot);
+        let rotation = frame.op.is_rotation();
         let mut values = Vec::with_capacity(frame.words.len());
         let mut indirect_values = Vec::new();
         // A rejected word leaves the instruction out: without its values
@@ -96,7 +96,7 @@ impl Lowering<'_> {
         }
         plan.other.push((
             Op::Frame(Box::new(gcodec_ail::Frame {
-                op: frame.op.keyword().to_owned(),
+                op: frame.op,
                 values,
                 indirect_values,
             })),

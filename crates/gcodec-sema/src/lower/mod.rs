@@ -18,11 +18,11 @@ use gcodec_ail::{
     AxisValue, ByteRange, Circle, Document, Instruction, MTiming, Op, Source, Suppression,
     SuppressionScope, ToolChangeTrigger, Value,
 };
-use gcodec_lang::MotionKind;
-use gcodec_lang::addresses::letter_str;
+use gcodec_lang::addresses::{NamedAddress, letter_str};
 use gcodec_lang::ggroups::{self, GCommand};
 use gcodec_lang::mfunctions::acts_after_motion;
 use gcodec_lang::motion::MOTION_GROUP;
+use gcodec_lang::{MotionKind, WorkOffsetCode};
 use gcodec_parser::ast::{self, Block, GotoKind, Program};
 use gcodec_profile::{DuplicateSuppressionPolicy, Profile};
 use gcodec_source::{Diagnostic, Diagnostics, Severity, Span, codes};
@@ -298,7 +298,7 @@ pub fn resolve_from_dataflow(document: &mut Document, profile: &Profile, subprog
             }
             Op::WorkOffset {
                 group8_selected, ..
-            } => *group8_selected = state.get(8).map(str::to_ascii_lowercase),
+            } => *group8_selected = state.get(8).and_then(WorkOffsetCode::parse),
             _ => {}
         }
     }
@@ -387,7 +387,7 @@ struct Lowering<'a> {
 type SpindleWord = (Option<u32>, Option<Box<gcodec_ail::Expr>>, Value, Span);
 
 /// A named address as written: address, axis, spindle.
-type AddressKey = (String, Option<String>, Option<u32>);
+type AddressKey = (NamedAddress, Option<String>, Option<u32>);
 
 /// A `skip_block` emitted before a block's instructions, waiting for its
 /// end label.
@@ -799,10 +799,7 @@ impl<'a> Lowering<'a> {
                 .map(|(_, s)| *s)
                 .or(plan.suppressions.first().map(|(_, s)| *s))
                 .unwrap_or(block.span);
-            let selected = self
-                .group8
-                .and_then(gcodec_profile::group8_code)
-                .map(|code| code.to_ascii_lowercase());
+            let selected = self.group8.and_then(WorkOffsetCode::of_index);
             if selected.is_none() && self.open.group8_is_entry() {
                 self.open
                     .read_by_work_offset(self.document.instructions.len());

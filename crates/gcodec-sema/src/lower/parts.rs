@@ -10,7 +10,7 @@
 //! says that the part must be lowered again from that state.
 
 use gcodec_ail::{Document, Op};
-use gcodec_lang::MotionKind;
+use gcodec_lang::{MotionKind, WorkOffsetCode};
 
 use super::{Lowering, assign_motion_command, motion_of};
 
@@ -142,16 +142,13 @@ impl OpenEntry {
                 }
             }
         }
-        let selected = entry
-            .group8
-            .and_then(gcodec_profile::group8_code)
-            .map(|code| code.to_ascii_lowercase());
+        let selected = entry.group8.and_then(WorkOffsetCode::of_index);
         for &i in &self.offsets {
             if let Op::WorkOffset {
                 group8_selected, ..
             } = &mut document.instructions[i].op
             {
-                group8_selected.clone_from(&selected);
+                *group8_selected = selected;
             }
         }
         true

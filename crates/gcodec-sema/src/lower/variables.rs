@@ -649,8 +649,9 @@ impl Lowering<'_> {
     fn var_type(&self, var: &ast::VarRef) -> Option<DataType> {
         match var.kind {
             ast::VarKind::RParameter => Some(DataType::Real),
-            ast::VarKind::System => sysvars::lookup(&var.name)
-                .and_then(|v| types::system_variable_type(v, var.indices.len())),
+            ast::VarKind::System => {
+                sysvars::lookup(&var.name).and_then(|v| v.data_type(var.indices.len()))
+            }
             ast::VarKind::Name => match self.outline.names.resolve(&var.name, var.span.start) {
                 Resolved::Variable(shape) => shape.element_type(var.indices.len()),
                 Resolved::Axis if var.indices.is_empty() => Some(DataType::Axis),

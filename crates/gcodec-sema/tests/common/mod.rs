@@ -73,7 +73,7 @@ pub fn selections(lowered: &gcodec_sema::Lowered) -> Vec<Option<String>> {
         .filter_map(|i| match &i.op {
             gcodec_ail::Op::WorkOffset {
                 group8_selected, ..
-            } => Some(group8_selected.clone()),
+            } => Some(group8_selected.map(|code| code.to_string())),
             _ => None,
         })
         .collect()

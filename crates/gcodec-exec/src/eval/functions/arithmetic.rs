@@ -3,23 +3,24 @@
 
 use super::{Args, EvalContext, domain, real};
 use crate::value::{RtValue, RunError};
+use gcodec_lang::functions::Function as F;
 use gcodec_source::codes;
 
 /// `ABS`, `SQRT`, `POT`, `TRUNC`, `ROUND`, `ROUNDUP`, `LN` and `EXP` of
-/// one REAL (the names [`super::call`] sends here).
+/// one REAL (the functions [`super::call`] sends here).
 pub(super) fn of_one_real<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
     a.count(1, 1)?;
     let x = a.real(0)?;
-    match a.name {
-        "ABS" => real(x.abs()),
-        "SQRT" if x < 0.0 => Err(domain(a.name, x, "the square root of a negative number")),
-        "SQRT" => real(x.sqrt()),
-        "POT" => real(x * x),
-        "TRUNC" => real(x.trunc()),
-        "ROUND" => real(x.round()),
-        "ROUNDUP" => real(x.ceil()),
-        "LN" if x <= 0.0 => Err(domain(a.name, x, "the logarithm needs a positive number")),
-        "LN" => real(x.ln()),
+    match a.function {
+        F::Abs => real(x.abs()),
+        F::Sqrt if x < 0.0 => Err(domain(a.name(), x, "the square root of a negative number")),
+        F::Sqrt => real(x.sqrt()),
+        F::Pot => real(x * x),
+        F::Trunc => real(x.trunc()),
+        F::Round => real(x.round()),
+        F::Roundup => real(x.ceil()),
+        F::Ln if x <= 0.0 => Err(domain(a.name(), x, "the logarithm needs a positive number")),
+        F::Ln => real(x.ln()),
         _ => real(x.exp()),
     }
 }
@@ -28,7 +29,7 @@ pub(super) fn of_one_real<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<Rt
 pub(super) fn min_max<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
     a.count(2, 2)?;
     let (x, y) = (a.real(0)?, a.real(1)?);
-    real(if a.name == "MINVAL" {
+    real(if a.function == F::Minval {
         x.min(y)
     } else {
         x.max(y)

@@ -4,21 +4,22 @@
 
 use std::sync::Arc;
 
+use gcodec_lang::functions::Function as F;
 use gcodec_source::codes;
 
 use super::{Args, EvalContext, real};
 use crate::value::{RtValue, RunError, real_to_int};
 
 /// `ITOR`, `BTOR`, `RTOI`, `RTOB`, `ITOB` and `BTOI` of one value (the
-/// names [`super::call`] sends here).
+/// functions [`super::call`] sends here).
 pub(super) fn between_types<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
     a.count(1, 1)?;
-    match a.name {
-        "ITOR" => real(f64::from(a.int(0)?)),
-        "BTOR" => real(if a.bool(0)? { 1.0 } else { 0.0 }),
-        "RTOI" => Ok(RtValue::Int(real_to_int(a.real(0)?)?)),
-        "RTOB" => Ok(RtValue::Bool(a.real(0)? != 0.0)),
-        "ITOB" => Ok(RtValue::Bool(a.int(0)? != 0)),
+    match a.function {
+        F::Itor => real(f64::from(a.int(0)?)),
+        F::Btor => real(if a.bool(0)? { 1.0 } else { 0.0 }),
+        F::Rtoi => Ok(RtValue::Int(real_to_int(a.real(0)?)?)),
+        F::Rtob => Ok(RtValue::Bool(a.real(0)? != 0.0)),
+        F::Itob => Ok(RtValue::Bool(a.int(0)? != 0)),
         _ => Ok(RtValue::Int(i32::from(a.bool(0)?))),
     }
 }
@@ -29,7 +30,7 @@ pub(super) fn number<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue
     a.count(1, 1)?;
     let s = a.string(0)?;
     let parsed = parse_number(&s);
-    if a.name == "ISNUMBER" {
+    if a.function == F::Isnumber {
         return Ok(RtValue::Bool(parsed.is_some()));
     }
     parsed.map(RtValue::Real).ok_or_else(|| {

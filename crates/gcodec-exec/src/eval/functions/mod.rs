@@ -1,8 +1,8 @@
-//! The built-in functions (reference §7.6). [`call`] dispatches by name
-//! to the family that computes it — arithmetic and rounding,
+//! The built-in functions (reference §7.6). [`call`] dispatches by
+//! function id to the family that computes it — arithmetic and rounding,
 //! trigonometry, conversions, strings, `SPRINT` formatting — and hands
-//! any other name to the runtime, which provides the frame functions and
-//! those of tool management.
+//! any other function to the runtime, which provides the frame functions
+//! and those of tool management.
 
 mod arithmetic;
 mod conversions;
@@ -12,7 +12,8 @@ mod trigonometry;
 
 use std::sync::Arc;
 
-use gcodec_ail::Expr;
+use gcodec_ail::{Callee, Expr};
+use gcodec_lang::functions::Function;
 use gcodec_source::codes;
 
 use super::{EvalContext, eval_at};
@@ -20,39 +21,49 @@ use crate::value::{RtValue, RunError, char_text};
 
 pub use format::sprint;
 
-/// Calls the built-in function `name`.
+/// Calls the function `callee`.
 #[inline(never)]
 pub(super) fn call<C: EvalContext + ?Sized>(
     ctx: &C,
-    name: &str,
+    callee: &Callee,
     args: &[Option<Expr>],
     depth: usize,
 ) -> Result<RtValue, RunError> {
+    let function = match callee {
+        Callee::Predefined(function) => *function,
+        // A user function or a name the vocabulary does not list: the
+        // arguments are evaluated first, as for any call.
+        Callee::Other(name) => {
+            evaluate_all(ctx, args, depth)?;
+            return Err(unknown_function(name));
+        }
+    };
     let a = Args {
         ctx,
-        name,
+        function,
         args,
         depth,
     };
-    match name {
-        "ABS" | "SQRT" | "POT" | "TRUNC" | "ROUND" | "ROUNDUP" | "LN" | "EXP" => {
+    use Function as F;
+    match function {
+        F::Abs | F::Sqrt | F::Pot | F::Trunc | F::Round | F::Roundup | F::Ln | F::Exp => {
             arithmetic::of_one_real(&a)
         }
-        "MINVAL" | "MAXVAL" => arithmetic::min_max(&a),
-        "BOUND" => arithmetic::bound(&a),
-        "SIN" | "COS" | "TAN" | "ASIN" | "ACOS" => trigonometry::of_one_real(&a),
-        "ATAN2" => trigonometry::atan2(&a),
-        "ITOR" | "BTOR" | "RTOI" | "RTOB" | "ITOB" | "BTOI" => conversions::between_types(&a),
-        "NUMBER" | "ISNUMBER" => conversions::number(&a),
-        "AXNAME" => conversions::axname(&a),
-        "AXSTRING" => conversions::axstring(&a),
-        "STRLEN" => strings::strlen(&a),
-        "TOUPPER" | "TOLOWER" => strings::change_case(&a),
-        "INDEX" | "RINDEX" => strings::index(&a),
-        "MINDEX" => strings::mindex(&a),
-        "MATCH" => strings::find(&a),
-        "SUBSTR" => strings::substr(&a),
-        "SPRINT" => format::sprint_call(&a),
+        F::Minval | F::Maxval => arithmetic::min_max(&a),
+        F::Bound => arithmetic::bound(&a),
+        F::Sin | F::Cos | F::Tan | F::Asin | F::Acos => trigonometry::of_one_real(&a),
+        F::Atan2 => trigonometry::atan2(&a),
+        F::Itor | F::Btor | F::Rtoi | F::Rtob | F::Itob | F::Btoi => conversions::between_types(&a),
+        F::Number | F::Isnumber => conversions::number(&a),
+        F::Axname => conversions::axname(&a),
+        F::Axstring => conversions::axstring(&a),
+        F::Strlen => strings::strlen(&a),
+        F::Toupper | F::Tolower => strings::change_case(&a),
+        F::Index | F::Rindex => strings::index(&a),
+        F::Mindex => strings::mindex(&a),
+        F::Match => strings::find(&a),
+        F::Substr => strings::substr(&a),
+        F::Sprint => format::sprint_call(&a),
         _ => runtime_function(&a),
     }
 }
@@ -60,33 +71,49 @@ pub(super) fn call<C: EvalContext + ?Sized>(
 /// A function the executor provides (frames, tool management), its
 /// arguments evaluated in order, an omitted one as `None`.
 fn runtime_function<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
-    let mut values = Vec::with_capacity(a.args.len());
-    for arg in a.args {
+    let values = evaluate_all(a.ctx, a.args, a.depth)?;
+    a.ctx
+        .runtime()
+        .function(a.function, &values)
+        .unwrap_or_else(|| Err(unknown_function(a.name())))
+}
+
+/// The arguments of a call evaluated in order, an omitted one as `None`.
+fn evaluate_all<C: EvalContext + ?Sized>(
+    ctx: &C,
+    args: &[Option<Expr>],
+    depth: usize,
+) -> Result<Vec<Option<RtValue>>, RunError> {
+    let mut values = Vec::with_capacity(args.len());
+    for arg in args {
         values.push(match arg {
-            Some(e) => Some(eval_at(a.ctx, e, a.depth + 1)?),
+            Some(e) => Some(eval_at(ctx, e, depth + 1)?),
             None => None,
         });
     }
-    a.ctx
-        .runtime()
-        .function(a.name, &values)
-        .unwrap_or_else(|| {
-            Err(RunError::new(
-                codes::run::UNKNOWN_FUNCTION,
-                format!("`{}` is not a function the executor knows", a.name),
-            ))
-        })
+    Ok(values)
+}
+
+fn unknown_function(name: &str) -> RunError {
+    RunError::new(
+        codes::run::UNKNOWN_FUNCTION,
+        format!("`{name}` is not a function the executor knows"),
+    )
 }
 
 /// Evaluates the arguments of a call lazily.
 struct Args<'a, C: EvalContext + ?Sized> {
     ctx: &'a C,
-    name: &'a str,
+    function: Function,
     args: &'a [Option<Expr>],
     depth: usize,
 }
 
 impl<C: EvalContext + ?Sized> Args<'_, C> {
+    fn name(&self) -> &'static str {
+        self.function.name()
+    }
+
     fn count(&self, min: usize, max: usize) -> Result<(), RunError> {
         let n = self.args.len();
         if n < min || n > max {
@@ -97,7 +124,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
             };
             return Err(RunError::new(
                 codes::run::ARGUMENT_COUNT,
-                format!("`{}` takes {expected} arguments, not {n}", self.name),
+                format!("`{}` takes {expected} arguments, not {n}", self.name()),
             ));
         }
         Ok(())
@@ -112,7 +139,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
             Some(Some(e)) => eval_at(self.ctx, e, self.depth + 1),
             _ => Err(RunError::new(
                 codes::run::ARGUMENT_COUNT,
-                format!("`{}` needs its argument {}", self.name, i + 1),
+                format!("`{}` needs its argument {}", self.name(), i + 1),
             )),
         }
     }
@@ -158,7 +185,7 @@ impl<C: EvalContext + ?Sized> Args<'_, C> {
             format!(
                 "argument {} of `{}` must be {wanted}, not a {}",
                 i + 1,
-                self.name,
+                self.name(),
                 v.type_name()
             ),
         )

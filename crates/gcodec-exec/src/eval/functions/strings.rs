@@ -3,6 +3,7 @@
 
 use std::sync::Arc;
 
+use gcodec_lang::functions::Function as F;
 use gcodec_source::codes;
 
 use super::{Args, EvalContext};
@@ -18,7 +19,7 @@ pub(super) fn strlen<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue
 pub(super) fn change_case<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
     a.count(1, 1)?;
     let s = a.string(0)?;
-    let t = if a.name == "TOUPPER" {
+    let t = if a.function == F::Toupper {
         s.to_ascii_uppercase()
     } else {
         s.to_ascii_lowercase()
@@ -32,7 +33,7 @@ pub(super) fn index<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue,
     a.count(2, 2)?;
     let (s, c) = (a.string(0)?, a.char(1)?);
     let bytes = s.as_bytes();
-    let at = if a.name == "INDEX" {
+    let at = if a.function == F::Index {
         bytes.iter().position(|&b| b == c)
     } else {
         bytes.iter().rposition(|&b| b == c)

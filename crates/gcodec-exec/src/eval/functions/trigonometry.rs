@@ -4,6 +4,7 @@
 
 use super::{Args, EvalContext, domain, real};
 use crate::value::{RtValue, RunError};
+use gcodec_lang::functions::Function as F;
 use gcodec_source::codes;
 
 /// `SIN`, `COS`, `TAN`, `ASIN` and `ACOS` of one REAL (the names
@@ -11,21 +12,21 @@ use gcodec_source::codes;
 pub(super) fn of_one_real<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
     a.count(1, 1)?;
     let x = a.real(0)?;
-    match a.name {
-        "SIN" => real(sin_deg(x)),
-        "COS" => real(sin_deg(x + 90.0)),
-        "TAN" => {
+    match a.function {
+        F::Sin => real(sin_deg(x)),
+        F::Cos => real(sin_deg(x + 90.0)),
+        F::Tan => {
             let c = sin_deg(x + 90.0);
             if c == 0.0 {
-                Err(domain(a.name, x, "the tangent of ±90° is infinite"))
+                Err(domain(a.name(), x, "the tangent of ±90° is infinite"))
             } else {
                 real(sin_deg(x) / c)
             }
         }
-        "ASIN" | "ACOS" if !(-1.0..=1.0).contains(&x) => {
-            Err(domain(a.name, x, "the argument must lie in −1…1"))
+        F::Asin | F::Acos if !(-1.0..=1.0).contains(&x) => {
+            Err(domain(a.name(), x, "the argument must lie in −1…1"))
         }
-        "ASIN" => real(snap_degrees(x.asin().to_degrees())),
+        F::Asin => real(snap_degrees(x.asin().to_degrees())),
         _ => real(snap_degrees(x.acos().to_degrees())),
     }
 }
