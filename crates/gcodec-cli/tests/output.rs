@@ -54,22 +54,22 @@ fn closed_pipe() -> std::io::PipeWriter {
     writer
 }
 
-fn assert_no_panic(args: &[String], out: &Output) {
+/// Runs `gcodec` with `args` and its stdout on `stdout`; it must not
+/// panic.
+fn with_stdout(args: &[String], stdout: impl Into<Stdio>) -> Output {
+    let out = command(args).stdout(stdout).output().expect("gcodec runs");
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         !err.contains("panicked") && out.status.code().is_some(),
         "{args:?} panicked: {err}"
     );
+    out
 }
 
 #[test]
 fn a_closed_stdout_pipe_ends_every_command_quietly_with_0() {
     for args in commands("closed-stdout") {
-        let out = command(&args)
-            .stdout(closed_pipe())
-            .output()
-            .expect("gcodec runs");
-        assert_no_panic(&args, &out);
+        let out = with_stdout(&args, closed_pipe());
         assert_eq!(code(&out), EXIT_CLEAN, "{args:?}: {}", stderr(&out));
         assert!(
             !stderr(&out).contains("gcodec::io::write"),
@@ -82,11 +82,7 @@ fn a_closed_stdout_pipe_ends_every_command_quietly_with_0() {
 #[test]
 fn stdout_on_a_full_disk_is_io_write_and_exit_2() {
     for args in commands("full-stdout") {
-        let out = command(&args)
-            .stdout(dev_full())
-            .output()
-            .expect("gcodec runs");
-        assert_no_panic(&args, &out);
+        let out = with_stdout(&args, dev_full());
         assert_eq!(code(&out), EXIT_USAGE, "{args:?}");
         let err = stderr(&out);
         assert_eq!(
