@@ -19,5 +19,5 @@ pub use diagnostic::{Diagnostic, Label, Severity};
 pub use lines::{MAX_SOURCE_LEN, line_starts};
 pub use read::{DEFAULT_MAX_FILE_SIZE, ReadError};
 pub use render::{RenderOptions, render_diagnostics};
-pub use source::{SourceFile, decode};
+pub use source::{SourceFile, cp1252, cp1252_byte, decode};
 pub use span::{Span, line_col, with_line_starts};
