@@ -9,6 +9,12 @@
 //! strings, axis names and frames are shared (`Arc`), so that copying a
 //! value never copies text.
 //!
+//! A STRING is a sequence of characters of the control's 8-bit code page
+//! (one byte per character on the control), held as Rust text: every
+//! length, position and limit counts characters (`char`s), never UTF-8
+//! bytes, whatever the file's encoding. A CHAR is the code of one
+//! character in Windows-1252 ([`gcodec_source::cp1252`]).
+//!
 //! Conversions follow the control's table (alarm 14096): REAL, INT, BOOL
 //! and CHAR convert into each other; CHAR and STRING into STRING; STRING
 //! into BOOL (empty is FALSE) and into CHAR (exactly one character); AXIS
@@ -21,7 +27,7 @@ use std::sync::Arc;
 
 use gcodec_lang::DataType;
 use gcodec_lang::types::MAX_STRING_LEN;
-use gcodec_source::{Code, codes};
+use gcodec_source::{Code, codes, cp1252, cp1252_byte};
 
 /// A run-time error: a stable code (from [`codes::run`]) and a message naming what
 /// failed. Never a panic: the executor reports it as a diagnostic event.
@@ -244,7 +250,7 @@ pub enum RtValue {
     Int(i32),
     Real(f64),
     Bool(bool),
-    /// An ASCII (or Latin-1) code 0…255.
+    /// A code 0…255 of the control's code page (Windows-1252).
     Char(u8),
     String(Arc<str>),
     /// An axis identifier, upper case. An empty name is "no axis".
@@ -351,13 +357,14 @@ impl RtValue {
             Self::Bool(b) => return Ok(u8::from(*b)),
             Self::Int(_) | Self::Real(_) => self.to_int()?,
             Self::String(s) => {
-                return match s.as_bytes() {
-                    [c] => Ok(*c),
+                let mut chars = s.chars();
+                return match (chars.next(), chars.next()) {
+                    (Some(c), None) => char_code(c),
                     _ => Err(RunError::new(
                         codes::run::TYPE_MISMATCH,
                         format!(
                             "the string \"{s}\" has {} characters: a CHAR is one",
-                            s.len()
+                            s.chars().count()
                         ),
                     )),
                 };
@@ -395,13 +402,11 @@ impl RtValue {
                     Self::Char(c) => Arc::from(char_text(*c).as_str()),
                     _ => return Err(RunError::type_mismatch(self, "STRING")),
                 };
-                if s.len() > max_len as usize {
+                let len = s.chars().count();
+                if len > max_len as usize {
                     return Err(RunError::new(
                         codes::run::STRING_TOO_LONG,
-                        format!(
-                            "a string of {} characters does not fit a STRING[{max_len}]",
-                            s.len()
-                        ),
+                        format!("a string of {len} characters does not fit a STRING[{max_len}]"),
                     ));
                 }
                 Self::String(s)
@@ -432,7 +437,7 @@ impl RtValue {
             }
             Self::Real(r) => format_real(*r, out),
             Self::Bool(b) => out.push(if *b { '1' } else { '0' }),
-            Self::Char(c) => out.push(char::from(*c)),
+            Self::Char(c) => out.push(cp1252(*c)),
             Self::String(s) | Self::Axis(s) => out.push_str(s),
             Self::Frame(_) => return Err(RunError::type_mismatch(self, "STRING")),
         }
@@ -454,9 +459,39 @@ pub fn real_to_int(r: f64) -> Result<i32, RunError> {
     }
 }
 
-/// A character code as text (Latin-1).
+/// A REAL result that is not a finite number, as an overflow makes
+/// (`1EX300*1EX300`, `EXP(1000)`), is [`codes::run::OVERFLOW`] where it is
+/// computed, so that no infinity or NaN reaches a variable, position,
+/// feed or speed; `what` names the computation.
+pub(crate) fn finite_real(r: f64, what: impl FnOnce() -> String) -> Result<f64, RunError> {
+    if r.is_finite() {
+        Ok(r)
+    } else {
+        Err(RunError::new(
+            codes::run::OVERFLOW,
+            format!(
+                "{} is outside the range of a REAL (about ±1.8e+308)",
+                what()
+            ),
+        ))
+    }
+}
+
+/// A character code as text: its character in the control's code page
+/// (Windows-1252, SPEC §11.3).
 pub(crate) fn char_text(c: u8) -> String {
-    char::from(c).to_string()
+    cp1252(c).to_string()
+}
+
+/// The code of the character `c` in the control's code page: a CHAR;
+/// a character the code page lacks is [`codes::run::TYPE_MISMATCH`].
+pub(crate) fn char_code(c: char) -> Result<u8, RunError> {
+    cp1252_byte(c).ok_or_else(|| {
+        RunError::new(
+            codes::run::TYPE_MISMATCH,
+            format!("`{c}` is not a character of the control's code page (Windows-1252)"),
+        )
+    })
 }
 
 /// A REAL as `<<` writes it: fixed point with at most 10 decimal places,

@@ -25,9 +25,9 @@ use std::sync::Arc;
 
 use gcodec_ail::VarKind;
 use gcodec_lang::DataType;
-use gcodec_source::codes;
+use gcodec_source::{codes, cp1252};
 
-use crate::value::{RtValue, RunError};
+use crate::value::{RtValue, RunError, char_code};
 
 /// The number of R parameters when nothing says otherwise (MD28050).
 pub const DEFAULT_R_PARAMETERS: usize = 100;
@@ -165,19 +165,10 @@ impl Variable {
                 return Err(self.index_count(name, indices.len()));
             };
             let at = indices[rank];
-            return usize::try_from(at)
-                .ok()
-                .and_then(|i| s.as_bytes().get(i))
-                .map(|&c| RtValue::Char(c))
-                .ok_or_else(|| {
-                    RunError::new(
-                        codes::run::INDEX_OUT_OF_RANGE,
-                        format!(
-                            "character {at} of `{name}` is outside the string of {} characters",
-                            s.len()
-                        ),
-                    )
-                });
+            return match usize::try_from(at).ok().and_then(|i| s.chars().nth(i)) {
+                Some(c) => char_code(c).map(RtValue::Char),
+                None => Err(outside_string(name, at, s)),
+            };
         }
         Err(self.index_count(name, indices.len()))
     }
@@ -200,18 +191,14 @@ impl Variable {
                 return Err(self.index_count(name, indices.len()));
             };
             let at = indices[rank];
-            let Some(i) = usize::try_from(at).ok().filter(|&i| i < s.len()) else {
-                return Err(RunError::new(
-                    codes::run::INDEX_OUT_OF_RANGE,
-                    format!(
-                        "character {at} of `{name}` is outside the string of {} characters",
-                        s.len()
-                    ),
-                ));
+            let Some(i) = usize::try_from(at).ok().filter(|&i| i < s.chars().count()) else {
+                return Err(outside_string(name, at, s));
             };
-            let mut bytes = s.as_bytes().to_vec();
-            bytes[i] = c;
-            let text: String = bytes.into_iter().map(char::from).collect();
+            let text: String = s
+                .chars()
+                .enumerate()
+                .map(|(k, x)| if k == i { cp1252(c) } else { x })
+                .collect();
             self.data[offset] = RtValue::String(Arc::from(text.as_str()));
             return Ok(());
         }
@@ -622,5 +609,17 @@ pub(crate) fn undefined(name: &str) -> RunError {
     RunError::new(
         codes::run::UNDEFINED_VARIABLE,
         format!("`{name}` is not defined here"),
+    )
+}
+
+/// Character `at` of the STRING variable `name` holding `s` does not
+/// exist: [`codes::run::INDEX_OUT_OF_RANGE`], the length in characters.
+fn outside_string(name: &str, at: i32, s: &str) -> RunError {
+    RunError::new(
+        codes::run::INDEX_OUT_OF_RANGE,
+        format!(
+            "character {at} of `{name}` is outside the string of {} characters",
+            s.chars().count()
+        ),
     )
 }

@@ -1099,3 +1099,171 @@ fn numeric_evaluation_and_assignment_do_not_allocate() {
     }
     assert_eq!(allocations() - before, 0, "allocations in 100 calls");
 }
+
+// ---------------------------------------------------------------------
+// Strings are characters of the control's code page (issue 14)
+
+#[test]
+fn string_functions_count_characters_not_utf8_bytes() {
+    let f = |name: &str, args: Vec<Expr>| ok(call(name, args));
+    assert_eq!(f("STRLEN", vec![s("äbc")]), RtValue::Int(3));
+    assert_eq!(
+        f("SUBSTR", vec![s("äbc"), n(0.0), n(1.0)]),
+        RtValue::string("ä")
+    );
+    assert_eq!(f("SUBSTR", vec![s("äöü€"), n(2.0)]), RtValue::string("ü€"));
+    assert_eq!(f("INDEX", vec![s("xäb"), s("b")]), RtValue::Int(2));
+    assert_eq!(f("INDEX", vec![s("xäb"), s("ä")]), RtValue::Int(1));
+    assert_eq!(f("RINDEX", vec![s("äxä"), s("ä")]), RtValue::Int(2));
+    assert_eq!(f("MINDEX", vec![s("€äb"), s("bä")]), RtValue::Int(1));
+    assert_eq!(f("MATCH", vec![s("ääbc"), s("bc")]), RtValue::Int(2));
+    assert_eq!(text(call("SPRINT", vec![s("%.1S"), s("äbc")])), "ä");
+    assert_eq!(
+        text(call("SPRINT", vec![s("%4S|%C"), s("äb"), s("€")])),
+        "  äb|€"
+    );
+    // A CHAR is the character's byte in Windows-1252, both ways.
+    assert_eq!(RtValue::string("€").to_char(), Ok(0x80));
+    assert_eq!(RtValue::string("ä").to_char(), Ok(0xE4));
+    assert_eq!(RtValue::Char(0xE4).to_text().unwrap(), "ä");
+    assert_eq!(
+        ok(bin(B::Eq, s("ä"), un(U::ToString, ok_char(0xE4)))),
+        RtValue::Bool(true)
+    );
+    assert_eq!(
+        RtValue::string("Ж").to_char().unwrap_err().code,
+        codes::run::TYPE_MISMATCH
+    );
+    // `STRING[n]` counts characters too.
+    assert!(
+        RtValue::string("äöü")
+            .convert_to(DataType::String { length: Some(3) })
+            .is_ok()
+    );
+    assert_eq!(
+        RtValue::string("äöü")
+            .convert_to(DataType::String { length: Some(2) })
+            .unwrap_err()
+            .code,
+        codes::run::STRING_TOO_LONG
+    );
+}
+
+/// A CHAR constant as an expression (`"ä"[0]` has no AIL form).
+fn ok_char(code: u8) -> Expr {
+    call(
+        "SUBSTR",
+        vec![s(&RtValue::Char(code).to_text().unwrap()), n(0.0)],
+    )
+}
+
+#[test]
+fn string_indexing_reads_and_writes_characters() {
+    let profile = builtin();
+    let mut vars = Variables::default();
+    vars.declare(
+        Scope::Local,
+        "TXT",
+        DataType::String { length: Some(10) },
+        &[],
+        Init::List(&[Some(RtValue::string("äbc"))]),
+    )
+    .unwrap();
+    let read = |vars: &Variables, i: f64| eval(&Env::new(vars, &profile), &var("TXT", vec![n(i)]));
+    assert_eq!(read(&vars, 0.0), Ok(RtValue::Char(0xE4)));
+    assert_eq!(read(&vars, 1.0), Ok(RtValue::Char(b'b')));
+    let outside = read(&vars, 3.0).unwrap_err();
+    assert_eq!(outside.code, codes::run::INDEX_OUT_OF_RANGE);
+    assert!(
+        outside.message.contains("3 characters"),
+        "{}",
+        outside.message
+    );
+    assign(
+        &mut vars,
+        &mut builtin(),
+        &var("TXT", vec![n(2.0)]),
+        &Value::Expr(Box::new(s("ö"))),
+    )
+    .unwrap();
+    assert_eq!(
+        eval(&Env::new(&vars, &profile), &var("TXT", vec![])),
+        Ok(RtValue::string("äbö"))
+    );
+}
+
+#[test]
+fn sprint_widths_and_precisions_beyond_a_string_are_format_errors() {
+    for format in ["%250D", "%.201S", "%99999999999999999999D"] {
+        let e = err(call("SPRINT", vec![s(format), n(1.0)]));
+        assert_eq!(e.code, codes::run::FORMAT, "{format}");
+        let digits = format
+            .trim_start_matches(['%', '.'])
+            .trim_end_matches(['D', 'S']);
+        assert!(e.message.contains(digits), "{format}: {}", e.message);
+    }
+    assert_eq!(
+        text(call("SPRINT", vec![s("%200D"), n(1.0)]))
+            .chars()
+            .count(),
+        200
+    );
+    assert_eq!(
+        text(call("SPRINT", vec![s("%.20S"), s(&"x".repeat(30))])).len(),
+        20
+    );
+}
+
+proptest::proptest! {
+    /// No string function panics on any text, and lengths and positions
+    /// count characters.
+    #[test]
+    fn string_functions_never_panic_on_non_ascii_text(
+        text in "[a-zäöü€Ж😀%.0-9]{0,12}",
+        start in -2i32..14,
+        len in -2i32..14,
+    ) {
+        let chars = text.chars().count();
+        proptest::prop_assert_eq!(ok(call("STRLEN", vec![s(&text)])), RtValue::Int(chars as i32));
+        let part = ev(&call("SUBSTR", vec![s(&text), n(f64::from(start)), n(f64::from(len))]));
+        if let (Ok(from), Ok(take)) = (usize::try_from(start), usize::try_from(len)) {
+            let expected: String = text.chars().skip(from).take(take).collect();
+            proptest::prop_assert_eq!(part, Ok(RtValue::string(expected)));
+        }
+        for name in ["INDEX", "RINDEX"] {
+            let at = ev(&call(name, vec![s(&text), s("ä")]));
+            if let Ok(RtValue::Int(i)) = at {
+                proptest::prop_assert!(i < chars as i32);
+            }
+        }
+        let _ = ev(&call("MINDEX", vec![s(&text), s("€ü")]));
+        let _ = ev(&call("MATCH", vec![s(&text), s(&text)]));
+        let _ = ev(&call("SPRINT", vec![s(&text), s(&text), n(1.5)]));
+        for precision in [0, 1, 3, 12] {
+            let format = format!("%.{precision}S");
+            let cut = ev(&call("SPRINT", vec![s(&format), s(&text)]));
+            proptest::prop_assert_eq!(cut, Ok(RtValue::string(text.chars().take(precision).collect::<String>())));
+        }
+    }
+}
+
+// ---------------------------------------------------------------------
+// Overflow is an alarm where it happens (issue 14)
+
+#[test]
+fn results_that_are_not_finite_are_overflow_where_computed() {
+    let huge = || n(1e300);
+    for (e, what) in [
+        (bin(B::Mul, huge(), huge()), "`1e+300 * 1e+300`"),
+        (bin(B::Div, huge(), n(1e-300)), "`1e+300 / 1e-300`"),
+        (bin(B::Add, n(1.7e308), n(1.7e308)), "`1.7e+308 + 1.7e+308`"),
+        (bin(B::IntDiv, huge(), n(1e-300)), "`1e+300 DIV 1e-300`"),
+        (call("EXP", vec![n(1000.0)]), "`EXP`"),
+        (call("POT", vec![huge()]), "`POT`"),
+    ] {
+        let e = err(e);
+        assert_eq!(e.code, codes::run::OVERFLOW, "{what}");
+        assert!(e.message.contains(what), "{what}: {}", e.message);
+    }
+    assert!(real(bin(B::Mul, n(1e150), n(1e150))).is_finite());
+}

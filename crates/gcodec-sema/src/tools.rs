@@ -36,6 +36,21 @@ enum Selector {
     Computed(gcodec_ail::Expr, String),
 }
 
+/// A whole tool number `n ≥ 0` as written, if it is one the control holds
+/// (0…4294967295); a larger one is [`codes::lower::INVALID_VALUE`] naming
+/// it, never a wrapped or saturated number.
+fn tool_number(n: f64, span: Span, diagnostics: &mut Vec<Diagnostic>) -> Option<u32> {
+    if n <= f64::from(u32::MAX) {
+        return Some(n as u32);
+    }
+    diagnostics.push(
+        Diagnostic::new(codes::lower::INVALID_VALUE, format!("T{n} is out of range"))
+            .with_label(span, "out of range")
+            .with_help("tool numbers are 0…4294967295"),
+    );
+    None
+}
+
 /// Checks a `T` word and returns its `tool_select`; `None` when it is
 /// rejected (its diagnostic pushed).
 pub(crate) fn select(
@@ -64,9 +79,11 @@ pub(crate) fn select(
         }
     };
     let (selector, assigned) = match (value, whole_number(value)) {
-        (WordValue::Constant(_), Some(n)) if n >= 0.0 => (Selector::Number(n as u32), false),
-        (WordValue::Assigned { .. }, Some(n)) if (0.0..=f64::from(i32::MAX)).contains(&n) => {
-            (Selector::Number(n as u32), true)
+        (WordValue::Constant(_), Some(n)) if n >= 0.0 => {
+            (Selector::Number(tool_number(n, span, diagnostics)?), false)
+        }
+        (WordValue::Assigned { .. }, Some(n)) if n >= 0.0 => {
+            (Selector::Number(tool_number(n, span, diagnostics)?), true)
         }
         (
             WordValue::Assigned {

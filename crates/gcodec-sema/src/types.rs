@@ -109,12 +109,17 @@ pub(crate) fn mismatch(
 /// The type and constant of a literal, if the expression is one.
 pub(crate) fn literal(expr: &ast::Expr) -> Option<(DataType, Constant)> {
     match &expr.kind {
-        ast::ExprKind::String { value } => Some((
-            DataType::String {
-                length: u32::try_from(value.len()).ok(),
-            },
-            Constant::String(value.len()),
-        )),
+        // A string's length counts characters of the control's code page,
+        // not the UTF-8 bytes that hold them (SPEC §11.3).
+        ast::ExprKind::String { value } => {
+            let len = value.chars().count();
+            Some((
+                DataType::String {
+                    length: u32::try_from(len).ok(),
+                },
+                Constant::String(len),
+            ))
+        }
         ast::ExprKind::Bool { .. } => Some((DataType::Bool, Constant::None)),
         _ => {
             let value = crate::values::constant(expr)?;

@@ -132,17 +132,32 @@ pub fn decode(bytes: &[u8]) -> String {
     }
 }
 
-/// The Windows-1252 character of one byte.
-pub(crate) fn cp1252(b: u8) -> char {
-    const HIGH: [char; 32] = [
-        '€', '\u{81}', '‚', 'ƒ', '„', '…', '†', '‡', 'ˆ', '‰', 'Š', '‹', 'Œ', '\u{8d}', 'Ž',
-        '\u{8f}', '\u{90}', '‘', '’', '“', '”', '•', '–', '—', '˜', '™', 'š', '›', 'œ', '\u{9d}',
-        'ž', 'Ÿ',
-    ];
+/// The characters of the bytes 0x80…0x9F in Windows-1252 (the other
+/// bytes are the Latin-1 character of the same code).
+const CP1252_HIGH: [char; 32] = [
+    '€', '\u{81}', '‚', 'ƒ', '„', '…', '†', '‡', 'ˆ', '‰', 'Š', '‹', 'Œ', '\u{8d}', 'Ž', '\u{8f}',
+    '\u{90}', '‘', '’', '“', '”', '•', '–', '—', '˜', '™', 'š', '›', 'œ', '\u{9d}', 'ž', 'Ÿ',
+];
+
+/// The Windows-1252 character of one byte: the control's 8-bit code page,
+/// in which a `CHAR` is one byte and a `STRING` one byte per character.
+pub fn cp1252(b: u8) -> char {
     match b {
-        0x80..=0x9f => HIGH[(b - 0x80) as usize],
-        _ => b as char,
+        0x80..=0x9f => CP1252_HIGH[usize::from(b - 0x80)],
+        _ => char::from(b),
     }
+}
+
+/// The byte of `c` in Windows-1252 ([`cp1252`] backwards); `None` for a
+/// character the code page does not have (`Ж`, `😀`, the C1 controls that
+/// 0x80…0x9F do not stand for).
+pub fn cp1252_byte(c: char) -> Option<u8> {
+    if let Some(at) = CP1252_HIGH.iter().position(|&h| h == c) {
+        return u8::try_from(0x80 + at).ok();
+    }
+    u8::try_from(u32::from(c))
+        .ok()
+        .filter(|b| !(0x80..=0x9f).contains(b))
 }
 
 #[cfg(test)]
@@ -189,5 +204,14 @@ mod tests {
         assert_eq!(decode(b"abc"), "abc");
         assert_eq!(decode("Grüße".as_bytes()), "Grüße");
         assert_eq!(decode(b"Gr\xfc\xdfe \x80"), "Grüße €");
+    }
+
+    #[test]
+    fn every_cp1252_byte_comes_back_from_its_character() {
+        for b in 0..=u8::MAX {
+            assert_eq!(cp1252_byte(cp1252(b)), Some(b), "{b:#x}");
+        }
+        assert_eq!(cp1252_byte('\u{80}'), None);
+        assert_eq!(cp1252_byte('Ж'), None);
     }
 }

@@ -15,7 +15,7 @@ use crate::eval;
 use crate::event::{AxisMap, Event, EventKind, MotionEvent, Plane, WorkOffsetContext};
 use crate::geometry::{self, ArcForm, BoundingBox, Direction, Point3};
 use crate::program::Program;
-use crate::value::{RtValue, RunError};
+use crate::value::{RtValue, RunError, finite_real};
 
 use super::state::MachineState;
 
@@ -269,7 +269,11 @@ impl Channel<'_> {
     ) -> Result<(), RunError> {
         let value = eval::eval_real(&self.env(), value)?;
         let start = self.motion.wcs[axis];
-        self.motion.target[axis] = self.dimension(axis, value, mode, start);
+        let target = self.dimension(axis, value, mode, start);
+        // An increment, inch or unit conversion can overflow too.
+        self.motion.target[axis] = finite_real(target, || {
+            format!("the position on `{}`", self.state.axes[axis].name)
+        })?;
         Ok(())
     }
 

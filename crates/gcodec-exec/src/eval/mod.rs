@@ -29,9 +29,9 @@ use gcodec_lang::functions::Function;
 use gcodec_lang::sysvars::SysVarId;
 use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_profile::Profile;
-use gcodec_source::codes;
+use gcodec_source::{codes, cp1252_byte};
 
-use crate::value::{FrameValue, RtValue, RunError, real_to_int};
+use crate::value::{FrameValue, RtValue, RunError, finite_real, format_real, real_to_int};
 use crate::vars::{Variables, undefined};
 
 pub use assign::{assign, assign_list, declare};
@@ -514,18 +514,21 @@ fn binary(
                 B::Sub => x - y,
                 _ => x * y,
             }),
-            (x, y) => RtValue::Real(match op {
-                B::Add => x.real() + y.real(),
-                B::Sub => x.real() - y.real(),
-                _ => x.real() * y.real(),
-            }),
+            (x, y) => {
+                let r = match op {
+                    B::Add => x.real() + y.real(),
+                    B::Sub => x.real() - y.real(),
+                    _ => x.real() * y.real(),
+                };
+                RtValue::Real(finite_real(r, || written(sym, x.real(), y.real()))?)
+            }
         },
         B::Div => {
             let (x, y) = (num(sym, &a)?.real(), num(sym, &b)?.real());
             if y == 0.0 {
                 return Err(division_by_zero(sym));
             }
-            RtValue::Real(x / y)
+            RtValue::Real(finite_real(x / y, || written(sym, x, y))?)
         }
         B::IntDiv => match (num(sym, &a)?, num(sym, &b)?) {
             (_, Num::I(0)) => return Err(division_by_zero(sym)),
@@ -538,7 +541,7 @@ fn binary(
                 if q >= f64::from(i32::MIN) && q <= f64::from(i32::MAX) {
                     RtValue::Int(q as i32)
                 } else {
-                    RtValue::Real(q)
+                    RtValue::Real(finite_real(q, || written(sym, x.real(), y.real()))?)
                 }
             }
         },
@@ -571,6 +574,18 @@ fn binary(
             (RtValue::Frame(_), other) | (other, _) => return Err(operand_error(sym, other)),
         },
     })
+}
+
+/// `x op y` as the program would write it, for a message.
+fn written(op: &str, x: f64, y: f64) -> String {
+    let mut text = String::from("`");
+    format_real(x, &mut text);
+    text.push(' ');
+    text.push_str(op);
+    text.push(' ');
+    format_real(y, &mut text);
+    text.push('`');
+    text
 }
 
 fn op_symbol(op: BinaryOp) -> &'static str {
@@ -621,7 +636,7 @@ fn compare(op: BinaryOp, a: &RtValue, b: &RtValue) -> Result<bool, RunError> {
             }
         },
         (RtValue::String(_) | RtValue::Char(_), RtValue::String(_) | RtValue::Char(_)) => {
-            text_bytes(a).cmp(text_bytes(b))
+            code_page_keys(a).cmp(code_page_keys(b))
         }
         (RtValue::Axis(x), RtValue::Axis(y) | RtValue::String(y))
         | (RtValue::String(x), RtValue::Axis(y))
@@ -653,11 +668,16 @@ fn compare(op: BinaryOp, a: &RtValue, b: &RtValue) -> Result<bool, RunError> {
     })
 }
 
-/// The bytes of a STRING or CHAR, for comparisons.
-fn text_bytes(v: &RtValue) -> &[u8] {
-    match v {
-        RtValue::String(s) => s.as_bytes(),
-        RtValue::Char(c) => std::slice::from_ref(c),
-        _ => &[],
-    }
+/// The characters of a STRING or CHAR as the control orders them, for
+/// comparisons: by their byte in the code page (so that `"ä"` equals the
+/// CHAR 228 and sorts after `"z"`), a character the code page lacks after
+/// every byte, by its code point.
+fn code_page_keys(v: &RtValue) -> impl Iterator<Item = u32> + '_ {
+    let (text, code) = match v {
+        RtValue::String(s) => (&**s, None),
+        RtValue::Char(c) => ("", Some(u32::from(*c))),
+        _ => ("", None),
+    };
+    let key = |c: char| cp1252_byte(c).map_or(0x100 + u32::from(c), u32::from);
+    code.into_iter().chain(text.chars().map(key))
 }

@@ -52,9 +52,10 @@ impl Lowering<'_> {
                 (None, Some(d), _) if (0.0..=32_000.0).contains(&d) => {
                     plan.edge = Some((Value::Const(d), span))
                 }
-                (None, Some(_), _) => self.diagnostics.push(
-                    Diagnostic::new(codes::lower::INVALID_VALUE, "cutting edges are D0…D32000")
-                        .with_label(span, "out of range"),
+                (None, Some(d), _) => self.diagnostics.push(
+                    Diagnostic::new(codes::lower::INVALID_VALUE, format!("D{d} is out of range"))
+                        .with_label(span, "out of range")
+                        .with_help("cutting edges are D0…D32000"),
                 ),
                 // `D=EDGES[I]`: computed when the block runs.
                 (
@@ -280,12 +281,15 @@ impl Lowering<'_> {
                     {
                         return self.g_code(group, index, span, plan);
                     }
-                    match ggroups::lookup_g(n as u64) {
+                    // Above `u64::MAX` no command either: `None` rather
+                    // than the saturated `as` cast.
+                    let code = (n <= u64::MAX as f64).then_some(n as u64);
+                    match code.and_then(ggroups::lookup_g) {
                         Some((group, index)) => self.g_code(group, index, span, plan),
                         None => self.diagnostics.push(
                             Diagnostic::new(
                                 codes::lower::UNKNOWN_G,
-                                format!("`G{}` is not a G command of the control", n as u64),
+                                format!("`G{n}` is not a G command of the control"),
                             )
                             .with_label(span, "unknown G command"),
                         ),

@@ -3,7 +3,8 @@
 
 use std::sync::Arc;
 
-use gcodec_source::codes;
+use gcodec_lang::types::MAX_STRING_LEN;
+use gcodec_source::{codes, cp1252};
 
 use super::{Args, EvalContext};
 use crate::value::{RtValue, RunError};
@@ -25,7 +26,8 @@ pub(super) fn sprint_call<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<Rt
 /// decimals), `%E`, `%G`, `%S` (the value as `<<` writes it), `%C`
 /// (CHAR), `%B` (BOOL as `TRUE`/`FALSE`), `%X` (INT in hexadecimal) and
 /// `%%`, each with an optional width (`%5D`, blanks on the left) and
-/// precision (`%.3F`, `%10.3F`). Upper or lower case.
+/// precision (`%.3F`, `%10.3F`), both at most 200 (a STRING's length) and
+/// counting characters. Upper or lower case.
 pub fn sprint(format: &str, values: &[RtValue]) -> Result<String, RunError> {
     use std::fmt::Write as _;
     let mut out = String::new();
@@ -41,22 +43,12 @@ pub fn sprint(format: &str, values: &[RtValue]) -> Result<String, RunError> {
             out.push('%');
             continue;
         }
-        let mut width = String::new();
-        while let Some(&d) = chars.peek().filter(|d| d.is_ascii_digit()) {
-            width.push(d);
-            chars.next();
-        }
+        let width = field_size(&mut chars, "width")?.unwrap_or(0);
         let mut precision = None;
         if chars.peek() == Some(&'.') {
             chars.next();
-            let mut p = String::new();
-            while let Some(&d) = chars.peek().filter(|d| d.is_ascii_digit()) {
-                p.push(d);
-                chars.next();
-            }
-            precision = Some(p.parse::<usize>().unwrap_or(0).min(16));
+            precision = Some(field_size(&mut chars, "precision")?.unwrap_or(0));
         }
-        let width: usize = width.parse::<usize>().unwrap_or(0).min(200);
         let Some(directive) = chars.next() else {
             return Err(RunError::new(
                 codes::run::FORMAT,
@@ -82,19 +74,46 @@ pub fn sprint(format: &str, values: &[RtValue]) -> Result<String, RunError> {
             'F' => format!("{:.*}", precision.unwrap_or(6), v.to_real()?),
             'E' => c_exponent(v.to_real()?, precision.unwrap_or(6)),
             'G' => c_general(v.to_real()?, precision.unwrap_or(6)),
-            'C' => char::from(v.to_char()?).to_string(),
+            'C' => cp1252(v.to_char()?).to_string(),
             'B' => if v.to_bool()? { "TRUE" } else { "FALSE" }.to_owned(),
             _ => {
-                let mut t = v.to_text()?;
-                if let Some(p) = precision {
-                    t.truncate(p.min(t.len()));
+                let t = v.to_text()?;
+                match precision {
+                    Some(p) => t.chars().take(p).collect(),
+                    None => t,
                 }
-                t
             }
         };
+        // The width counts characters, as Rust's padding does.
         let _ = write!(out, "{field:>width$}");
     }
     Ok(out)
+}
+
+/// The digits of a width or precision at `chars`, consumed: `None` when
+/// there are none. A field larger than a STRING holds
+/// ([`MAX_STRING_LEN`] characters) is [`codes::run::FORMAT`], named as
+/// written, rather than cut silently.
+fn field_size(
+    chars: &mut std::iter::Peekable<std::str::Chars<'_>>,
+    what: &str,
+) -> Result<Option<usize>, RunError> {
+    let mut digits = String::new();
+    while let Some(&d) = chars.peek().filter(|d| d.is_ascii_digit()) {
+        digits.push(d);
+        chars.next();
+    }
+    if digits.is_empty() {
+        return Ok(None);
+    }
+    let max = usize::from(MAX_STRING_LEN);
+    match digits.parse::<usize>() {
+        Ok(n) if n <= max => Ok(Some(n)),
+        _ => Err(RunError::new(
+            codes::run::FORMAT,
+            format!("`SPRINT`: the {what} {digits} is more than a STRING holds ({max} characters)"),
+        )),
+    }
 }
 
 /// C's `%.*e`: `1.500000e+02`.

@@ -17,7 +17,7 @@ use gcodec_lang::functions::Function;
 use gcodec_source::codes;
 
 use super::{EvalContext, eval_at};
-use crate::value::{RtValue, RunError, char_text};
+use crate::value::{RtValue, RunError, char_text, finite_real};
 
 pub use format::sprint;
 
@@ -45,7 +45,7 @@ pub(super) fn call<C: EvalContext + ?Sized>(
         depth,
     };
     use Function as F;
-    match function {
+    let result = match function {
         F::Abs | F::Sqrt | F::Pot | F::Trunc | F::Round | F::Roundup | F::Ln | F::Exp => {
             arithmetic::of_one_real(&a)
         }
@@ -65,6 +65,12 @@ pub(super) fn call<C: EvalContext + ?Sized>(
         F::Substr => strings::substr(&a),
         F::Sprint => format::sprint_call(&a),
         _ => runtime_function(&a),
+    };
+    match result {
+        Ok(RtValue::Real(r)) => {
+            finite_real(r, || format!("the result of `{}`", a.name())).map(RtValue::Real)
+        }
+        other => other,
     }
 }
 

@@ -1,18 +1,20 @@
 //! Strings: `STRLEN`, `TOUPPER`, `TOLOWER`, `INDEX`, `RINDEX`, `MINDEX`,
-//! `MATCH`, `SUBSTR`. Positions count from 0, −1 is "not found".
+//! `MATCH`, `SUBSTR`. Positions and lengths count characters of the
+//! control's code page (`char`s, never UTF-8 bytes: SPEC §11.3) from 0,
+//! −1 is "not found".
 
 use std::sync::Arc;
 
 use gcodec_lang::functions::Function as F;
-use gcodec_source::codes;
+use gcodec_source::{codes, cp1252};
 
 use super::{Args, EvalContext};
 use crate::value::{RtValue, RunError};
 
-/// `STRLEN(s)`: the length in characters (bytes).
+/// `STRLEN(s)`: the length in characters.
 pub(super) fn strlen<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
     a.count(1, 1)?;
-    Ok(RtValue::Int(a.string(0)?.len() as i32))
+    Ok(count(a.string(0)?.chars().count()))
 }
 
 /// `TOUPPER(s)`, `TOLOWER(s)`.
@@ -31,12 +33,13 @@ pub(super) fn change_case<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<Rt
 /// character `c`.
 pub(super) fn index<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
     a.count(2, 2)?;
-    let (s, c) = (a.string(0)?, a.char(1)?);
-    let bytes = s.as_bytes();
+    let (s, c) = (a.string(0)?, cp1252(a.char(1)?));
     let at = if a.function == F::Index {
-        bytes.iter().position(|&b| b == c)
+        s.chars().position(|x| x == c)
     } else {
-        bytes.iter().rposition(|&b| b == c)
+        // Counted from the end, then turned into a position from the start.
+        let from_end = s.chars().rev().position(|x| x == c);
+        from_end.map(|k| s.chars().count() - 1 - k)
     };
     Ok(position(at))
 }
@@ -45,7 +48,7 @@ pub(super) fn index<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue,
 pub(super) fn mindex<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
     a.count(2, 2)?;
     let (s, set) = (a.string(0)?, a.string(1)?);
-    let at = s.bytes().position(|b| set.as_bytes().contains(&b));
+    let at = s.chars().position(|c| set.contains(c));
     Ok(position(at))
 }
 
@@ -53,7 +56,8 @@ pub(super) fn mindex<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue
 pub(super) fn find<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
     a.count(2, 2)?;
     let (s, sub) = (a.string(0)?, a.string(1)?);
-    Ok(position(s.find(&*sub)))
+    let at = s.find(&*sub).map(|byte| s[..byte].chars().count());
+    Ok(position(at))
 }
 
 /// `SUBSTR(s, start)`, `SUBSTR(s, start, len)`.
@@ -66,7 +70,13 @@ pub(super) fn substr<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue
 }
 
 fn position(at: Option<usize>) -> RtValue {
-    RtValue::Int(at.map_or(-1, |i| i as i32))
+    at.map_or(RtValue::Int(-1), count)
+}
+
+/// A count or position as an INT (a string is far shorter than `i32::MAX`
+/// characters; a longer one would be counted as `i32::MAX`).
+fn count(n: usize) -> RtValue {
+    RtValue::Int(i32::try_from(n).unwrap_or(i32::MAX))
 }
 
 /// `SUBSTR(s, start, len)`: the characters from `start` (0-based) on,
@@ -81,13 +91,10 @@ fn substring(s: &str, start: i32, len: Option<i32>) -> Result<RtValue, RunError>
         )
     };
     let start = usize::try_from(start).map_err(|_| bad("start", start))?;
-    let bytes = s.as_bytes();
-    let from = start.min(bytes.len());
-    let to = match len {
-        Some(n) => from.saturating_add(usize::try_from(n).map_err(|_| bad("length", n))?),
-        None => bytes.len(),
-    }
-    .min(bytes.len());
-    let text: String = bytes[from..to].iter().map(|&b| char::from(b)).collect();
+    let len = match len {
+        Some(n) => usize::try_from(n).map_err(|_| bad("length", n))?,
+        None => usize::MAX,
+    };
+    let text: String = s.chars().skip(start).take(len).collect();
     Ok(RtValue::String(Arc::from(text.as_str())))
 }
