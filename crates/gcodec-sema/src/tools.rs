@@ -39,7 +39,7 @@ enum Selector {
 /// A whole tool number `n ≥ 0` as written, if it is one the control holds
 /// (0…4294967295); a larger one is [`codes::lower::INVALID_VALUE`] naming
 /// it, never a wrapped or saturated number.
-fn tool_number(n: f64, span: Span, diagnostics: &mut Vec<Diagnostic>) -> Option<u32> {
+fn tool_number(n: f64, span: Span, diagnostics: &mut Diagnostics) -> Option<u32> {
     if n <= f64::from(u32::MAX) {
         return Some(n as u32);
     }
