@@ -55,6 +55,11 @@ pub struct RunArgs {
     /// Stop after this many blocks (a guard against endless loops).
     #[arg(long, value_name = "N", default_value_t = 10_000_000)]
     pub max_steps: u64,
+    /// Stop before the run's work on arrays passes this many element
+    /// operations (elements declared, and written by lists, `REP` and
+    /// `VAR` copies): a guard against blocks that each cost millions.
+    #[arg(long, value_name = "N", default_value_t = gcodec_driver::DEFAULT_MAX_WORK)]
+    pub max_work: u64,
     /// Go on after `M0` (and `M1`) instead of ending the run there (as the
     /// profile's `[program] stop_at_m0 = false` does).
     #[arg(long)]
@@ -161,6 +166,7 @@ pub fn run(args: RunArgs) -> u8 {
         run_options.skip_levels = levels;
     }
     run_options.max_steps = args.max_steps;
+    run_options.max_work = args.max_work;
     if args.no_stop {
         run_options.stop_at_m0 = false;
     }

@@ -119,6 +119,52 @@ fn skip_levels_and_max_steps_and_no_stop() {
 }
 
 #[test]
+fn max_work_stops_a_run_whose_blocks_cost_millions_of_operations() {
+    // Each pass declares 2^20 elements; the budget admits three passes.
+    let program = "LA: DEF REAL ARR[1024,1024]\nGOTOB LA\n";
+    let file = temp_file("run-max-work", "work.mpf", program);
+    let path = file.to_str().expect("path");
+    let out = gcodec(["run", path, "--format", "text", "--max-work", "3500000"]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS, "{}", stderr(&out));
+    // Two blocks a pass: the fourth `DEF` is block 7.
+    assert!(
+        stdout(&out).contains("program_end limit blocks 7"),
+        "{}",
+        stdout(&out)
+    );
+    assert!(
+        stderr(&out).contains("gcodec::run::work_limit")
+            && stderr(&out).contains("with the 3145728 done"),
+        "{}",
+        stderr(&out)
+    );
+    let out = gcodec(["run", path, "--max-work", "many"]);
+    assert_eq!(code(&out), EXIT_USAGE, "{}", stderr(&out));
+}
+
+#[test]
+fn a_global_variable_past_the_memory_for_variables_names_its_definition_file_and_line() {
+    let definitions: String = (1..=20)
+        .map(|n| format!("DEF REAL TAB{n}[1024,1024]\n"))
+        .collect();
+    let gud = temp_file("run-gud-memory", "MGUD.DEF", &definitions);
+    let main = temp_file("run-gud-memory", "main.mpf", "N10 R1=1\nM30\n");
+    let out = gcodec([
+        "run",
+        main.to_str().expect("path"),
+        "--definitions",
+        gud.to_str().expect("path"),
+    ]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS, "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(
+        err.contains("gcodec::run::variable_memory") && err.contains("MGUD.DEF:11:10"),
+        "{err}"
+    );
+    assert!(err.contains("blocks executed: 0"), "{err}");
+}
+
+#[test]
 fn a_missing_subprogram_is_an_alarm_naming_the_search_path() {
     let file = temp_file("run-missing", "missing.mpf", "N10 NOT_THERE\nN20 M30\n");
     let extra = file.parent().expect("dir").join("extra");

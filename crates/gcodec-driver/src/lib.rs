@@ -28,6 +28,7 @@ pub mod stream;
 pub use compile::{Compiled, compile, compile_text};
 pub use diagnostics::runtime_diagnostic;
 pub use gcodec_ail::{Document, write_listing};
+pub use gcodec_exec::budget::DEFAULT_MAX_WORK;
 pub use gcodec_exec::channel::{BlockObserver, RunOptions, RunOutcome};
 pub use gcodec_exec::event;
 pub use gcodec_parser::{Parse, parse, write_tree};

@@ -113,11 +113,13 @@ pub fn run_main(
     }
 }
 
-/// The global user data of `definitions` as the channel declares it. A
-/// variable whose type or dimensions are not constants the channel can
-/// hold is left out (reading it is an error naming it).
+/// The global user data of `definitions` as the channel declares it, in
+/// the order of their files' names and their lines (the order in which
+/// they take the memory for variables). A variable whose type or
+/// dimensions are not constants the channel can hold is left out
+/// (reading it is an error naming it).
 pub fn globals(definitions: &Definitions) -> Vec<Global> {
-    definitions
+    let mut globals: Vec<Global> = definitions
         .variables()
         .filter_map(|variable| {
             let data_type = Some(variable.data_type).filter(|ty| ty.is_declarable())?;
@@ -130,7 +132,12 @@ pub fn globals(definitions: &Definitions) -> Vec<Global> {
                 name: variable.name.to_ascii_uppercase(),
                 data_type,
                 dims,
+                file: Arc::from(variable.file.as_str()),
+                line: variable.line,
+                col: variable.col,
             })
         })
-        .collect()
+        .collect();
+    globals.sort_by(|a, b| (&a.file, a.line, a.col).cmp(&(&b.file, b.line, b.col)));
+    globals
 }

@@ -5,9 +5,11 @@
 //! a [`loader::ProgramLoader`] for the subprograms it calls and an
 //! [`event::EventSink`]. Its parts: runtime events and their sinks
 //! ([`event`]), values, expressions and variables ([`value`], [`eval`],
-//! [`vars`]), circle geometry ([`geometry`]), programmable frames
+//! [`vars`]), the budgets of work and memory a run draws on
+//! ([`budget`]), circle geometry ([`geometry`]), programmable frames
 //! ([`frames`]).
 
+pub mod budget;
 pub mod channel;
 pub mod eval;
 pub mod event;

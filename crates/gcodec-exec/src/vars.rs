@@ -20,13 +20,21 @@
 //! Lookups hash the name in place (no allocation); the tables of dropped
 //! levels are kept for reuse, and assignments overwrite in place, so that
 //! the store does not grow with the number of assignments or calls.
+//!
+//! The store draws on the run's budgets ([`crate::budget`]): a declaration
+//! takes its bytes from the memory for variables before it allocates
+//! them (a replaced variable and a dropped level give theirs back), and
+//! the elements declarations initialise and lists and fills write count
+//! as work.
 
 use std::sync::Arc;
 
 use gcodec_ail::VarKind;
 use gcodec_lang::DataType;
+use gcodec_profile::DEFAULT_MAX_VARIABLE_MEMORY;
 use gcodec_source::{codes, cp1252};
 
+use crate::budget::{DEFAULT_MAX_WORK, MemoryBudget, WorkBudget, element_bytes};
 use crate::value::{RtValue, RunError, char_code};
 
 /// The number of R parameters when nothing says otherwise (MD28050).
@@ -58,6 +66,11 @@ pub struct Global {
     pub data_type: DataType,
     /// The array dimensions; empty for a single value.
     pub dims: Vec<usize>,
+    /// Where it is defined: the definition file, 1-based line and byte
+    /// column.
+    pub file: Arc<str>,
+    pub line: u32,
+    pub col: u32,
 }
 
 /// One declared variable.
@@ -70,7 +83,9 @@ pub struct Variable {
 }
 
 impl Variable {
-    fn new(ty: DataType, dims: &[usize]) -> Result<Self, RunError> {
+    /// The number of elements of an array of `dims`, if gcodec can hold
+    /// it.
+    fn element_count(dims: &[usize]) -> Result<usize, RunError> {
         if dims.len() > MAX_DIMENSIONS {
             return Err(RunError::new(
                 codes::run::INVALID_DECLARATION,
@@ -81,15 +96,13 @@ impl Variable {
             ));
         }
         let mut total = 1usize;
-        let mut d = [0; MAX_DIMENSIONS];
-        for (slot, &n) in d.iter_mut().zip(dims) {
+        for &n in dims {
             if n == 0 {
                 return Err(RunError::new(
                     codes::run::INVALID_DECLARATION,
                     "an array dimension must be at least 1",
                 ));
             }
-            *slot = n;
             total = total.saturating_mul(n);
         }
         if total > MAX_ELEMENTS {
@@ -98,12 +111,27 @@ impl Variable {
                 format!("an array of {total} elements is larger than {MAX_ELEMENTS}"),
             ));
         }
-        Ok(Self {
+        Ok(total)
+    }
+
+    /// A variable of `total` elements ([`Variable::element_count`] of
+    /// `dims`), each its type's initial value.
+    fn new(ty: DataType, dims: &[usize], total: usize) -> Self {
+        let mut d = [0; MAX_DIMENSIONS];
+        for (slot, &n) in d.iter_mut().zip(dims) {
+            *slot = n;
+        }
+        Self {
             ty,
             dims: d,
             rank: dims.len() as u8,
             data: vec![RtValue::initial(ty); total],
-        })
+        }
+    }
+
+    /// The bytes it counts against the memory for variables.
+    fn bytes(&self) -> u64 {
+        self.data.len() as u64 * element_bytes(self.ty)
     }
 
     /// The dimensions (empty for a single value).
@@ -300,9 +328,12 @@ impl Table {
         }
     }
 
-    fn clear(&mut self) {
+    /// Drops every variable; returns the bytes they counted.
+    fn clear(&mut self) -> u64 {
+        let bytes = self.vars.iter().map(Variable::bytes).sum();
         self.index.clear();
         self.vars.clear();
+        bytes
     }
 }
 
@@ -316,6 +347,8 @@ pub struct Variables {
     levels: Vec<Table>,
     depth: usize,
     lud_extended_scope: bool,
+    work: WorkBudget,
+    memory: MemoryBudget,
 }
 
 impl Default for Variables {
@@ -334,7 +367,28 @@ impl Variables {
             levels: vec![Table::default()],
             depth: 1,
             lud_extended_scope: false,
+            work: WorkBudget::new(DEFAULT_MAX_WORK),
+            memory: MemoryBudget::new(DEFAULT_MAX_VARIABLE_MEMORY),
         }
+    }
+
+    /// The budgets the store draws on: `max_work` element operations
+    /// (`--max-work`) and `max_memory` bytes of variables alive at once
+    /// (the profile's `[program] max_variable_memory`).
+    pub fn with_budgets(mut self, max_work: u64, max_memory: u64) -> Self {
+        self.work = WorkBudget::new(max_work);
+        self.memory = MemoryBudget::new(max_memory);
+        self
+    }
+
+    /// The element operations done so far ([`crate::budget::WorkBudget`]).
+    pub fn work_done(&self) -> u64 {
+        self.work.done()
+    }
+
+    /// The bytes the variables alive hold.
+    pub fn memory_used(&self) -> u64 {
+        self.memory.used()
     }
 
     /// MD11120 `$MN_LUD_EXTENDED_SCOPE`: the main program's variables are
@@ -368,7 +422,8 @@ impl Variables {
             return false;
         }
         self.depth -= 1;
-        self.levels[self.depth].clear();
+        let freed = self.levels[self.depth].clear();
+        self.memory.release(freed);
         true
     }
 
@@ -385,7 +440,8 @@ impl Variables {
 
     /// Declares `name` (upper case, as AIL writes it) with its initial
     /// values. A second declaration of a name in the same table replaces
-    /// the variable.
+    /// the variable. Its bytes are taken from the memory for variables
+    /// and its elements counted as work before anything is allocated.
     pub fn declare(
         &mut self,
         scope: Scope,
@@ -394,18 +450,32 @@ impl Variables {
         dims: &[usize],
         init: Init<'_>,
     ) -> Result<(), RunError> {
-        let mut var = Variable::new(ty, dims)?;
+        let total = Variable::element_count(dims)?;
+        let initialised = match init {
+            Init::None => 0,
+            Init::List(values) => values.len(),
+            Init::Repeat(_, count) => count.unwrap_or(total),
+        };
+        self.work.spend(total.saturating_add(initialised))?;
+        let bytes = total as u64 * element_bytes(ty);
+        let freed = self.table(scope).get(name).map_or(0, Variable::bytes);
+        self.memory.check(name, bytes, freed)?;
+        let mut var = Variable::new(ty, dims, total);
         match init {
             Init::None => {}
             Init::List(values) => var.put_list(name, 0, values)?,
             Init::Repeat(value, count) => var.put_fill(name, 0, value, count)?,
         }
-        let table = match scope {
+        self.memory.take(bytes, freed);
+        self.table(scope).declare(name, var);
+        Ok(())
+    }
+
+    fn table(&mut self, scope: Scope) -> &mut Table {
+        match scope {
             Scope::Local => &mut self.levels[self.depth - 1],
             Scope::Global => &mut self.globals,
-        };
-        table.declare(name, var);
-        Ok(())
+        }
     }
 
     /// The variable `name` as the current level sees it.
@@ -524,6 +594,7 @@ impl Variables {
         if kind == VarKind::RParameter {
             let first = r_start(start)?;
             self.check_r_span(first, values.len())?;
+            self.work.spend(values.len())?;
             let mut converted = Vec::with_capacity(values.len());
             for v in values {
                 converted.push(v.as_ref().map(RtValue::to_real).transpose()?);
@@ -535,8 +606,11 @@ impl Variables {
             }
             return Ok(());
         }
-        let var = self.get_mut(name).ok_or_else(|| undefined(name))?;
+        let var = self.get(name).ok_or_else(|| undefined(name))?;
         let first = var.start(name, start)?;
+        check_span(name, first, values.len(), var.data.len())?;
+        self.work.spend(values.len())?;
+        let var = self.get_mut(name).ok_or_else(|| undefined(name))?;
         var.put_list(name, first, values)
     }
 
@@ -554,13 +628,18 @@ impl Variables {
             let first = r_start(start)? as usize;
             let count = count.unwrap_or(self.r.len().saturating_sub(first));
             self.check_r_span(first as i32, count)?;
+            self.work.spend(count)?;
             let v = value.to_real()?;
             self.r[first..first + count].fill(v);
             return Ok(());
         }
-        let var = self.get_mut(name).ok_or_else(|| undefined(name))?;
+        let var = self.get(name).ok_or_else(|| undefined(name))?;
         let first = var.start(name, start)?;
-        var.put_fill(name, first, value, count)
+        let count = count.unwrap_or(var.data.len().saturating_sub(first));
+        check_span(name, first, count, var.data.len())?;
+        self.work.spend(count)?;
+        let var = self.get_mut(name).ok_or_else(|| undefined(name))?;
+        var.put_fill(name, first, value, Some(count))
     }
 
     fn check_r_span(&self, first: i32, count: usize) -> Result<(), RunError> {

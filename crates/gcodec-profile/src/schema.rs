@@ -352,6 +352,11 @@ pub struct ProgramSettings {
     /// programs and definition files.
     #[serde(default = "default_max_file_size")]
     pub max_file_size: Spanned<u64>,
+    /// The memory for variables, in bytes: the `DEF` variables of every
+    /// active program level and the global user data alive at once (the
+    /// control's user memory, which its machine data size).
+    #[serde(default = "default_max_variable_memory")]
+    pub max_variable_memory: Spanned<u64>,
     /// Whether `M0` ends a simulated run (it waits for NC start on the
     /// machine); `false` lets runs go on, as `gcodec run --no-stop`.
     #[serde(default = "yes")]
@@ -375,6 +380,7 @@ impl Default for ProgramSettings {
             subprogram_paths: Vec::new(),
             link_target_paths: Vec::new(),
             max_file_size: default_max_file_size(),
+            max_variable_memory: default_max_variable_memory(),
             stop_at_m0: true,
             circle_error_const: default_circle_error_const(),
             circle_error_factor: default_circle_error_factor(),
@@ -469,6 +475,15 @@ fn default_max_block_length() -> Spanned<u32> {
 
 fn default_max_file_size() -> Spanned<u64> {
     spanned(gcodec_source::DEFAULT_MAX_FILE_SIZE)
+}
+
+/// `[program] max_variable_memory` when the profile does not give it:
+/// 256 MiB, ten of the largest arrays gcodec declares (2^20 REAL
+/// elements), far more than any program of the corpus needs.
+pub const DEFAULT_MAX_VARIABLE_MEMORY: u64 = 256 << 20;
+
+fn default_max_variable_memory() -> Spanned<u64> {
+    spanned(DEFAULT_MAX_VARIABLE_MEMORY)
 }
 
 fn default_max_feed() -> Spanned<f64> {

@@ -45,6 +45,10 @@ pub struct GlobalVariable {
     pub file: String,
     /// Where the variable is defined in that file.
     pub span: Span,
+    /// The 1-based line and byte column of `span`'s start, for what
+    /// reports it without the file at hand (the run's diagnostic events).
+    pub line: u32,
+    pub col: u32,
 }
 
 /// A macro of a definition file (`DEFINE NAME AS text`).
@@ -140,6 +144,7 @@ impl Definitions {
                     if let Some(init) = &var.init {
                         check_constant_initializer(data_type, &var.name, init, diagnostics);
                     }
+                    let (line, col) = program.line_col(var.span.start);
                     let global = GlobalVariable {
                         name: var.name.to_string(),
                         data_type,
@@ -148,6 +153,8 @@ impl Definitions {
                         attributes: attributes.clone(),
                         file: program.file.clone(),
                         span: var.span,
+                        line,
+                        col,
                     };
                     if let Some(first) = self.variables.insert_new(&var.name, global) {
                         let mut d = Diagnostic::new(

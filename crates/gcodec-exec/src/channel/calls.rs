@@ -417,10 +417,7 @@ impl Channel<'_> {
         };
         match self.enter(program, &instruction, pc, callee, active) {
             Ok(flow) => flow,
-            Err(error) => {
-                self.alarm(program, &instruction, error);
-                Flow::End(ProgramEndReason::Alarm)
-            }
+            Err(error) => Flow::End(self.alarm(program, &instruction, error)),
         }
     }
 
@@ -433,16 +430,12 @@ impl Channel<'_> {
         callee: Arc<Program>,
         active: ActiveCall,
     ) -> Result<Flow, RunError> {
-        let levels = self.program_level() as usize + 1;
-        if active.own_level && levels >= self.options.max_levels {
-            return Err(RunError::new(
-                codes::run::CALL_DEPTH,
-                format!(
-                    "calling `{}` would open program level {}: the control has {} (the main program is level 0)",
-                    active.target, levels, self.options.max_levels
-                ),
-            ));
-        }
+        let what = if active.own_level {
+            format!("calling `{}`", active.target)
+        } else {
+            format!("the section `{}`", active.target)
+        };
+        self.check_depth(what)?;
         if let Some(top) = self.stack.last_mut() {
             top.pc = resume;
         }
@@ -459,6 +452,27 @@ impl Channel<'_> {
             kind: LevelKind::Call(Box::new(active)),
         });
         Ok(Flow::Switch)
+    }
+
+    /// Whether one more level fits the control's program levels. Each
+    /// call takes one until it returns, and so does each section that
+    /// runs (`REPEAT`, `CALL BLOCK` of the program's own blocks) until its
+    /// last pass ends, though its events keep its program's level: a
+    /// section containing the `REPEAT` that runs it nests itself on every
+    /// pass, and the stack must not grow with the run. `what` names the
+    /// new level in the message.
+    fn check_depth(&self, what: String) -> Result<(), RunError> {
+        let level = self.stack.len();
+        if level < self.options.max_levels {
+            return Ok(());
+        }
+        Err(RunError::new(
+            codes::run::CALL_DEPTH,
+            format!(
+                "{what} would open program level {level}: the control has {} (the main program is level 0)",
+                self.options.max_levels
+            ),
+        ))
     }
 
     /// The main program's `PROC` parameters, when it has any: declared
@@ -677,6 +691,7 @@ impl Channel<'_> {
                 )
             })?;
         let target = written_label(&section.start).to_owned();
+        self.check_depth(format!("the section `{target}`"))?;
         if let Some(top) = self.stack.last_mut() {
             top.pc = pc + 1;
         }
@@ -771,8 +786,7 @@ impl Channel<'_> {
             let written = self.write_back(&bindings);
             self.vars.pop_level();
             if let Err(error) = written {
-                self.alarm(program, &instruction, error);
-                return Flow::End(ProgramEndReason::Alarm);
+                return Flow::End(self.alarm(program, &instruction, error));
             }
         }
         self.emit_at(
@@ -800,8 +814,7 @@ impl Channel<'_> {
         if own_level {
             self.vars.push_level();
             if let Err(error) = self.bind(&bindings) {
-                self.alarm(program, &instruction, error);
-                return Flow::End(ProgramEndReason::Alarm);
+                return Flow::End(self.alarm(program, &instruction, error));
             }
         }
         Flow::Switch

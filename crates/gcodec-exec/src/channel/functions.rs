@@ -113,13 +113,12 @@ impl Channel<'_> {
             _ => None,
         };
         if let Some((number, state)) = change {
-            let s = self.state.spindle(number);
-            s.state = state;
-            self.spindle_event(program, instruction, number);
+            self.state.spindle(number)?.state = state;
+            self.spindle_event(program, instruction, number)?;
         }
         match action {
-            MAction::GearStageAuto => self.state.spindle(extension).gear = 0,
-            MAction::GearStage => self.state.spindle(extension).gear = value - 40,
+            MAction::GearStageAuto => self.state.spindle(extension)?.gear = 0,
+            MAction::GearStage => self.state.spindle(extension)?.gear = value - 40,
             MAction::ProgramStop | MAction::OptionalStop => {
                 let stops = action == MAction::ProgramStop || self.options.optional_stop;
                 if stops {
@@ -181,8 +180,8 @@ impl Channel<'_> {
         program: &Arc<Program>,
         instruction: &Instruction,
         number: Option<u32>,
-    ) {
-        let s = self.state.spindle(number).clone();
+    ) -> Result<(), RunError> {
+        let s = self.state.spindle(number)?.clone();
         let event = EventKind::Spindle(SpindleEvent {
             spindle: s.number,
             state: s.state,
@@ -190,6 +189,7 @@ impl Channel<'_> {
             position: s.position.filter(|_| s.state == SpindleState::Positioned),
         });
         self.emit_at(program, instruction, event);
+        Ok(())
     }
 
     pub(super) fn spindle_speed(
@@ -203,9 +203,8 @@ impl Channel<'_> {
         let env = self.env();
         let number = self.extension(spindle, spindle_expr)?;
         let speed = eval::eval_real(&env, speed)?;
-        self.state.spindle(number).speed = speed;
-        self.spindle_event(program, instruction, number);
-        Ok(())
+        self.state.spindle(number)?.speed = speed;
+        self.spindle_event(program, instruction, number)
     }
 
     pub(super) fn dwell(
@@ -266,10 +265,10 @@ impl Channel<'_> {
         match address.address {
             NamedAddress::Spos | NamedAddress::Sposa => {
                 let number = self.extension(address.extension, address.extension_expr.as_ref())?;
-                let s = self.state.spindle(number);
+                let s = self.state.spindle(number)?;
                 s.state = SpindleState::Positioned;
                 s.position = Some(value);
-                self.spindle_event(program, instruction, number);
+                self.spindle_event(program, instruction, number)?;
             }
             other => {
                 let other = other.name();

@@ -55,6 +55,10 @@ pub struct RunOptions {
     pub skip_levels: [bool; 10],
     /// Stop after this many blocks ([`ProgramEndReason::Limit`]).
     pub max_steps: u64,
+    /// Stop before the element operations on variables pass this many
+    /// ([`crate::budget::WorkBudget`], `--max-work`): a block can cost
+    /// millions of them, which the step limit does not see.
+    pub max_work: u64,
     /// Program levels, the main program's included (16 on the control).
     pub max_levels: usize,
     /// `M0` (and `M1` with `optional_stop`) ends the run with a `stop`
@@ -70,7 +74,8 @@ pub struct RunOptions {
 
 impl RunOptions {
     /// The defaults for a machine: its skip levels, `stop_at_m0` and
-    /// circle tolerance, 10 million blocks, 16 levels, M1 does not stop.
+    /// circle tolerance, 10 million blocks, a billion element operations,
+    /// 16 levels, M1 does not stop.
     pub fn for_profile(profile: &Profile) -> Self {
         let mut skip_levels = [false; 10];
         for level in &profile.program.skip_levels {
@@ -81,6 +86,7 @@ impl RunOptions {
         Self {
             skip_levels,
             max_steps: 10_000_000,
+            max_work: crate::budget::DEFAULT_MAX_WORK,
             max_levels: 16,
             stop_at_m0: profile.program.stop_at_m0,
             optional_stop: false,
@@ -188,6 +194,9 @@ pub struct Channel<'r> {
     /// Where the active tool's figures are in the summary, once looked up
     /// (cleared by a tool change): not searched for every block.
     figures_slot: Option<usize>,
+    /// A global variable of the definition files that did not fit the
+    /// memory for variables, where it is defined: the run does not start.
+    global_error: Option<(EventSource, RunError)>,
 }
 
 impl<'r> Channel<'r> {
@@ -198,7 +207,8 @@ impl<'r> Channel<'r> {
         sink: &'r mut dyn EventSink,
     ) -> Self {
         // The profile has no key for MD28050 (the number of R parameters).
-        let vars = Variables::default();
+        let max_memory = *profile.program.max_variable_memory.get_ref();
+        let vars = Variables::default().with_budgets(options.max_work, max_memory);
         let state = MachineState::new(profile);
         let motion = motion::MotionScratch::new(&state);
         Self {
@@ -218,6 +228,7 @@ impl<'r> Channel<'r> {
             warnings: 0,
             output_error: None,
             figures_slot: None,
+            global_error: None,
         }
     }
 
@@ -228,17 +239,32 @@ impl<'r> Channel<'r> {
     }
 
     /// Declares the global user data of definition files (GUD), each with
-    /// its type's initial value. A declaration the store rejects (too
-    /// large) stays undeclared: reading it is an error naming it.
+    /// its type's initial value, in the order given. A declaration the
+    /// store rejects as too large stays undeclared: reading it is an error
+    /// naming it. One that does not fit the memory for variables is the
+    /// run's alarm, at its line of its definition file, and the run does
+    /// not start (as the control does not activate the definitions).
     pub fn with_globals<'g>(mut self, globals: impl IntoIterator<Item = &'g Global>) -> Self {
         for global in globals {
-            let _ = self.vars.declare(
+            let declared = self.vars.declare(
                 Scope::Global,
                 &global.name,
                 global.data_type,
                 &global.dims,
                 crate::vars::Init::None,
             );
+            if let Err(error) = declared
+                && error.code == codes::run::VARIABLE_MEMORY
+            {
+                let source = EventSource {
+                    file: global.file.clone(),
+                    line: global.line,
+                    col: global.col,
+                    level: 0,
+                };
+                self.global_error = Some((source, error));
+                break;
+            }
         }
         self
     }
@@ -253,15 +279,10 @@ impl<'r> Channel<'r> {
             kind: LevelKind::Main,
         });
         let main = Arc::clone(&self.stack[0].program);
-        let reason = match self.bind_main(&main) {
-            Ok(()) => self.run_levels(),
-            Err(error) => {
-                let first = main.instruction(0);
-                if let Some(first) = first {
-                    self.alarm(&main, &first, error);
-                }
-                ProgramEndReason::Alarm
-            }
+        let reason = if let Some((source, error)) = self.global_error.take() {
+            self.alarm_in_definitions(source, error)
+        } else {
+            self.run_main(&main)
         };
         self.end_block();
         let end = Event {
@@ -282,6 +303,28 @@ impl<'r> Channel<'r> {
             errors: self.errors,
             warnings: self.warnings,
         })
+    }
+
+    /// Binds the main program's parameters and runs it.
+    fn run_main(&mut self, main: &Arc<Program>) -> ProgramEndReason {
+        match self.bind_main(main) {
+            Ok(()) => self.run_levels(),
+            Err(error) => match main.instruction(0) {
+                Some(first) => self.alarm(main, &first, error),
+                None => ProgramEndReason::Alarm,
+            },
+        }
+    }
+
+    /// A global variable did not fit: its alarm at its definition.
+    fn alarm_in_definitions(&mut self, source: EventSource, error: RunError) -> ProgramEndReason {
+        self.count(Severity::Error);
+        let event = Event {
+            kind: EventKind::Diagnostic(DiagnosticEvent::new(error.code, error.message)),
+            source,
+        };
+        self.emit(&event);
+        ProgramEndReason::Alarm
     }
 
     fn run_levels(&mut self) -> ProgramEndReason {
@@ -398,8 +441,7 @@ impl<'r> Channel<'r> {
             codes::run::BLOCK_WITH_ERRORS,
             "the run reaches a block with errors (reported with the program's diagnostics)",
         );
-        self.alarm(program, &there, error);
-        ProgramEndReason::Alarm
+        self.alarm(program, &there, error)
     }
 
     /// The run comes back to an instruction of a streamed program that
@@ -413,7 +455,7 @@ impl<'r> Channel<'r> {
                      had forgotten; please report this program to gcodec"
                 ),
             );
-            self.alarm(program, &last, error);
+            return self.alarm(program, &last, error);
         }
         ProgramEndReason::Alarm
     }
@@ -526,7 +568,7 @@ impl<'r> Channel<'r> {
                 slot
             }
         };
-        &mut self.summary.tools[slot]
+        self.summary.at(slot)
     }
 
     fn program_level(&self) -> u32 {
@@ -663,10 +705,7 @@ impl<'r> Channel<'r> {
         };
         match result {
             Ok(flow) => flow,
-            Err(error) => {
-                self.alarm(program, instruction, error);
-                Flow::End(ProgramEndReason::Alarm)
-            }
+            Err(error) => Flow::End(self.alarm(program, instruction, error)),
         }
     }
 
@@ -792,8 +831,20 @@ impl<'r> Channel<'r> {
     }
 
     /// Reports `error` as an alarm: a diagnostic event of severity error.
-    fn alarm(&mut self, program: &Arc<Program>, instruction: &Instruction, error: RunError) {
+    /// Returns why the run ends: a limit for the work budget (a guard of
+    /// the simulation, as the step limit is), an alarm for the rest.
+    fn alarm(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        error: RunError,
+    ) -> ProgramEndReason {
         let code = error.code;
+        let reason = if code == codes::run::WORK_LIMIT {
+            ProgramEndReason::Limit
+        } else {
+            ProgramEndReason::Alarm
+        };
         self.diagnostic_at(
             program,
             instruction,
@@ -802,6 +853,7 @@ impl<'r> Channel<'r> {
             error.message,
             None,
         );
+        reason
     }
 
     fn diagnostic_at(

@@ -318,17 +318,25 @@ impl MachineState {
         v
     }
 
-    pub fn spindle(&mut self, number: Option<u32>) -> &mut Spindle {
-        let number = number.unwrap_or_else(|| self.spindles.first().map_or(1, |s| s.number));
-        match self.spindles.iter().position(|s| s.number == number) {
-            Some(i) => &mut self.spindles[i],
-            None => {
-                self.spindles.push(Spindle {
-                    number,
-                    ..Spindle::default()
-                });
-                self.spindles.last_mut().expect("just pushed")
-            }
+    /// The spindle an address extension names: `None` or 0 the master
+    /// spindle, another number one of the profile's spindles. The table is
+    /// the profile's and never grows: a spindle the machine does not have
+    /// is an alarm at its first use, as on the control (lowering rejects
+    /// the constant ones; this catches the computed `S[N]=`).
+    pub fn spindle(&mut self, number: Option<u32>) -> Result<&mut Spindle, RunError> {
+        let at = match number.filter(|&n| n != 0) {
+            None => (!self.spindles.is_empty()).then_some(0),
+            Some(n) => self.spindles.iter().position(|s| s.number == n),
+        };
+        match at {
+            Some(i) => Ok(&mut self.spindles[i]),
+            None => Err(RunError::new(
+                codes::run::UNKNOWN_SPINDLE,
+                match number.filter(|&n| n != 0) {
+                    Some(n) => format!("this machine has no spindle {n}"),
+                    None => "this machine has no spindle".to_owned(),
+                },
+            )),
         }
     }
 
@@ -496,5 +504,26 @@ impl RuntimeInterface for MachineState {
 
     fn chain_frames(&self, lhs: &FrameValue, rhs: &FrameValue) -> Result<FrameValue, RunError> {
         chain_values(&self.frame_axes, lhs, rhs)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `S[CNT]=100` over many passes: each spindle the machine lacks is an
+    /// error, and the table stays the profile's.
+    #[test]
+    fn spindles_the_machine_lacks_are_errors_not_new_entries() {
+        let profile = gcodec_profile::builtin().expect("the built-in profile");
+        let mut state = MachineState::new(Arc::new(profile));
+        assert_eq!(state.spindles.len(), 1);
+        for number in 2..100_000 {
+            let error = state.spindle(Some(number)).expect_err("no such spindle");
+            assert_eq!(error.code, codes::run::UNKNOWN_SPINDLE);
+        }
+        assert_eq!(state.spindles.len(), 1);
+        assert_eq!(state.spindle(Some(0)).map(|s| s.number), Ok(1));
+        assert_eq!(state.spindle(None).map(|s| s.number), Ok(1));
     }
 }

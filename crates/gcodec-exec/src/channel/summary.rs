@@ -3,6 +3,7 @@
 
 use std::fmt;
 
+use rustc_hash::FxHashMap;
 use serde::Serialize;
 
 use crate::geometry::BoundingBox;
@@ -36,10 +37,28 @@ pub struct RunSummary {
     /// Blocks executed in the whole run.
     pub blocks: u64,
     /// Per tool, in the order first used.
-    pub tools: Vec<ToolSummary>,
+    tools: Vec<ToolSummary>,
+    /// Where each tool's figures are in `tools`: a program may use a new
+    /// tool in every pass of a loop, and a search of `tools` for each
+    /// would make the run quadratic.
+    #[serde(skip)]
+    slots: FxHashMap<Box<str>, usize>,
+    /// Where the figures of blocks run without a tool are.
+    #[serde(skip)]
+    no_tool_slot: Option<usize>,
 }
 
 impl RunSummary {
+    /// The figures per tool, in the order first used.
+    pub fn tools(&self) -> &[ToolSummary] {
+        &self.tools
+    }
+
+    /// The figures at `slot` (from [`RunSummary::slot`]).
+    pub fn at(&mut self, slot: usize) -> &mut ToolSummary {
+        &mut self.tools[slot]
+    }
+
     /// The figures of `tool`, created on first use.
     pub fn tool(&mut self, tool: Option<&str>) -> &mut ToolSummary {
         let at = self.slot(tool);
@@ -48,14 +67,25 @@ impl RunSummary {
 
     /// The position of `tool`'s figures in `tools`, created on first use.
     pub fn slot(&mut self, tool: Option<&str>) -> usize {
-        let at = self.tools.iter().position(|t| t.tool.as_deref() == tool);
-        at.unwrap_or_else(|| {
-            self.tools.push(ToolSummary {
-                tool: tool.map(str::to_owned),
-                ..ToolSummary::default()
-            });
-            self.tools.len() - 1
-        })
+        let known = match tool {
+            Some(name) => self.slots.get(name).copied(),
+            None => self.no_tool_slot,
+        };
+        if let Some(at) = known {
+            return at;
+        }
+        let at = self.tools.len();
+        self.tools.push(ToolSummary {
+            tool: tool.map(str::to_owned),
+            ..ToolSummary::default()
+        });
+        match tool {
+            Some(name) => {
+                self.slots.insert(Box::from(name), at);
+            }
+            None => self.no_tool_slot = Some(at),
+        }
+        at
     }
 
     /// The sum over all tools.
@@ -145,8 +175,26 @@ mod tests {
         s.tool(Some("T2")).blocks += 1;
         s.tool(None).blocks += 2;
         s.tool(Some("T2")).blocks += 3;
-        assert_eq!(s.tools.len(), 2);
-        assert_eq!(s.tools[0].blocks, 4);
+        assert_eq!(s.tools().len(), 2);
+        assert_eq!(s.tools()[0].blocks, 4);
         assert_eq!(s.total().blocks, 6);
+    }
+
+    /// `T=CNT` in a loop: a new tool per pass. Each is found again by the
+    /// index, the table holds each tool once, in the order first used.
+    #[test]
+    fn many_tools_are_indexed_in_the_order_first_used() {
+        let mut s = RunSummary::default();
+        let names: Vec<String> = (0..100_000).map(|n| format!("T{n}")).collect();
+        for (n, name) in names.iter().enumerate() {
+            assert_eq!(s.slot(Some(name)), n);
+        }
+        assert_eq!(s.slot(None), 100_000);
+        for (n, name) in names.iter().enumerate().rev() {
+            assert_eq!(s.slot(Some(name)), n);
+        }
+        assert_eq!(s.tools().len(), 100_001);
+        assert_eq!(s.slots.len(), 100_000);
+        assert_eq!(s.tools()[99_999].tool.as_deref(), Some("T99999"));
     }
 }

@@ -12,6 +12,8 @@ super::codes! {
     CYCLE_NOT_SIMULATED = cycle_not_simulated, Warning, "a standard cycle that is not on the search path";
     CALL_DEPTH = call_depth, Error, "a call that opens more program levels than the control has";
     STEP_LIMIT = step_limit, Error, "the run stopped after `--max-steps` blocks";
+    WORK_LIMIT = work_limit, Error, "the run stopped when its array work passed `--max-work`";
+    VARIABLE_MEMORY = variable_memory, Error, "a declaration that does not fit the memory for variables";
     INTERRUPTED = interrupted, Error, "the run interrupted (Ctrl-C)";
     NOT_SIMULATED = not_simulated, Advice, "a construct the simulation does not model";
     UNRESOLVED_TOOL = unresolved_tool, Error, "a tool not in the machine's tool table";
@@ -35,6 +37,7 @@ super::codes! {
     READ_ONLY = read_only, Error, "a write to a system variable that cannot be written";
     INVALID_NUMBER = invalid_number, Error, "`NUMBER` of a string that is no number";
     UNKNOWN_AXIS = unknown_axis, Error, "an axis the machine does not have";
+    UNKNOWN_SPINDLE = unknown_spindle, Error, "a computed spindle number the machine does not have";
     FORMAT = format, Error, "a bad `SPRINT` format";
     INVALID_DECLARATION = invalid_declaration, Error, "a declaration with a bad type or dimension";
     EXPRESSION_TOO_DEEP = expression_too_deep, Error, "an expression nested deeper than the evaluator goes";
