@@ -8,7 +8,7 @@ use chumsky::input::Input as _;
 use chumsky::span::SimpleSpan;
 use compact_str::CompactString;
 use gcodec_lexer::{Lexer, TokenKind};
-use gcodec_source::{Diagnostic, Diagnostics, SourceFile, Span, codes, decode};
+use gcodec_source::{Diagnostic, Diagnostics, SourceFile, Span, UTF8_BOM, codes, decode};
 
 use crate::ast::*;
 use crate::error::SyntaxError;
@@ -57,7 +57,9 @@ pub fn parse(file: &SourceFile) -> Parse {
     parse_bytes(file.name(), file.bytes())
 }
 
-/// Parses bytes under a file name.
+/// Parses bytes under a file name. A leading UTF-8 byte-order mark is not
+/// part of the program: the spans are into the bytes after it, the bytes
+/// [`SourceFile::new`] holds for `src`.
 pub fn parse_bytes(name: &str, src: &[u8]) -> Parse {
     parse_with(name, src, Reading::Whole)
 }
@@ -78,10 +80,12 @@ const PARALLEL_MIN_BYTES: usize = 4 << 20;
 /// result.
 #[doc(hidden)]
 pub fn parse_bytes_in_chunks(name: &str, src: &[u8], threads: usize) -> Parse {
+    let src = without_bom(src);
     parse_in_chunks(name, src, Reading::Whole, split(src, threads))
 }
 
 fn parse_with(name: &str, src: &[u8], reading: Reading) -> Parse {
+    let src = without_bom(src);
     // Asking for the core count reads cgroup limits: only large files ask.
     let threads = if src.len() < PARALLEL_MIN_BYTES {
         1
@@ -89,6 +93,12 @@ fn parse_with(name: &str, src: &[u8], reading: Reading) -> Parse {
         std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
     };
     parse_in_chunks(name, src, reading, split(src, threads))
+}
+
+/// `src` without a leading UTF-8 byte-order mark, as a [`SourceFile`]
+/// holds it, so that a parse's spans and its file's bytes agree.
+fn without_bom(src: &[u8]) -> &[u8] {
+    src.strip_prefix(UTF8_BOM).unwrap_or(src)
 }
 
 /// Parses the whole of `src`, each of `chunks` on a thread of its own.

@@ -443,3 +443,16 @@ fn span_walk_reaches_expressions() {
     assert!(spans.len() > 15, "{}", spans.len());
     check_parse(src).expect("valid");
 }
+
+/// Found by the `parse` fuzz target: the spans of a parse of bytes with a
+/// leading byte-order mark counted the mark, which the file holding the
+/// same bytes drops, so they ran past the file's end.
+#[test]
+fn a_leading_byte_order_mark_is_not_part_of_the_parsed_program() {
+    let src = b"\xef\xbb\xbfSETAL(%12X1";
+    check_parse(src).expect("spans into the file's bytes");
+    let with_mark = parse_bytes("bom.mpf", src);
+    let without = parse_bytes("bom.mpf", &src[3..]);
+    assert_eq!(with_mark.program, without.program);
+    assert_eq!(with_mark.diagnostics, without.diagnostics);
+}

@@ -22,7 +22,7 @@ pub use diagnostic::{Diagnostic, Label, Severity};
 pub use escape::{EscapeControls, escape_controls, is_escaped};
 pub use kept::{Diagnostics, MAX_KEPT_PER_BLOCK, MAX_KEPT_PER_FILE, Omitted};
 pub use lines::{MAX_SOURCE_LEN, line_starts};
-pub use read::{DEFAULT_MAX_FILE_SIZE, ReadError};
+pub use read::{DEFAULT_MAX_FILE_SIZE, ReadError, UTF8_BOM};
 pub use render::{RenderOptions, render_diagnostics, render_kept};
 pub use source::{SourceFile, cp1252, cp1252_byte, decode};
 pub use span::{Span, line_col, with_line_starts};

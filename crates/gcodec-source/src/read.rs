@@ -23,8 +23,12 @@ use crate::{Code, codes};
 pub const DEFAULT_MAX_FILE_SIZE: u64 = 1 << 30;
 
 /// The UTF-8 byte-order mark, which some Windows editors put at the start
-/// of a file. It is not part of the program.
-pub(crate) const UTF8_BOM: &[u8] = b"\xEF\xBB\xBF";
+/// of a file. It is not part of the program: [`SourceFile`] drops it, and
+/// so does every parse of bytes, so that spans count from the byte after
+/// it wherever the bytes came from.
+///
+/// [`SourceFile`]: crate::SourceFile
+pub const UTF8_BOM: &[u8] = b"\xEF\xBB\xBF";
 
 /// How many bytes at the start of a file are looked at for UTF-16 text
 /// without a byte-order mark.
