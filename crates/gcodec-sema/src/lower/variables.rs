@@ -364,9 +364,11 @@ fn frame_component(expr: &ast::Expr) -> bool {
     }
 }
 
-/// A constant whole-number index.
+/// A constant whole-number index; a larger one than 10^15 is left to the
+/// run, which names it (`index_out_of_range`, `overflow`).
 fn constant_index(expr: &ast::Expr) -> Option<i64> {
     let v = values::constant(expr)?;
+    // Whole and below 10^15 < 2^63: the cast is exact.
     (v.fract() == 0.0 && v.abs() < 1e15).then_some(v as i64)
 }
 
@@ -669,8 +671,14 @@ impl Lowering<'_> {
                 None => return,
             },
         };
-        self.diagnostics
-            .extend(types::mismatch(target, name, found, constant, value.span));
+        self.diagnostics.extend(types::mismatch(
+            target,
+            name,
+            found,
+            constant,
+            value.span,
+            self.source,
+        ));
     }
 
     /// `DEF TYPE name[dims]=init, …`: one declaration per variable, its
@@ -682,6 +690,21 @@ impl Lowering<'_> {
         } = &def.ty.kind
         {
             self.check_variables(length);
+            // The instruction holds a constant length only: one that is
+            // no count (0, 2.5, beyond `u32`) would silently be the
+            // default 200.
+            if values::constant(length).is_some() && constant_count(length).is_none() {
+                self.diagnostics.push(
+                    Diagnostic::new(
+                        codes::lower::INVALID_VALUE,
+                        format!(
+                            "`STRING[{}]`: a string length is a whole number 1…4294967295",
+                            values::written(self.source, length.span)
+                        ),
+                    )
+                    .with_label(length.span, "not a string length"),
+                );
+            }
         }
         for var in &def.vars {
             for dim in &var.dims {
@@ -703,7 +726,9 @@ impl Lowering<'_> {
                     if shape.rank == 0 && items.len() > 1 {
                         self.diagnostics.push(not_an_array(&var.name, *at));
                     } else if let Some(total) = shape.elements() {
-                        self.check_count(&var.name, items.len() as u64, 0, total, *at);
+                        let count = items.len();
+                        let shown = count.to_string();
+                        self.check_count(&var.name, count as u64, &shown, 0, total, *at);
                     }
                     for item in items.iter().flatten() {
                         self.check_variables(item);
@@ -774,7 +799,8 @@ impl Lowering<'_> {
                         Diagnostic::new(
                             codes::lower::INVALID_VALUE,
                             format!(
-                                "the count of `REP` must be a whole number of at least 1, not {n}"
+                                "the count of `REP` must be a whole number of at least 1, not {}",
+                                values::written(self.source, count.span)
                             ),
                         )
                         .with_label(count.span, "here")
@@ -783,7 +809,11 @@ impl Lowering<'_> {
                 }
                 Some(n) => {
                     if let Some(total) = shape.elements() {
-                        self.check_count(name, n as u64, start, total, count.span);
+                        // From 2^64 on the cast saturates, still more than
+                        // any array holds; the message names the count as
+                        // written.
+                        let written = values::written(self.source, count.span);
+                        self.check_count(name, n as u64, &written, start, total, count.span);
                     }
                 }
                 None => {}
@@ -795,8 +825,17 @@ impl Lowering<'_> {
         })
     }
 
-    /// `count` values from element `start` on must fit in `total`.
-    fn check_count(&mut self, name: &str, count: u64, start: u64, total: u64, span: Span) {
+    /// `count` values from element `start` on must fit in `total`; the
+    /// message names the count as `written`.
+    fn check_count(
+        &mut self,
+        name: &str,
+        count: u64,
+        written: &str,
+        start: u64,
+        total: u64,
+        span: Span,
+    ) {
         if start.saturating_add(count) > total {
             let from = if start == 0 {
                 String::new()
@@ -806,7 +845,7 @@ impl Lowering<'_> {
             self.diagnostics.push(
                 Diagnostic::new(
                     codes::lower::INDEX_OUT_OF_RANGE,
-                    format!("{count} values{from} do not fit in `{name}`, which has {total} elements"),
+                    format!("{written} values{from} do not fit in `{name}`, which has {total} elements"),
                 )
                 .with_label(span, "too many values")
                 .with_help("the control stops with an alarm (17020 \"illegal array index\"); write fewer values or enlarge the array"),
@@ -843,7 +882,9 @@ impl Lowering<'_> {
                 if let Some((shape, start)) = self.list_target(target, *at)
                     && let Some(total) = shape.elements()
                 {
-                    self.check_count(&target.name, items.len() as u64, start, total, *at);
+                    let count = items.len();
+                    let shown = count.to_string();
+                    self.check_count(&target.name, count as u64, &shown, start, total, *at);
                 }
                 Op::AssignList(Box::new(gcodec_ail::AssignList {
                     target: values::variable(target),
