@@ -164,6 +164,17 @@ fn declarations_name_lengths_counts_and_characters_as_written() {
 }
 
 #[test]
+fn array_sizes_beyond_64_bits_are_left_to_the_run() {
+    // 3 × (2^32 − 1) elements overflow a `u64`: lowering must neither
+    // panic nor wrap the count, and the run refuses the declaration.
+    let lowered = lower_with(
+        &profile(""),
+        "DEF REAL A[4294967295,4294967295,4294967295]=(1,2)\nM30",
+    );
+    assert!(!lowered.has_errors(), "{:?}", lowered.diagnostics);
+}
+
+#[test]
 fn string_limits_count_characters_not_utf8_bytes() {
     let p = profile("");
     // "äöü" is 3 characters (6 UTF-8 bytes): it fits a STRING[3].

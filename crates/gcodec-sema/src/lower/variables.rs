@@ -74,7 +74,9 @@ impl Shape {
         if usize::from(self.rank) > MAX_DIMS {
             return None;
         }
-        (0..usize::from(self.rank)).try_fold(1u64, |n, i| Some(n * u64::from(self.dim(i)?)))
+        // Three dimensions of up to 2^32 − 1 each can pass 64 bits: then
+        // unknown, as the run refuses such a declaration anyway.
+        (0..usize::from(self.rank)).try_fold(1u64, |n, i| n.checked_mul(u64::from(self.dim(i)?)))
     }
 
     /// The type of a reference with `count` indices: an element, a
