@@ -4,8 +4,9 @@
 //! motion (`AP`, `AX[X]`, `CHF`, `PW`) or the additive tool offset `DL`.
 //! In JSON a named address is its name (`"SPOS"`).
 
+use crate::names::serde_as_text;
 use schemars::JsonSchema;
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde::{Deserialize, Serialize};
 
 use crate::names::name_table;
 
@@ -147,20 +148,12 @@ pub fn is_written_as_address(name: &str) -> bool {
     }
 }
 
-impl Serialize for NamedAddress {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(self.name())
-    }
-}
-
-impl<'de> Deserialize<'de> for NamedAddress {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let text = std::borrow::Cow::<'de, str>::deserialize(deserializer)?;
-        Self::named(&text).ok_or_else(|| {
-            serde::de::Error::custom(format_args!("`{text}` is not a named address"))
-        })
-    }
-}
+serde_as_text!(
+    NamedAddress,
+    |a| a.name(),
+    NamedAddress::named,
+    "a named address"
+);
 
 #[cfg(test)]
 mod tests {
