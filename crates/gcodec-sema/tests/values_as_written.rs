@@ -140,6 +140,11 @@ fn declarations_name_lengths_counts_and_characters_as_written() {
             "`STRING[0]`: a string length is a whole number 1…4294967295",
         ),
         (
+            "PROC TST(STRING[099999999999] TXT)",
+            "gcodec::lower::invalid_value",
+            "`STRING[099999999999]`: a string length is a whole number 1…4294967295",
+        ),
+        (
             "DEF REAL A[3]=REP(0,99999999999999999999)",
             "gcodec::lower::index_out_of_range",
             "99999999999999999999 values do not fit in `A`, which has 3 elements",

@@ -683,31 +683,36 @@ impl Lowering<'_> {
         ));
     }
 
+    /// The length of a `STRING[n]` a `DEF` or a `PROC` parameter names:
+    /// the instruction holds a constant length only, and one that is no
+    /// count (0, 2.5, beyond `u32`) would silently be the default 200.
+    pub(super) fn check_string_length(&mut self, kind: &ast::TypeKind) {
+        let ast::TypeKind::String {
+            length: Some(length),
+        } = kind
+        else {
+            return;
+        };
+        self.check_variables(length);
+        if values::constant(length).is_some() && constant_count(length).is_none() {
+            self.diagnostics.push(
+                Diagnostic::new(
+                    codes::lower::INVALID_VALUE,
+                    format!(
+                        "`STRING[{}]`: a string length is a whole number 1…4294967295",
+                        values::written(self.source, length.span)
+                    ),
+                )
+                .with_label(length.span, "not a string length"),
+            );
+        }
+    }
+
     /// `DEF TYPE name[dims]=init, …`: one declaration per variable, its
     /// initialiser checked against the type and the number of elements.
     pub(super) fn declare(&mut self, def: &ast::Def, span: Span, plan: &mut BlockPlan) {
         let ty = types::from_ast(&def.ty.kind);
-        if let ast::TypeKind::String {
-            length: Some(length),
-        } = &def.ty.kind
-        {
-            self.check_variables(length);
-            // The instruction holds a constant length only: one that is
-            // no count (0, 2.5, beyond `u32`) would silently be the
-            // default 200.
-            if values::constant(length).is_some() && constant_count(length).is_none() {
-                self.diagnostics.push(
-                    Diagnostic::new(
-                        codes::lower::INVALID_VALUE,
-                        format!(
-                            "`STRING[{}]`: a string length is a whole number 1…4294967295",
-                            values::written(self.source, length.span)
-                        ),
-                    )
-                    .with_label(length.span, "not a string length"),
-                );
-            }
-        }
+        self.check_string_length(&def.ty.kind);
         for var in &def.vars {
             for dim in &var.dims {
                 self.check_variables(dim);
