@@ -42,10 +42,13 @@ fn main() -> ExitCode {
 /// What clap says instead of running a command: help and the version on
 /// stdout (exit 0), a usage error on stderr (exit 2).
 fn print_usage(usage: &clap::Error) -> u8 {
-    let printed = usage.print();
     if usage.use_stderr() {
-        output::stderr_written(printed);
+        // A usage error may echo what was typed (`unexpected argument
+        // '…'`): plain text with its control characters escaped, as in
+        // every text output, so no argument can retitle the terminal.
+        let text = usage.render().to_string();
+        output::to_stderr(&gcodec_source::escape_controls(&text));
         return EXIT_USAGE;
     }
-    output::after_output(EXIT_CLEAN, printed)
+    output::after_output(EXIT_CLEAN, usage.print())
 }

@@ -172,3 +172,14 @@ fn control_characters_are_escaped_in_text_and_exact_in_json() {
         );
     }
 }
+
+/// A usage error echoes the argument it does not know: no control
+/// character of it reaches stderr, and the exit is 2.
+#[test]
+fn usage_errors_echo_no_control_characters() {
+    let out = gcodec(["run", "--no-such\u{1b}]0;title\u{7}"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert!(err.contains("unexpected argument '--no-such"), "{err}");
+    assert!(!err.chars().any(|c| c.is_control() && c != '\n'), "{err:?}");
+}

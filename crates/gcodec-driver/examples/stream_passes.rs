@@ -46,7 +46,7 @@ fn main() {
     let t = Instant::now();
     let mut parsing = Duration::ZERO;
     let mut instructions = 0;
-    let mut lowering = ChunkLowering::new(&outline, &profile);
+    let mut lowering = ChunkLowering::new(&outline, &profile, &src);
     for chunk in &chunks {
         let started = Instant::now();
         let parsed = parse_chunk(&src, chunk);

@@ -4,8 +4,9 @@
 //! motion (`AP`, `AX[X]`, `CHF`, `PW`) or the additive tool offset `DL`.
 //! In JSON a named address is its name (`"SPOS"`).
 
+use crate::names::serde_as_text;
 use schemars::JsonSchema;
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde::{Deserialize, Serialize};
 
 use crate::names::name_table;
 
@@ -130,23 +131,55 @@ impl NamedAddress {
     }
 }
 
-impl Serialize for NamedAddress {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(self.name())
+/// Whether the parser reads `name=value` as an address word rather than
+/// an assignment: the named addresses but `DISCL`, `DISR` and `FAD`, which
+/// the syntax tree keeps as assignments (lowering resolves them as
+/// addresses), plus the circle data `AR`, `CR`, `TURN`, the polynomial
+/// coefficients `PO` and the frame instructions' `RPL`. Case is ignored.
+pub fn is_written_as_address(name: &str) -> bool {
+    const READ_AS_ASSIGNMENTS: [NamedAddress; 3] =
+        [NamedAddress::Discl, NamedAddress::Disr, NamedAddress::Fad];
+    const OTHER_ADDRESS_WORDS: [&str; 5] = ["AR", "CR", "PO", "RPL", "TURN"];
+    match NamedAddress::named(name) {
+        Some(address) => !READ_AS_ASSIGNMENTS.contains(&address),
+        None => OTHER_ADDRESS_WORDS
+            .iter()
+            .any(|n| n.eq_ignore_ascii_case(name)),
     }
 }
 
-impl<'de> Deserialize<'de> for NamedAddress {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let text = std::borrow::Cow::<'de, str>::deserialize(deserializer)?;
-        Self::named(&text).ok_or_else(|| {
-            serde::de::Error::custom(format_args!("`{text}` is not a named address"))
-        })
-    }
-}
+serde_as_text!(
+    NamedAddress,
+    |a| a.name(),
+    NamedAddress::named,
+    "a named address"
+);
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn the_words_written_as_addresses_are_the_parsers() {
+        // The parser's list before the vocabulary held it: the tree must
+        // not change.
+        let parsers = [
+            "ACC", "ADIS", "ADISPOS", "ANG", "AP", "AR", "AX", "CHF", "CHR", "CR", "DISC", "DITE",
+            "DITS", "DL", "FA", "FB", "FL", "FP", "FZ", "LIMS", "OFFN", "OVR", "OVRA", "PL", "PO",
+            "POS", "POSA", "PW", "RND", "RNDM", "RP", "RPL", "SD", "SF", "SPOS", "SPOSA", "TURN",
+        ];
+        for name in parsers {
+            assert!(is_written_as_address(name), "{name}");
+            assert!(is_written_as_address(&name.to_ascii_lowercase()), "{name}");
+        }
+        let others = NAMED_ADDRESSES
+            .iter()
+            .map(|e| e.1)
+            .filter(|n| !parsers.contains(n));
+        assert_eq!(others.collect::<Vec<_>>(), ["DISCL", "DISR", "FAD"]);
+        for name in ["DISCL", "DISR", "FAD", "R1", "X", "DEPTH"] {
+            assert!(!is_written_as_address(name), "{name}");
+        }
+    }
     use super::*;
 
     #[test]

@@ -2,7 +2,7 @@
 //! `AROT RPL=45`, `MIRROR X0`. The syntax tree, the AIL and the executor
 //! share this one set; in JSON an instruction is its keyword (`"ATRANS"`).
 
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use crate::names::serde_as_text;
 
 /// A programmable frame instruction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -80,20 +80,12 @@ impl FrameOp {
     }
 }
 
-impl Serialize for FrameOp {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(self.keyword())
-    }
-}
-
-impl<'de> Deserialize<'de> for FrameOp {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let text = std::borrow::Cow::<'de, str>::deserialize(deserializer)?;
-        Self::from_name(&text).ok_or_else(|| {
-            serde::de::Error::custom(format_args!("`{text}` is not a frame instruction"))
-        })
-    }
-}
+serde_as_text!(
+    FrameOp,
+    |op| op.keyword(),
+    FrameOp::from_name,
+    "a frame instruction"
+);
 
 #[cfg(test)]
 mod tests {

@@ -51,3 +51,31 @@ macro_rules! name_table {
 }
 
 pub(crate) use name_table;
+
+/// Serialises a vocabulary type as its text (`|v| text`, a `Display` of
+/// `v`) and reads it back with `parse`, an error naming the text and
+/// `what` it is not: in JSON a vocabulary id is the control's word.
+macro_rules! serde_as_text {
+    ($ty:ty, |$v:ident| $text:expr, $parse:expr, $what:literal) => {
+        impl serde::Serialize for $ty {
+            fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                let $v = self;
+                serializer.collect_str(&$text)
+            }
+        }
+
+        impl<'de> serde::Deserialize<'de> for $ty {
+            fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+                let text =
+                    <std::borrow::Cow<'de, str> as serde::Deserialize>::deserialize(deserializer)?;
+                $parse(&text).ok_or_else(|| {
+                    <D::Error as serde::de::Error>::custom(format_args!(
+                        "`{}` is not {}",
+                        text, $what
+                    ))
+                })
+            }
+        }
+    };
+}
+pub(crate) use serde_as_text;

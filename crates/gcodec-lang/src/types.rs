@@ -5,7 +5,7 @@
 
 use std::fmt;
 
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use crate::names::serde_as_text;
 
 /// The longest string a `STRING` variable holds without a length (a
 /// local `STRING[200]`, reference §7.1), and the longest length a
@@ -144,19 +144,7 @@ impl fmt::Display for DataType {
     }
 }
 
-impl Serialize for DataType {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.collect_str(self)
-    }
-}
-
-impl<'de> Deserialize<'de> for DataType {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let text = std::borrow::Cow::<'de, str>::deserialize(deserializer)?;
-        Self::parse(&text)
-            .ok_or_else(|| serde::de::Error::custom(format_args!("`{text}` is not a data type")))
-    }
-}
+serde_as_text!(DataType, |t| t, DataType::parse, "a data type");
 
 #[cfg(test)]
 mod tests {

@@ -7,8 +7,8 @@
 use std::borrow::Cow;
 use std::fmt;
 
+use crate::names::serde_as_text;
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// A Group 8 command by its number (`G54` is 54, `G505` is 505). Every member
 /// of group 8 is `G` and a number, so the number is the whole identity; in JSON
@@ -61,20 +61,12 @@ impl fmt::Display for WorkOffsetCode {
     }
 }
 
-impl Serialize for WorkOffsetCode {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.collect_str(self)
-    }
-}
-
-impl<'de> Deserialize<'de> for WorkOffsetCode {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let text = Cow::<str>::deserialize(deserializer)?;
-        Self::parse(&text).ok_or_else(|| {
-            serde::de::Error::custom(format!("`{text}` is not a Group 8 code like `g54`"))
-        })
-    }
-}
+serde_as_text!(
+    WorkOffsetCode,
+    |c| c,
+    WorkOffsetCode::parse,
+    "a Group 8 code like `g54`"
+);
 
 impl JsonSchema for WorkOffsetCode {
     fn schema_name() -> Cow<'static, str> {

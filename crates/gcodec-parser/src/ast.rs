@@ -12,6 +12,7 @@
 //! lookups are case-insensitive in later stages.
 
 use std::borrow::Cow;
+use std::sync::Arc;
 
 use compact_str::CompactString;
 use gcodec_lang::addresses::letter_str;
@@ -38,6 +39,30 @@ pub struct Program {
     pub blocks: Vec<Block>,
     /// Control structures, each with the blocks that open, split and close it.
     pub structures: Vec<ControlStructure>,
+    /// The bytes the program was parsed from: later stages quote from it
+    /// what the program writes (a number out of range, named as written).
+    pub source: SourceText,
+}
+
+/// The bytes a program was parsed from, shared: a clone of the program
+/// does not copy them. Its `Debug` form gives their count, not every byte.
+#[derive(Clone, Default, PartialEq)]
+pub struct SourceText(Arc<[u8]>);
+
+impl SourceText {
+    pub fn new(bytes: &[u8]) -> Self {
+        Self(Arc::from(bytes))
+    }
+
+    pub fn bytes(&self) -> &[u8] {
+        &self.0
+    }
+}
+
+impl std::fmt::Debug for SourceText {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "SourceText({} bytes)", self.0.len())
+    }
 }
 
 impl Program {

@@ -144,6 +144,7 @@ fn parse_in_chunks(name: &str, src: &[u8], reading: Reading, chunks: Vec<Chunk>)
         path: None,
         blocks,
         structures: Vec::new(),
+        source: SourceText::new(src),
     };
     let mut diagnostics = Diagnostics::new();
     let mut structure_blocks = Vec::new();

@@ -19,14 +19,12 @@
 use chumsky::span::SimpleSpan;
 use compact_str::CompactString;
 use gcodec_lang::FrameOp;
-use gcodec_lang::addresses::letter_str;
+use gcodec_lang::addresses::{is_written_as_address, letter_str};
 use gcodec_lexer::TokenKind as T;
 
 use crate::ast::*;
 use crate::grammar::operators::{self, Associativity};
-use crate::grammar::{
-    BlockBody, Ctx, Spanned, is_named_address, number_bytes_value, structure_keyword,
-};
+use crate::grammar::{BlockBody, Ctx, Spanned, number_bytes_value, structure_keyword};
 
 /// Parses `tokens` if every statement of the block has one of the shapes
 /// above.
@@ -310,7 +308,9 @@ fn constant_word(c: &mut Cursor<'_, '_>, letter: SimpleSpan, address: u8) -> Opt
 fn named_word(c: &mut Cursor<'_, '_>) -> Option<Statement> {
     let name = c.span_at(0)?;
     let text = c.g.text(name);
-    if c.kind_at(1) != Some(T::Eq) || !is_named_address(text) || FrameOp::from_name(text).is_some()
+    if c.kind_at(1) != Some(T::Eq)
+        || !is_written_as_address(text)
+        || FrameOp::from_name(text).is_some()
     {
         return None;
     }

@@ -2,7 +2,7 @@
 //! streamed run parses them chunk by chunk with the structures paired as
 //! the chunks come: neither split may change the tree or the diagnostics.
 
-use gcodec_parser::ast::Program;
+use gcodec_parser::ast::{Program, SourceText};
 use gcodec_parser::{Pairing, parse_bytes_in_chunks, parse_chunk};
 use gcodec_stream::chunks;
 
@@ -15,6 +15,7 @@ fn parse_chunk_by_chunk(name: &str, src: &[u8], lines: usize) -> gcodec_parser::
         path: None,
         blocks: Vec::new(),
         structures: Vec::new(),
+        source: SourceText::new(src),
     };
     let mut diagnostics = Vec::new();
     for chunk in chunks(src, lines) {

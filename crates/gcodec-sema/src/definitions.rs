@@ -142,7 +142,13 @@ impl Definitions {
                 }
                 for var in &def.vars {
                     if let Some(init) = &var.init {
-                        check_constant_initializer(data_type, &var.name, init, diagnostics);
+                        check_constant_initializer(
+                            data_type,
+                            &var.name,
+                            init,
+                            program.source.bytes(),
+                            diagnostics,
+                        );
                     }
                     let (line, col) = program.line_col(var.span.start);
                     let global = GlobalVariable {
@@ -270,6 +276,7 @@ fn check_constant_initializer(
     data_type: DataType,
     name: &str,
     init: &ast::Initializer,
+    source: &[u8],
     diagnostics: &mut Diagnostics,
 ) {
     let items: Vec<&ast::Expr> = match init {
@@ -279,7 +286,9 @@ fn check_constant_initializer(
     };
     for expr in items {
         if let Some((found, constant)) = types::literal(expr) {
-            diagnostics.extend(types::mismatch(data_type, name, found, constant, expr.span));
+            diagnostics.extend(types::mismatch(
+                data_type, name, found, constant, expr.span, source,
+            ));
         }
     }
 }

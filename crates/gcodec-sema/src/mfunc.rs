@@ -12,8 +12,8 @@ use gcodec_profile::{Policy, Profile};
 use gcodec_source::{Diagnostic, Diagnostics, Span, codes};
 
 use crate::policy::by_policy;
-use crate::tools::{spindle_exists, unknown_spindle};
-use crate::values::{constant, source_text, tree, whole_number};
+use crate::tools::{not_a_spindle_number, spindle_exists, unknown_spindle};
+use crate::values::{constant, source_text, tree, whole_number, written, written_number};
 /// Largest M value (the M-function design: a 32-bit non-negative INT).
 const MAX_M: f64 = 2_147_483_647.0;
 
@@ -51,6 +51,7 @@ pub(crate) fn check(
     span: Span,
     profile: &Profile,
     overrides: &HashMap<u32, MClass>,
+    source: &[u8],
     diagnostics: &mut Diagnostics,
 ) -> Option<MWord> {
     let number = match (whole_number(value), value) {
@@ -64,7 +65,7 @@ pub(crate) fn check(
                 expr,
             },
         ) if constant(expr).is_none() => {
-            let (extension, extension_expr) = extension(word, span, profile, diagnostics)?;
+            let (extension, extension_expr) = extension(word, span, profile, source, diagnostics)?;
             let text = source_text(expr);
             let raw = format!("M{}={text}", extension_text(word, extension));
             return Some(MWord {
@@ -93,13 +94,14 @@ pub(crate) fn check(
         diagnostics.push(
             Diagnostic::new(
                 codes::lower::INVALID_VALUE,
-                format!("M{number} is out of range"),
+                format!("M{} is out of range", written_number(source, value)),
             )
             .with_label(span, "out of range")
             .with_help("M values are 0…2147483647"),
         );
         return None;
     }
+    // Whole (`whole_number`) and in 0…`MAX_M`, checked above.
     let m = number as u32;
     if acts_after_motion(m) && word.extension().is_some() {
         diagnostics.push(
@@ -112,7 +114,7 @@ pub(crate) fn check(
         );
         return None;
     }
-    let (extension, extension_expr) = extension(word, span, profile, diagnostics)?;
+    let (extension, extension_expr) = extension(word, span, profile, source, diagnostics)?;
     let change_m = *profile.tool_change.change_m_code.get_ref();
     let overridden = overrides.get(&m).copied();
     let class = match overridden.or_else(|| standard_class(m, change_m)) {
@@ -168,6 +170,7 @@ fn extension(
     word: &Word,
     span: Span,
     profile: &Profile,
+    source: &[u8],
     diagnostics: &mut Diagnostics,
 ) -> Option<(Option<u32>, Option<gcodec_ail::Expr>)> {
     let (ext, ext_span) = match word.extension() {
@@ -176,13 +179,12 @@ fn extension(
         Some(Extension::Index { index, span: at }) => match constant(index) {
             Some(n) if n.fract() == 0.0 && (0.0..=99.0).contains(&n) => (n as u32, *at),
             Some(_) => {
-                diagnostics.push(
-                    Diagnostic::new(
-                        codes::lower::INVALID_VALUE,
-                        "a spindle number is a whole number 0…99",
-                    )
-                    .with_label(*at, "not a spindle number"),
-                );
+                diagnostics.push(not_a_spindle_number(
+                    "M",
+                    &written(source, *at),
+                    "0…99",
+                    *at,
+                ));
                 return None;
             }
             // `M[SPINU]=3`: a spindle chosen when the block runs.

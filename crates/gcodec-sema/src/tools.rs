@@ -8,7 +8,7 @@ use gcodec_profile::{Profile, ToolChangeMode, UnresolvedToolPolicy};
 use gcodec_source::{Diagnostic, Diagnostics, Span, codes};
 
 use crate::policy::by_policy;
-use crate::values::{source_text, whole_number};
+use crate::values::{source_text, whole_number, written_number};
 /// Whether the machine has spindle `number`.
 pub(crate) fn spindle_exists(profile: &Profile, number: u32) -> bool {
     profile
@@ -28,6 +28,23 @@ pub(crate) fn unknown_spindle(number: u32, span: Span) -> Diagnostic {
     .with_help("the profile's `[machine] spindles` lists the spindles")
 }
 
+/// The diagnostic for a constant spindle extension that is no spindle
+/// number (`S[100]=`, `M[2.5]=`), the extension `written` as the program
+/// writes it after `address`; spindles are `range` (`1…99`, `0…99` where
+/// 0 is the master spindle).
+pub(crate) fn not_a_spindle_number(
+    address: &str,
+    written: &str,
+    range: &str,
+    span: Span,
+) -> Diagnostic {
+    Diagnostic::new(
+        codes::lower::INVALID_VALUE,
+        format!("`{address}[{written}]`: a spindle number is a whole number {range}"),
+    )
+    .with_label(span, "not a spindle number")
+}
+
 /// What a `T` word selects, before the mode is applied.
 enum Selector {
     Number(u32),
@@ -36,17 +53,21 @@ enum Selector {
     Computed(gcodec_ail::Expr, String),
 }
 
-/// A whole tool number `n ≥ 0` as written, if it is one the control holds
+/// A whole tool number `n ≥ 0`, if it is one the control holds
 /// (0…4294967295); a larger one is [`codes::lower::INVALID_VALUE`] naming
-/// it, never a wrapped or saturated number.
-fn tool_number(n: f64, span: Span, diagnostics: &mut Diagnostics) -> Option<u32> {
+/// it as `written`, never a wrapped or saturated number.
+fn tool_number(n: f64, written: &str, span: Span, diagnostics: &mut Diagnostics) -> Option<u32> {
     if n <= f64::from(u32::MAX) {
+        // Whole (`whole_number`), ≥ 0 (the caller) and at most `u32::MAX`.
         return Some(n as u32);
     }
     diagnostics.push(
-        Diagnostic::new(codes::lower::INVALID_VALUE, format!("T{n} is out of range"))
-            .with_label(span, "out of range")
-            .with_help("tool numbers are 0…4294967295"),
+        Diagnostic::new(
+            codes::lower::INVALID_VALUE,
+            format!("T{written} is out of range"),
+        )
+        .with_label(span, "out of range")
+        .with_help("tool numbers are 0…4294967295"),
     );
     None
 }
@@ -58,6 +79,7 @@ pub(crate) fn select(
     value: &WordValue,
     span: Span,
     profile: &Profile,
+    source: &[u8],
     diagnostics: &mut Diagnostics,
 ) -> Option<Op> {
     let management = profile.tool_change.tool_management_enabled;
@@ -78,13 +100,16 @@ pub(crate) fn select(
             return None;
         }
     };
+    let written = || written_number(source, value);
     let (selector, assigned) = match (value, whole_number(value)) {
-        (WordValue::Constant(_), Some(n)) if n >= 0.0 => {
-            (Selector::Number(tool_number(n, span, diagnostics)?), false)
-        }
-        (WordValue::Assigned { .. }, Some(n)) if n >= 0.0 => {
-            (Selector::Number(tool_number(n, span, diagnostics)?), true)
-        }
+        (WordValue::Constant(_), Some(n)) if n >= 0.0 => (
+            Selector::Number(tool_number(n, &written(), span, diagnostics)?),
+            false,
+        ),
+        (WordValue::Assigned { .. }, Some(n)) if n >= 0.0 => (
+            Selector::Number(tool_number(n, &written(), span, diagnostics)?),
+            true,
+        ),
         (
             WordValue::Assigned {
                 modifier: None,

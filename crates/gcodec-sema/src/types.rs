@@ -31,6 +31,7 @@ pub fn from_ast(kind: &ast::TypeKind) -> DataType {
 /// length): `10`, not `N` or `2.5`.
 pub(crate) fn constant_count(expr: &ast::Expr) -> Option<u32> {
     let value = crate::values::constant(expr)?;
+    // Whole and in 1…`u32::MAX`: the cast is exact.
     (value.fract() == 0.0 && value >= 1.0 && value <= f64::from(u32::MAX)).then_some(value as u32)
 }
 
@@ -48,13 +49,14 @@ pub(crate) enum Constant {
 /// `name` of type `target`, if the control rejects it: no conversion
 /// exists (alarm 14096), a string constant is longer than `STRING[n]`, a
 /// string constant for a CHAR is not one character, a constant for a
-/// CHAR is outside 0…255.
+/// CHAR is outside 0…255 (named as the program `source` writes it).
 pub(crate) fn mismatch(
     target: DataType,
     name: &str,
     found: DataType,
     constant: Constant,
     span: Span,
+    source: &[u8],
 ) -> Option<Diagnostic> {
     if !found.converts_to(target) {
         let help = match target {
@@ -95,7 +97,10 @@ pub(crate) fn mismatch(
             )
         }
         (DataType::Char, Constant::Number(v)) if !(0.0..=255.0).contains(&v) => {
-            format!("`{name}` is CHAR (0…255); {v} is outside")
+            format!(
+                "`{name}` is CHAR (0…255); {} is outside",
+                crate::values::written(source, span)
+            )
         }
         _ => return None,
     };

@@ -5,6 +5,7 @@ use std::borrow::Cow;
 use gcodec_ail::{self as ail, Value};
 use gcodec_lang::{DimensionMode, UnaryOp};
 use gcodec_parser::ast::{self, ExprKind, WordValue};
+use gcodec_source::Span;
 
 /// An expression as an AIL value: a plain number stays a constant (so do
 /// signed numbers, `-5`), anything else becomes a tree.
@@ -58,6 +59,25 @@ pub(crate) fn whole_number(value: &WordValue) -> Option<f64> {
         },
         _ => None,
     }
+}
+
+/// The text at `span` of the program `source`, as written: a value out of
+/// range is named so (`T0099999999999`), never through its REAL, which
+/// drops leading zeros and changes the digits beyond the 15th.
+pub(crate) fn written(source: &[u8], span: Span) -> Cow<'_, str> {
+    source
+        .get(span.start as usize..span.end as usize)
+        .map_or(Cow::Borrowed(""), String::from_utf8_lossy)
+}
+
+/// The number a word's value is written as (`0099` of `T=0099`), for
+/// naming it ([`written`]).
+pub(crate) fn written_number<'s>(source: &'s [u8], value: &WordValue) -> Cow<'s, str> {
+    let span = match value {
+        WordValue::Constant(n) => n.span,
+        WordValue::Assigned { expr, .. } => expr.span,
+    };
+    written(source, span)
 }
 
 /// An expression as the outline writes it, for the `raw` form of a

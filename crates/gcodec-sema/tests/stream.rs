@@ -87,7 +87,7 @@ fn in_order(
         profile,
         definitions,
     );
-    let mut lowering = ChunkLowering::new(&outline, profile);
+    let mut lowering = ChunkLowering::new(&outline, profile, src);
     let mut document = gcodec_ail::Document::new();
     for chunk in chunks {
         let parsed = gcodec_parser::parse_chunk(src, chunk);
@@ -109,10 +109,37 @@ fn chunks_out_of_order_are_refused() {
     let src = b"G1 X1 F100\nX2\nM30\n";
     let parsed = gcodec_parser::parse_bytes("order.mpf", src);
     let outline = gcodec_sema::outline(&parsed.program, ProgramKind::Main, &profile, &definitions);
-    let mut lowering = ChunkLowering::new(&outline, &profile);
+    let mut lowering = ChunkLowering::new(&outline, &profile, src);
     assert!(lowering.lower(1, &parsed.program.blocks[1..]).is_none());
     assert!(lowering.lower(0, &parsed.program.blocks[..1]).is_some());
     assert!(lowering.lower(0, &parsed.program.blocks[..1]).is_none());
+}
+
+#[test]
+fn values_out_of_range_are_named_as_written_streamed() {
+    let profile = gcodec_profile::builtin().unwrap();
+    let src = b"T0099999999999\nG0999\nD040000\nM[0100]=3\nM30\n";
+    assert_streamed_agrees("written.mpf", src, &profile);
+    // A `ChunkLowering` too, whose diagnostics the check above leaves out.
+    let parsed = gcodec_parser::parse_bytes("written.mpf", src);
+    let definitions = Definitions::new();
+    let outline = gcodec_sema::outline(&parsed.program, ProgramKind::Main, &profile, &definitions);
+    let mut lowering = ChunkLowering::new(&outline, &profile, src);
+    let lowered = lowering.lower(0, &parsed.program.blocks).expect("in order");
+    let messages: Vec<String> = lowered
+        .diagnostics
+        .iter()
+        .map(|d| d.message.to_string())
+        .collect();
+    assert_eq!(
+        messages,
+        [
+            "T0099999999999 is out of range",
+            "`G0999` is not a G command of the control",
+            "D040000 is out of range",
+            "`M[0100]`: a spindle number is a whole number 0…99",
+        ]
+    );
 }
 
 #[test]

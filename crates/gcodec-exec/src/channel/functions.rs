@@ -154,7 +154,10 @@ impl Channel<'_> {
     }
 
     /// An address extension (a spindle number, `M2=`, `H[I]=`): written,
-    /// or computed when the block runs (a negative value is 0).
+    /// or computed when the block runs. A computed one outside 0…99, the
+    /// range lowering holds constant ones to (no spindle is numbered
+    /// beyond it), is [`codes::run::OVERFLOW`] naming it, never a wrapped
+    /// number or the master spindle.
     fn extension(
         &self,
         constant: Option<u32>,
@@ -162,7 +165,16 @@ impl Channel<'_> {
     ) -> Result<Option<u32>, RunError> {
         match (constant, computed) {
             (Some(n), _) => Ok(Some(n)),
-            (None, Some(expr)) => Ok(Some(eval::eval(&self.env(), expr)?.to_int()?.max(0) as u32)),
+            (None, Some(expr)) => {
+                let n = eval::eval(&self.env(), expr)?.to_int()?;
+                match u32::try_from(n) {
+                    Ok(extension) if extension <= 99 => Ok(Some(extension)),
+                    _ => Err(RunError::new(
+                        codes::run::OVERFLOW,
+                        format!("the address extension {n} is outside 0…99"),
+                    )),
+                }
+            }
             (None, None) => Ok(None),
         }
     }

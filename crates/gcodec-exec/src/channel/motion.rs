@@ -402,6 +402,7 @@ impl Channel<'_> {
             turns,
             &self.options.circle_tolerance,
         )
+        // `resolve_arc` accepts only whole turns 0…999 (`circle_turns`).
         .map(|arc| (arc, turns as u32))
         .map_err(|e| RunError::new(e.code(), e.to_string()))
     }

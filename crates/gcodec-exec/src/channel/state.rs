@@ -400,16 +400,20 @@ impl RuntimeInterface for MachineState {
             return profile_system_variable(Some(&self.profile), var, indices);
         };
         match (id, indices) {
-            (SysVarId::P_TOOLNO, []) => Ok(RtValue::Int(
-                self.active_tool.as_ref().map_or(0, |t| t.number as i32),
+            // Tool numbers go to 4294967295 and edges are u32: beyond the
+            // INT range a number is a REAL, as a constant is, not wrapped.
+            (SysVarId::P_TOOLNO, []) => Ok(crate::eval::number(
+                self.active_tool
+                    .as_ref()
+                    .map_or(0.0, |t| f64::from(t.number)),
             )),
-            (SysVarId::P_TOOLP, []) => Ok(RtValue::Int(
+            (SysVarId::P_TOOLP, []) => Ok(crate::eval::number(
                 self.pending
                     .as_ref()
                     .and_then(|p| p.tool.as_ref())
-                    .map_or(0, |t| t.number as i32),
+                    .map_or(0.0, |t| f64::from(t.number)),
             )),
-            (SysVarId::P_TOOL, []) => Ok(RtValue::Int(self.edge as i32)),
+            (SysVarId::P_TOOL, []) => Ok(crate::eval::number(f64::from(self.edge))),
             (SysVarId::P_F, []) => Ok(RtValue::Real(self.feed)),
             (SysVarId::P_MC, []) => Ok(RtValue::Bool(self.modal_call.is_some())),
             (SysVarId::P_UIFRNUM, []) => Ok(RtValue::Int(i32::from(self.group8_index()))),

@@ -296,7 +296,8 @@ fn eval_var<C: EvalContext + ?Sized>(
     }
 }
 
-/// The one index of `R5`, when it is a whole constant.
+/// The one index of `R5`, when it is a whole constant. (`as` saturates,
+/// NaN to 0, so the value comes back unchanged only from an INT.)
 #[inline]
 fn constant_index(indices: &[Expr]) -> Option<i32> {
     match indices {

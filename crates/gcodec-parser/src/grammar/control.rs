@@ -162,17 +162,23 @@ pub(super) fn jump_target<'t, 's: 't>(
         .then(select! { T::Number => () }.map_with(|_, e| e.span()))
         .try_map(move |(l, n): (SimpleSpan, SimpleSpan), span| {
             let is_n = g.bytes(l)[0].eq_ignore_ascii_case(&b'N') && n.start == l.end;
-            match g.text(n).parse::<u64>() {
-                Ok(value) if is_n => Ok(JumpTarget::BlockNumber {
-                    span: g.span(span),
-                    value,
-                }),
+            let digits = g.text(n);
+            match digits.parse::<u64>() {
+                Ok(value) if is_n => Ok(Some(value)),
+                Err(_) if is_n && digits.bytes().all(|b| b.is_ascii_digit()) => Ok(None),
                 _ => Err(SyntaxError::custom(
                     span,
                     codes::parse::INVALID_WORD,
                     "a jump target is a label, a block number `N…` or a string",
                     None,
                 )),
+            }
+        })
+        .validate(move |value, e, emitter| {
+            let span: SimpleSpan = e.span();
+            JumpTarget::BlockNumber {
+                span: g.span(span),
+                value: super::prefix::block_number_value(value, span, g, emitter),
             }
         });
     choice((label, block_number, expr.map(JumpTarget::Expr))).labelled("jump target")

@@ -27,7 +27,6 @@ use gcodec_source::{Span, codes};
 
 pub(crate) use control::structure_keyword;
 pub(crate) use numbers::number_bytes_value;
-pub(crate) use words::is_named_address;
 
 use crate::ast::*;
 use crate::error::SyntaxError;

@@ -1,6 +1,7 @@
 //! The block prefix: the skip mark (`/`, `/0` … `/9`), the block number
 //! (`N10`, main block `:10`) and the label (`LOOP1:`).
 
+use chumsky::input::Emitter;
 use chumsky::prelude::*;
 use gcodec_lexer::TokenKind as T;
 use gcodec_source::codes;
@@ -53,7 +54,9 @@ pub(super) fn skip_mark<'t, 's: 't>(
         )
 }
 
-/// `N10`; `N10=` is not a block number.
+/// `N10`; `N10=` is not a block number. Digits beyond the range of a
+/// block number (`N999999999999999999999`) are diagnosed, naming them as
+/// written, rather than left to be read as an `N` word.
 pub(super) fn block_number<'t, 's: 't>(
     g: Ctx<'s>,
 ) -> impl Parser<'t, In<'t>, BlockNumber, Ex> + Clone + 't {
@@ -70,23 +73,47 @@ pub(super) fn block_number<'t, 's: 't>(
                     custom: None,
                 });
             }
-            g.text(n)
-                .parse::<u64>()
-                .map(|value| BlockNumber {
-                    span: g.span(span),
-                    main: false,
-                    value,
-                })
-                .map_err(|_| {
-                    SyntaxError::custom(
-                        span,
-                        codes::parse::INVALID_BLOCK_NUMBER,
-                        format!("block number `N{}` is not a whole number", g.text(n)),
-                        None,
-                    )
-                })
+            let digits = g.text(n);
+            match digits.parse::<u64>() {
+                Ok(value) => Ok(Some(value)),
+                Err(_) if digits.bytes().all(|b| b.is_ascii_digit()) => Ok(None),
+                Err(_) => Err(SyntaxError::custom(
+                    span,
+                    codes::parse::INVALID_BLOCK_NUMBER,
+                    format!("block number `N{digits}` is not a whole number"),
+                    None,
+                )),
+            }
         })
         .then_ignore(just(T::Eq).not().rewind())
+        .validate(move |value, e, emitter| {
+            let span: SimpleSpan = e.span();
+            BlockNumber {
+                span: g.span(span),
+                main: false,
+                value: block_number_value(value, span, g, emitter),
+            }
+        })
+}
+
+/// The block number read at `span`, or, where its digits are beyond 64
+/// bits (`None`), 0 with the diagnosis emitted naming them as written: the
+/// block is then in error, so the placeholder goes nowhere.
+pub(super) fn block_number_value(
+    value: Option<u64>,
+    span: SimpleSpan,
+    g: Ctx<'_>,
+    emitter: &mut Emitter<SyntaxError>,
+) -> u64 {
+    value.unwrap_or_else(|| {
+        emitter.emit(SyntaxError::custom(
+            span,
+            codes::parse::INVALID_NUMBER,
+            format!("block number `{}` is out of range", g.text(span)),
+            Some("block numbers are N0 … N18446744073709551615"),
+        ));
+        0
+    })
 }
 
 /// `:10`, a main block number.

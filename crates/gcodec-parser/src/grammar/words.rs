@@ -6,7 +6,7 @@
 
 use chumsky::prelude::*;
 use gcodec_lang::DimensionMode;
-use gcodec_lang::addresses::letter_str;
+use gcodec_lang::addresses::{is_written_as_address, letter_str};
 use gcodec_lexer::TokenKind as T;
 use gcodec_source::codes;
 
@@ -49,17 +49,6 @@ fn letter_takes_index(c: u8) -> bool {
         c.to_ascii_uppercase(),
         b'T' | b'F' | b'N' | b'L' | b'P' | b'D'
     )
-}
-
-/// Multi-letter addresses written `NAME=value`; other names with `=` are
-/// variable assignments (later stages may still resolve them as axes).
-pub(crate) fn is_named_address(name: &str) -> bool {
-    const NAMES: &[&str] = &[
-        "ACC", "ADIS", "ADISPOS", "ANG", "AP", "AR", "AX", "CHF", "CHR", "CR", "DISC", "DITE",
-        "DITS", "DL", "FA", "FB", "FL", "FP", "FZ", "LIMS", "OFFN", "OVR", "OVRA", "PL", "PO",
-        "POS", "POSA", "PW", "RND", "RNDM", "RP", "RPL", "SD", "SF", "SPOS", "SPOSA", "TURN",
-    ];
-    NAMES.iter().any(|n| n.eq_ignore_ascii_case(name))
 }
 
 /// Wraps a word's `=` value, lifting a dimension modifier (`IC(5)`) out.
@@ -543,7 +532,7 @@ fn named_address_word(
     value: &Initializer,
     span: SimpleSpan,
 ) -> Option<Result<Word, SyntaxError>> {
-    if target.kind != VarKind::Name || !is_named_address(&target.name) {
+    if target.kind != VarKind::Name || !is_written_as_address(&target.name) {
         return None;
     }
     let Initializer::Expr(e) = value else {

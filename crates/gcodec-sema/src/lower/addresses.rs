@@ -255,6 +255,7 @@ impl Lowering<'_> {
     /// checked against the profile when constant. `Err` when rejected.
     fn spindle_extension(
         &mut self,
+        address: &str,
         extension: Option<&Extension>,
     ) -> Result<(Option<u32>, Option<gcodec_ail::Expr>), ()> {
         match extension {
@@ -265,13 +266,10 @@ impl Lowering<'_> {
                     self.spindle_number(n as u32, *span)
                 }
                 Some(_) => {
-                    self.diagnostics.push(
-                        Diagnostic::new(
-                            codes::lower::INVALID_VALUE,
-                            "a spindle number is a whole number 1…99",
-                        )
-                        .with_label(*span, "not a spindle number"),
-                    );
+                    let written = values::written(self.source, *span);
+                    self.diagnostics.push(crate::tools::not_a_spindle_number(
+                        address, &written, "1…99", *span,
+                    ));
                     Err(())
                 }
                 None => {
@@ -362,7 +360,7 @@ impl Lowering<'_> {
                     (None, None)
                 };
                 let (ext, ext_expr) = if spindle {
-                    match self.spindle_extension(extension) {
+                    match self.spindle_extension(name, extension) {
                         Ok(found) => found,
                         Err(()) => return,
                     }
@@ -637,25 +635,29 @@ impl Lowering<'_> {
         span: Span,
         plan: &mut BlockPlan,
     ) {
+        let out_of_range = |at: Span| {
+            Diagnostic::new(
+                codes::lower::INVALID_VALUE,
+                format!(
+                    "H extension {} is out of range",
+                    values::written(self.source, at)
+                ),
+            )
+            .with_label(at, "out of range")
+            .with_help("H extensions are 0…99")
+        };
         let (extension, extension_expr) = match word.extension() {
             None => (None, None),
             Some(Extension::Number { value, span: at }) => {
                 if *value > 99 {
-                    return self.diagnostics.push(
-                        Diagnostic::new(codes::lower::INVALID_VALUE, "H extensions are 0…99")
-                            .with_label(*at, "out of range"),
-                    );
+                    return self.diagnostics.push(out_of_range(*at));
                 }
                 (Some(*value), None)
             }
             Some(Extension::Index { index, span: at }) => match values::constant(index) {
+                // Whole and in 0…99: the cast is exact.
                 Some(n) if (0.0..=99.0).contains(&n) && n.fract() == 0.0 => (Some(n as u32), None),
-                Some(_) => {
-                    return self.diagnostics.push(
-                        Diagnostic::new(codes::lower::INVALID_VALUE, "H extensions are 0…99")
-                            .with_label(*at, "out of range"),
-                    );
-                }
+                Some(_) => return self.diagnostics.push(out_of_range(*at)),
                 None => {
                     self.check_variables(index);
                     (None, Some(values::tree(index)))
@@ -686,12 +688,17 @@ impl Lowering<'_> {
             _ => (None, None),
         };
         if h_value.is_some_and(|v| v.abs() > f64::from(f32::MAX)) {
+            let written = match expr {
+                Some(e) => values::written(self.source, e.span),
+                None => values::written_number(self.source, value),
+            };
             return self.diagnostics.push(
                 Diagnostic::new(
                     codes::lower::INVALID_VALUE,
-                    "H values range over ±3.4028e38",
+                    format!("H value {written} is out of range"),
                 )
-                .with_label(span, "out of range"),
+                .with_label(span, "out of range")
+                .with_help("H values range over ±3.4028e38"),
             );
         }
         let ext_text = match (&extension, word.extension()) {

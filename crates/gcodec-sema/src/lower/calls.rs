@@ -263,6 +263,7 @@ impl Lowering<'_> {
                 if let Some(default) = &p.default {
                     self.check_variables(default);
                 }
+                self.check_string_length(&p.ty.kind);
                 gcodec_ail::Parameter {
                     name: p.name.to_ascii_uppercase().to_string(),
                     data_type: crate::types::from_ast(&p.ty.kind),

@@ -141,7 +141,7 @@ fn lower_outlined(
         } else {
             Entry::AfterOpenPart
         };
-        let mut lowering = Lowering::new(outline, profile, reserve, entry);
+        let mut lowering = Lowering::new(outline, profile, program.source.bytes(), reserve, entry);
         for index in range {
             lowering.block(index, &program.blocks[index]);
         }
@@ -348,6 +348,8 @@ fn capacity(statements: usize) -> usize {
 struct Lowering<'a> {
     outline: &'a Outline<'a>,
     profile: &'a Profile,
+    /// The program's text, to name values as written ([`crate::values::written`]).
+    source: &'a [u8],
     /// The file name every instruction's source holds: a copy of the
     /// outline's per lowering, and per chunk in a streamed run
     /// ([`stream::ChunkLowering`]). The run drops a chunk's instructions
@@ -530,6 +532,7 @@ impl<'a> Lowering<'a> {
     fn new(
         outline: &'a Outline<'a>,
         profile: &'a Profile,
+        source: &'a [u8],
         statements: usize,
         entry: Entry,
     ) -> Self {
@@ -558,6 +561,7 @@ impl<'a> Lowering<'a> {
         Self {
             outline,
             profile,
+            source,
             file: Arc::from(&*outline.file),
             block_start: 0,
             document: Document {

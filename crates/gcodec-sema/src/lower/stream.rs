@@ -66,7 +66,7 @@ pub fn lower_chunks(
             } else {
                 Entry::ProgramStart
             };
-            let mut lowering = Lowering::new(outline, profile, 0, entry);
+            let mut lowering = Lowering::new(outline, profile, src, 0, entry);
             let parse_diagnostics = lower_part(chunk, &mut lowering);
             let spent = Some(SpentBin::of_this_thread());
             (chunk, lowering, parse_diagnostics, spent)
@@ -77,7 +77,7 @@ pub fn lower_chunks(
             }
             next = chunk.first_block + chunk.blocks;
             if !ledger.take(&mut lowering) {
-                lowering = Lowering::new(outline, profile, 0, ledger.entry());
+                lowering = Lowering::new(outline, profile, src, 0, ledger.entry());
                 parse_diagnostics = lower_part(chunk, &mut lowering);
                 // Lowered on this thread, which frees its bin only when it
                 // works a chunk itself: the run frees these.
@@ -93,7 +93,7 @@ pub fn lower_chunks(
             });
         },
     );
-    let mut end = Lowering::new(outline, profile, 0, Entry::ProgramStart);
+    let mut end = Lowering::new(outline, profile, src, 0, Entry::ProgramStart);
     end.end();
     each(LoweredChunk {
         instructions: end.document.instructions,
@@ -137,10 +137,10 @@ pub struct LoweredChunk {
 }
 
 impl<'a> ChunkLowering<'a> {
-    /// Lowers the program `outline` describes for the machine `profile`
-    /// describes.
-    pub fn new(outline: &'a Outline<'a>, profile: &'a Profile) -> Self {
-        let lowering = Lowering::new(outline, profile, 0, Entry::ProgramStart);
+    /// Lowers the program `src` that `outline` describes for the machine
+    /// `profile` describes.
+    pub fn new(outline: &'a Outline<'a>, profile: &'a Profile, src: &'a [u8]) -> Self {
+        let lowering = Lowering::new(outline, profile, src, 0, Entry::ProgramStart);
         Self { lowering, next: 0 }
     }
 

@@ -74,7 +74,9 @@ impl Shape {
         if usize::from(self.rank) > MAX_DIMS {
             return None;
         }
-        (0..usize::from(self.rank)).try_fold(1u64, |n, i| Some(n * u64::from(self.dim(i)?)))
+        // Three dimensions of up to 2^32 − 1 each can pass 64 bits: then
+        // unknown, as the run refuses such a declaration anyway.
+        (0..usize::from(self.rank)).try_fold(1u64, |n, i| n.checked_mul(u64::from(self.dim(i)?)))
     }
 
     /// The type of a reference with `count` indices: an element, a
@@ -364,9 +366,11 @@ fn frame_component(expr: &ast::Expr) -> bool {
     }
 }
 
-/// A constant whole-number index.
+/// A constant whole-number index; a larger one than 10^15 is left to the
+/// run, which names it (`index_out_of_range`, `overflow`).
 fn constant_index(expr: &ast::Expr) -> Option<i64> {
     let v = values::constant(expr)?;
+    // Whole and below 10^15 < 2^63: the cast is exact.
     (v.fract() == 0.0 && v.abs() < 1e15).then_some(v as i64)
 }
 
@@ -669,20 +673,46 @@ impl Lowering<'_> {
                 None => return,
             },
         };
-        self.diagnostics
-            .extend(types::mismatch(target, name, found, constant, value.span));
+        self.diagnostics.extend(types::mismatch(
+            target,
+            name,
+            found,
+            constant,
+            value.span,
+            self.source,
+        ));
+    }
+
+    /// The length of a `STRING[n]` a `DEF` or a `PROC` parameter names:
+    /// the instruction holds a constant length only, and one that is no
+    /// count (0, 2.5, beyond `u32`) would silently be the default 200.
+    pub(super) fn check_string_length(&mut self, kind: &ast::TypeKind) {
+        let ast::TypeKind::String {
+            length: Some(length),
+        } = kind
+        else {
+            return;
+        };
+        self.check_variables(length);
+        if values::constant(length).is_some() && constant_count(length).is_none() {
+            self.diagnostics.push(
+                Diagnostic::new(
+                    codes::lower::INVALID_VALUE,
+                    format!(
+                        "`STRING[{}]`: a string length is a whole number 1…4294967295",
+                        values::written(self.source, length.span)
+                    ),
+                )
+                .with_label(length.span, "not a string length"),
+            );
+        }
     }
 
     /// `DEF TYPE name[dims]=init, …`: one declaration per variable, its
     /// initialiser checked against the type and the number of elements.
     pub(super) fn declare(&mut self, def: &ast::Def, span: Span, plan: &mut BlockPlan) {
         let ty = types::from_ast(&def.ty.kind);
-        if let ast::TypeKind::String {
-            length: Some(length),
-        } = &def.ty.kind
-        {
-            self.check_variables(length);
-        }
+        self.check_string_length(&def.ty.kind);
         for var in &def.vars {
             for dim in &var.dims {
                 self.check_variables(dim);
@@ -703,7 +733,9 @@ impl Lowering<'_> {
                     if shape.rank == 0 && items.len() > 1 {
                         self.diagnostics.push(not_an_array(&var.name, *at));
                     } else if let Some(total) = shape.elements() {
-                        self.check_count(&var.name, items.len() as u64, 0, total, *at);
+                        let count = items.len();
+                        let shown = count.to_string();
+                        self.check_count(&var.name, count as u64, &shown, 0, total, *at);
                     }
                     for item in items.iter().flatten() {
                         self.check_variables(item);
@@ -774,7 +806,8 @@ impl Lowering<'_> {
                         Diagnostic::new(
                             codes::lower::INVALID_VALUE,
                             format!(
-                                "the count of `REP` must be a whole number of at least 1, not {n}"
+                                "the count of `REP` must be a whole number of at least 1, not {}",
+                                values::written(self.source, count.span)
                             ),
                         )
                         .with_label(count.span, "here")
@@ -783,7 +816,11 @@ impl Lowering<'_> {
                 }
                 Some(n) => {
                     if let Some(total) = shape.elements() {
-                        self.check_count(name, n as u64, start, total, count.span);
+                        // From 2^64 on the cast saturates, still more than
+                        // any array holds; the message names the count as
+                        // written.
+                        let written = values::written(self.source, count.span);
+                        self.check_count(name, n as u64, &written, start, total, count.span);
                     }
                 }
                 None => {}
@@ -795,8 +832,17 @@ impl Lowering<'_> {
         })
     }
 
-    /// `count` values from element `start` on must fit in `total`.
-    fn check_count(&mut self, name: &str, count: u64, start: u64, total: u64, span: Span) {
+    /// `count` values from element `start` on must fit in `total`; the
+    /// message names the count as `written`.
+    fn check_count(
+        &mut self,
+        name: &str,
+        count: u64,
+        written: &str,
+        start: u64,
+        total: u64,
+        span: Span,
+    ) {
         if start.saturating_add(count) > total {
             let from = if start == 0 {
                 String::new()
@@ -806,7 +852,7 @@ impl Lowering<'_> {
             self.diagnostics.push(
                 Diagnostic::new(
                     codes::lower::INDEX_OUT_OF_RANGE,
-                    format!("{count} values{from} do not fit in `{name}`, which has {total} elements"),
+                    format!("{written} values{from} do not fit in `{name}`, which has {total} elements"),
                 )
                 .with_label(span, "too many values")
                 .with_help("the control stops with an alarm (17020 \"illegal array index\"); write fewer values or enlarge the array"),
@@ -843,7 +889,9 @@ impl Lowering<'_> {
                 if let Some((shape, start)) = self.list_target(target, *at)
                     && let Some(total) = shape.elements()
                 {
-                    self.check_count(&target.name, items.len() as u64, start, total, *at);
+                    let count = items.len();
+                    let shown = count.to_string();
+                    self.check_count(&target.name, count as u64, &shown, start, total, *at);
                 }
                 Op::AssignList(Box::new(gcodec_ail::AssignList {
                     target: values::variable(target),

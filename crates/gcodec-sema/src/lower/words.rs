@@ -36,15 +36,21 @@ impl Lowering<'_> {
                     span,
                     self.profile,
                     &self.outline.m_overrides,
+                    self.source,
                     &mut self.diagnostics,
                 ) {
                     plan.m_functions.push(m);
                 }
             }
             "T" => {
-                if let Some(op) =
-                    tools::select(word, &value, span, self.profile, &mut self.diagnostics)
-                {
+                if let Some(op) = tools::select(
+                    word,
+                    &value,
+                    span,
+                    self.profile,
+                    self.source,
+                    &mut self.diagnostics,
+                ) {
                     plan.tools.push((op, span));
                 }
             }
@@ -52,10 +58,16 @@ impl Lowering<'_> {
                 (None, Some(d), _) if (0.0..=32_000.0).contains(&d) => {
                     plan.edge = Some((Value::Const(d), span))
                 }
-                (None, Some(d), _) => self.diagnostics.push(
-                    Diagnostic::new(codes::lower::INVALID_VALUE, format!("D{d} is out of range"))
-                        .with_label(span, "out of range")
-                        .with_help("cutting edges are D0…D32000"),
+                (None, Some(_), _) => self.diagnostics.push(
+                    Diagnostic::new(
+                        codes::lower::INVALID_VALUE,
+                        format!(
+                            "D{} is out of range",
+                            values::written_number(self.source, &value)
+                        ),
+                    )
+                    .with_label(span, "out of range")
+                    .with_help("cutting edges are D0…D32000"),
                 ),
                 // `D=EDGES[I]`: computed when the block runs.
                 (
@@ -101,13 +113,10 @@ impl Lowering<'_> {
                             (Some(n as u32), None)
                         }
                         Some(_) => {
-                            return self.diagnostics.push(
-                                Diagnostic::new(
-                                    codes::lower::INVALID_VALUE,
-                                    "a spindle number is a whole number 1…99",
-                                )
-                                .with_label(*span, "not a spindle number"),
-                            );
+                            let written = values::written(self.source, *span);
+                            return self
+                                .diagnostics
+                                .push(tools::not_a_spindle_number("S", &written, "1…99", *span));
                         }
                         None => {
                             self.check_variables(index);
@@ -269,6 +278,12 @@ impl Lowering<'_> {
     }
 }
 
+/// A whole G number `n ≥ 0` as a `u64`; from 2^64 on `None` (no command
+/// and no alias has it), where the `as` cast would saturate.
+fn g_number(n: f64) -> Option<u64> {
+    (n < u64::MAX as f64).then_some(n as u64)
+}
+
 impl Lowering<'_> {
     /// A `G` word: `G1`, `G=1`, a legacy alias of a Group 8 code
     /// (`G58` → `G505` per `legacy_aliases`), or indirect `G[8]=2`.
@@ -281,15 +296,15 @@ impl Lowering<'_> {
                     {
                         return self.g_code(group, index, span, plan);
                     }
-                    // Above `u64::MAX` no command either: `None` rather
-                    // than the saturated `as` cast.
-                    let code = (n <= u64::MAX as f64).then_some(n as u64);
-                    match code.and_then(ggroups::lookup_g) {
+                    match g_number(n).and_then(ggroups::lookup_g) {
                         Some((group, index)) => self.g_code(group, index, span, plan),
                         None => self.diagnostics.push(
                             Diagnostic::new(
                                 codes::lower::UNKNOWN_G,
-                                format!("`G{n}` is not a G command of the control"),
+                                format!(
+                                    "`G{}` is not a G command of the control",
+                                    values::written_number(self.source, value)
+                                ),
                             )
                             .with_label(span, "unknown G command"),
                         ),
@@ -333,9 +348,10 @@ impl Lowering<'_> {
         if aliases.is_empty() {
             return None;
         }
+        let number = g_number(n)?;
         aliases.iter().find_map(|(alias, target)| {
             let digits = alias.get_ref().get(1..)?;
-            (digits.parse::<u64>().ok()? == n as u64).then(|| target.get_ref().clone())
+            (digits.parse::<u64>().ok()? == number).then(|| target.get_ref().clone())
         })
     }
 
@@ -358,7 +374,10 @@ impl Lowering<'_> {
                 return self.diagnostics.push(
                     Diagnostic::new(
                         codes::lower::INVALID_INDIRECT_G,
-                        "G groups are numbered 1…64",
+                        format!(
+                            "`G[{}]`: G groups are numbered 1…64",
+                            values::written(self.source, group_span)
+                        ),
                     )
                     .with_label(group_span, "not a G group"),
                 );
@@ -394,9 +413,13 @@ impl Lowering<'_> {
                     "of G group 1 only G0, G1, G2 and G3 can be programmed indirectly".into(),
                     "write the motion command directly",
                 )),
+                // A member is found only for `n` in 1…255.
                 Some(_) => self.g_code(group, n as u8, span, plan),
                 None => self.diagnostics.push(invalid(
-                    format!("G group {group} has no command with index {n}"),
+                    format!(
+                        "G group {group} has no command with index {}",
+                        values::written_number(self.source, value)
+                    ),
                     "the index counts the group's commands from 1 (reference §3.2)",
                 )),
             };
