@@ -190,7 +190,7 @@ fuzz_target!(|data: &[u8]| {
     }
     assert_eq!(lines, events.events.len(), "one JSONL line per event");
 
-    drop(text.into_inner().expect("memory"));
+    text.into_inner().expect("the trace goes to memory");
     let text = std::str::from_utf8(&trace).expect("the trace is UTF-8");
     assert!(
         !text.chars().any(is_escaped),
