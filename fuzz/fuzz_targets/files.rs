@@ -28,31 +28,17 @@
 use std::fs;
 use std::io::BufRead;
 use std::path::Path;
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 
 use gcodec_driver::event::{CsvWriter, EventKind, EventSink, JsonlSink, TextSink, VecSink};
 use gcodec_driver::{RunSetup, read_source, run_main, runtime_diagnostic};
-use gcodec_profile::Profile;
 use gcodec_source::{EscapeControls, RenderOptions, is_escaped, render_diagnostics, render_kept};
 use libfuzzer_sys::fuzz_target;
 
-const MAX_STEPS: u64 = 2_000;
+mod run_profiles;
+use run_profiles::run_profiles;
 
-fn profiles() -> &'static [Arc<Profile>] {
-    static PROFILES: OnceLock<Vec<Arc<Profile>>> = OnceLock::new();
-    PROFILES.get_or_init(|| {
-        let texts = [
-            include_str!("../../profiles/default.toml"),
-            include_str!("../../profiles/mill_tool_management.toml"),
-            include_str!("../../profiles/lathe_828d.toml"),
-            include_str!("../../profiles/mill_5axis.toml"),
-        ];
-        texts
-            .iter()
-            .map(|t| Arc::new(gcodec_profile::load(t).expect("shipped profiles load")))
-            .collect()
-    })
-}
+const MAX_STEPS: u64 = 2_000;
 
 /// How a subprogram's file is put into its search directory.
 #[derive(Clone, Copy)]
@@ -109,7 +95,7 @@ fuzz_target!(|data: &[u8]| {
     let main_text = texts.next().unwrap_or_default();
     let sub1_text = texts.next().unwrap_or(main_text);
     let sub2_text = texts.next().unwrap_or(sub1_text);
-    let profile = &profiles()[usize::from(choice >> 4 & 3)];
+    let profile = &run_profiles()[usize::from(choice >> 4 & 3)];
 
     let root = tempfile::Builder::new()
         .prefix("gcodec-fuzz-files")

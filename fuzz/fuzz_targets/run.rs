@@ -15,26 +15,12 @@ use gcodec_exec::channel::Channel;
 use gcodec_source::SourceFile;
 use libfuzzer_sys::fuzz_target;
 
-fn profiles() -> &'static [Arc<gcodec_profile::Profile>] {
-    static PROFILES: std::sync::OnceLock<Vec<Arc<gcodec_profile::Profile>>> =
-        std::sync::OnceLock::new();
-    PROFILES.get_or_init(|| {
-        let texts = [
-            include_str!("../../profiles/default.toml"),
-            include_str!("../../profiles/mill_tool_management.toml"),
-            include_str!("../../profiles/lathe_828d.toml"),
-            include_str!("../../profiles/mill_5axis.toml"),
-        ];
-        texts
-            .iter()
-            .map(|t| Arc::new(gcodec_profile::load(t).expect("shipped profiles load")))
-            .collect()
-    })
-}
+mod run_profiles;
+use run_profiles::run_profiles;
 
 fuzz_target!(|data: &[u8]| {
     let file = Arc::new(SourceFile::new("fuzz.mpf", data));
-    for profile in profiles() {
+    for profile in run_profiles() {
         let definitions = Arc::new(Definitions::new());
         let main = compile(Arc::clone(&file), ProgramKind::Main, profile, &definitions)
             .into_loaded("FUZZ");
