@@ -35,8 +35,8 @@ use gcodec_driver::{RunSetup, read_source, run_main, runtime_diagnostic};
 use gcodec_source::{EscapeControls, RenderOptions, is_escaped, render_diagnostics, render_kept};
 use libfuzzer_sys::fuzz_target;
 
-mod run_profiles;
-use run_profiles::run_profiles;
+mod running;
+use running::{assert_one_program_end_last, run_profiles};
 
 const MAX_STEPS: u64 = 2_000;
 
@@ -137,16 +137,7 @@ fuzz_target!(|data: &[u8]| {
     let outcome = report.outcome.expect("events go to memory");
     assert!(outcome.summary.blocks <= MAX_STEPS + 1);
 
-    let ends = events
-        .events
-        .iter()
-        .filter(|e| matches!(e.kind, EventKind::ProgramEnd(_)))
-        .count();
-    assert_eq!(ends, 1, "exactly one program_end");
-    assert!(matches!(
-        events.events.last().map(|e| &e.kind),
-        Some(EventKind::ProgramEnd(_))
-    ));
+    assert_one_program_end_last(&events.events);
 
     let mut jsonl = JsonlSink::new(Vec::new());
     let mut trace = Vec::new();

@@ -9,14 +9,14 @@
 
 use std::sync::Arc;
 
-use gcodec_driver::event::{EventKind, VecSink};
+use gcodec_driver::event::VecSink;
 use gcodec_driver::{Definitions, MemoryLoader, ProgramKind, RunOptions, compile};
 use gcodec_exec::channel::Channel;
 use gcodec_source::SourceFile;
 use libfuzzer_sys::fuzz_target;
 
-mod run_profiles;
-use run_profiles::run_profiles;
+mod running;
+use running::{assert_one_program_end_last, run_profiles};
 
 fuzz_target!(|data: &[u8]| {
     let file = Arc::new(SourceFile::new("fuzz.mpf", data));
@@ -33,16 +33,7 @@ fuzz_target!(|data: &[u8]| {
         let outcome = Channel::new(Arc::clone(profile), options, &mut loader, &mut sink)
             .run(main.program)
             .expect("events go to memory");
-        let ends = sink
-            .events
-            .iter()
-            .filter(|e| matches!(e.kind, EventKind::ProgramEnd(_)))
-            .count();
-        assert_eq!(ends, 1, "exactly one program_end");
-        assert!(matches!(
-            sink.events.last().map(|e| &e.kind),
-            Some(EventKind::ProgramEnd(_))
-        ));
+        assert_one_program_end_last(&sink.events);
         assert!(outcome.summary.blocks <= 2_001);
         for event in &sink.events {
             serde_json::to_vec(event).expect("the event serialises");

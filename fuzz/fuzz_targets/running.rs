@@ -1,8 +1,10 @@
-//! The four shipped machine profiles the running targets (`run`, `files`)
-//! run every input on, loaded once per process.
+//! What the running targets (`run`, `files`) share: the four shipped
+//! machine profiles they run inputs on, loaded once per process, and the
+//! check every run's event stream must pass at its end.
 
 use std::sync::{Arc, OnceLock};
 
+use gcodec_driver::event::{Event, EventKind};
 use gcodec_profile::Profile;
 
 /// `default`, `mill_tool_management`, `lathe_828d` and `mill_5axis`.
@@ -20,4 +22,17 @@ pub fn run_profiles() -> &'static [Arc<Profile>] {
             .map(|t| Arc::new(gcodec_profile::load(t).expect("shipped profiles load")))
             .collect()
     })
+}
+
+/// Exactly one `program_end`, and it is the last event.
+pub fn assert_one_program_end_last(events: &[Event]) {
+    let ends = events
+        .iter()
+        .filter(|e| matches!(e.kind, EventKind::ProgramEnd(_)))
+        .count();
+    assert_eq!(ends, 1, "exactly one program_end");
+    assert!(matches!(
+        events.last().map(|e| &e.kind),
+        Some(EventKind::ProgramEnd(_))
+    ));
 }
