@@ -47,11 +47,17 @@ pub struct Program {
 /// The bytes a program was parsed from, shared: a clone of the program
 /// does not copy them. Its `Debug` form gives their count, not every byte.
 #[derive(Clone, Default, PartialEq)]
-pub struct SourceText(Arc<[u8]>);
+pub struct SourceText(Arc<Vec<u8>>);
 
 impl SourceText {
+    /// A copy of `bytes`.
     pub fn new(bytes: &[u8]) -> Self {
-        Self(Arc::from(bytes))
+        Self(Arc::new(bytes.to_vec()))
+    }
+
+    /// Bytes already shared, such as a [`gcodec_source::SourceFile`]'s.
+    pub fn shared(bytes: Arc<Vec<u8>>) -> Self {
+        Self(bytes)
     }
 
     pub fn bytes(&self) -> &[u8] {

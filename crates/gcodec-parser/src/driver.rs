@@ -54,21 +54,23 @@ impl Parse {
 
 /// Parses one source file.
 pub fn parse(file: &SourceFile) -> Parse {
-    parse_bytes(file.name(), file.bytes())
+    // The program quotes from the file's own bytes: no copy.
+    let source = SourceText::shared(file.shared_bytes());
+    parse_with(file.name(), file.bytes(), Reading::Whole, Some(source))
 }
 
 /// Parses bytes under a file name. A leading UTF-8 byte-order mark is not
 /// part of the program: the spans are into the bytes after it, the bytes
 /// [`SourceFile::new`] holds for `src`.
 pub fn parse_bytes(name: &str, src: &[u8]) -> Parse {
-    parse_with(name, src, Reading::Whole)
+    parse_with(name, src, Reading::Whole, None)
 }
 
 /// Parses with the grammar only, never the fast path for constant-word
 /// blocks: the reference the fast path is tested against.
 #[doc(hidden)]
 pub fn parse_bytes_with_grammar_only(name: &str, src: &[u8]) -> Parse {
-    parse_with(name, src, Reading::GrammarOnly)
+    parse_with(name, src, Reading::GrammarOnly, None)
 }
 
 /// Files at least this large are parsed on several threads, one chunk of
@@ -81,18 +83,22 @@ const PARALLEL_MIN_BYTES: usize = 4 << 20;
 #[doc(hidden)]
 pub fn parse_bytes_in_chunks(name: &str, src: &[u8], threads: usize) -> Parse {
     let src = without_bom(src);
-    parse_in_chunks(name, src, Reading::Whole, split(src, threads))
+    let source = SourceText::new(src);
+    parse_in_chunks(name, src, source, Reading::Whole, split(src, threads))
 }
 
-fn parse_with(name: &str, src: &[u8], reading: Reading) -> Parse {
+/// Parses `src`, whose bytes after a byte-order mark are `source` where
+/// the caller shares them (else they are copied).
+fn parse_with(name: &str, src: &[u8], reading: Reading, source: Option<SourceText>) -> Parse {
     let src = without_bom(src);
+    let source = source.unwrap_or_else(|| SourceText::new(src));
     // Asking for the core count reads cgroup limits: only large files ask.
     let threads = if src.len() < PARALLEL_MIN_BYTES {
         1
     } else {
         std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
     };
-    parse_in_chunks(name, src, reading, split(src, threads))
+    parse_in_chunks(name, src, source, reading, split(src, threads))
 }
 
 /// `src` without a leading UTF-8 byte-order mark, as a [`SourceFile`]
@@ -101,8 +107,15 @@ fn without_bom(src: &[u8]) -> &[u8] {
     src.strip_prefix(UTF8_BOM).unwrap_or(src)
 }
 
-/// Parses the whole of `src`, each of `chunks` on a thread of its own.
-fn parse_in_chunks(name: &str, src: &[u8], reading: Reading, chunks: Vec<Chunk>) -> Parse {
+/// Parses the whole of `src` (held by the program as `source`), each of
+/// `chunks` on a thread of its own.
+fn parse_in_chunks(
+    name: &str,
+    src: &[u8],
+    source: SourceText,
+    reading: Reading,
+    chunks: Vec<Chunk>,
+) -> Parse {
     // One block per line: the program's blocks are allocated once, and each
     // chunk fills its own run of them, so no second copy of the tree is
     // ever alive (a merge would hold both at once).
@@ -144,7 +157,7 @@ fn parse_in_chunks(name: &str, src: &[u8], reading: Reading, chunks: Vec<Chunk>)
         path: None,
         blocks,
         structures: Vec::new(),
-        source: SourceText::new(src),
+        source,
     };
     let mut diagnostics = Diagnostics::new();
     let mut structure_blocks = Vec::new();

@@ -1,4 +1,5 @@
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use crate::Span;
 use crate::lines::{MAX_SOURCE_LEN, line_starts};
@@ -11,7 +12,9 @@ use crate::read::{DEFAULT_MAX_FILE_SIZE, ReadError, UTF8_BOM, read_program};
 pub struct SourceFile {
     name: String,
     path: Option<PathBuf>,
-    bytes: Vec<u8>,
+    /// Shared with the parsed program that quotes from it
+    /// ([`SourceFile::shared_bytes`]), so the file is held once.
+    bytes: Arc<Vec<u8>>,
     line_starts: Vec<u32>,
 }
 
@@ -35,7 +38,7 @@ impl SourceFile {
         Self {
             name: name.into(),
             path: None,
-            bytes,
+            bytes: Arc::new(bytes),
             line_starts,
         }
     }
@@ -56,7 +59,7 @@ impl SourceFile {
         Ok(Self {
             name: path.display().to_string(),
             path: Some(path.to_path_buf()),
-            bytes,
+            bytes: Arc::new(bytes),
             line_starts,
         })
     }
@@ -82,6 +85,11 @@ impl SourceFile {
     /// The bytes as stored.
     pub fn bytes(&self) -> &[u8] {
         &self.bytes
+    }
+
+    /// The bytes as stored, shared rather than copied.
+    pub fn shared_bytes(&self) -> Arc<Vec<u8>> {
+        Arc::clone(&self.bytes)
     }
 
     /// Byte offsets at which each line starts (the first is 0).
