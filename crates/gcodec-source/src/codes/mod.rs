@@ -191,8 +191,6 @@ pub fn find(name: &str) -> Option<&'static Code> {
 /// written in (full, `area::name` or the last part alone); `None` when
 /// nothing is close.
 pub fn suggest(name: &str) -> Option<&'static Code> {
-    /// Below this Jaro-Winkler similarity a code is not worth suggesting.
-    const THRESHOLD: f64 = 0.8;
     let name = name.trim().to_ascii_lowercase();
     let form = |code: &'static Code| {
         if name.starts_with("gcodec::") {
@@ -203,13 +201,8 @@ pub fn suggest(name: &str) -> Option<&'static Code> {
             code.bare_name()
         }
     };
-    all()
-        .iter()
-        .copied()
-        .map(|code| (strsim::jaro_winkler(&name, form(code)), code))
-        .filter(|(similarity, _)| *similarity >= THRESHOLD)
-        .max_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, code)| code)
+    let nearest = crate::nearest(&name, all().iter().map(|code| form(code)))?;
+    all().iter().copied().find(|code| form(code) == nearest)
 }
 
 /// Declares an area's codes: one `pub const UPPER_NAME: &Code` per code
