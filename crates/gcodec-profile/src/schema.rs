@@ -352,6 +352,11 @@ pub struct ProgramSettings {
     /// programs and definition files.
     #[serde(default = "default_max_file_size")]
     pub max_file_size: Spanned<u64>,
+    /// The code page of program files that are not valid UTF-8 (a WHATWG
+    /// label: `windows-1252`, the control's own and the default,
+    /// `windows-1251` for Cyrillic comments, `iso-8859-2`, …).
+    #[serde(default = "default_code_page")]
+    pub code_page: Spanned<String>,
     /// The memory for variables, in bytes: the `DEF` variables of every
     /// active program level and the global user data alive at once (the
     /// control's user memory, which its machine data size).
@@ -380,6 +385,7 @@ impl Default for ProgramSettings {
             subprogram_paths: Vec::new(),
             link_target_paths: Vec::new(),
             max_file_size: default_max_file_size(),
+            code_page: default_code_page(),
             max_variable_memory: default_max_variable_memory(),
             stop_at_m0: true,
             circle_error_const: default_circle_error_const(),
@@ -471,6 +477,21 @@ fn default_duplicate_suppression_policy() -> DuplicateSuppressionPolicy {
 
 fn default_max_block_length() -> Spanned<u32> {
     spanned(512)
+}
+
+fn default_code_page() -> Spanned<String> {
+    spanned(gcodec_source::Encoding::WINDOWS_1252.name().to_owned())
+}
+
+impl ProgramSettings {
+    /// How program files are decoded: UTF-8 where valid, else the
+    /// profile's code page (Windows-1252 when the label is unknown, which
+    /// the profile's validation reports).
+    pub fn text_encoding(&self) -> gcodec_source::TextEncoding {
+        let code_page = gcodec_source::Encoding::for_label(self.code_page.get_ref())
+            .unwrap_or(gcodec_source::Encoding::WINDOWS_1252);
+        gcodec_source::TextEncoding::Detect { code_page }
+    }
 }
 
 fn default_max_file_size() -> Spanned<u64> {

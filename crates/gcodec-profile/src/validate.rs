@@ -414,6 +414,17 @@ fn check_program(p: &ProgramSettings, out: &mut Vec<Diagnostic>) {
             "here",
         ));
     }
+    if gcodec_source::Encoding::for_label(p.code_page.get_ref()).is_none() {
+        out.push(
+            error(
+                codes::profile::OUT_OF_RANGE,
+                &p.code_page,
+                format!("`{}` is not a code page program text can be in", p.code_page.get_ref()),
+                "not a code page",
+            )
+            .with_help("name an ASCII-compatible encoding by its WHATWG label: `windows-1252` (the default), `windows-1251`, `iso-8859-2`, `utf-8`"),
+        );
+    }
     if !(p.max_feed.get_ref().is_finite() && *p.max_feed.get_ref() > 0.0) {
         out.push(error(
             codes::profile::OUT_OF_RANGE,
