@@ -17,6 +17,7 @@ use crate::geometry::{self, ArcForm, BoundingBox, Direction, Point3};
 use crate::program::Program;
 use crate::value::{RtValue, RunError, finite_real};
 
+use super::polar::PolarWords;
 use super::state::MachineState;
 
 /// Buffers reused by every motion, so that a traversing block allocates
@@ -24,8 +25,8 @@ use super::state::MachineState;
 pub(super) struct MotionScratch {
     /// The start point in workpiece coordinates (mm, radius).
     pub wcs: Vec<f64>,
-    target: Vec<f64>,
-    machine: Vec<f64>,
+    pub(super) target: Vec<f64>,
+    pub(super) machine: Vec<f64>,
     event: Event,
     /// The end tangent of the last path element (for `CT`).
     last_tangent: Option<Point3>,
@@ -72,7 +73,7 @@ impl MotionScratch {
 
 /// The geometry axes of `values` as a point (0 for a geometry axis the
 /// machine lacks).
-fn point(state: &MachineState, values: &[f64]) -> Point3 {
+pub(super) fn point(state: &MachineState, values: &[f64]) -> Point3 {
     let mut p = [0.0; 3];
     for (info, v) in state.axes.iter().zip(values) {
         if let Some(g) = info.geometry {
@@ -104,9 +105,21 @@ impl Channel<'_> {
             .unwrap_or(*motion);
         self.motion.workpiece_position(&self.state);
         self.motion.target.copy_from_slice(&self.motion.wcs);
+        let plane = self.state.plane();
+        let (h, v, _) = plane.axes();
+        let mut polar = PolarWords::default();
+        let mut written = (false, false);
         for target in targets {
+            if polar.take(target) {
+                continue;
+            }
             let axis = self.axis(&target.axis)?;
             self.set_target(axis, &target.value, target.mode)?;
+            match self.state.axes[axis].geometry {
+                Some(g) if g == h => written.0 = true,
+                Some(g) if g == v => written.1 = true,
+                _ => {}
+            }
         }
         if let Some(details) = details {
             for target in &details.indirect_targets {
@@ -127,11 +140,16 @@ impl Channel<'_> {
                 self.not_simulated(program, instruction, "motion-details", || "spline weights, chamfers and roundings (`PW`, `PL`, `CHF`, `CHR`, `RND`) are not simulated: the path is the programmed straight or circular element".into());
             }
         }
+        let start = point(&self.state, &self.motion.wcs);
+        let pole = if polar.is_polar() {
+            Some(self.polar_end_point(&polar, plane, written)?)
+        } else {
+            self.contour_angle_end_point(&polar, plane, written, start)?;
+            None
+        };
         if kind != MotionKind::Rapid && self.state.feed <= 0.0 {
             self.once(program, instruction, "no-feed", codes::run::NO_FEED, Severity::Warning, || "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into());
         }
-        let plane = self.state.plane();
-        let start = point(&self.state, &self.motion.wcs);
         let mut end = point(&self.state, &self.motion.target);
         let is_arc = matches!(
             kind,
@@ -144,7 +162,7 @@ impl Channel<'_> {
         // `TURN=` as programmed (`resolve_arc` accepted it: 0…999, whole).
         let mut arc_turns = 0;
         if is_arc {
-            let (resolved, turns) = self.arc(kind, plane, start, end, circle.as_deref())?;
+            let (resolved, turns) = self.arc(kind, plane, start, end, circle.as_deref(), pole)?;
             arc_turns = turns;
             // `AR=` with a centre computes the end point in the plane.
             end = resolved.end;
@@ -169,6 +187,25 @@ impl Channel<'_> {
             self.state
                 .to_machine(&frame, &scratch.target, &mut scratch.machine);
         }
+        self.finish_motion(program, instruction, kind, start, end, arc, arc_turns);
+        Ok(())
+    }
+
+    /// The motion from `scratch.wcs` (the start point `start`) to
+    /// `scratch.target` (`end`; in machine coordinates `scratch.machine`),
+    /// along `arc` if one: the summary's figures, the end tangent, the
+    /// event, the new position.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn finish_motion(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        kind: MotionKind,
+        start: Point3,
+        end: Point3,
+        arc: Option<geometry::Arc>,
+        arc_turns: u32,
+    ) {
         // Figures.
         let length = match &arc {
             Some(a) => a.length,
@@ -247,7 +284,6 @@ impl Channel<'_> {
         self.state.machine.copy_from_slice(&self.motion.machine);
         self.block.had_motion = true;
         super::send(&mut *self.sink, &mut self.output_error, &self.motion.event);
-        Ok(())
     }
 
     pub(super) fn axis(&self, name: &str) -> Result<usize, RunError> {
@@ -325,6 +361,7 @@ impl Channel<'_> {
         start: Point3,
         end: Point3,
         circle: Option<&Circle>,
+        pole: Option<Point3>,
     ) -> Result<(geometry::Arc, u32), RunError> {
         let empty = Circle::default();
         let circle = circle.unwrap_or(&empty);
@@ -373,9 +410,11 @@ impl Channel<'_> {
             let tangent = self.motion.last_tangent.unwrap_or([0.0; 3]);
             ArcForm::Tangent { tangent }
         } else {
-            let centre = offsets(&circle.centre, true)?;
             let radius = circle.radius.as_ref().map(real).transpose()?.map(length);
             let angle = circle.opening_angle.as_ref().map(real).transpose()?;
+            // A polar end point without circle data: about the pole.
+            let centre = offsets(&circle.centre, true)?
+                .or(pole.filter(|_| radius.is_none() && angle.is_none()));
             match (centre, radius, angle) {
                 (Some(centre), _, Some(angle)) => ArcForm::AngleFromCentre {
                     direction,

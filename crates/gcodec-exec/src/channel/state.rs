@@ -20,6 +20,8 @@ use crate::eval::{
 };
 use gcodec_ail::{Suppression, VarName};
 
+use super::polar::Polar;
+use super::settings::WorkingArea;
 use crate::event::{AxisName, Plane, SpindleState};
 use crate::frames::{Frame, FrameAxes, chain_values, frame_function};
 use crate::value::{FrameValue, RtValue, RunError};
@@ -47,6 +49,8 @@ pub struct Spindle {
     pub position: Option<f64>,
     /// M40…M45: 0 automatic, 1…5.
     pub gear: u32,
+    /// `G25 S…`/`G26 S…`: the lower and upper speed limits.
+    pub speed_limits: [Option<f64>; 2],
 }
 
 /// The active tool: its identity as events name it, and its number.
@@ -90,6 +94,10 @@ pub struct MachineState {
     pub spindles: Vec<Spindle>,
     /// `MCALL`: the modal call in force.
     pub(super) modal_call: Option<super::calls::ModalCall>,
+    /// The pole and the polar end point last programmed.
+    pub polar: Polar,
+    /// `G25`/`G26`.
+    pub working_area: WorkingArea,
     /// The last total frame with what it was made of, so that a motion
     /// does not chain frames (and allocate) unless one changed.
     frame_cache: RefCell<FrameCache>,
@@ -170,6 +178,8 @@ impl MachineState {
             feed: 0.0,
             spindles,
             modal_call: None,
+            polar: Polar::default(),
+            working_area: WorkingArea::default(),
             // A group 8 code no block selects: the first motion fills it.
             frame_cache: RefCell::new(FrameCache {
                 group8: WorkOffsetCode(0),
