@@ -1,7 +1,8 @@
 //! Commands of issue 16 whose axis words do not simply traverse (SPEC
 //! §11.5, §11.6): group 3 settings (`G25`/`G26`, `G58`/`G59`, the pole of
 //! `G110`…`G112`), polar end points (`AP`, `RP`) and the one-block `ANG=`,
-//! and the approach of machine-data points (`G74`, `G75`).
+//! the approach of machine-data points (`G74`, `G75`), and increments
+//! after a change of frame or offset (SD42440).
 
 use std::sync::Arc;
 
@@ -278,4 +279,40 @@ fn a_fixed_point_the_profile_lacks_is_an_error() {
     assert_eq!(r.errors, ["gcodec::run::fixed_point"]);
     let r = run_on(profile(FIXED_POINTS), "G75 FP=5 Z1=0\nM30\n");
     assert_eq!(r.errors, ["gcodec::run::fixed_point"]);
+}
+
+/// A mill with `G505` (X 5), increments after an offset change as
+/// SD42440 = `traverses` says.
+fn settable_g505(traverses: bool) -> Profile {
+    profile(&format!(
+        "[machine]\nname = \"mill with G505\"\ncontrol = \"840d_sl\"\n\n[work_offsets]\nsupported_group8_offsets = [\"G500\", \"G54-G57\", \"G505\"]\nincremental_traverses_offset_change = {traverses}\n\n[work_offsets.values.G505]\nX = 5.0\n"
+    ))
+}
+
+#[test]
+fn an_increment_after_a_frame_or_offset_change_traverses_the_change() {
+    for program in [
+        "G0 X10\nTRANS X5\nG91 X1\nM30\n",
+        "G0 X10\nTRANS X5\nX=IC(1)\nM30\n",
+    ] {
+        let r = run(program);
+        close(&r.last(true, &["X"]), &[16.0]);
+        close(&r.last(false, &["X"]), &[11.0]);
+    }
+    let r = run_on(settable_g505(true), "G0 X10\nG505\nG91 X1\nM30\n");
+    close(&r.last(true, &["X"]), &[16.0]);
+    // Once traversed, increments go on from the new position.
+    let r = run("G0 X10\nTRANS X5\nG91 X1\nX1\nM30\n");
+    close(&r.last(true, &["X"]), &[17.0]);
+    // A suppressed block programs the machine position: its increment
+    // counts from there, and it changes no frame for the next block.
+    let r = run_on(settable_g505(true), "G505 G0 X10\nG53 G91 X1\nX1\nM30\n");
+    assert_eq!(r.motions[1].to_machine.get("X"), Some(16.0));
+    close(&r.last(true, &["X"]), &[17.0]);
+}
+
+#[test]
+fn the_profile_can_make_increments_follow_only_the_programmed_path() {
+    let r = run_on(settable_g505(false), "G0 X10\nG505\nG91 X1\nM30\n");
+    close(&r.last(true, &["X"]), &[11.0]);
 }

@@ -25,6 +25,10 @@ use super::state::MachineState;
 pub(super) struct MotionScratch {
     /// The start point in workpiece coordinates (mm, radius).
     pub wcs: Vec<f64>,
+    /// Where incremental values count from: `wcs`, or after a change of
+    /// the frame the position in the frame it was programmed in
+    /// (SD42440, [`Channel::increment_start`]).
+    increment_start: Vec<f64>,
     pub(super) target: Vec<f64>,
     pub(super) machine: Vec<f64>,
     event: Event,
@@ -38,6 +42,7 @@ impl MotionScratch {
         let map = || AxisMap::with_capacity(n);
         Self {
             wcs: vec![0.0; n],
+            increment_start: vec![0.0; n],
             target: vec![0.0; n],
             machine: vec![0.0; n],
             event: Event {
@@ -105,6 +110,7 @@ impl Channel<'_> {
             .unwrap_or(*motion);
         self.motion.workpiece_position(&self.state);
         self.motion.target.copy_from_slice(&self.motion.wcs);
+        self.increment_start();
         let plane = self.state.plane();
         let (h, v, _) = plane.axes();
         let mut polar = PolarWords::default();
@@ -282,8 +288,32 @@ impl Channel<'_> {
         }
         scratch.event.source = source;
         self.state.machine.copy_from_slice(&self.motion.machine);
+        self.state.note_traversed_frame();
         self.block.had_motion = true;
         super::send(&mut *self.sink, &mut self.output_error, &self.motion.event);
+    }
+
+    /// Where incremental values count from (SD42440,
+    /// `incremental_traverses_offset_change`): after a change of the
+    /// frame, the position in the frame the last motion ran in, so that
+    /// the change is traversed; otherwise (and in a block whose frames are
+    /// suppressed) the position in this frame.
+    fn increment_start(&mut self) {
+        let state = &self.state;
+        let scratch = &mut self.motion;
+        match &state.traversed_frame {
+            Some(before)
+                if state
+                    .profile
+                    .work_offsets
+                    .incremental_traverses_offset_change
+                    && state.suppression.is_none()
+                    && !before.same_as(&state.total_frame()) =>
+            {
+                state.to_workpiece(before, &state.machine, &mut scratch.increment_start)
+            }
+            _ => scratch.increment_start.copy_from_slice(&scratch.wcs),
+        }
     }
 
     pub(super) fn axis(&self, name: &str) -> Result<usize, RunError> {
@@ -305,7 +335,8 @@ impl Channel<'_> {
     ) -> Result<(), RunError> {
         let value = eval::eval_real(&self.env(), value)?;
         let start = self.motion.wcs[axis];
-        let target = self.dimension(axis, value, mode, start);
+        let increment_start = self.motion.increment_start[axis];
+        let target = self.dimension(axis, value, mode, start, increment_start);
         // An increment, inch or unit conversion can overflow too.
         self.motion.target[axis] = finite_real(target, || {
             format!("the position on `{}`", self.state.axes[axis].name)
@@ -313,8 +344,17 @@ impl Channel<'_> {
         Ok(())
     }
 
-    /// `value` on `axis` as an absolute workpiece coordinate (mm, radius).
-    fn dimension(&self, axis: usize, value: f64, mode: Option<DimensionMode>, start: f64) -> f64 {
+    /// `value` on `axis` as an absolute workpiece coordinate (mm, radius):
+    /// an increment counts from `increment_start`, a rotary position from
+    /// `start`.
+    fn dimension(
+        &self,
+        axis: usize,
+        value: f64,
+        mode: Option<DimensionMode>,
+        start: f64,
+        increment_start: f64,
+    ) -> f64 {
         use DimensionMode as M;
         let info = &self.state.axes[axis];
         let mut v = value;
@@ -339,7 +379,7 @@ impl Channel<'_> {
             }
         }
         if incremental {
-            return start + v;
+            return increment_start + v;
         }
         if info.rotary {
             let delta = (v - start).rem_euclid(360.0);

@@ -98,6 +98,9 @@ pub struct MachineState {
     pub polar: Polar,
     /// `G25`/`G26`.
     pub working_area: WorkingArea,
+    /// The total frame the last motion ran in (`None` before the first):
+    /// an increment after a change traverses it (SD42440).
+    pub traversed_frame: Option<Frame>,
     /// The last total frame with what it was made of, so that a motion
     /// does not chain frames (and allocate) unless one changed.
     frame_cache: RefCell<FrameCache>,
@@ -180,6 +183,7 @@ impl MachineState {
             modal_call: None,
             polar: Polar::default(),
             working_area: WorkingArea::default(),
+            traversed_frame: None,
             // A group 8 code no block selects: the first motion fills it.
             frame_cache: RefCell::new(FrameCache {
                 group8: WorkOffsetCode(0),
@@ -287,6 +291,27 @@ impl MachineState {
             };
         }
         Ref::map(self.frame_cache.borrow(), |c| &c.total)
+    }
+
+    /// Keeps the total frame of the motion just made, for the increments
+    /// that follow ([`Self::traversed_frame`]); a clone only when it
+    /// changed. A block under `G53`/`G153`/`SUPA` programs machine
+    /// positions and changes nothing of it.
+    pub fn note_traversed_frame(&mut self) {
+        if self.suppression.is_some() {
+            return;
+        }
+        let changed = {
+            let total = self.total_frame();
+            (!self
+                .traversed_frame
+                .as_ref()
+                .is_some_and(|f| f.same_as(&total)))
+            .then(|| total.clone())
+        };
+        if let Some(total) = changed {
+            self.traversed_frame = Some(total);
+        }
     }
 
     /// `$P_UIFRNUM`: the index of the Group 8 selection.
