@@ -10,7 +10,6 @@ use gcodec_lang::MotionKind;
 use gcodec_source::codes;
 
 use super::Channel;
-use super::motion::point;
 use crate::eval;
 use crate::program::Program;
 use crate::value::RunError;
@@ -58,8 +57,8 @@ impl Channel<'_> {
             self.state
                 .to_workpiece(&frame, &scratch.machine, &mut scratch.target);
         }
-        let start = point(&self.state, &self.motion.wcs);
-        let end = point(&self.state, &self.motion.target);
+        let start = self.state.geometry_point(&self.motion.wcs);
+        let end = self.state.geometry_point(&self.motion.target);
         self.finish_motion(program, instruction, MotionKind::Rapid, start, end, None, 0);
         Ok(())
     }

@@ -11,7 +11,8 @@
 //! run: events go out, the summary adds up.
 //!
 //! Module map: `state` (modal groups, positions, frames, tool, spindles,
-//! and the system variables a program reads), `motion` (traversing blocks
+//! the pole and working-area limits, and the system variables a program
+//! reads), `motion` (traversing blocks
 //! and arcs), `polar` (end points computed from `AP`/`RP` and `ANG`),
 //! `approach` (`G74`/`G75`), `settings` (the group 3 commands whose axis
 //! words set values: `G25`/`G26`, the pole, `G58`/`G59`), `calls`

@@ -76,18 +76,6 @@ impl MotionScratch {
     }
 }
 
-/// The geometry axes of `values` as a point (0 for a geometry axis the
-/// machine lacks).
-pub(super) fn point(state: &MachineState, values: &[f64]) -> Point3 {
-    let mut p = [0.0; 3];
-    for (info, v) in state.axes.iter().zip(values) {
-        if let Some(g) = info.geometry {
-            p[g] = *v;
-        }
-    }
-    p
-}
-
 impl Channel<'_> {
     pub(super) fn motion(
         &mut self,
@@ -146,7 +134,7 @@ impl Channel<'_> {
                 self.not_simulated(program, instruction, "motion-details", || "spline weights, chamfers and roundings (`PW`, `PL`, `CHF`, `CHR`, `RND`) are not simulated: the path is the programmed straight or circular element".into());
             }
         }
-        let start = point(&self.state, &self.motion.wcs);
+        let start = self.state.geometry_point(&self.motion.wcs);
         let pole = if polar.is_polar() {
             Some(self.polar_end_point(&polar, plane, written)?)
         } else {
@@ -156,7 +144,7 @@ impl Channel<'_> {
         if kind != MotionKind::Rapid && self.state.feed <= 0.0 {
             self.once(program, instruction, "no-feed", codes::run::NO_FEED, Severity::Warning, || "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into());
         }
-        let mut end = point(&self.state, &self.motion.target);
+        let mut end = self.state.geometry_point(&self.motion.target);
         let is_arc = matches!(
             kind,
             MotionKind::ArcCw

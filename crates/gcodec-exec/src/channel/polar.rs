@@ -11,18 +11,6 @@ use crate::eval;
 use crate::geometry::{Plane, Point3};
 use crate::value::RunError;
 
-/// The pole and the polar end point last programmed, in workpiece
-/// coordinates of the geometry slots (mm) and degrees.
-#[derive(Clone, Debug, Default)]
-pub struct Polar {
-    /// `G110`/`G111`/`G112`; the workpiece zero until one is programmed.
-    pub pole: Point3,
-    /// `AP`: kept until a new pole or a change of plane.
-    pub angle: f64,
-    /// `RP`: kept until it is programmed again.
-    pub radius: f64,
-}
-
 /// The `AP=`, `RP=` and `ANG=` words of a block.
 #[derive(Default)]
 pub(super) struct PolarWords<'a> {
@@ -153,7 +141,7 @@ impl Channel<'_> {
         let angle = eval::eval_real(&self.env(), value)?;
         let (sin, cos) = angle.to_radians().sin_cos();
         let (h, v, _) = plane.axes();
-        let end = super::motion::point(&self.state, &self.motion.target);
+        let end = self.state.geometry_point(&self.motion.target);
         // A line that cannot reach the coordinate written: the angle is
         // within rounding of perpendicular to its axis.
         const PARALLEL: f64 = 1e-12;

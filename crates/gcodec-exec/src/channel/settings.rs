@@ -13,14 +13,6 @@ use crate::frames::TranslationPart;
 use crate::geometry::Point3;
 use crate::value::RunError;
 
-/// `G25`/`G26`: the working-area limits per channel axis, machine
-/// coordinates (mm, degrees); `None` where none is programmed.
-#[derive(Clone, Debug, Default)]
-pub struct WorkingArea {
-    pub lower: Vec<Option<f64>>,
-    pub upper: Vec<Option<f64>>,
-}
-
 /// Where a pole is programmed from.
 #[derive(Clone, Copy)]
 enum PoleReference {
@@ -87,7 +79,7 @@ impl Channel<'_> {
         let origin: Point3 = match reference {
             PoleReference::LastPosition => {
                 self.motion.workpiece_position(&self.state);
-                super::motion::point(&self.state, &self.motion.wcs)
+                self.state.geometry_point(&self.motion.wcs)
             }
             PoleReference::WorkpieceZero => [0.0; 3],
             PoleReference::LastPole => self.state.polar.pole,

@@ -20,10 +20,9 @@ use crate::eval::{
 };
 use gcodec_ail::{Suppression, VarName};
 
-use super::polar::Polar;
-use super::settings::WorkingArea;
 use crate::event::{AxisName, Plane, SpindleState};
 use crate::frames::{Frame, FrameAxes, chain_values, frame_function};
+use crate::geometry::Point3;
 use crate::value::{FrameValue, RtValue, RunError};
 
 /// One channel axis.
@@ -121,6 +120,26 @@ struct FrameCache {
     total: Frame,
 }
 
+/// The pole and the polar end point last programmed, in workpiece
+/// coordinates of the geometry slots (mm) and degrees.
+#[derive(Clone, Debug, Default)]
+pub struct Polar {
+    /// `G110`/`G111`/`G112`; the workpiece zero until one is programmed.
+    pub pole: Point3,
+    /// `AP`: kept until a new pole or a change of plane.
+    pub angle: f64,
+    /// `RP`: kept until it is programmed again.
+    pub radius: f64,
+}
+
+/// `G25`/`G26`: the working-area limits per channel axis, machine
+/// coordinates (mm, degrees); `None` where none is programmed.
+#[derive(Clone, Debug, Default)]
+pub struct WorkingArea {
+    pub lower: Vec<Option<f64>>,
+    pub upper: Vec<Option<f64>>,
+}
+
 /// A tool selection waiting for the change.
 #[derive(Clone, Debug)]
 pub struct PendingTool {
@@ -198,6 +217,18 @@ impl MachineState {
             supported_group8: profile.work_offsets.supported_group8(),
             profile,
         }
+    }
+
+    /// The geometry axes of `values` (indexed like the channel's axes) as
+    /// a point; 0 for a geometry axis the machine lacks.
+    pub fn geometry_point(&self, values: &[f64]) -> Point3 {
+        let mut p = [0.0; 3];
+        for (info, v) in self.axes.iter().zip(values) {
+            if let Some(g) = info.geometry {
+                p[g] = *v;
+            }
+        }
+        p
     }
 
     /// The axis named `name` (any case).
