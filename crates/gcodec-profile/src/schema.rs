@@ -91,6 +91,14 @@ pub struct Axis {
     /// Rapid traverse rate, mm/min (degrees/min for rotary axes).
     #[serde(default = "default_rapid")]
     pub rapid: Spanned<f64>,
+    /// The reference point in machine coordinates (MD34100
+    /// `$MA_REFP_SET_POS`), where `G74` goes: mm (degrees), radius.
+    #[serde(default = "default_reference_point")]
+    pub reference_point: Spanned<f64>,
+    /// Fixed points 1…4 in machine coordinates (MD30600
+    /// `$MA_FIX_POINT_POS`), where `G75 FP=n` goes: mm (degrees), radius.
+    #[serde(default)]
+    pub fixed_points: Vec<Spanned<f64>>,
 }
 
 /// Linear or rotary.
@@ -284,6 +292,11 @@ pub struct WorkOffsets {
     /// Several of `G53`, `G153`, `SUPA` in one block.
     #[serde(default = "default_duplicate_suppression_policy")]
     pub duplicate_suppression_policy: DuplicateSuppressionPolicy,
+    /// SD42440 `$SC_FRAME_OFFSET_INCR_PROG`: `true` (1, the control's
+    /// default), an incremental value after a change of the work offset or
+    /// frame traverses the change; `false` (0), only the programmed path.
+    #[serde(default = "yes")]
+    pub incremental_traverses_offset_change: bool,
     /// The translation of each settable offset, per axis: `[work_offsets.values.G54]`.
     #[serde(default)]
     pub values: BTreeMap<Spanned<String>, BTreeMap<Spanned<String>, f64>>,
@@ -296,6 +309,7 @@ impl Default for WorkOffsets {
             supported_group8_offsets: default_supported_group8_offsets(),
             legacy_aliases: BTreeMap::new(),
             duplicate_suppression_policy: default_duplicate_suppression_policy(),
+            incremental_traverses_offset_change: true,
             values: BTreeMap::new(),
         }
     }
@@ -419,6 +433,8 @@ fn default_axes() -> Vec<Axis> {
             geometry: true,
             diameter: false,
             rapid: default_rapid(),
+            reference_point: default_reference_point(),
+            fixed_points: Vec::new(),
         })
         .collect()
 }
@@ -429,6 +445,11 @@ fn default_spindles() -> Vec<Spanned<u32>> {
 
 fn default_rapid() -> Spanned<f64> {
     spanned(10_000.0)
+}
+
+/// Machine zero.
+fn default_reference_point() -> Spanned<f64> {
+    spanned(0.0)
 }
 
 fn default_tool_change_mode() -> ToolChangeMode {
