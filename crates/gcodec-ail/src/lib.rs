@@ -219,6 +219,15 @@ pub enum Op {
     Message { text: Value },
     /// `STOPRE` and the like: a stop of the block preparation.
     Stop { reason: String },
+    /// `SETINT(3) PRIO=1 LIFT_Z`: the interrupt routine of an input.
+    InterruptAssign(Box<InterruptAssign>),
+    /// `ENABLE(3)`, `DISABLE(3)`, `CLRINT(3)`: what acts on an input's
+    /// interrupt assignment.
+    InterruptControl {
+        action: InterruptAction,
+        /// The input, 1…8 (checked when computed).
+        input: Value,
+    },
     /// The end of the program text.
     End,
 }
@@ -279,6 +288,36 @@ pub struct Declare {
     /// then empty.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub init_repeat: Option<Repeat>,
+}
+
+/// `SETINT(<input>) PRIO=<priority> <routine> [LIFTFAST] [BLSYNC]`: when
+/// the input's signal rises, the routine interrupts the program.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct InterruptAssign {
+    /// The input, 1…8 (checked when computed).
+    pub input: Value,
+    /// 1 (highest) … 128 (checked when computed).
+    pub priority: Value,
+    /// The routine's name in upper case; `null` for `LIFTFAST` alone (a
+    /// fast retraction without a routine).
+    pub routine: Option<String>,
+    /// `LIFTFAST`: retract fast before the routine.
+    pub lift_fast: bool,
+    /// `BLSYNC`: the routine starts at the end of the block in progress.
+    pub block_sync: bool,
+}
+
+/// What `ENABLE`, `DISABLE` and `CLRINT` do to an input's interrupt.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum InterruptAction {
+    /// `ENABLE(n)`: the assignment acts again.
+    Enable,
+    /// `DISABLE(n)`: the assignment stays but does not act.
+    Disable,
+    /// `CLRINT(n)`: the assignment is removed.
+    Clear,
 }
 
 /// A call of a subprogram, cycle or predefined procedure.

@@ -58,7 +58,6 @@ pub const ASSUMED_NAMES: &[(&str, &[&str])] = &[
             "PODHODZ",
             "PREKIDXA",
             "PODHODX",
-            "PRIO",
             "PREOSTALO",
             "BROJPROL",
             "komentar_a",

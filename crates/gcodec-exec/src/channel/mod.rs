@@ -14,10 +14,12 @@
 //! and the system variables a program reads), `motion` (traversing blocks
 //! and arcs), `calls` (subprograms, parameters, sections), `functions`
 //! (M and H functions, tool selection and change, spindle, dwell),
+//! `interrupts` (the routines assigned to inputs),
 //! `summary` (the figures after the run).
 
 mod calls;
 mod functions;
+mod interrupts;
 mod motion;
 pub mod state;
 mod summary;
@@ -694,6 +696,12 @@ impl<'r> Channel<'r> {
                 self.emit_at(program, instruction, event);
                 Ok(Flow::Next)
             }
+            Op::InterruptAssign(assign) => self
+                .interrupt_assign(program, instruction, assign)
+                .map(|()| Flow::Next),
+            Op::InterruptControl { action, input } => self
+                .interrupt_control(program, instruction, *action, input)
+                .map(|()| Flow::Next),
             Op::Call(call) => self.call(program, pc, instruction, call),
             Op::CancelModalCall => {
                 self.state.modal_call = None;

@@ -90,6 +90,8 @@ pub struct MachineState {
     pub spindles: Vec<Spindle>,
     /// `MCALL`: the modal call in force.
     pub(super) modal_call: Option<super::calls::ModalCall>,
+    /// `SETINT`: the routine of each input.
+    pub(super) interrupts: super::interrupts::Interrupts,
     /// The last total frame with what it was made of, so that a motion
     /// does not chain frames (and allocate) unless one changed.
     frame_cache: RefCell<FrameCache>,
@@ -170,6 +172,7 @@ impl MachineState {
             feed: 0.0,
             spindles,
             modal_call: None,
+            interrupts: Default::default(),
             // A group 8 code no block selects: the first motion fills it.
             frame_cache: RefCell::new(FrameCache {
                 group8: WorkOffsetCode(0),

@@ -72,6 +72,16 @@ impl Lowering<'_> {
                 ));
             }
         }
+        if let Some(action) = super::interrupts::control_action(upper)
+            && let Some(args) = &call.args
+        {
+            return self.interrupt_control(upper, action, args, span, plan);
+        }
+        if upper == "EXTCALL"
+            && let Some(args) = &call.args
+        {
+            return self.external_call(args, span, plan);
+        }
         if upper == "MSG"
             && let Some(args) = &call.args
         {

@@ -37,6 +37,7 @@ mod addresses;
 mod calls;
 mod control;
 mod frames;
+mod interrupts;
 pub(crate) mod outline;
 mod parts;
 mod statements;
@@ -672,8 +673,11 @@ impl<'a> Lowering<'a> {
             self.check_structure_block(facts, block);
             self.structure_parts(facts, block, &mut plan);
         }
-        for statement in &block.statements {
-            self.statement(block, index, statement, &mut plan);
+        let interrupt = self.interrupt_assignment(block, &mut plan);
+        for (at, statement) in block.statements.iter().enumerate() {
+            if !interrupt.contains(&at) {
+                self.statement(block, index, statement, &mut plan);
+            }
         }
         // Jump targets and structure labels come first: a jump to a skipped
         // block lands before its skip test.

@@ -1,0 +1,69 @@
+//! Statements that were read as something else (issue 16), run:
+//! interrupt assignments, named addresses, M functions of one
+//! auxiliary-function group, computed M values, `T0`, `EXTCALL`.
+
+use std::sync::Arc;
+
+use gcodec_driver::{RunSetup, run_main};
+use gcodec_exec::event::{Event, EventKind, ProgramEndReason, VecSink};
+use gcodec_source::{Severity, SourceFile};
+
+/// The events of running `program` (which must compile cleanly) on
+/// `profile`.
+fn events_on(profile: gcodec_profile::Profile, program: &str) -> Vec<Event> {
+    let setup = RunSetup::new(profile);
+    let file = Arc::new(SourceFile::new("STATEMENTS.MPF", program));
+    let mut sink = VecSink::new();
+    let report = run_main(file, &setup, &mut sink, None);
+    assert!(
+        !report.diagnostics.iter().any(|d| d.is_error()),
+        "{program}: {:?}",
+        report.diagnostics
+    );
+    sink.events
+}
+
+fn events(program: &str) -> Vec<Event> {
+    events_on(
+        gcodec_profile::builtin().expect("built-in profile"),
+        program,
+    )
+}
+
+/// The run's error diagnostics (code, line) and how it ended.
+fn errors(events: &[Event]) -> (Vec<(&'static str, u32)>, ProgramEndReason) {
+    let mut errors = Vec::new();
+    let mut end = None;
+    for event in events {
+        match &event.kind {
+            EventKind::Diagnostic(d) if d.severity == Severity::Error => {
+                errors.push((d.code.name(), event.source.line))
+            }
+            EventKind::ProgramEnd(e) => end = Some(e.reason),
+            _ => {}
+        }
+    }
+    (errors, end.expect("the program ends"))
+}
+
+#[test]
+fn enable_of_an_input_without_a_routine_is_an_alarm() {
+    let (errors, end) = errors(&events(
+        "N10 SETINT(3) PRIO=1 LIFT_Z\nN20 CLRINT(3)\nN30 ENABLE(3)\nM30\n",
+    ));
+    assert_eq!(errors, [("gcodec::run::interrupt", 3)]);
+    assert_eq!(end, ProgramEndReason::Alarm);
+}
+
+#[test]
+fn computed_interrupt_inputs_and_priorities_are_checked_when_they_run() {
+    for program in [
+        "R1=9\nSETINT(R1) PRIO=1 LIFT_Z\nM30\n",
+        "R1=200\nSETINT(3) PRIO=R1 LIFT_Z\nM30\n",
+        "R1=0\nDISABLE(R1)\nM30\n",
+    ] {
+        let (errors, end) = errors(&events(program));
+        assert_eq!(errors, [("gcodec::run::interrupt", 2)], "{program}");
+        assert_eq!(end, ProgramEndReason::Alarm, "{program}");
+    }
+}
