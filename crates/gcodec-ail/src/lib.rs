@@ -438,18 +438,45 @@ pub struct Address {
     /// The axis in brackets, computed when the block runs (`FA[AXN]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axis_expr: Option<Expr>,
-    /// The spindle of `SPOS[2]=`, `SPOSA[2]=`.
+    /// The spindle of `SPOS[2]=`, `SPOSA[2]=`; the number of
+    /// `TOFFL[1]=`, `FMA[2,X]=`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub extension: Option<u32>,
-    /// The spindle, computed when the block runs (`SPOS[SPINU]=`).
+    /// The spindle or number, computed when the block runs
+    /// (`SPOS[SPINU]=`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub extension_expr: Option<Expr>,
+    /// The leading axis of a generic coupling (`CPLNUM[X,Y]=` → `Y`;
+    /// `axis` is the following one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub leading_axis: Option<String>,
+    /// The leading axis, computed when the block runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub leading_axis_expr: Option<Expr>,
     pub value: Value,
     /// `AC`, `IC`, `DC`, `ACP`, `ACN`, … when written.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mode: Option<DimensionMode>,
     /// Whether the value stays in force after the block.
     pub scope: AddressScope,
+}
+
+impl Address {
+    /// `address` with `value` and nothing in brackets.
+    pub fn new(address: NamedAddress, value: Value, scope: AddressScope) -> Self {
+        Self {
+            address,
+            axis: None,
+            axis_expr: None,
+            extension: None,
+            extension_expr: None,
+            leading_axis: None,
+            leading_axis_expr: None,
+            value,
+            mode: None,
+            scope,
+        }
+    }
 }
 
 /// An H auxiliary function (reference §4.5).

@@ -67,3 +67,35 @@ fn computed_interrupt_inputs_and_priorities_are_checked_when_they_run() {
         assert_eq!(end, ProgramEndReason::Alarm, "{program}");
     }
 }
+
+/// The messages of the `not_simulated` advice of a run.
+fn advice(events: &[Event]) -> Vec<String> {
+    events
+        .iter()
+        .filter_map(|e| match &e.kind {
+            EventKind::Diagnostic(d) if d.code.name() == "gcodec::run::not_simulated" => {
+                Some(d.message.to_string())
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn named_addresses_run_as_not_simulated_advice() {
+    let events = events_on(
+        gcodec_testkit::profile("mill_5axis.toml"),
+        "G1 X5 F100 MEAS=1\nOS[X]=1\nFMA[2,X]=100\nCPSETTYPE[X]=\"CP\"\nCPLA[X]=Y\nM30\n",
+    );
+    assert_eq!(errors(&events), (vec![], ProgramEndReason::M30));
+    assert_eq!(
+        advice(&events),
+        [
+            "`MEAS=` has no effect in the simulation",
+            "`OS=` has no effect in the simulation",
+            "`FMA=` has no effect in the simulation",
+            "`CPSETTYPE=` has no effect in the simulation",
+            "`CPLA=` has no effect in the simulation",
+        ]
+    );
+}

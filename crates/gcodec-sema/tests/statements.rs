@@ -82,3 +82,79 @@ fn interrupt_inputs_priorities_and_routines_out_of_the_rules_are_errors() {
         assert!(ops(&l, "call").is_empty(), "{src}");
     }
 }
+
+fn lower_5axis(src: &str) -> Lowered {
+    common::lower_with(&common::profile("mill_5axis.toml"), src)
+}
+
+#[test]
+fn addresses_written_like_variables_lower_as_addresses() {
+    let l = lower_5axis(
+        "G1 X5 F100 MEAS=1\nMEAW=1\nOS[X]=1\nREPOSA RMIBL DISPR=5\nFGREF[A]=10\nJERKLIM[X]=50\nVELOLIM[X]=50\nFMA[2,X]=100\nOST1[X]=2\nCPLNUM[X,Y]=2\nTOFFL[1]=3\nM30\n",
+    );
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+    assert!(ops(&l, "assign").is_empty());
+    let written: Vec<String> = ops(&l, "address")
+        .iter()
+        .map(|a| {
+            let mut w = a["address"].as_str().unwrap().to_owned();
+            for key in ["extension", "axis", "leading_axis"] {
+                if let Some(part) = a.get(key) {
+                    w.push_str(&format!(" {key}={part}"));
+                }
+            }
+            format!("{w} {} {}", a["scope"], a["value"])
+        })
+        .collect();
+    assert_eq!(
+        written,
+        [
+            "MEAS \"block\" 1.0",
+            "MEAW \"block\" 1.0",
+            "OS axis=\"X\" \"modal\" 1.0",
+            "DISPR \"block\" 5.0",
+            "FGREF axis=\"A\" \"modal\" 10.0",
+            "JERKLIM axis=\"X\" \"modal\" 50.0",
+            "VELOLIM axis=\"X\" \"modal\" 50.0",
+            "FMA extension=2 axis=\"X\" \"block\" 100.0",
+            "OST1 axis=\"X\" \"modal\" 2.0",
+            "CPLNUM axis=\"X\" leading_axis=\"Y\" \"modal\" 2.0",
+            "TOFFL extension=1 \"modal\" 3.0",
+        ]
+    );
+}
+
+#[test]
+fn a_variable_named_like_an_address_stays_a_variable() {
+    let l = lower("DEF REAL OSE\nOSE=5\nM30\n");
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+    assert_eq!(ops(&l, "assign").len(), 1);
+    assert!(ops(&l, "address").is_empty());
+}
+
+#[test]
+fn named_addresses_with_the_wrong_brackets_are_errors() {
+    for (src, code) in [
+        ("OS=1\n", "gcodec::lower::missing_axis"),
+        ("FMA[X]=1\n", "gcodec::lower::missing_axis"),
+        ("MEAS[X]=1\n", "gcodec::lower::extension_not_allowed"),
+        ("OS[X,Y]=1\n", "gcodec::lower::extension_not_allowed"),
+        ("FMA[-1,X]=1\n", "gcodec::lower::invalid_value"),
+        ("VELOLIM[Q]=1\n", "gcodec::lower::unknown_address"),
+    ] {
+        assert_eq!(errors(&lower(src)), [code], "{src}");
+    }
+}
+
+#[test]
+fn a_number_after_an_axial_address_is_an_extension_it_does_not_take() {
+    // Not "`FA2` is not defined": `FA` takes its axis in brackets.
+    assert_eq!(
+        errors(&lower("FA2=400\n")),
+        ["gcodec::lower::extension_not_allowed"]
+    );
+    assert_eq!(
+        errors(&lower("OS1=1\n")),
+        ["gcodec::lower::extension_not_allowed"]
+    );
+}

@@ -97,7 +97,6 @@ pub const ASSUMED_NAMES: &[(&str, &[&str])] = &[
             "AKTIVNASTRANACEONOG",
             "AKTIVNASTRANAUNUTRASNJEG",
             "PosCorr",
-            "DISPR",
             "MaxFaza",
             "ThHa",
             "KordSys",

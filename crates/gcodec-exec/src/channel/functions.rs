@@ -272,10 +272,9 @@ impl Channel<'_> {
         instruction: &Instruction,
         address: &Address,
     ) -> Result<(), RunError> {
-        let env = self.env();
-        let value = eval::eval_real(&env, &address.value)?;
         match address.address {
             NamedAddress::Spos | NamedAddress::Sposa => {
+                let value = eval::eval_real(&self.env(), &address.value)?;
                 let number = self.extension(address.extension, address.extension_expr.as_ref())?;
                 let s = self.state.spindle(number)?;
                 s.state = SpindleState::Positioned;
@@ -283,6 +282,11 @@ impl Channel<'_> {
                 self.spindle_event(program, instruction, number)?;
             }
             other => {
+                // Read, for its errors, though it has no effect: an axis
+                // (`CPLA[X]=Y`) or a string (`CPSETTYPE[X]="CP"`) as well.
+                if let Value::Expr(expr) = &address.value {
+                    eval::eval(&self.env(), expr)?;
+                }
                 let other = other.name();
                 let key = format!("address {other}");
                 self.not_simulated(program, instruction, &key, || {
