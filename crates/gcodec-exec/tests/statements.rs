@@ -99,3 +99,35 @@ fn named_addresses_run_as_not_simulated_advice() {
         ]
     );
 }
+
+#[test]
+fn a_computed_m_value_ends_the_program_after_the_blocks_motion() {
+    let events = events("G0 X10 M=2*15\nG0 X20\nM30\n");
+    let kinds: Vec<&str> = events.iter().map(|e| e.kind_name()).collect();
+    assert_eq!(
+        kinds,
+        ["modal_change", "motion", "m_function", "program_end"]
+    );
+    assert_eq!(errors(&events), (vec![], ProgramEndReason::M30));
+}
+
+#[test]
+fn a_computed_m_value_gets_the_checks_of_a_constant() {
+    let profile = gcodec_testkit::machine("spindles = [1, 2]\n");
+    for (program, code) in [
+        (
+            "R1=5\nS1000 M3 M=R1\nM30\n",
+            "gcodec::run::m_group_conflict",
+        ),
+        ("R1=30\nM2=R1\nM30\n", "gcodec::run::m_extension_forbidden"),
+        ("R1=2147483648\nM=R1\nM30\n", "gcodec::run::overflow"),
+        ("R1=-1\nM=R1\nM30\n", "gcodec::run::overflow"),
+    ] {
+        let (errors, end) = errors(&events_on(profile.clone(), program));
+        assert_eq!(errors, [(code, 2)], "{program}");
+        assert_eq!(end, ProgramEndReason::Alarm, "{program}");
+    }
+    // Another spindle's M5 is not in the master spindle's group.
+    let (errors, end) = errors(&events_on(profile, "R1=5\nS1000 M3 M2=R1\nM30\n"));
+    assert_eq!((errors, end), (vec![], ProgramEndReason::M30));
+}

@@ -147,6 +147,49 @@ fn named_addresses_with_the_wrong_brackets_are_errors() {
 }
 
 #[test]
+fn two_m_functions_of_one_auxiliary_group_are_alarm_14760() {
+    for src in ["S1000 M3 M5\n", "M0 M30\n", "M1=3 M1=70\n", "M0=4 M5\n"] {
+        let l = lower(src);
+        assert_eq!(errors(&l), ["gcodec::lower::m_group_conflict"], "{src}");
+    }
+    // Other groups, another spindle than the master, computed values: not
+    // here (the run checks computed ones).
+    let profile = common::machine("spindles = [1, 2]\n");
+    for src in ["S1000 M3 M8\n", "M3 M2=5\n", "M3 M=R1\n", "M0\nM30\n"] {
+        let l = common::lower_with(&profile, src);
+        assert_eq!(errors(&l), Vec::<&str>::new(), "{src}");
+    }
+}
+
+#[test]
+fn auxiliary_groups_are_the_profiles() {
+    let profile =
+        common::machine("spindles = [1]\n[m_functions]\nauxiliary_groups = { 7 = [8, 9] }\n");
+    assert_eq!(
+        errors(&common::lower_with(&profile, "M8 M9\n")),
+        ["gcodec::lower::m_group_conflict"]
+    );
+    assert_eq!(
+        errors(&common::lower_with(&profile, "S100 M3 M5\n")),
+        Vec::<&str>::new()
+    );
+}
+
+#[test]
+fn a_computed_m_value_acts_after_the_blocks_motion() {
+    let l = lower("G0 X10 M=2*15\nM30\n");
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+    assert_eq!(
+        kinds(&l),
+        ["modal_change", "motion", "m_function", "m_function", "end"]
+    );
+    assert_eq!(ops(&l, "m_function")[0]["timing"], json!("post_motion"));
+    // Without a motion it acts in the block, as constants do.
+    let l = lower("M=2*15\n");
+    assert_eq!(ops(&l, "m_function")[0]["timing"], json!("in_block"));
+}
+
+#[test]
 fn a_number_after_an_axial_address_is_an_extension_it_does_not_take() {
     // Not "`FA2` is not defined": `FA` takes its axis in brackets.
     assert_eq!(

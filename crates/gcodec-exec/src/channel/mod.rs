@@ -168,6 +168,9 @@ struct BlockState {
     transferred: bool,
     line: u32,
     had_motion: bool,
+    /// The auxiliary-function groups (bit `group − 1`) whose M function
+    /// the block has output.
+    m_groups: u64,
     /// Where the block came from (for the CSV row).
     file: Option<Arc<str>>,
     level: u32,
@@ -474,6 +477,7 @@ impl<'r> Channel<'r> {
             transferred: false,
             line: instruction.source.line,
             had_motion: false,
+            m_groups: 0,
             file: self.observer.is_some().then(|| program.file.clone()),
             level,
             number: None,

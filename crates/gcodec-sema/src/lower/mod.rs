@@ -938,10 +938,14 @@ impl<'a> Lowering<'a> {
         deferred: bool,
     ) -> Vec<mfunc::MWord> {
         mfunc::check_count(&plan.m_functions, self.profile, &mut self.diagnostics);
+        mfunc::check_groups(&plan.m_functions, self.profile, &mut self.diagnostics);
         // Only blocks with motion and M0/M1/M2/M17/M30 allocate here.
         let mut after = Vec::new();
         for m in std::mem::take(&mut plan.m_functions) {
-            if has_motion && m.value.is_some_and(acts_after_motion) {
+            // A computed value (`M=2*15`) may be a program-flow function,
+            // which acts after the motion: it waits for the motion, so
+            // that a stop or end never drops it (SPEC §10.3).
+            if has_motion && m.value.is_none_or(acts_after_motion) {
                 after.push(m);
             } else {
                 self.emit_m(index, m, MTiming::InBlock, deferred);
