@@ -131,3 +131,40 @@ fn a_computed_m_value_gets_the_checks_of_a_constant() {
     let (errors, end) = errors(&events_on(profile, "R1=5\nS1000 M3 M2=R1\nM30\n"));
     assert_eq!((errors, end), (vec![], ProgramEndReason::M30));
 }
+
+/// The `new_tool` of every tool change of a run.
+fn changes(events: &[Event]) -> Vec<Option<String>> {
+    events
+        .iter()
+        .filter_map(|e| match &e.kind {
+            EventKind::ToolChange(c) => Some(c.new_tool.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn t0_empties_the_spindle_with_and_without_tool_management() {
+    for (mode, management, program) in [
+        ("deferred_m6", false, "T1 M6\nT0\nM6\nM30\n"),
+        ("deferred_m6", true, "T=\"DRILL\" M6\nT0\nM6\nM30\n"),
+        ("direct", false, "T1\nT0\nM30\n"),
+        ("direct", true, "T=\"DRILL\"\nT0\nM30\n"),
+    ] {
+        let profile = gcodec_testkit::machine(&format!(
+            "spindles = [1]\n[tool_change]\ntool_change_mode = \"{mode}\"\ntool_management_enabled = {management}\n"
+        ));
+        let events = events_on(profile, program);
+        let first = if management { "DRILL" } else { "T1" };
+        assert_eq!(
+            changes(&events),
+            [Some(first.to_owned()), None],
+            "{mode} {management}"
+        );
+        assert_eq!(
+            errors(&events),
+            (vec![], ProgramEndReason::M30),
+            "{mode} {management}"
+        );
+    }
+}

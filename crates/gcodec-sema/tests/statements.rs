@@ -190,6 +190,19 @@ fn a_computed_m_value_acts_after_the_blocks_motion() {
 }
 
 #[test]
+fn t0_is_accepted_under_tool_management() {
+    let tm = common::machine("spindles = [1]\n[tool_change]\ntool_management_enabled = true\n");
+    let l = common::lower_with(&tm, "T0\nM6\n");
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+    assert_eq!(ops(&l, "tool_select")[0]["selector_value"], json!("0"));
+    // Any other plain number still names no tool there.
+    assert_eq!(
+        errors(&common::lower_with(&tm, "T5\n")),
+        ["gcodec::lower::tool_selector_form"]
+    );
+}
+
+#[test]
 fn a_number_after_an_axial_address_is_an_extension_it_does_not_take() {
     // Not "`FA2` is not defined": `FA` takes its axis in brackets.
     assert_eq!(
