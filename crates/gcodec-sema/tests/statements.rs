@@ -214,3 +214,18 @@ fn a_number_after_an_axial_address_is_an_extension_it_does_not_take() {
         ["gcodec::lower::extension_not_allowed"]
     );
 }
+
+#[test]
+fn extension_0_is_the_master_spindle_for_s_as_for_m_and_spos() {
+    let l = lower("S0=1000 M0=3\nS[0]=500\nSPOS0=90\nM30\n");
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+    let spindles: Vec<_> = ops(&l, "spindle_speed")
+        .iter()
+        .map(|s| s["spindle"].clone())
+        .collect();
+    assert_eq!(spindles, [json!(0), json!(0)]);
+    assert_eq!(
+        errors(&lower("S2=1000\n")),
+        ["gcodec::lower::unknown_spindle"]
+    );
+}

@@ -305,7 +305,7 @@ impl Lowering<'_> {
                 Some(_) => {
                     let written = values::written(self.source, *span);
                     self.diagnostics.push(crate::tools::not_a_spindle_number(
-                        address, &written, "1…99", *span,
+                        address, &written, "0…99", *span,
                     ));
                     Err(())
                 }
