@@ -335,6 +335,10 @@ pub struct Call {
     /// `PCALL`: `target` is a path in the control's file system.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub by_path: bool,
+    /// `EXTCALL`: a program from external storage, looked for first in
+    /// the profile's `external_program_path` (`$SC_EXT_PROG_PATH`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub external: bool,
     pub args: Vec<Option<Value>>,
     pub passes: Option<Value>,
     /// `MCALL`: called after every traversing block until cancelled.

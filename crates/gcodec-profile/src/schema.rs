@@ -360,6 +360,10 @@ pub struct ProgramSettings {
     /// Folders searched for subprograms, relative to the profile's folder.
     #[serde(default)]
     pub subprogram_paths: Vec<String>,
+    /// The setting data `$SC_EXT_PROG_PATH` (SD42700): where `EXTCALL`
+    /// looks first, relative to the profile's folder; none by default.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub external_program_path: Option<String>,
     /// Folders a symbolic link on the search path may point into besides
     /// the search path's own (a shared cycle folder linked into each
     /// machine's folder), relative to the profile's folder.
@@ -395,6 +399,7 @@ impl Default for ProgramSettings {
             max_block_length: default_max_block_length(),
             max_feed: default_max_feed(),
             subprogram_paths: Vec::new(),
+            external_program_path: None,
             link_target_paths: Vec::new(),
             max_file_size: default_max_file_size(),
             max_variable_memory: default_max_variable_memory(),

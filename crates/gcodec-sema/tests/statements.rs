@@ -203,6 +203,23 @@ fn t0_is_accepted_under_tool_management() {
 }
 
 #[test]
+fn extcall_with_and_without_parentheses_calls_an_external_program() {
+    let l = lower("EXTCALL \"SUB\"\nEXTCALL(\"/_N_EXT_DIR/SUB\")\nM30\n");
+    assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
+    let calls = ops(&l, "call");
+    assert_eq!(calls.len(), 2);
+    for (call, name) in calls.iter().zip(["SUB", "/_N_EXT_DIR/SUB"]) {
+        assert_eq!(call["target"], json!(""));
+        assert_eq!(call["target_expr"], json!({"op": "string", "value": name}));
+        assert_eq!(call["external"], json!(true));
+    }
+    assert_eq!(
+        errors(&lower("EXTCALL(\"A\",\"B\")\n")),
+        ["gcodec::lower::invalid_value"]
+    );
+}
+
+#[test]
 fn a_number_after_an_axial_address_is_an_extension_it_does_not_take() {
     // Not "`FA2` is not defined": `FA` takes its axis in brackets.
     assert_eq!(

@@ -32,6 +32,30 @@ pub(super) fn call_by_name<'t, 's: 't>(
         })
 }
 
+/// `EXTCALL "NAME"`: the call of an external program as CAM systems
+/// write it, without the parentheses of the documented `EXTCALL("NAME")`;
+/// it reads as that form.
+pub(super) fn extcall_without_parentheses<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, StatementKind, Ex> + Clone + 't {
+    select! { T::Ident => () }
+        .map_with(|_, e| e.span())
+        .filter(move |s: &SimpleSpan| g.text(*s).eq_ignore_ascii_case("EXTCALL"))
+        .then_ignore(just(T::String).rewind())
+        .then(expr)
+        .map(move |(s, program)| {
+            StatementKind::Call(Box::new(Call {
+                target: CallTarget::Name {
+                    span: g.span(s),
+                    name: g.name(s),
+                },
+                args: Some(vec![Some(program)]),
+                passes: None,
+            }))
+        })
+}
+
 /// `RET`, `RET(args)`.
 pub(super) fn ret<'t>(
     expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
