@@ -20,16 +20,19 @@ pub(super) fn call_by_name<'t, 's: 't>(
     select! { T::Ident => () }
         .map_with(|_, e| e.span())
         .then(args(expr).or_not())
-        .map(move |(s, args)| {
-            StatementKind::Call(Box::new(Call {
-                target: CallTarget::Name {
-                    span: g.span(s),
-                    name: g.name(s),
-                },
-                args,
-                passes: None,
-            }))
-        })
+        .map(move |(s, args)| call_of_name(g, s, args))
+}
+
+/// The call of the name at `s` with `args` (`None`: no parentheses).
+fn call_of_name(g: Ctx<'_>, s: SimpleSpan, args: Option<Vec<Option<Expr>>>) -> StatementKind {
+    StatementKind::Call(Box::new(Call {
+        target: CallTarget::Name {
+            span: g.span(s),
+            name: g.name(s),
+        },
+        args,
+        passes: None,
+    }))
 }
 
 /// `EXTCALL "NAME"`: the call of an external program as CAM systems
@@ -44,16 +47,7 @@ pub(super) fn extcall_without_parentheses<'t, 's: 't>(
         .filter(move |s: &SimpleSpan| g.text(*s).eq_ignore_ascii_case("EXTCALL"))
         .then_ignore(just(T::String).rewind())
         .then(expr)
-        .map(move |(s, program)| {
-            StatementKind::Call(Box::new(Call {
-                target: CallTarget::Name {
-                    span: g.span(s),
-                    name: g.name(s),
-                },
-                args: Some(vec![Some(program)]),
-                passes: None,
-            }))
-        })
+        .map(move |(s, program)| call_of_name(g, s, Some(vec![Some(program)])))
 }
 
 /// `RET`, `RET(args)`.
