@@ -2,25 +2,15 @@
 //! interrupt assignments, named addresses, M functions of one
 //! auxiliary-function group, computed M values, `T0`, `EXTCALL`.
 
-use std::sync::Arc;
+use gcodec_exec::event::{Event, EventKind, ProgramEndReason};
+use gcodec_source::Severity;
 
-use gcodec_driver::{RunSetup, run_main};
-use gcodec_exec::event::{Event, EventKind, ProgramEndReason, VecSink};
-use gcodec_source::{Severity, SourceFile};
+mod common;
 
 /// The events of running `program` (which must compile cleanly) on
 /// `profile`.
 fn events_on(profile: gcodec_profile::Profile, program: &str) -> Vec<Event> {
-    let setup = RunSetup::new(profile);
-    let file = Arc::new(SourceFile::new("STATEMENTS.MPF", program));
-    let mut sink = VecSink::new();
-    let report = run_main(file, &setup, &mut sink, None);
-    assert!(
-        !report.diagnostics.iter().any(|d| d.is_error()),
-        "{program}: {:?}",
-        report.diagnostics
-    );
-    sink.events
+    common::runs::events_of_text(profile, "STATEMENTS.MPF", program)
 }
 
 fn events(program: &str) -> Vec<Event> {
