@@ -229,7 +229,7 @@ fn an_axis_named_by_a_number_is_reported() {
 
 #[test]
 fn h_functions_are_output_like_m_functions() {
-    let l = lower_with(&mill(), "DEF INT I=1\nH5 H2=7 H[I]=R1 H=QU(9) M3\n");
+    let l = lower_with(&mill(), "DEF INT II=1\nH5 H2=7 H[II]=R1 H=QU(9) M3\n");
     assert_clean(&l);
     let h = ops(&l, "h_function");
     assert_eq!(
@@ -238,7 +238,7 @@ fn h_functions_are_output_like_m_functions() {
     );
     assert_eq!(h[1]["address_extension"], 2);
     assert_eq!(h[1]["raw"], "H2=7");
-    assert_eq!(h[2]["address_extension_expr"]["name"], "I");
+    assert_eq!(h[2]["address_extension_expr"]["name"], "II");
     assert_eq!(h[2]["h_value"], Value::Null);
     assert_eq!(h[2]["h_expr"]["var_kind"], "r_parameter");
     assert_eq!(h[3]["quick"], true);

@@ -236,6 +236,21 @@ fn a_name_defined_twice_is_an_error() {
     );
 }
 
+#[test]
+fn a_name_that_is_an_axis_of_the_machine_is_an_error() {
+    const NAME_IS_AXIS: &str = "gcodec::lower::name_is_axis";
+    let grinder = common::profile("grinder_fb422.toml");
+    let l = lower(&parse("DEF REAL XV=3\nXV=4\n"), &grinder);
+    assert_eq!(errors(&l), [NAME_IS_AXIS]);
+    assert!(only_error(&l).contains("`XV` is an axis of this machine"));
+    let l = lower(&parse("PROC TST(REAL xv)\nRET\n"), &grinder);
+    assert_eq!(errors(&l), [NAME_IS_AXIS]);
+    // Machine axis names are axes on every machine; `XV` is none on the
+    // default one.
+    assert_eq!(errors(&run("DEF INT AX2\n")), [NAME_IS_AXIS]);
+    assert_eq!(errors(&run("DEF REAL XV=3\n")), [] as [&str; 0]);
+}
+
 // ---- types ----
 
 #[test]
@@ -301,13 +316,13 @@ DEF REAL RR=II
 DEF BOOL BB=RR
 DEF CHAR CC=\"A\"
 DEF STRING[10] SS=CC
-DEF BOOL B2=SS
-DEF STRING[20] S2=\"N=\"<<II
+DEF BOOL BB2=SS
+DEF STRING[20] SS2=\"N=\"<<II
 DEF AXIS AXN=AXNAME(\"X\")
 DEF FRAME FR=CTRANS(X,1):CROT(Z,2)
-DEF REAL R2=MYFUNC(1)
-DEF INT I2=$A_IN[1]
-DEF STRING[8] S3=STRLEN(SS)<>0
+DEF REAL RR2=MYFUNC(1)
+DEF INT II2=$A_IN[1]
+DEF STRING[8] SS3=STRLEN(SS)<>0
 RR=SIN(30)*II+R1 DIV 2
 II=STRLEN(SS)
 SS[0]=\"B\"
@@ -316,7 +331,7 @@ FR[X,TR]=5
     let l = run(src);
     // `STRLEN(SS)<>0` is BOOL, which does not convert to STRING.
     assert_eq!(errors(&l), [TYPE_MISMATCH]);
-    assert!(only_error(&l).contains("`S3`"));
+    assert!(only_error(&l).contains("`SS3`"));
 }
 
 // ---- arrays ----

@@ -12,6 +12,7 @@ mod control;
 mod declarations;
 mod expressions;
 mod frames;
+mod names;
 mod numbers;
 pub(crate) mod operators;
 mod prefix;

@@ -264,6 +264,16 @@ impl<'a> Names<'a> {
         defined_at: u32,
         diagnostics: &mut Diagnostics,
     ) {
+        if self.axes.contains(name) || is_machine_axis(name) {
+            diagnostics.push(
+                Diagnostic::new(
+                    codes::lower::NAME_IS_AXIS,
+                    format!("`{name}` is an axis of this machine and cannot name a variable"),
+                )
+                .with_label(span, "declared here")
+                .with_help("the control reads the name as the axis (`NAME=5` moves it); rename the variable, e.g. `U_VALUE`"),
+            );
+        }
         let section = self.sections.last_mut().expect("one section");
         let local = Local {
             shape,
@@ -576,7 +586,7 @@ impl Lowering<'_> {
                 )
                 .with_label(var.span, "wrong number of indices")
                 .with_help(
-                    "write one index per declared dimension (`A[i,j]` for `DEF REAL A[3,4]`)",
+                    "write one index per declared dimension (`TAB[I_ROW,I_COL]` for `DEF REAL TAB[3,4]`)",
                 ),
             );
             return;
@@ -1025,7 +1035,7 @@ fn not_an_array(name: &str, span: Span) -> Diagnostic {
         format!("`{name}` is a single value: a list of values needs an array"),
     )
     .with_label(span, "a list of values")
-    .with_help("`SET(…)`, `(…)` and `REP(…)` fill array elements; declare an array (`DEF REAL A[3]`) or assign one value")
+    .with_help("`SET(…)`, `(…)` and `REP(…)` fill array elements; declare an array (`DEF REAL TAB[3]`) or assign one value")
 }
 
 /// "first", "second", … of `rank` indices, for messages.

@@ -4,6 +4,7 @@ super::codes! {
     "parse", "the syntax of a part program (`gcodec parse` and every later stage)";
     UNEXPECTED_TOKEN = unexpected_token, Error, "a token the grammar does not allow where it stands";
     INVALID_WORD = invalid_word, Error, "a malformed address word";
+    INVALID_NAME = invalid_name, Error, "a declared name that is no identifier, or a keyword or address";
     INVALID_VALUE = invalid_value, Error, "an incomplete value, or a list where one value belongs";
     INVALID_NUMBER = invalid_number, Error, "a number or quoted constant that cannot be read";
     UNCLOSED_STRING = unclosed_string, Error, "a string not closed on its line";
