@@ -13,6 +13,7 @@ use gcodec_source::{Diagnostic, Diagnostics, SourceFile, Span, UTF8_BOM, codes, 
 use crate::ast::*;
 use crate::error::SyntaxError;
 use crate::grammar::{self, Ctx, Spanned, decode_text, operators};
+use crate::misspelt::Misspelt;
 use crate::{fast, structure};
 use gcodec_stream::{Chunk, map_chunks};
 
@@ -664,6 +665,10 @@ impl<'s> Driver<'s, '_> {
             );
             return with_prefix(block, tokens, ctx);
         }
+        if let Some(misspelt) = Misspelt::in_tokens(tokens, ctx) {
+            self.diagnostics.push(misspelt.diagnostic());
+            return with_prefix(block, tokens, ctx);
+        }
         if self.reading != Reading::GrammarOnly
             && let Some(body) = fast::block(tokens, ctx)
         {
@@ -1130,6 +1135,11 @@ fn lexical_error(kind: TokenKind, span: Span, src: &[u8]) -> Diagnostic {
         .with_help("a header line looks like `%_N_NAME_MPF` and stands alone on the first line"),
         _ => {
             let byte = src.get(span.start as usize).copied().unwrap_or(0);
+            if byte == b'!'
+                && let Some(misspelt) = Misspelt::around_bang(src, span.start as usize)
+            {
+                return misspelt.diagnostic();
+            }
             let shown = if byte.is_ascii_graphic() {
                 format!("`{}`", byte as char)
             } else {

@@ -18,6 +18,7 @@ mod driver;
 mod error;
 mod fast;
 mod grammar;
+mod misspelt;
 mod structure;
 mod tree;
 

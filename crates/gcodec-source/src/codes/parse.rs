@@ -8,6 +8,7 @@ super::codes! {
     INVALID_VALUE = invalid_value, Error, "an incomplete value, or a list where one value belongs";
     INVALID_NUMBER = invalid_number, Error, "a number or quoted constant that cannot be read";
     UNCLOSED_STRING = unclosed_string, Error, "a string not closed on its line";
+    INVALID_OPERATOR = invalid_operator, Error, "an operator of another language (`=<`, `=>`, `!=`)";
     INVALID_CHARACTER = invalid_character, Error, "a character that is no part of the NC language";
     MISSING_SEPARATOR = missing_separator, Error, "a value after `=` touching the next word";
     MISSING_JUMP_TARGET = missing_jump_target, Error, "a jump without a target";
