@@ -13,6 +13,7 @@ use gcodec_source::{Diagnostic, Diagnostics, SourceFile, Span, UTF8_BOM, codes, 
 use crate::ast::*;
 use crate::error::SyntaxError;
 use crate::grammar::{self, Ctx, Spanned, decode_text, operators};
+use crate::macros::{Expanded, Macros};
 use crate::misspelt::Misspelt;
 use crate::{fast, structure};
 use gcodec_stream::{Chunk, map_chunks};
@@ -55,23 +56,35 @@ impl Parse {
 
 /// Parses one source file.
 pub fn parse(file: &SourceFile) -> Parse {
+    parse_with_macros(file, &Macros::default())
+}
+
+/// Parses one source file with the macros of its definition files
+/// expanded (see [`Macros`]).
+pub fn parse_with_macros(file: &SourceFile, macros: &Macros) -> Parse {
     // The program quotes from the file's own bytes: no copy.
     let source = SourceText::shared(file.shared_bytes());
-    parse_with(file.name(), file.bytes(), Reading::Whole, Some(source))
+    parse_with(
+        file.name(),
+        file.bytes(),
+        Reading::Whole,
+        Some(source),
+        macros,
+    )
 }
 
 /// Parses bytes under a file name. A leading UTF-8 byte-order mark is not
 /// part of the program: the spans are into the bytes after it, the bytes
 /// [`SourceFile::new`] holds for `src`.
 pub fn parse_bytes(name: &str, src: &[u8]) -> Parse {
-    parse_with(name, src, Reading::Whole, None)
+    parse_with(name, src, Reading::Whole, None, &Macros::default())
 }
 
 /// Parses with the grammar only, never the fast path for constant-word
 /// blocks: the reference the fast path is tested against.
 #[doc(hidden)]
 pub fn parse_bytes_with_grammar_only(name: &str, src: &[u8]) -> Parse {
-    parse_with(name, src, Reading::GrammarOnly, None)
+    parse_with(name, src, Reading::GrammarOnly, None, &Macros::default())
 }
 
 /// Files at least this large are parsed on several threads, one chunk of
@@ -85,12 +98,25 @@ const PARALLEL_MIN_BYTES: usize = 4 << 20;
 pub fn parse_bytes_in_chunks(name: &str, src: &[u8], threads: usize) -> Parse {
     let src = without_bom(src);
     let source = SourceText::new(src);
-    parse_in_chunks(name, src, source, Reading::Whole, split(src, threads))
+    let macros = &Macros::default();
+    parse_in_chunks(
+        name,
+        src,
+        source,
+        (Reading::Whole, macros),
+        split(src, threads),
+    )
 }
 
 /// Parses `src`, whose bytes after a byte-order mark are `source` where
 /// the caller shares them (else they are copied).
-fn parse_with(name: &str, src: &[u8], reading: Reading, source: Option<SourceText>) -> Parse {
+fn parse_with(
+    name: &str,
+    src: &[u8],
+    reading: Reading,
+    source: Option<SourceText>,
+    macros: &Macros,
+) -> Parse {
     let src = without_bom(src);
     let source = source.unwrap_or_else(|| SourceText::new(src));
     // Asking for the core count reads cgroup limits: only large files ask.
@@ -99,7 +125,7 @@ fn parse_with(name: &str, src: &[u8], reading: Reading, source: Option<SourceTex
     } else {
         std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
     };
-    parse_in_chunks(name, src, source, reading, split(src, threads))
+    parse_in_chunks(name, src, source, (reading, macros), split(src, threads))
 }
 
 /// `src` without a leading UTF-8 byte-order mark, as a [`SourceFile`]
@@ -114,7 +140,7 @@ fn parse_in_chunks(
     name: &str,
     src: &[u8],
     source: SourceText,
-    reading: Reading,
+    reading: (Reading, &Macros),
     chunks: Vec<Chunk>,
 ) -> Parse {
     // One block per line: the program's blocks are allocated once, and each
@@ -200,8 +226,9 @@ pub struct ParsedChunk {
 /// Parses the lines of `chunk` of `src` as [`parse_bytes`] parses them in
 /// the whole file: the same blocks, spans and diagnostics (those sorted
 /// by span start, with a stable sort, once merged).
-pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
-    read_chunk(src, chunk, Reading::Whole)
+/// Macros are expanded as [`parse_with_macros`] expands them.
+pub fn parse_chunk(src: &[u8], chunk: &Chunk, macros: &Macros) -> ParsedChunk {
+    read_chunk(src, chunk, (Reading::Whole, macros))
 }
 
 /// Reads the lines of `chunk` of `src` for lowering's `Outline` of the
@@ -221,14 +248,16 @@ pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
 /// word). So a block left out holds no structure, jump, definition,
 /// declaration or program end, and changes nothing the block before the
 /// plain ones has not already set. The chunk's diagnostics are not given
-/// (`diagnostics` is empty): [`parse_chunk`] gives them.
-pub fn skim_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
-    let mut skimmed = read_chunk(src, chunk, Reading::Skim);
+/// (`diagnostics` is empty): [`parse_chunk`] gives them. With macros,
+/// every line is parsed: a plain line may use a macro that stands for a
+/// structure keyword.
+pub fn skim_chunk(src: &[u8], chunk: &Chunk, macros: &Macros) -> ParsedChunk {
+    let mut skimmed = read_chunk(src, chunk, (Reading::Skim, macros));
     skimmed.diagnostics.clear();
     skimmed
 }
 
-fn read_chunk(src: &[u8], chunk: &Chunk, reading: Reading) -> ParsedChunk {
+fn read_chunk(src: &[u8], chunk: &Chunk, reading: (Reading, &Macros)) -> ParsedChunk {
     let mut blocks: Vec<Block> = Vec::with_capacity(chunk.blocks);
     let found = read_chunk_into(
         src,
@@ -251,14 +280,36 @@ fn read_chunk(src: &[u8], chunk: &Chunk, reading: Reading) -> ParsedChunk {
 
 /// Parses `chunks` of `src` on `workers` threads and hands each parsed
 /// chunk to `each` in order ([`map_chunks`]).
-pub fn parse_chunks(src: &[u8], chunks: &[Chunk], workers: usize, each: impl FnMut(ParsedChunk)) {
-    map_chunks(chunks, workers, |chunk| parse_chunk(src, chunk), each);
+pub fn parse_chunks(
+    src: &[u8],
+    chunks: &[Chunk],
+    workers: usize,
+    macros: &Macros,
+    each: impl FnMut(ParsedChunk),
+) {
+    map_chunks(
+        chunks,
+        workers,
+        |chunk| parse_chunk(src, chunk, macros),
+        each,
+    );
 }
 
 /// [`skim_chunk`] of each of `chunks`, on `workers` threads, handed to
 /// `each` in order ([`map_chunks`]).
-pub fn skim_chunks(src: &[u8], chunks: &[Chunk], workers: usize, each: impl FnMut(ParsedChunk)) {
-    map_chunks(chunks, workers, |chunk| skim_chunk(src, chunk), each);
+pub fn skim_chunks(
+    src: &[u8],
+    chunks: &[Chunk],
+    workers: usize,
+    macros: &Macros,
+    each: impl FnMut(ParsedChunk),
+) {
+    map_chunks(
+        chunks,
+        workers,
+        |chunk| skim_chunk(src, chunk, macros),
+        each,
+    );
 }
 
 /// `slots` cut into consecutive runs, one per chunk of `chunks`, a slot
@@ -333,10 +384,11 @@ fn read_chunk_into(
     src: &[u8],
     chunk: &Chunk,
     blocks: &mut [MaybeUninit<Block>],
-    reading: Reading,
+    (reading, macros): (Reading, &Macros),
 ) -> ChunkFindings {
     let mut driver = Driver {
         src,
+        macros,
         reading,
         plain_lines_skimmable: false,
         first_chunk: chunk.bytes.start == 0,
@@ -408,6 +460,8 @@ enum Reading {
 
 struct Driver<'s, 'b> {
     src: &'s [u8],
+    /// The macros each line is expanded with.
+    macros: &'b Macros,
     reading: Reading,
     /// The last block parsed leaves the plain lines after it skimmable
     /// ([`plain_lines_skimmable_after`]).
@@ -443,7 +497,8 @@ impl<'s> Driver<'s, '_> {
             let end =
                 memchr::memchr(b'\n', &src[start..bytes.end]).map_or(bytes.end, |p| start + p + 1);
             let text_end = if src[end - 1] == b'\n' { end - 1 } else { end };
-            let left_out = (self.plain_lines_skimmable && is_plain(&src[start..text_end]))
+            let skimmable = self.plain_lines_skimmable && self.macros.is_empty();
+            let left_out = (skimmable && is_plain(&src[start..text_end]))
                 .then(|| self.plain_block(start, text_end))
                 .flatten();
             match left_out {
@@ -498,7 +553,7 @@ impl<'s> Driver<'s, '_> {
             tokens[count] = (token.kind, SimpleSpan::from(s..e));
             count += 1;
         }
-        let prefix = fast::prefix(&tokens[..count], &Ctx { src })?;
+        let prefix = fast::prefix(&tokens[..count], &Ctx::new(src))?;
         Some(block(prefix.skip, prefix.number))
     }
 
@@ -575,12 +630,21 @@ impl<'s> Driver<'s, '_> {
         let mut lines = std::mem::take(&mut self.lines);
         let mut tokens = std::mem::take(&mut self.tokens);
         {
-            let ctx = Ctx { src: self.src };
+            let ctx = Ctx::new(self.src);
             // Built only when a block needs it: most take the fast path,
             // and a skim flushes line by line.
             let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
             for line in &lines {
-                let block = self.parse_line(line, &tokens[line.tokens.clone()], &ctx, &parser);
+                let line_tokens = &tokens[line.tokens.clone()];
+                let expanded = (!line.broken)
+                    .then(|| {
+                        Expanded::line(self.src, (line.start, line.end), line_tokens, self.macros)
+                    })
+                    .flatten();
+                let block = match expanded {
+                    None => self.parse_line(line, line_tokens, &ctx, &parser, line.end as usize),
+                    Some(expanded) => self.parse_expanded_line(line, line_tokens, expanded),
+                };
                 self.content_seen |=
                     !block.statements.is_empty() || block.label.is_some() || block.number.is_some();
                 if block
@@ -606,12 +670,73 @@ impl<'s> Driver<'s, '_> {
         self.tokens = tokens;
     }
 
+    /// A line whose macros are expanded: parsed from its expansion, with
+    /// each diagnostic inside an expansion naming the macro. A line whose
+    /// expansion does not end is reported and parsed as a block in error.
+    fn parse_expanded_line(
+        &mut self,
+        line: &Line,
+        line_tokens: &[Spanned],
+        expanded: Result<Expanded, crate::macros::ExpansionError>,
+    ) -> Block {
+        let expanded = match expanded {
+            Ok(expanded) => expanded,
+            Err(error) => {
+                self.diagnostics.push(error.diagnostic());
+                let broken = Line {
+                    tokens: line.tokens.clone(),
+                    broken: true,
+                    ..*line
+                };
+                let ctx = Ctx::new(self.src);
+                let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
+                return self.parse_line(&broken, line_tokens, &ctx, &parser, line.end as usize);
+            }
+        };
+        let first = self.diagnostics.len();
+        if let Some(&(kind, span)) = expanded.tokens.iter().find(|t| is_lexical_error(t.0)) {
+            let mut d = lexical_error(
+                kind,
+                Span::new(span.start as u32, span.end as u32),
+                &expanded.bytes,
+            );
+            for label in &mut d.labels {
+                label.span = expanded.map_span(SimpleSpan::from(label.span.range()));
+            }
+            self.diagnostics.push(d);
+        }
+        let broken = self.diagnostics.len() > first;
+        let ctx = Ctx::expanded(&expanded);
+        let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
+        let this = Line {
+            tokens: line.tokens.clone(),
+            broken,
+            ..*line
+        };
+        let mut eoi = expanded.bytes.len();
+        if expanded.bytes.last() == Some(&b'\r') {
+            eoi -= 1;
+        }
+        let block = self.parse_line(&this, &expanded.tokens, &ctx, &parser, eoi);
+        for d in &mut self.diagnostics[first..] {
+            let note = d.span().and_then(|span| expanded.note(span, self.macros));
+            if let Some((at, note)) = note {
+                d.labels.push(gcodec_source::Label {
+                    span: at,
+                    message: Some(note.into()),
+                });
+            }
+        }
+        block
+    }
+
     fn parse_line<'t, P>(
         &mut self,
         line: &Line,
         tokens: &'t [Spanned],
         ctx: &Ctx<'_>,
         parser: &impl std::ops::Deref<Target = P>,
+        eoi: usize,
     ) -> Block
     where
         P: chumsky::Parser<'t, grammar::In<'t>, grammar::BlockBody, grammar::Ex>,
@@ -677,7 +802,7 @@ impl<'s> Driver<'s, '_> {
             block.statements = self.checked(body.statements);
             return block;
         }
-        let eoi = SimpleSpan::from(end as usize..end as usize);
+        let eoi = SimpleSpan::from(eoi..eoi);
         let (body, errors) = parser
             .parse(tokens.split_token_span(eoi))
             .into_output_errors();
@@ -1092,6 +1217,14 @@ fn too_deep(tokens: &[Spanned]) -> Option<SimpleSpan> {
         }
     }
     None
+}
+
+/// Tokens that cannot be part of any block (see [`lexical_error`]).
+fn is_lexical_error(kind: TokenKind) -> bool {
+    matches!(
+        kind,
+        TokenKind::Error | TokenKind::Header | TokenKind::BadQuoted | TokenKind::UnclosedString
+    )
 }
 
 /// Diagnoses a token that cannot be part of any block; the block is then

@@ -478,13 +478,7 @@ mod tests {
             .filter(|t| !matches!(t.kind, TokenKind::Whitespace | TokenKind::Comment))
             .map(|t| (t.kind, SimpleSpan::from(t.start as usize..t.end as usize)))
             .collect();
-        block(
-            &tokens,
-            &Ctx {
-                src: src.as_bytes(),
-            },
-        )
-        .is_some()
+        block(&tokens, &Ctx::new(src.as_bytes())).is_some()
     }
 
     /// The shapes the fast path exists for must not fall through to the

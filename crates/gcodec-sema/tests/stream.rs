@@ -90,7 +90,7 @@ fn in_order(
     let mut lowering = ChunkLowering::new(&outline, profile, src);
     let mut document = gcodec_ail::Document::new();
     for chunk in chunks {
-        let parsed = gcodec_parser::parse_chunk(src, chunk);
+        let parsed = gcodec_parser::parse_chunk(src, chunk, definitions.macros());
         let mut lowered = lowering
             .lower(parsed.first_block, &parsed.blocks)
             .expect("in order");

@@ -31,6 +31,7 @@ pub(crate) use numbers::number_bytes_value;
 
 use crate::ast::*;
 use crate::error::SyntaxError;
+use crate::macros::Expanded;
 
 pub(crate) type Spanned = (T, SimpleSpan);
 pub(crate) type In<'t> = MappedInput<'t, T, SimpleSpan, &'t [Spanned]>;
@@ -45,16 +46,38 @@ pub(crate) struct BlockBody {
     pub statements: Vec<Statement>,
 }
 
-/// Source access for the grammar's closures: the file bytes and the line
-/// the current block sits on.
+/// Source access for the grammar's closures: the bytes the tokens index
+/// (the file's, or a line with its macros expanded) and how their spans
+/// map to the file.
 #[derive(Clone, Copy)]
 pub(crate) struct Ctx<'s> {
     pub src: &'s [u8],
+    pub expansion: Option<&'s Expanded>,
 }
 
 impl<'s> Ctx<'s> {
+    /// The file's own bytes.
+    pub fn new(src: &'s [u8]) -> Self {
+        Self {
+            src,
+            expansion: None,
+        }
+    }
+
+    /// A line with its macros expanded.
+    pub fn expanded(expansion: &'s Expanded) -> Self {
+        Self {
+            src: &expansion.bytes,
+            expansion: Some(expansion),
+        }
+    }
+
+    /// A token span as a span of the file.
     pub fn span(&self, s: SimpleSpan) -> Span {
-        Span::new(s.start as u32, s.end as u32)
+        match self.expansion {
+            None => Span::new(s.start as u32, s.end as u32),
+            Some(expansion) => expansion.map_span(s),
+        }
     }
 
     pub fn bytes(&self, s: SimpleSpan) -> &'s [u8] {

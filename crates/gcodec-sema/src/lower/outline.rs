@@ -51,6 +51,12 @@ impl Outline<'_> {
         &self.diagnostics
     }
 
+    /// The macros of the definitions, which the program's chunks are
+    /// parsed with.
+    pub fn macros(&self) -> &gcodec_parser::Macros {
+        self.names.macros()
+    }
+
     /// Whether the program starts in its caller's modal state: a
     /// [`ProgramKind::Subprogram`], or one opening with `PROC`.
     pub fn is_subprogram(&self) -> bool {
@@ -227,7 +233,8 @@ pub fn outline_chunks<'d>(
     builder.reserve(chunks.iter().map(|c| c.blocks).sum());
     let mut pairing = gcodec_parser::Pairing::default();
     let mut diagnostics = Vec::new();
-    gcodec_parser::skim_chunks(src, chunks, workers, |mut parsed| {
+    let macros = definitions.macros();
+    gcodec_parser::skim_chunks(src, chunks, workers, macros, |mut parsed| {
         pairing.feed(
             &mut parsed.blocks,
             parsed.first_block,

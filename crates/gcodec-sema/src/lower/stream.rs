@@ -48,7 +48,7 @@ pub fn lower_chunks(
     // Parses `chunk` and lowers it with `lowering`; gives its parse
     // diagnostics.
     let lower_part = |chunk: &gcodec_stream::Chunk, lowering: &mut Lowering<'_>| {
-        let parsed = gcodec_parser::parse_chunk(src, chunk);
+        let parsed = gcodec_parser::parse_chunk(src, chunk, outline.macros());
         lower_blocks(lowering, parsed.first_block, &parsed.blocks);
         parsed.diagnostics
     };

@@ -249,6 +249,10 @@ impl<'a> NameCollector<'a> {
 }
 
 impl<'a> Names<'a> {
+    pub(super) fn macros(&self) -> &'a gcodec_parser::Macros {
+        self.definitions.macros()
+    }
+
     fn start_section(&mut self, start: u32) {
         self.sections.push(Section {
             start,

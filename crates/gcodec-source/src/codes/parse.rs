@@ -18,6 +18,7 @@ super::codes! {
     MISPLACED_HEADER = misplaced_header, Error, "a `%` program header elsewhere than on the first line";
     NESTING_TOO_DEEP = nesting_too_deep, Error, "brackets nested more than 64 deep in one block";
     BLOCK_TOO_COMPLEX = block_too_complex, Error, "more than 1000 operators in one block";
+    MACRO_EXPANSION = macro_expansion, Error, "a macro that expands without end, or to a block too long";
     UNCLOSED_STRUCTURE = unclosed_structure, Error, "a control structure opened and never closed";
     UNMATCHED_END = unmatched_end, Error, "a structure's closer without its opener, or a second `ELSE`";
     DEEP_NESTING = deep_nesting, Warning, "control structures nested deeper than the control's 16";
