@@ -21,6 +21,7 @@ pub mod compile;
 mod diagnostics;
 mod loaded_files;
 pub mod loader;
+mod meant_command;
 pub mod run;
 mod setup;
 pub mod stream;

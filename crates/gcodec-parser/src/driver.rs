@@ -650,7 +650,7 @@ impl<'s> Driver<'s, '_> {
                 if block
                     .statements
                     .iter()
-                    .any(|s| structure::is_structure_statement(&s.kind))
+                    .any(|s| structure::is_paired_statement(&s.kind))
                 {
                     self.structure_blocks
                         .push(self.first_block + self.filled as u32);
@@ -1001,7 +1001,7 @@ pub(crate) fn is_plain(line: &[u8]) -> bool {
                 let plain = match &line[start..i] {
                     [b'M' | b'm' | b'_'] => false,
                     [_] => true,
-                    name => is_plain_name(name),
+                    name => is_plain_name(name) && !is_misspelt_closer(name),
                 };
                 if !plain {
                     return false;
@@ -1131,6 +1131,15 @@ fn is_plain_name(name: &[u8]) -> bool {
     token.end as usize == name.len()
         && (matches!(token.kind, T::Ident | T::True | T::False)
             || operators::is_word_operator(token.kind))
+}
+
+/// A name that misspells a closer (`ENDIFF`) is no plain line's: pairing
+/// must see it to name it when its structure is left unclosed.
+fn is_misspelt_closer(name: &[u8]) -> bool {
+    std::str::from_utf8(name)
+        .ok()
+        .and_then(structure::near_closer)
+        .is_some()
 }
 
 /// Whether the driver keeps a token of `kind` for the grammar.

@@ -26,6 +26,29 @@ fn assert_clean(lowered: &Lowered) {
     assert!(lowered.diagnostics.is_empty(), "{:#?}", lowered.diagnostics);
 }
 
+#[test]
+fn an_unknown_axis_names_the_machines_axes_and_the_nearest() {
+    let help = |src: &str| {
+        let l = lower_with(&mill(), src);
+        assert_eq!(codes(&l), ["gcodec::lower::unknown_address"], "{src}");
+        l.diagnostics[0]
+            .help
+            .as_deref()
+            .unwrap_or_default()
+            .to_owned()
+    };
+    let listed = "this machine's axes (the profile's `[[axes]]`) are `X`, `Y`, `Z`, `C`";
+    assert_eq!(help("G1 A10 F100\n"), listed);
+    assert_eq!(
+        help("G1 X1=10 F100\n"),
+        format!("did you mean `X`? T{}", &listed[1..])
+    );
+    assert_eq!(
+        help("G0 AX[Z2]=5\n"),
+        format!("did you mean `Z`? T{}", &listed[1..])
+    );
+}
+
 // ---- named addresses ----
 
 #[test]

@@ -92,6 +92,28 @@ fn an_undefined_name_is_an_error() {
 }
 
 #[test]
+fn an_undefined_name_near_a_defined_one_is_suggested() {
+    let l = run("DEF REAL DEPTH=5\nG1 Z=DEPHT F100\n");
+    assert_eq!(errors(&l), [UNDEFINED]);
+    let label = l.diagnostics[0].labels[0]
+        .message
+        .as_deref()
+        .unwrap_or_default();
+    assert_eq!(label, "unknown name: did you mean `DEPTH`?");
+    // Global user data too; nothing near, nothing suggested.
+    let l = run_with("R1=GR_TAPR[1]\nR2=QQQQ\n", &mgud());
+    let labels: Vec<_> = l
+        .diagnostics
+        .iter()
+        .map(|d| d.labels[0].message.as_deref().unwrap_or_default())
+        .collect();
+    assert_eq!(
+        labels,
+        ["unknown name: did you mean `GR_TAPER`?", "unknown name"]
+    );
+}
+
+#[test]
 fn def_makes_a_name_known_in_any_case() {
     let l = run("DEF REAL lAYER_HEIGHT\nLAYER_HEIGHT=2.5\nG1 Z=IC(layer_height) F100\n");
     assert_eq!(errors(&l), [] as [&str; 0]);

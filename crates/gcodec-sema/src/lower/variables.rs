@@ -312,6 +312,24 @@ impl<'a> Names<'a> {
         &self.sections[i]
     }
 
+    /// The defined variable nearest to the undefined `name` used at `at`:
+    /// a local of its section defined before `at`, or a global one.
+    pub(super) fn nearest(&self, name: &str, at: u32) -> Option<String> {
+        let section = self.section_at(at);
+        let locals = section
+            .locals
+            .iter()
+            .filter(|(_, local)| local.defined_at <= at)
+            .map(|(name, _)| name.to_owned());
+        let globals = self
+            .definitions
+            .variables()
+            .map(|g| g.name.to_ascii_uppercase());
+        let mut candidates: Vec<String> = locals.chain(globals).collect();
+        candidates.sort_unstable();
+        gcodec_source::nearest(name, candidates.iter().map(String::as_str)).map(str::to_owned)
+    }
+
     /// What `name`, used at byte offset `at`, is.
     fn resolve(&self, name: &str, at: u32) -> Resolved {
         let section = self.section_at(at);
@@ -542,16 +560,24 @@ impl Lowering<'_> {
                 )
                 .with_label(var.span, "not defined yet")
                 .with_label(defined, "defined here")
-                .with_help("the control knows a name from its `DEF` on (alarm 12550); move the `DEF` up"),
+                .with_help(
+                    "the control knows a name from its `DEF` on (alarm 12550); move the `DEF` up",
+                ),
             ),
-            Resolved::Undefined => self.diagnostics.push(
-                Diagnostic::new(
-                    codes::lower::UNDEFINED_VARIABLE,
-                    format!("`{}` is not defined", var.name),
+            Resolved::Undefined => {
+                let label = match self.outline.names.nearest(&var.name, var.span.start) {
+                    Some(near) => format!("unknown name: did you mean `{near}`?"),
+                    None => "unknown name".to_owned(),
+                };
+                self.diagnostics.push(
+                    Diagnostic::new(
+                        codes::lower::UNDEFINED_VARIABLE,
+                        format!("`{}` is not defined", var.name),
+                    )
+                    .with_label(var.span, label)
+                    .with_help("define it with `DEF` at the start of the program (or as a `PROC` parameter); for global user data pass its definition file (`--definitions FILE.DEF`); the control raises alarm 12550 \"name not defined\""),
                 )
-                .with_label(var.span, "unknown name")
-                .with_help("define it with `DEF` at the start of the program (or as a `PROC` parameter); for global user data pass its definition file (`--definitions FILE.DEF`); the control raises alarm 12550 \"name not defined\""),
-            ),
+            }
         }
         for (i, index) in var.indices.iter().enumerate() {
             if i >= components_from && frame_component(index) {
