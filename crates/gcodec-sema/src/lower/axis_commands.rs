@@ -118,7 +118,10 @@ impl Lowering<'_> {
             self.diagnostics.push(
                 Diagnostic::new(
                     codes::lower::UNKNOWN_ADDRESS,
-                    format!("`{}` is not an axis or address of this machine", word.written),
+                    format!(
+                        "`{}` is not an axis or address of this machine",
+                        word.written
+                    ),
                 )
                 .with_label(word.span, "unknown here")
                 .with_help(help),
