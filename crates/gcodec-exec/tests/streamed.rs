@@ -165,5 +165,8 @@ fn streamed_runs_write_the_events_of_whole_runs() {
         compared += usize::from(check(&case));
     }
     std::env::set_current_dir(previous).expect("back");
-    assert!(compared >= 40, "only {compared} corpus programs compared");
+    // 38 when issue 16 made the CEAD examples' one-letter loop variables and
+    // printer axes the errors they are on the control (not run, so not
+    // compared): the guard is that most of the corpus runs both ways.
+    assert!(compared >= 36, "only {compared} corpus programs compared");
 }

@@ -7,11 +7,63 @@
 //! lenient than the control are errors on the control too
 //! ([`EXPECTED_ERRORS`]): the test requires exactly those.
 
+use std::collections::HashSet;
 use std::path::PathBuf;
+use std::sync::LazyLock;
 
 mod common;
 
-use gcodec_testkit::corpus::{definitions, machine_profile};
+use gcodec_lang::functions::Function;
+use gcodec_lang::identifiers::invalid_name;
+use gcodec_lang::procedures::Procedure;
+use gcodec_testkit::corpus::{ASSUMED_NAMES, definitions, machine_profile};
+
+/// The words of the control's catalogue (addresses, keywords, commands,
+/// procedures, functions), upper case; empty where the shared reference
+/// is absent.
+static CATALOGUE_WORDS: LazyLock<HashSet<String>> = LazyLock::new(|| {
+    let Some(dir) = gcodec_testkit::reference_dir() else {
+        return HashSet::new();
+    };
+    let lists = [
+        "addresses.txt",
+        "keywords.txt",
+        "commands.txt",
+        "procedures.txt",
+        "functions.txt",
+    ];
+    lists
+        .iter()
+        .filter_map(|list| std::fs::read_to_string(dir.join("catalogue").join(list)).ok())
+        .flat_map(|text| {
+            text.lines()
+                .map(|l| l.trim().to_ascii_uppercase())
+                .filter(|l| !l.is_empty())
+                .collect::<Vec<_>>()
+        })
+        .collect()
+});
+
+/// What a word of the language is, if `name` is one: such a name is never
+/// a missing definition.
+fn language_word(name: &str) -> Option<&'static str> {
+    if invalid_name(name).is_some() {
+        Some("a keyword, an address, a G command or no name at all")
+    } else if Procedure::named(name).is_some() {
+        Some("a predefined procedure")
+    } else if Function::named(name).is_some() {
+        Some("a predefined function")
+    } else if CATALOGUE_WORDS.contains(&name.to_ascii_uppercase()) {
+        Some("a word of the control's catalogue")
+    } else {
+        None
+    }
+}
+
+/// The name a diagnostic quotes first (`` `NAME` is not defined ``).
+fn quoted(message: &str) -> Option<&str> {
+    message.split('`').nth(1)
+}
 
 /// Errors the control raises too, in programs written for more lenient
 /// interpreters: `(file, line, code)`.
@@ -29,7 +81,34 @@ use gcodec_testkit::corpus::{definitions, machine_profile};
 /// - `multiple_m_codes.mpf:4` (a test of the CEAD interpreter's M codes)
 ///   writes `M3 M4 M5` in one block, three functions of the master
 ///   spindle's auxiliary-function group (alarm 14760).
+/// - `arrays.mpf:9…12` counts with `FOR m=…` and `FOR o=…`: the CEAD
+///   interpreter creates a variable on its first assignment; on the
+///   control a one-letter name is an address, never a variable.
+/// - `axis_index_assignment.mpf:4,6` reads `ACC[E]` of the printer the
+///   CEAD examples were written for: `E` is its extruder axis, and on the
+///   control a one-letter name other than a machine axis is an address.
+/// - `edge_cases.mpf:18` moves `ELX`, another axis of that printer, which
+///   no shipped profile has (alarm 12550 "name not defined").
 const EXPECTED_ERRORS: &[(&str, u32, &str)] = &[
+    ("peer-cead/arrays.mpf", 9, "gcodec::lower::not_a_variable"),
+    ("peer-cead/arrays.mpf", 10, "gcodec::lower::not_a_variable"),
+    ("peer-cead/arrays.mpf", 11, "gcodec::lower::not_a_variable"),
+    ("peer-cead/arrays.mpf", 12, "gcodec::lower::not_a_variable"),
+    (
+        "peer-cead/axis_index_assignment.mpf",
+        4,
+        "gcodec::lower::not_a_variable",
+    ),
+    (
+        "peer-cead/axis_index_assignment.mpf",
+        6,
+        "gcodec::lower::not_a_variable",
+    ),
+    (
+        "peer-cead/edge_cases.mpf",
+        18,
+        "gcodec::lower::undefined_variable",
+    ),
     (
         "peer-cead/simple.mpf",
         2,
@@ -83,6 +162,14 @@ fn the_corpus_lowers_without_errors() {
             let expected = EXPECTED_ERRORS.iter().position(|(file, l, code)| {
                 shown.contains(file) && *l == line && *code == d.code.name()
             });
+            if d.code == gcodec_source::codes::lower::UNDEFINED_VARIABLE
+                && let Some(word) = quoted(&d.message).and_then(language_word)
+            {
+                failures.push(format!(
+                    "{shown}:{line}: {} reported as undefined, but it is {word}",
+                    d.message
+                ));
+            }
             if let Some(i) = expected {
                 expected_seen[i] = true;
                 continue;
@@ -99,4 +186,18 @@ fn the_corpus_lowers_without_errors() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The names assumed defined for the corpus are names a program may give:
+/// a keyword, address or predefined name assumed there would hide the
+/// misreading of a statement (as `PRIO` and `DISPR` once hid `SETINT` and
+/// `DISPR=` read as variables).
+#[test]
+fn no_assumed_name_is_a_word_of_the_language() {
+    let words: Vec<String> = ASSUMED_NAMES
+        .iter()
+        .flat_map(|(_, names)| names.iter())
+        .filter_map(|name| language_word(name).map(|word| format!("{name}: {word}")))
+        .collect();
+    assert!(words.is_empty(), "{words:#?}");
 }

@@ -546,3 +546,26 @@ fn odd_names_and_deep_expressions_do_not_panic() {
         let _ = lower(&parsed.program, &default_profile());
     }
 }
+
+/// A name no program can define, used as a variable (`FOR m=…` of an
+/// interpreter that creates variables on first use), is
+/// `not_a_variable`, never `undefined_variable` with its advice to pass a
+/// definition file.
+#[test]
+fn a_word_of_the_language_used_as_a_variable_is_not_a_missing_definition() {
+    for (src, message) in [
+        (
+            "FOR m=0 TO 2\nENDFOR\n",
+            "`m` is an address letter and cannot name a variable",
+        ),
+        (
+            "R1=E\n",
+            "`E` is an address letter and cannot name a variable",
+        ),
+    ] {
+        let l = run(src);
+        assert_eq!(errors(&l), ["gcodec::lower::not_a_variable"], "{src}");
+        assert_eq!(only_error(&l), message, "{src}");
+    }
+    assert_eq!(errors(&run("R1=UNKNOWN_NAME\n")), [UNDEFINED]);
+}

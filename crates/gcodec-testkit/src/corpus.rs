@@ -28,7 +28,9 @@ pub const DEFINITION_FILES: &[(&str, &str)] = &[(
 
 /// Names programs use that are defined where the corpus cannot show them;
 /// a real control has them, so they are made known without a type
-/// (`Definitions::assume_defined`).
+/// (`Definitions::assume_defined`). None is a word of the language (a
+/// keyword, an address, a G command, a predefined name): those are never
+/// missing definitions, and a test checks it.
 ///
 /// - FB422: its other definition files (the global data of its grinding,
 ///   dressing and measuring cycles such as `NazivToc_A[…]`, the macros
@@ -36,9 +38,10 @@ pub const DEFINITION_FILES: &[(&str, &str)] = &[(
 ///   ran on that machine.
 /// - CEAD: its interpreter creates a variable on its first assignment and
 ///   runs every example after `defaults.mpf` (its README), which defines
-///   `aa` and `bb`; on a control these would be global user data. `ELX`
-///   and `E` are axes of the printer it was written for (`ELX=3087.0`,
-///   `ACC[E]=50`), which no shipped profile has.
+///   `aa` and `bb`; on a control these would be global user data
+///   (`nn`, `E_MULTIPLIER`, `F_MULTI` likewise). Its one-letter loop
+///   variables and printer axes are errors on the control, listed with
+///   their reasons in the corpus tests, not assumed here.
 pub const ASSUMED_NAMES: &[(&str, &[&str])] = &[
     (
         "NadjImre+NC-Programi-za-FB422",
@@ -110,20 +113,7 @@ pub const ASSUMED_NAMES: &[(&str, &[&str])] = &[
             "BRZU",
         ],
     ),
-    (
-        "peer-cead/",
-        &[
-            "aa",
-            "bb",
-            "nn",
-            "m",
-            "o",
-            "E_MULTIPLIER",
-            "F_MULTI",
-            "ELX",
-            "E",
-        ],
-    ),
+    ("peer-cead/", &["aa", "bb", "nn", "E_MULTIPLIER", "F_MULTI"]),
 ];
 
 /// The definitions a program of the corpus is lowered with.

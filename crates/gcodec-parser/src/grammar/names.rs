@@ -8,8 +8,7 @@
 //! one error at the declaration, never a shorter name followed by words.
 
 use chumsky::prelude::*;
-use gcodec_lang::addresses::is_written_as_address;
-use gcodec_lang::{ggroups, keywords};
+use gcodec_lang::identifiers::invalid_name;
 use gcodec_lexer::TokenKind as T;
 use gcodec_source::codes;
 
@@ -55,68 +54,4 @@ fn is_name_piece(t: T) -> bool {
 
 fn is_name_byte(b: u8) -> bool {
     b.is_ascii_alphanumeric() || b == b'_'
-}
-
-/// What is wrong with `name` as a declared name, and how to fix it.
-fn invalid_name(name: &str) -> Option<(String, &'static str)> {
-    const RENAME: &str = "begin the name with two letters or `_`; Siemens recommends user names \
-                          that begin with `U` (`U_COUNT`) or contain `_`";
-    let bytes = name.as_bytes();
-    if let [letter] = bytes {
-        return Some((
-            format!(
-                "`{}` is an address letter and cannot name a variable",
-                *letter as char
-            ),
-            RENAME,
-        ));
-    }
-    if let Some(at) = bytes[..2]
-        .iter()
-        .position(|b| !(b.is_ascii_alphabetic() || *b == b'_'))
-    {
-        return Some((
-            format!(
-                "`{name}` is not a name: its first two characters must be letters or `_`, and \
-                 `{}` is not",
-                bytes[at] as char
-            ),
-            RENAME,
-        ));
-    }
-    let what = if keywords::is_reserved(name) {
-        "a keyword"
-    } else if ggroups::lookup(name).is_some() {
-        "a G command"
-    } else if is_written_as_address(name) {
-        "an address"
-    } else {
-        return None;
-    };
-    Some((
-        format!("`{name}` is {what} of the NC language and cannot name a variable"),
-        "choose another name; Siemens recommends user names that begin with `U` or contain `_`",
-    ))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::invalid_name;
-
-    #[test]
-    fn names_begin_with_two_letters_or_underscores() {
-        for good in ["DEPTH", "_Z", "__1", "U_COUNT", "AB12"] {
-            assert_eq!(invalid_name(good), None, "{good}");
-        }
-        for bad in ["I", "P1X", "R2D2", "K1", "N1", "_1LBL", "1A"] {
-            assert!(invalid_name(bad).is_some(), "{bad}");
-        }
-    }
-
-    #[test]
-    fn keywords_g_commands_and_addresses_name_nothing() {
-        for bad in ["IF", "endfor", "TRUE", "DIAMON", "CR", "SPOS"] {
-            assert!(invalid_name(bad).is_some(), "{bad}");
-        }
-    }
 }

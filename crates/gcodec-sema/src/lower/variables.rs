@@ -28,7 +28,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use gcodec_ail::Op;
 use gcodec_lang::addresses::NamedAddress;
-use gcodec_lang::{DataType, UnaryOp};
+use gcodec_lang::{DataType, UnaryOp, identifiers};
 use gcodec_parser::ast::{self, StatementKind};
 use gcodec_profile::Profile;
 use gcodec_source::{Diagnostic, Diagnostics, Span, codes};
@@ -569,6 +569,17 @@ impl Lowering<'_> {
                     "the control knows a name from its `DEF` on (alarm 12550); move the `DEF` up",
                 ),
             ),
+            Resolved::Undefined
+                if let Some((message, help)) = identifiers::invalid_name(&var.name) =>
+            {
+                // A program written for a lenient interpreter (`FOR m=…`): the
+                // name is the language's, never a missing definition.
+                self.diagnostics.push(
+                    Diagnostic::new(codes::lower::NOT_A_VARIABLE, message)
+                        .with_label(var.span, "not a variable")
+                        .with_help(help),
+                );
+            }
             Resolved::Undefined => {
                 let label = match self.outline.names.nearest(&var.name, var.span.start) {
                     Some(near) => format!("unknown name: did you mean `{near}`?"),

@@ -35,6 +35,7 @@ super::codes! {
     M_GROUP_CONFLICT = m_group_conflict, Error, alarm 14760, "two M functions of one auxiliary-function group in one block";
     UNKNOWN_SYSTEM_VARIABLE = unknown_system_variable, Error, "a system variable the control does not have";
     SYSTEM_VARIABLE_INDEX = system_variable_index, Error, "a system variable index of the wrong number or kind";
+    NOT_A_VARIABLE = not_a_variable, Error, "a keyword, address or malformed name used as a variable";
     UNDEFINED_VARIABLE = undefined_variable, Error, "a name that is no variable where it is used";
     DUPLICATE_DEFINITION = duplicate_definition, Error, "a variable defined twice";
     NAME_IS_AXIS = name_is_axis, Error, "a variable or parameter named like one of the machine's axes";
