@@ -5,11 +5,16 @@
 
 use std::sync::Arc;
 
+use gcodec_ail::{Callee, Expr};
 use gcodec_driver::{RunSetup, run_main};
+use gcodec_exec::channel::MachineState;
+use gcodec_exec::eval::{Env, eval};
 use gcodec_exec::event::{EventKind, ProgramEndReason, VecSink};
+use gcodec_exec::vars::Variables;
+use gcodec_lang::functions::FUNCTIONS;
 use gcodec_lang::procedures::{Effect, PROCEDURES};
 use gcodec_profile::Profile;
-use gcodec_source::{Severity, SourceFile};
+use gcodec_source::{Severity, SourceFile, codes};
 
 /// One diagnostic of a run: code, severity, message, line.
 type Reported = (&'static str, Severity, String, u32);
@@ -88,4 +93,97 @@ fn procedures_that_ended_the_run_are_advice_with_their_effect() {
         [1, 2, 3, 4, 5].map(|line| ("gcodec::run::not_simulated", line))
     );
     assert!(reported[2].2.contains("keeps the profile's geometry axes"), "{}", reported[2].2);
+}
+
+/// The built-in profile with a tool table of named tools: `DRILL_8` in
+/// two sister tools (T7 duplo 2, T3 duplo 1), `MILL_10` as T12.
+fn with_named_tools() -> Profile {
+    let text = format!(
+        "{}\n{}",
+        include_str!("../../../profiles/default.toml"),
+        r#"
+[[tools]]
+number = 7
+name = "DRILL_8"
+duplo = 2
+edges = [{ d = 1, length = 80.0, radius = 4.0 }]
+
+[[tools]]
+number = 3
+name = "DRILL_8"
+edges = [{ d = 1, length = 81.0, radius = 4.0 }]
+
+[[tools]]
+number = 12
+name = "MILL_10"
+edges = [{ d = 1, length = 95.0, radius = 5.0 }]
+"#
+    );
+    gcodec_profile::load(&text).expect("the profile with named tools")
+}
+
+/// The program's R parameters 1…n as `SETAL` would see them: the run
+/// raises alarm `61000 + k` where `R<k>` is not `expected[k-1]`.
+fn checks(expected: &[&str]) -> String {
+    expected
+        .iter()
+        .enumerate()
+        .map(|(k, value)| format!("IF R{}<>{value}\nSETAL({})\nENDIF\n", k + 1, 61001 + k))
+        .collect()
+}
+
+#[test]
+fn gett_gives_the_t_number_of_a_named_tool() {
+    let program = format!(
+        "R1=GETT(\"DRILL_8\")\nR2=GETT(\"drill_8\",2)\nR3=GETT(\"MILL_10\")\nR4=GETT(\"NONE\")\nR5=GETT(\"MILL_10\",2)\n{}M30\n",
+        checks(&["3", "7", "12", "-1", "-1"])
+    );
+    let (reported, end) = run_on(with_named_tools(), &program);
+    assert_eq!(reported, []);
+    assert_eq!(end, ProgramEndReason::M30);
+}
+
+#[test]
+fn isaxis_and_isvar_ask_the_machine_and_the_program() {
+    let program = format!(
+        "DEF INT DEPTH=1\nR1=ISAXIS(1)\nR2=ISAXIS(3)\nR3=ISAXIS(4)\nR4=ISVAR(\"DEPTH\")\nR5=ISVAR(\"depht\")\nR6=ISVAR(\"$P_TOOLNO\")\nR7=ISVAR(\"$TC_DP3[1,1]\")\nR8=ISVAR(\"$P_NONE\")\nR9=ISVAR(\"R20\")\n{}M30\n",
+        checks(&["1", "1", "0", "1", "0", "1", "1", "0", "1"])
+    );
+    let (reported, end) = run(&program);
+    assert_eq!(reported, []);
+    assert_eq!(end, ProgramEndReason::M30);
+}
+
+#[test]
+fn a_function_the_simulation_does_not_compute_is_an_error_naming_its_result() {
+    let (reported, end) = run("G0 X1\nR1=GETACTT(1,\"DRILL\")\nG0 X2\nM30\n");
+    assert_eq!(end, ProgramEndReason::Alarm);
+    assert_eq!(
+        reported,
+        [(
+            "gcodec::run::not_simulated",
+            Severity::Error,
+            "`GETACTT` is not simulated: on the control it returns the T number of the active tool of a tool group".to_owned(),
+            2
+        )]
+    );
+}
+
+/// Every function of the vocabulary is computed (here, called without
+/// arguments, at most an error about them) or not simulated: none is
+/// unknown to the executor.
+#[test]
+fn no_predefined_function_is_unknown_to_the_executor() {
+    let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
+    let state = MachineState::new(profile);
+    let vars = Variables::default();
+    for &(_, name, _) in FUNCTIONS {
+        let call = Expr::Call {
+            name: Callee::named(name),
+            args: Vec::new(),
+        };
+        if let Err(error) = eval(&Env::new(&vars, &state), &call) {
+            assert_ne!(error.code, codes::run::UNKNOWN_FUNCTION, "{name}: {error}");
+        }
+    }
 }

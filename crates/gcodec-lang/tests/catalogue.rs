@@ -164,6 +164,20 @@ fn functions_are_the_controls() {
         &BTreeSet::new(),
         &[],
     );
+    let modifier = "a dimension modifier of a value, `X=IC(5)` (`gcodec_lang::DimensionMode`)";
+    let mut left_out: Vec<(&str, &str)> = [
+        "AC", "ACN", "ACP", "CAC", "CACN", "CACP", "CDC", "CIC", "DAC", "DC", "DIC", "IC", "RAC",
+        "RIC",
+    ]
+    .into_iter()
+    .map(|name| (name, modifier))
+    .collect();
+    left_out.extend([
+        ("QU", "quick output of an auxiliary function, `H=QU(7)`, read with it (SPEC §10.10)"),
+        ("SET", "a keyword of array initialisation, `A[0]=SET(1,2)` (reference §7.3)"),
+        ("REP", "a keyword of array initialisation, `A[0]=REP(0)` (reference §7.3)"),
+    ]);
+    check_complete("functions", &ours, &names(&dir, "functions.txt"), &left_out);
 }
 
 #[test]

@@ -851,7 +851,7 @@ impl<'r> Channel<'r> {
             code,
             Severity::Error,
             error.message,
-            None,
+            error.help,
         );
         reason
     }
