@@ -187,3 +187,45 @@ fn no_predefined_function_is_unknown_to_the_executor() {
         }
     }
 }
+
+/// The built-in profile with `table` as its `[system_variables]`.
+fn with_system_variables(table: &str) -> Profile {
+    let text = format!(
+        "{}\n[system_variables]\n{table}",
+        include_str!("../../../profiles/default.toml")
+    );
+    gcodec_profile::load(&text).expect("the profile with system variables")
+}
+
+#[test]
+fn a_variable_the_run_cannot_know_names_the_profile_entry_that_gives_it() {
+    let (reported, end) = run("G0 X1\nIF $P_ISTEST GOTOF END\nG0 X2\nEND: M30\n");
+    assert_eq!(end, ProgramEndReason::Alarm);
+    assert_eq!(
+        reported,
+        [(
+            "gcodec::run::system_variable",
+            Severity::Error,
+            "the system variable `$P_ISTEST` has no value in the simulation; the machine profile gives it as `\"$P_ISTEST\" = …` in `[system_variables]`".to_owned(),
+            2
+        )]
+    );
+    let (reported, _) = run("R1=$A_IN[3]\nM30\n");
+    assert!(reported[0].2.contains("`\"$A_IN[3]\" = …`"), "{}", reported[0].2);
+}
+
+#[test]
+fn the_profile_gives_the_values_the_run_cannot_know() {
+    let profile = with_system_variables(
+        "\"$P_ISTEST\" = true\n\"$A_IN\" = false\n\"$A_IN[3]\" = true\n\"$AA_MM[X]\" = 12.5\n\"$P_TOOLNO\" = 9\n",
+    );
+    let program = format!(
+        "R1=$P_ISTEST\nR2=$A_IN[3]\nR3=$A_IN[4]\nR4=$AA_MM[X]\nR5=$P_TOOLNO\n{}M30\n",
+        // The run answers `$P_TOOLNO` itself: the profile's entry does not
+        // override it.
+        checks(&["1", "1", "0", "12.5", "0"])
+    );
+    let (reported, end) = run_on(profile, &program);
+    assert_eq!(reported, []);
+    assert_eq!(end, ProgramEndReason::M30);
+}

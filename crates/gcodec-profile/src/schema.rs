@@ -36,6 +36,23 @@ pub struct Profile {
     pub program: ProgramSettings,
     #[serde(default)]
     pub g_codes: GCodes,
+    /// Values of system variables the simulation cannot know (test mode,
+    /// block search, inputs, measured values): `"$P_ISTEST" = true`,
+    /// `"$A_IN[3]" = false`, `"$AC_MEA" = 1` (for every index). Read by
+    /// the run only where it has no value of its own; see
+    /// [`crate::system_variables`].
+    #[serde(default)]
+    pub system_variables: BTreeMap<Spanned<String>, SystemValue>,
+}
+
+/// A value of `[system_variables]`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(untagged)]
+pub enum SystemValue {
+    Bool(bool),
+    Int(i64),
+    Real(f64),
+    Text(String),
 }
 
 /// Which G commands the control has. By default every command of the
