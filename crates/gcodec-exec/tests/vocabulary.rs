@@ -229,3 +229,42 @@ fn the_profile_gives_the_values_the_run_cannot_know() {
     assert_eq!(reported, []);
     assert_eq!(end, ProgramEndReason::M30);
 }
+
+#[test]
+fn tool_data_a_program_writes_reads_back() {
+    let program = format!(
+        "$TC_DP1[1,1]=120\n$TC_DP3[1,1]=50.5\n$TC_DP6[1,1]=4\n$TC_DP2[1,1]=3\n$TC_TPG5[7]=12.5\nR1=$TC_DP1[1,1]\nR2=$TC_DP3[1,1]\nR3=$TC_DP6[1,1]\nR4=$TC_DP2[1,1]\nR5=$TC_TPG5[7]\nR6=$TC_DP4[1,1]\n$TC_DP3[7,1]=70\nR7=$TC_DP3[7,1]\n{}M30\n",
+        checks(&["120", "50.5", "4", "3", "12.5", "0", "70"])
+    );
+    let (reported, end) = run_on(with_named_tools(), &program);
+    assert_eq!(reported, []);
+    assert_eq!(end, ProgramEndReason::M30);
+}
+
+#[test]
+fn a_written_tool_length_takes_effect_at_the_next_d_selection() {
+    // T7 D1 is 80 long in the profile; the program makes it 100.
+    let program = format!(
+        "T7 M6 D1\nG0 Z0\nR1=$AA_IM[Z]\n$TC_DP3[7,1]=100\nG0 Z1\nR2=$AA_IM[Z]\nD1\nG0 Z0\nR3=$AA_IM[Z]\n{}M30\n",
+        checks(&["80", "81", "100"])
+    );
+    let (reported, end) = run_on(with_named_tools(), &program);
+    assert_eq!(reported, []);
+    assert_eq!(end, ProgramEndReason::M30);
+    // On a machine without a tool table the write makes the tool's edge.
+    let program = format!(
+        "$TC_DP3[9,1]=30\nT9 M6 D1\nG0 Z0\nR1=$AA_IM[Z]\n{}M30\n",
+        checks(&["30"])
+    );
+    let (reported, end) = run(&program);
+    assert_eq!(reported, []);
+    assert_eq!(end, ProgramEndReason::M30);
+}
+
+#[test]
+fn tool_data_needs_tools_and_edges_numbered_from_one() {
+    let (reported, end) = run("$TC_DP3[0,1]=5\nM30\n");
+    assert_eq!(end, ProgramEndReason::Alarm);
+    assert_eq!(reported[0].0, "gcodec::run::index_out_of_range");
+    assert_eq!(reported[0].2, "`$TC_DP3[0,1]`: tools and cutting edges are numbered from 1");
+}

@@ -21,6 +21,7 @@ mod functions;
 mod motion;
 pub mod state;
 mod summary;
+mod tool_data;
 
 use std::borrow::Cow;
 use std::io;

@@ -20,7 +20,7 @@
 
 mod assign;
 mod functions;
-mod profile_variables;
+pub(crate) mod profile_variables;
 
 use std::sync::Arc;
 

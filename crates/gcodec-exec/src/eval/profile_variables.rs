@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use gcodec_ail::VarName;
 use gcodec_lang::sysvars::SysVarId;
-use gcodec_profile::{Profile, SystemValue, ToolChangeMode};
+use gcodec_profile::{Profile, SystemValue, Tool, ToolChangeMode};
 use gcodec_source::codes;
 
 use crate::value::{FrameAxis, FrameValue, RtValue, RunError};
@@ -86,7 +86,7 @@ pub fn profile_system_variable(
         }
         SysVarId::P_UIFR => settable_frame(profile, name, indices),
         _ => match SysVarId::TC_DP.iter().position(|&dp| dp == id) {
-            Some(k) => tool_parameter(profile, name, k + 1, indices),
+            Some(k) => tool_parameter(&profile.tools, name, k + 1, indices),
             None => profile_value(profile, name, indices),
         },
     }
@@ -203,8 +203,9 @@ pub(crate) fn profile_offsets(
         .flat_map(|(_, axes)| axes.iter().map(|(axis, &v)| (axis.get_ref().as_str(), v)))
 }
 
-fn tool_parameter(
-    profile: &Profile,
+/// `$TC_DP<k>[t, d]` (`name`) of the tool table `tools`.
+pub(crate) fn tool_parameter(
+    tools: &[Tool],
     name: &str,
     k: usize,
     indices: &[RtValue],
@@ -215,7 +216,7 @@ fn tool_parameter(
     let (t, d) = (t.to_int()?, d.to_int()?);
     let tool = u32::try_from(t)
         .ok()
-        .and_then(|t| profile.tool(t))
+        .and_then(|t| tools.iter().find(|tool| *tool.number.get_ref() == t))
         .ok_or_else(|| {
             RunError::new(
                 codes::run::INDEX_OUT_OF_RANGE,
