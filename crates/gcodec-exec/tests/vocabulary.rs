@@ -268,3 +268,29 @@ fn tool_data_needs_tools_and_edges_numbered_from_one() {
     assert_eq!(reported[0].0, "gcodec::run::index_out_of_range");
     assert_eq!(reported[0].2, "`$TC_DP3[0,1]`: tools and cutting edges are numbered from 1");
 }
+
+#[test]
+fn isfile_asks_the_search_path() {
+    let mut setup = RunSetup::new(gcodec_profile::builtin().expect("the built-in profile"));
+    setup
+        .search_dirs
+        .push(concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/fixtures/run").into());
+    let program = format!(
+        "R1=ISFILE(\"DEEP\")\nR2=ISFILE(\"deep.spf\")\nR3=ISFILE(\"/_N_SPF_DIR/_N_DEEP_SPF\")\nR4=ISFILE(\"NO_SUCH_PROGRAM\")\n{}M30\n",
+        checks(&["1", "1", "1", "0"])
+    );
+    let file = Arc::new(SourceFile::new("VOCAB.MPF", program));
+    let mut sink = VecSink::new();
+    let report = run_main(file, &setup, &mut sink, None);
+    assert!(report.diagnostics.is_empty(), "{:?}", report.diagnostics);
+    let ends: Vec<_> = sink
+        .events
+        .iter()
+        .filter_map(|e| match &e.kind {
+            EventKind::Diagnostic(d) => Some(d.message.to_string()),
+            EventKind::ProgramEnd(end) => Some(format!("{:?}", end.reason)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(ends, ["M30"]);
+}

@@ -1,9 +1,13 @@
 //! Functions that ask the machine about itself: `GETT` (the T number of
-//! a named tool), `ISAXIS` (whether a geometry axis exists) and `ISVAR`
-//! (whether a name is a variable).
+//! a named tool), `ISAXIS` (whether a geometry axis exists), `ISVAR`
+//! (whether a name is a variable) and `ISFILE` (whether a program is on
+//! the search path).
 
 use gcodec_lang::sysvars;
 
+use gcodec_lang::functions::Function;
+
+use super::not_simulated::{ISFILE_RETURNS, returning};
 use super::{Args, EvalContext};
 use crate::value::{RtValue, RunError};
 
@@ -66,4 +70,17 @@ pub(super) fn isvar<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue,
 fn is_r_parameter(name: &str) -> bool {
     name.strip_prefix('R')
         .is_some_and(|digits| !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// `ISFILE("NAME")`: whether the program `NAME` (a name, `SUB.SPF`, or a
+/// path, `/_N_SPF_DIR/_N_SUB_SPF`) is on the running program's search
+/// path, as a call would find it. A name of no program (`DATA.INI`), or a
+/// run without a search path, is not simulated.
+pub(super) fn isfile<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
+    a.count(1, 1)?;
+    let name = a.string(0)?;
+    match a.ctx.program_exists(&name) {
+        Some(found) => Ok(RtValue::Bool(found)),
+        None => Err(returning(Function::Isfile, ISFILE_RETURNS)),
+    }
 }

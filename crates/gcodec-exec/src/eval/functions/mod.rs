@@ -1,7 +1,7 @@
 //! The built-in functions (reference §7.6). [`call`] dispatches by
 //! function id to the family that computes it — arithmetic and rounding,
 //! trigonometry, conversions, strings, `SPRINT` formatting, the
-//! machine's inquiries (`GETT`, `ISAXIS`, `ISVAR`) — and hands any other
+//! machine's inquiries (`GETT`, `ISAXIS`, `ISVAR`, `ISFILE`) — and hands any other
 //! function to the runtime, which provides the frame functions. A
 //! function neither computes is not simulated: an error naming what it
 //! would return.
@@ -71,6 +71,7 @@ pub(super) fn call<C: EvalContext + ?Sized>(
         F::Gett => inquiry::gett(&a),
         F::Isaxis => inquiry::isaxis(&a),
         F::Isvar => inquiry::isvar(&a),
+        F::Isfile => inquiry::isfile(&a),
         _ => runtime_function(&a),
     };
     match result {

@@ -11,17 +11,23 @@ use crate::value::RunError;
 /// answer: it names what the control would return. `None` for a function
 /// the evaluator or the runtime computes.
 pub(super) fn not_simulated(function: Function) -> Option<RunError> {
-    let returns = would_return(function)?;
-    Some(
-        RunError::new(
-            codes::run::NOT_SIMULATED,
-            format!(
-                "`{}` is not simulated: on the control it returns {returns}",
-                function.name()
-            ),
-        )
-        .with_help("the simulation has no value for it; give the program the value it expects another way, e.g. in an R parameter set at the start"),
+    would_return(function).map(|returns| returning(function, returns))
+}
+
+/// What `ISFILE` returns, where the simulation cannot tell.
+pub(super) const ISFILE_RETURNS: &str = "whether the file exists in the control's file system";
+
+/// The error that `function`, which returns `returns` on the control, is
+/// not simulated.
+pub(super) fn returning(function: Function, returns: &str) -> RunError {
+    RunError::new(
+        codes::run::NOT_SIMULATED,
+        format!(
+            "`{}` is not simulated: on the control it returns {returns}",
+            function.name()
+        ),
     )
+    .with_help("the simulation has no value for it; give the program the value it expects another way, e.g. in an R parameter set at the start")
 }
 
 /// What `function` returns on the control, if the simulation does not
@@ -80,7 +86,7 @@ fn would_return(function: Function) -> Option<&'static str> {
         | F::Getvartyp => "an attribute of a variable (access right, default, dimension, limit, unit or type)",
         F::Gp => "a position with its attributes, for indirect programming",
         F::Intersec => "whether two contour elements intersect, and where",
-        F::Isfile => "whether the file exists in the control's file system",
+        F::Isfile => ISFILE_RETURNS,
         F::Lentoax => "the tool lengths as the axes see them",
         F::Meaframe => "a frame computed from measured points",
         F::Measure => "the result of a measurement",
