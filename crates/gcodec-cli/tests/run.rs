@@ -324,3 +324,52 @@ fn bad_options_are_usage_errors() {
         assert!(!stderr(&out).contains("panicked"));
     }
 }
+
+/// The profile an example's first comment names (after the archive
+/// header `%_N_…` and `;$PATH=…`): `profiles/NAME.toml`, or `None` for
+/// the built-in profile. An example that names neither fails.
+fn profile_of_example(text: &str, name: &str) -> Option<PathBuf> {
+    let comment = text
+        .lines()
+        .find(|l| l.starts_with(';') && !l.starts_with(";$PATH"))
+        .unwrap_or_else(|| panic!("{name}: no comment"));
+    if comment.starts_with("; For the built-in profile") {
+        return None;
+    }
+    let profile = comment
+        .split_whitespace()
+        .find(|w| w.starts_with("profiles/"))
+        .unwrap_or_else(|| panic!("{name}: the first comment names no profile: {comment}"));
+    Some(
+        example("../profiles").join(
+            profile
+                .trim_start_matches("profiles/")
+                .trim_end_matches(['.', ',', ':']),
+        ),
+    )
+}
+
+/// Every example main program runs clean, as its first comment says: on
+/// the built-in profile or the one it names (the README's examples are
+/// run as written).
+#[test]
+fn every_example_runs_clean_on_the_profile_its_first_comment_names() {
+    let mut ran = 0;
+    for entry in std::fs::read_dir(example("")).expect("examples/") {
+        let path = entry.expect("an entry").path();
+        let name = path.display().to_string();
+        let text = std::fs::read_to_string(&path).expect("an example");
+        let profile = profile_of_example(&text, &name);
+        if path.extension().is_none_or(|e| e != "mpf") {
+            continue;
+        }
+        let mut args = vec!["run".into(), path.clone().into_os_string()];
+        if let Some(profile) = &profile {
+            args.extend(["--profile".into(), profile.clone().into_os_string()]);
+        }
+        let out = gcodec(args);
+        assert_eq!(code(&out), EXIT_CLEAN, "{name}: {}", stderr(&out));
+        ran += 1;
+    }
+    assert!(ran >= 2, "{ran} examples");
+}

@@ -599,3 +599,25 @@ fn a_circle_needs_a_centre_radius_or_angle() {
         codes(&l)
     );
 }
+
+// ---- diameter programming ----
+
+/// `DIAMON`/`DIAM90` need a transverse axis (`diameter = true`); `DIAMOF`
+/// and `DIAMCYCOF` are accepted on any machine.
+#[test]
+fn diameter_programming_needs_a_transverse_axis() {
+    for command in ["DIAMON", "DIAM90"] {
+        let l = lower_with(&mill(), &format!("G18 {command}\nG0 X10\n"));
+        assert_eq!(
+            codes(&l),
+            ["gcodec::lower::no_transverse_axis"],
+            "{command}"
+        );
+    }
+    assert_clean(&lower_with(&mill(), "G18 DIAMOF\nDIAMCYCOF\n"));
+    let lathe = profile(
+        "[[axes]]\nname = \"X\"\nkind = \"linear\"\ngeometry = true\ndiameter = true\n\
+         [[axes]]\nname = \"Z\"\nkind = \"linear\"\ngeometry = true\n",
+    );
+    assert_clean(&lower_with(&lathe, "G18 DIAMON\nG0 X10\nDIAM90\n"));
+}

@@ -293,6 +293,20 @@ fn incompatible_assignments_are_errors() {
     }
 }
 
+/// A string's length is counted in characters, and the message says so:
+/// `ÄÖÜß` is 4 characters (8 bytes of UTF-8), which `STRING[4]` holds.
+#[test]
+fn a_string_length_is_counted_and_reported_in_characters() {
+    let fits = run("DEF STRING[4] SS=\"ÄÖÜß\"\n");
+    assert!(errors(&fits).is_empty(), "{:?}", errors(&fits));
+    let long = run("DEF STRING[3] SS=\"ÄÖÜß\"\n");
+    assert_eq!(errors(&long), [TYPE_MISMATCH]);
+    assert_eq!(
+        only_error(&long),
+        "the string has 4 characters; `SS` is STRING[3]"
+    );
+}
+
 #[test]
 fn allowed_conversions_and_unknown_types_are_not_errors() {
     let src = "\

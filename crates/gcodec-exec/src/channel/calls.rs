@@ -16,7 +16,8 @@ use gcodec_source::{Severity, codes};
 use super::{Channel, Flow, Level, LevelKind};
 use crate::eval;
 use crate::event::{
-    ArgumentValue, CallEvent, CallKind, EventKind, ProgramEndReason, ReturnEvent, SectionEvent,
+    ArgumentValue, CallEvent, CallKind, Event, EventKind, EventSource, ProgramEndReason,
+    ReturnEvent, SectionEvent,
 };
 use crate::loader::LoadRequest;
 use crate::program::{Program, written_label};
@@ -41,6 +42,8 @@ pub(super) struct ActiveCall {
     /// Whether the call opened a program level (a section of the calling
     /// program itself does not).
     own_level: bool,
+    /// Where the call is written: every pass's `call` event points there.
+    origin: EventSource,
 }
 
 impl ActiveCall {
@@ -260,8 +263,9 @@ impl Channel<'_> {
             section,
             arguments,
             own_level,
+            origin: self.source(program, instruction),
         };
-        self.enter(program, instruction, pc + 1, callee, active)
+        self.enter(pc + 1, callee, active)
     }
 
     /// Loads `target`; `None` for a standard cycle that is not on the
@@ -417,8 +421,9 @@ impl Channel<'_> {
             section: None,
             arguments: modal.arguments,
             own_level: true,
+            origin: self.source(program, &instruction),
         };
-        match self.enter(program, &instruction, pc, callee, active) {
+        match self.enter(pc, callee, active) {
             Ok(flow) => flow,
             Err(error) => Flow::End(self.alarm(program, &instruction, error)),
         }
@@ -427,8 +432,6 @@ impl Channel<'_> {
     /// Pushes the level of a call and binds its parameters.
     fn enter(
         &mut self,
-        program: &Arc<Program>,
-        instruction: &Instruction,
         resume: usize,
         callee: Arc<Program>,
         active: ActiveCall,
@@ -442,7 +445,10 @@ impl Channel<'_> {
         if let Some(top) = self.stack.last_mut() {
             top.pc = resume;
         }
-        self.emit_at(program, instruction, active.event());
+        self.emit(&Event {
+            kind: active.event(),
+            source: active.origin.clone(),
+        });
         let program_level = self.program_level() + u32::from(active.own_level);
         if active.own_level {
             self.vars.push_level();
@@ -698,7 +704,11 @@ impl Channel<'_> {
         if let Some(top) = self.stack.last_mut() {
             top.pc = pc + 1;
         }
-        self.emit_at(program, instruction, repeat_event(&target, 1, passes));
+        let origin = self.source(program, instruction);
+        self.emit(&Event {
+            kind: repeat_event(&target, 1, passes),
+            source: origin.clone(),
+        });
         let program_level = self.program_level();
         self.stack.push(Level {
             program: Arc::clone(program),
@@ -710,6 +720,7 @@ impl Channel<'_> {
                 end,
                 pass: 1,
                 passes,
+                origin,
             },
         });
         Ok(Flow::Switch)
@@ -726,20 +737,24 @@ impl Channel<'_> {
             end,
             pass,
             passes,
+            origin,
         } = &mut top.kind
         else {
             return None;
         };
-        let instruction = program
-            .instruction(*end)
-            .or_else(|| program.last_instruction())?;
         if *pass < *passes {
             *pass += 1;
             top.pc = *start;
-            let event = repeat_event(target, *pass, *passes);
-            self.emit_at(&program, &instruction, event);
+            let event = Event {
+                kind: repeat_event(target, *pass, *passes),
+                source: origin.clone(),
+            };
+            self.emit(&event);
             return None;
         }
+        let instruction = program
+            .instruction(*end)
+            .or_else(|| program.last_instruction())?;
         let event = EventKind::Return(ReturnEvent {
             target: target.clone(),
         });
@@ -806,13 +821,15 @@ impl Channel<'_> {
         if call.pass >= call.passes {
             return Flow::Switch;
         }
-        // The next pass, reported at the caller's level (the call's level
-        // is off the stack here).
+        // The next pass, reported where the call is written.
         call.pass += 1;
         level.pc = call.start;
-        let event = call.event();
+        let event = Event {
+            kind: call.event(),
+            source: call.origin.clone(),
+        };
         call.bindings = bindings.clone();
-        self.emit_at(program, &instruction, event);
+        self.emit(&event);
         self.stack.push(level);
         if own_level {
             self.vars.push_level();

@@ -145,6 +145,8 @@ enum LevelKind {
         end: usize,
         pass: u32,
         passes: u32,
+        /// The `REPEAT` block: every pass's `call` event points there.
+        origin: EventSource,
     },
 }
 

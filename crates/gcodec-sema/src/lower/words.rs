@@ -229,6 +229,16 @@ impl Lowering<'_> {
                 .with_help(format!("the profile rules it out in `[g_codes] {key}`")),
             );
         }
+        if matches!(member, "DIAMON" | "DIAM90") && !self.profile.axes.iter().any(|a| a.diameter) {
+            return self.diagnostics.push(
+                Diagnostic::new(
+                    codes::lower::NO_TRANSVERSE_AXIS,
+                    format!("`{member}` programs the transverse axis in diameter, and this machine has none"),
+                )
+                .with_label(span, "no transverse axis")
+                .with_help("on a lathe, run with its profile (`--profile profiles/lathe_828d.toml`); a profile marks its transverse axis with `diameter = true` in `[[axes]]`"),
+            );
+        }
         if group == 9 {
             let suppression = match member {
                 "G53" => Suppression::G53,

@@ -8,6 +8,7 @@ super::codes! {
     COMPUTED_G = computed_g, Error, "a computed G command without its group";
     INVALID_INDIRECT_G = invalid_indirect_g, Error, "an indirect G command with a group or value that does not exist";
     G_GROUP_CONFLICT = g_group_conflict, Error, "two commands of one G group in one block";
+    NO_TRANSVERSE_AXIS = no_transverse_axis, Error, "diameter programming on a machine without a transverse axis";
     UNSUPPORTED_OFFSET = unsupported_offset, Error, "a settable work offset the machine does not have";
     DUPLICATE_SUPPRESSION = duplicate_suppression, Warning, "more than one frame suppression in one block";
     UNKNOWN_M_FUNCTION = unknown_m_function, Warning, "an M function the machine does not know";
