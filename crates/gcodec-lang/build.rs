@@ -22,7 +22,12 @@ fn main() {
                 panic!("a line of four fields: {line}");
             };
             let dims = dims.parse().expect("a number of dimensions");
-            (name.trim().to_ascii_uppercase(), ty.trim(), dims, list.trim())
+            (
+                name.trim().to_ascii_uppercase(),
+                ty.trim(),
+                dims,
+                list.trim(),
+            )
         })
         // `R` (the R parameters) and the `SYG_…` user data of
         // synchronized actions are no `$` names.

@@ -849,13 +849,17 @@ impl ProgramLoader for FileLoader {
     /// it (a listing made before is reused, none is kept).
     fn exists(&self, request: &LoadRequest<'_>) -> Option<bool> {
         let wanted = parse_request(request.name).ok()?;
-        let found = self.search.for_caller(request.caller_file).iter().any(|dir| {
-            let key = fs::canonicalize(dir).unwrap_or_else(|_| dir.clone());
-            match self.listings.get(&key) {
-                Some(index) => index.find(&wanted).is_some(),
-                None => DirIndex::list(dir).find(&wanted).is_some(),
-            }
-        });
+        let found = self
+            .search
+            .for_caller(request.caller_file)
+            .iter()
+            .any(|dir| {
+                let key = fs::canonicalize(dir).unwrap_or_else(|_| dir.clone());
+                match self.listings.get(&key) {
+                    Some(index) => index.find(&wanted).is_some(),
+                    None => DirIndex::list(dir).find(&wanted).is_some(),
+                }
+            });
         Some(found)
     }
 

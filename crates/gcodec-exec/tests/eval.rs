@@ -490,7 +490,9 @@ fn the_runtime_provides_further_functions() {
     // A name the vocabulary does not list is no function of the runtime.
     let user = call("TWICE", vec![n(4.0)]);
     assert_eq!(
-        eval(&Env::new(&vars, &WithModaxval), &user).unwrap_err().code,
+        eval(&Env::new(&vars, &WithModaxval), &user)
+            .unwrap_err()
+            .code,
         codes::run::UNKNOWN_FUNCTION
     );
 }

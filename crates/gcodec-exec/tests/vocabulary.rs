@@ -34,9 +34,12 @@ fn run_on(profile: Profile, program: &str) -> (Vec<Reported>, ProgramEndReason) 
     let mut end = None;
     for event in &sink.events {
         match &event.kind {
-            EventKind::Diagnostic(d) => {
-                reported.push((d.code.name(), d.severity, d.message.to_string(), event.source.line))
-            }
+            EventKind::Diagnostic(d) => reported.push((
+                d.code.name(),
+                d.severity,
+                d.message.to_string(),
+                event.source.line,
+            )),
             EventKind::ProgramEnd(e) => end = Some(e.reason),
             _ => {}
         }
@@ -45,7 +48,10 @@ fn run_on(profile: Profile, program: &str) -> (Vec<Reported>, ProgramEndReason) 
 }
 
 fn run(program: &str) -> (Vec<Reported>, ProgramEndReason) {
-    run_on(gcodec_profile::builtin().expect("the built-in profile"), program)
+    run_on(
+        gcodec_profile::builtin().expect("the built-in profile"),
+        program,
+    )
 }
 
 #[test]
@@ -55,7 +61,11 @@ fn every_predefined_procedure_runs_or_is_advice() {
             continue;
         }
         let args = vec!["1"; usize::from(arity.min)].join(",");
-        let call = if args.is_empty() { name.to_owned() } else { format!("{name}({args})") };
+        let call = if args.is_empty() {
+            name.to_owned()
+        } else {
+            format!("{name}({args})")
+        };
         let (reported, end) = run(&format!("G0 X1\n{call}\nM30\n"));
         assert_eq!(end, ProgramEndReason::M30, "{name}: {reported:?}");
         match effect.left_out() {
@@ -83,16 +93,19 @@ fn single_block_and_preprocessing_switches_pass_in_silence() {
 
 #[test]
 fn procedures_that_ended_the_run_are_advice_with_their_effect() {
-    let (reported, end) = run(
-        "CHANDATA(1)\nMMC(\"CYCLE\",\"A\")\nGEOAX(1,X,2,Y)\nWAITENC\nCLRINT(3)\nG0 X1\nM30\n",
-    );
+    let (reported, end) =
+        run("CHANDATA(1)\nMMC(\"CYCLE\",\"A\")\nGEOAX(1,X,2,Y)\nWAITENC\nCLRINT(3)\nG0 X1\nM30\n");
     assert_eq!(end, ProgramEndReason::M30);
     let lines: Vec<_> = reported.iter().map(|r| (r.0, r.3)).collect();
     assert_eq!(
         lines,
         [1, 2, 3, 4, 5].map(|line| ("gcodec::run::not_simulated", line))
     );
-    assert!(reported[2].2.contains("keeps the profile's geometry axes"), "{}", reported[2].2);
+    assert!(
+        reported[2].2.contains("keeps the profile's geometry axes"),
+        "{}",
+        reported[2].2
+    );
 }
 
 /// The built-in profile with a tool table of named tools: `DRILL_8` in
@@ -211,7 +224,11 @@ fn a_variable_the_run_cannot_know_names_the_profile_entry_that_gives_it() {
         )]
     );
     let (reported, _) = run("R1=$A_IN[3]\nM30\n");
-    assert!(reported[0].2.contains("`\"$A_IN[3]\" = …`"), "{}", reported[0].2);
+    assert!(
+        reported[0].2.contains("`\"$A_IN[3]\" = …`"),
+        "{}",
+        reported[0].2
+    );
 }
 
 #[test]
@@ -266,7 +283,10 @@ fn tool_data_needs_tools_and_edges_numbered_from_one() {
     let (reported, end) = run("$TC_DP3[0,1]=5\nM30\n");
     assert_eq!(end, ProgramEndReason::Alarm);
     assert_eq!(reported[0].0, "gcodec::run::index_out_of_range");
-    assert_eq!(reported[0].2, "`$TC_DP3[0,1]`: tools and cutting edges are numbered from 1");
+    assert_eq!(
+        reported[0].2,
+        "`$TC_DP3[0,1]`: tools and cutting edges are numbered from 1"
+    );
 }
 
 #[test]

@@ -68,7 +68,9 @@ impl Effect {
             Effect::Channels => {
                 "coordinates channels or exchanges axes between them; the simulation runs one channel with all its axes"
             }
-            Effect::Waits => "waits for positioning axes, spindles or encoders; the simulation does not wait",
+            Effect::Waits => {
+                "waits for positioning axes, spindles or encoders; the simulation does not wait"
+            }
             Effect::GeometryAxes => {
                 "assigns other channel axes to the geometry axes; the simulation keeps the profile's geometry axes"
             }
@@ -84,31 +86,45 @@ impl Effect {
             Effect::ToolManagement => {
                 "acts on tool management, magazines or tool monitoring; the simulation keeps the tool table and leaves result variables unchanged"
             }
-            Effect::ToolOffsets => "changes tool offsets online; the simulation keeps the tool table's offsets",
+            Effect::ToolOffsets => {
+                "changes tool offsets online; the simulation keeps the tool table's offsets"
+            }
             Effect::Files => {
                 "reads or writes files of the control; the simulation leaves result variables unchanged"
             }
             Effect::SearchPath => {
                 "changes the search path for subprograms; the simulation searches its own path"
             }
-            Effect::ExternalProgram => "runs a program from external memory; the simulation does not run it",
-            Effect::ProtectionZones => "defines or switches protection zones; the simulation checks none",
+            Effect::ExternalProgram => {
+                "runs a program from external memory; the simulation does not run it"
+            }
+            Effect::ProtectionZones => {
+                "defines or switches protection zones; the simulation checks none"
+            }
             Effect::Retraction => {
                 "prepares a retraction or stop for an alarm or power failure; nothing triggers it in the simulation"
             }
             Effect::Drives => {
                 "reads or writes drive or safety parameters; the simulation leaves result variables unchanged"
             }
-            Effect::ActualValues => "sets the actual values of axes; the simulation keeps its positions",
+            Effect::ActualValues => {
+                "sets the actual values of axes; the simulation keeps its positions"
+            }
             Effect::Motion => {
                 "deletes the distance to go or overlaid motion; the simulation runs each motion as programmed"
             }
-            Effect::MachineData => "activates changed machine data; the simulation keeps the profile's",
+            Effect::MachineData => {
+                "activates changed machine data; the simulation keeps the profile's"
+            }
             Effect::AuxiliaryFunctions => {
                 "changes how auxiliary functions are output; the simulation outputs them as programmed"
             }
-            Effect::Hmi => "acts on the operator panel (dialogs, the workpiece shown); nothing of it shows in the simulation",
-            Effect::ContourTables => "prepares or runs a contour table; the simulation does not build it",
+            Effect::Hmi => {
+                "acts on the operator panel (dialogs, the workpiece shown); nothing of it shows in the simulation"
+            }
+            Effect::ContourTables => {
+                "prepares or runs a contour table; the simulation does not build it"
+            }
             Effect::Execute => "runs a string as a block; the simulation does not run it",
             Effect::Return => "ends the subprogram; the simulation goes on with the next block",
         })
@@ -376,7 +392,12 @@ mod tests {
         assert_eq!(Procedure::Setal.effect(), Effect::Alarm);
         assert_eq!(Procedure::Geoax.effect(), Effect::GeometryAxes);
         assert!(Effect::None.left_out().is_none() && Effect::Alarm.left_out().is_none());
-        assert!(Effect::GeometryAxes.left_out().unwrap().contains("geometry axes"));
+        assert!(
+            Effect::GeometryAxes
+                .left_out()
+                .unwrap()
+                .contains("geometry axes")
+        );
         assert!(Procedure::Sblof.arity().accepts(0) && !Procedure::Sblof.arity().accepts(1));
         assert!(Procedure::Chandata.arity().accepts(1) && !Procedure::Chandata.arity().accepts(0));
         assert!(Procedure::Setal.arity().accepts(2) && !Procedure::Setal.arity().accepts(3));

@@ -431,14 +431,18 @@ impl SysVarId {
         if let Ok(at) = TABLE.binary_search_by(|entry| entry.name.cmp(name)) {
             return Some(Self(at as u16));
         }
-        let at = CATALOGUE.binary_search_by(|entry| entry.name.cmp(name)).ok()?;
+        let at = CATALOGUE
+            .binary_search_by(|entry| entry.name.cmp(name))
+            .ok()?;
         Some(Self((TABLE.len() + at) as u16))
     }
 
     /// The entry: the registry's, else the catalogue's.
     pub fn var(self) -> &'static SysVar {
         let at = usize::from(self.0);
-        TABLE.get(at).unwrap_or_else(|| &CATALOGUE[at - TABLE.len()])
+        TABLE
+            .get(at)
+            .unwrap_or_else(|| &CATALOGUE[at - TABLE.len()])
     }
 
     /// The name with one `$`, in upper case (`$P_UIFR`).
@@ -605,7 +609,12 @@ mod tests {
     fn catalogue_is_sorted_without_duplicates_and_found() {
         assert_eq!(CATALOGUE.len(), 2132);
         for pair in CATALOGUE.windows(2) {
-            assert!(pair[0].name < pair[1].name, "{} {}", pair[0].name, pair[1].name);
+            assert!(
+                pair[0].name < pair[1].name,
+                "{} {}",
+                pair[0].name,
+                pair[1].name
+            );
         }
         for entry in CATALOGUE {
             let found = lookup(entry.name).expect(entry.name);
@@ -615,10 +624,19 @@ mod tests {
             assert_eq!(id.var(), found, "{}", entry.name);
         }
         let va_im = lookup("$va_im").unwrap();
-        assert_eq!((va_im.shape, va_im.ty), (IndexShape::Dims(1), Some(DataType::Real)));
-        assert_eq!(lookup("$P_ISTEST").unwrap().data_type(0), Some(DataType::Bool));
+        assert_eq!(
+            (va_im.shape, va_im.ty),
+            (IndexShape::Dims(1), Some(DataType::Real))
+        );
+        assert_eq!(
+            lookup("$P_ISTEST").unwrap().data_type(0),
+            Some(DataType::Bool)
+        );
         assert!(!lookup("$P_SEARCH").unwrap().writable);
-        assert_eq!(all().count(), TABLE.len() + CATALOGUE.len() - refined().count());
+        assert_eq!(
+            all().count(),
+            TABLE.len() + CATALOGUE.len() - refined().count()
+        );
     }
 
     /// The registry's entries the catalogue lists too.
@@ -643,7 +661,10 @@ mod tests {
             assert!(entry.shape.accepts(usize::from(dims)), "{}", entry.name);
         }
         assert_eq!(lookup("$TC_DP1").unwrap().data_type(2), Some(DataType::Int));
-        assert_eq!(lookup("$TC_DP3").unwrap().data_type(2), Some(DataType::Real));
+        assert_eq!(
+            lookup("$TC_DP3").unwrap().data_type(2),
+            Some(DataType::Real)
+        );
         assert_eq!(lookup("$AA_IM").unwrap().data_type(1), Some(DataType::Real));
     }
 

@@ -86,10 +86,19 @@ fn check_complete(
         .iter()
         .filter(|n| !ours.contains(*n) && !excused.contains(n.as_str()))
         .collect();
-    assert!(lacking.is_empty(), "{what}: the catalogue's names gcodec lacks: {lacking:?}");
+    assert!(
+        lacking.is_empty(),
+        "{what}: the catalogue's names gcodec lacks: {lacking:?}"
+    );
     for (name, _) in left_out {
-        assert!(catalogue.contains(*name), "{what}: {name} is left out but not in the catalogue");
-        assert!(!ours.contains(*name), "{what}: {name} is left out but ours now");
+        assert!(
+            catalogue.contains(*name),
+            "{what}: {name} is left out but not in the catalogue"
+        );
+        assert!(
+            !ours.contains(*name),
+            "{what}: {name} is left out but ours now"
+        );
     }
 }
 
@@ -173,9 +182,18 @@ fn functions_are_the_controls() {
     .map(|name| (name, modifier))
     .collect();
     left_out.extend([
-        ("QU", "quick output of an auxiliary function, `H=QU(7)`, read with it (SPEC §10.10)"),
-        ("SET", "a keyword of array initialisation, `A[0]=SET(1,2)` (reference §7.3)"),
-        ("REP", "a keyword of array initialisation, `A[0]=REP(0)` (reference §7.3)"),
+        (
+            "QU",
+            "quick output of an auxiliary function, `H=QU(7)`, read with it (SPEC §10.10)",
+        ),
+        (
+            "SET",
+            "a keyword of array initialisation, `A[0]=SET(1,2)` (reference §7.3)",
+        ),
+        (
+            "REP",
+            "a keyword of array initialisation, `A[0]=REP(0)` (reference §7.3)",
+        ),
     ]);
     check_complete("functions", &ours, &names(&dir, "functions.txt"), &left_out);
 }
@@ -204,7 +222,8 @@ fn system_variables_are_the_controls() {
         )],
     );
     let mut left_out = vec![("R", "the R parameters, `R1` (reference §7.2), no `$` name")];
-    let synact = "user data of synchronized actions (`SYG_…`), declared in a definition file, no `$` name";
+    let synact =
+        "user data of synchronized actions (`SYG_…`), declared in a definition file, no `$` name";
     left_out.extend(
         catalogue
             .iter()
@@ -221,7 +240,10 @@ fn the_generated_catalogue_is_the_references() {
     let Some(dir) = catalogue_dir() else { return };
     let reference = std::fs::read_to_string(dir.join("system-variables.tsv")).unwrap();
     let ours = include_str!("../data/system-variables.tsv");
-    assert!(ours == reference, "data/system-variables.tsv differs from the reference's catalogue");
+    assert!(
+        ours == reference,
+        "data/system-variables.tsv differs from the reference's catalogue"
+    );
 }
 
 #[test]

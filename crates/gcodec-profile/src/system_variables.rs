@@ -23,7 +23,10 @@ pub fn split_key(key: &str) -> Option<(String, Vec<String>)> {
         Some((name, rest)) => {
             let inner = rest.strip_suffix(']')?;
             let indices: Vec<String> = inner.split(',').map(str::to_owned).collect();
-            if indices.iter().any(|i| i.is_empty() || i.contains(['[', ']'])) {
+            if indices
+                .iter()
+                .any(|i| i.is_empty() || i.contains(['[', ']']))
+            {
                 return None;
             }
             (name, indices)
@@ -79,7 +82,9 @@ pub(crate) fn check(profile: &Profile, out: &mut Vec<Diagnostic>) {
         let Some(var) = sysvars::lookup(&name) else {
             let candidates = sysvars::all().map(|v| v.name);
             let help = match gcodec_source::nearest(&name, candidates) {
-                Some(near) => format!("did you mean `{near}`? The names are those of the control's lists"),
+                Some(near) => {
+                    format!("did you mean `{near}`? The names are those of the control's lists")
+                }
                 None => "the names are those of the control's lists of system variables".to_owned(),
             };
             out.push(
@@ -104,14 +109,20 @@ pub(crate) fn check(profile: &Profile, out: &mut Vec<Diagnostic>) {
         }
         if !seen.insert((name.clone(), indices.clone())) {
             out.push(
-                Diagnostic::new(codes::profile::DUPLICATE, format!("`{name}` is given twice"))
-                    .with_label(at, "again here"),
+                Diagnostic::new(
+                    codes::profile::DUPLICATE,
+                    format!("`{name}` is given twice"),
+                )
+                .with_label(at, "again here"),
             );
         }
         let fits = match var.data_type(indices.len().max(dims_of(var.shape))) {
             Some(DataType::Bool) => matches!(value, SystemValue::Bool(_) | SystemValue::Int(_)),
             Some(DataType::Int | DataType::Real) => {
-                matches!(value, SystemValue::Int(_) | SystemValue::Real(_) | SystemValue::Bool(_))
+                matches!(
+                    value,
+                    SystemValue::Int(_) | SystemValue::Real(_) | SystemValue::Bool(_)
+                )
             }
             Some(DataType::Char | DataType::String { .. } | DataType::Axis) => {
                 matches!(value, SystemValue::Text(_))
@@ -151,7 +162,8 @@ mod tests {
     use super::*;
 
     fn codes(table: &str) -> Vec<&'static str> {
-        let text = format!("[machine]\nname = \"t\"\ncontrol = \"840d_sl\"\n[system_variables]\n{table}");
+        let text =
+            format!("[machine]\nname = \"t\"\ncontrol = \"840d_sl\"\n[system_variables]\n{table}");
         match crate::load(&text) {
             Ok(_) => Vec::new(),
             Err(d) => d.iter().map(|d| d.code.name()).collect(),
@@ -169,7 +181,15 @@ mod tests {
             split_key("$TC_MPP1[1,2]"),
             Some(("$TC_MPP1".into(), vec!["1".into(), "2".into()]))
         );
-        for not in ["P_ISTEST", "$", "$A_IN[", "$A_IN[]", "$A_IN[1,]", "$A-IN", "$A_IN[1]X"] {
+        for not in [
+            "P_ISTEST",
+            "$",
+            "$A_IN[",
+            "$A_IN[]",
+            "$A_IN[1,]",
+            "$A-IN",
+            "$A_IN[1]X",
+        ] {
             assert_eq!(split_key(not), None, "{not}");
         }
     }
@@ -178,9 +198,15 @@ mod tests {
     fn entries_are_checked_against_the_controls_lists() {
         let ok = "\"$P_ISTEST\" = true\n\"$A_IN[3]\" = false\n\"$AC_MEA\" = 1\n\"$P_PROG[0]\" = \"MAIN\"";
         assert_eq!(codes(ok), Vec::<&str>::new());
-        assert_eq!(codes("\"$P_ISTST\" = true"), ["gcodec::profile::unknown_system_variable"]);
+        assert_eq!(
+            codes("\"$P_ISTST\" = true"),
+            ["gcodec::profile::unknown_system_variable"]
+        );
         assert_eq!(codes("\"P_ISTEST\" = true"), ["gcodec::profile::schema"]);
-        assert_eq!(codes("\"$P_ISTEST\" = \"yes\""), ["gcodec::profile::schema"]);
+        assert_eq!(
+            codes("\"$P_ISTEST\" = \"yes\""),
+            ["gcodec::profile::schema"]
+        );
         assert_eq!(codes("\"$P_UBFR\" = 1"), ["gcodec::profile::schema"]);
         assert_eq!(codes("\"$A_IN[1,2]\" = true"), ["gcodec::profile::schema"]);
         assert_eq!(

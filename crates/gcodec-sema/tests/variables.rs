@@ -399,7 +399,11 @@ END: M30
     // The catalogue counts the indices: the kind of index is not checked.
     let l = run("R1=$VA_IM\n");
     assert_eq!(errors(&l), [SYSVAR_INDEX]);
-    assert!(only_error(&l).contains("`$VA_IM` takes one index"), "{}", only_error(&l));
+    assert!(
+        only_error(&l).contains("`$VA_IM` takes one index"),
+        "{}",
+        only_error(&l)
+    );
 }
 
 #[test]

@@ -68,7 +68,12 @@ impl ToolData {
         Some(self.write_datum(id, indices, value))
     }
 
-    fn write_datum(&mut self, id: SysVarId, indices: &[RtValue], value: &RtValue) -> Result<(), RunError> {
+    fn write_datum(
+        &mut self,
+        id: SysVarId,
+        indices: &[RtValue],
+        value: &RtValue,
+    ) -> Result<(), RunError> {
         let key = key(id, indices)?;
         let Some(k) = SysVarId::TC_DP.iter().position(|&dp| dp == id) else {
             return self.keep(key, value.clone());
@@ -103,7 +108,11 @@ impl ToolData {
 
     /// Edge `d` of tool `t`, both made if the table lacks them.
     fn edge_mut(&mut self, t: u32, d: u32) -> &mut Edge {
-        let at = match self.tools.iter().position(|tool| *tool.number.get_ref() == t) {
+        let at = match self
+            .tools
+            .iter()
+            .position(|tool| *tool.number.get_ref() == t)
+        {
             Some(at) => at,
             None => {
                 self.tools.push(Tool::unnamed(t));
@@ -125,7 +134,11 @@ fn key(id: SysVarId, indices: &[RtValue]) -> Result<(SysVarId, [i32; 2]), RunErr
     if indices.len() > 2 {
         return Err(RunError::new(
             codes::run::INDEX_COUNT,
-            format!("`{}` takes at most 2 indices, not {}", id.name(), indices.len()),
+            format!(
+                "`{}` takes at most 2 indices, not {}",
+                id.name(),
+                indices.len()
+            ),
         ));
     }
     for (slot, index) in key.iter_mut().zip(indices) {

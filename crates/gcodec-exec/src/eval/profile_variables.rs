@@ -125,7 +125,9 @@ fn index_text(index: &RtValue) -> String {
         RtValue::Int(n) => n.to_string(),
         RtValue::Real(r) if r.fract() == 0.0 && r.abs() < 1e15 => format!("{r:.0}"),
         RtValue::Axis(a) | RtValue::String(a) => a.to_ascii_uppercase(),
-        other => other.to_text().map_or_else(|_| String::new(), |t| t.to_string()),
+        other => other
+            .to_text()
+            .map_or_else(|_| String::new(), |t| t.to_string()),
     }
 }
 

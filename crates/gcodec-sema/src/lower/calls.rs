@@ -185,10 +185,14 @@ impl Lowering<'_> {
         self.diagnostics.push(
             Diagnostic::new(
                 codes::lower::ARGUMENT_COUNT,
-                format!("the predefined procedure `{name}` takes {takes}, this call passes {count}"),
+                format!(
+                    "the predefined procedure `{name}` takes {takes}, this call passes {count}"
+                ),
             )
             .with_label(span, "this call")
-            .with_help(format!("the control rejects the call; pass {takes} to `{name}`")),
+            .with_help(format!(
+                "the control rejects the call; pass {takes} to `{name}`"
+            )),
         );
     }
 

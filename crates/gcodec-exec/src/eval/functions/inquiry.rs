@@ -18,10 +18,18 @@ pub(super) fn gett<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, 
     a.count(1, 2)?;
     let name = a.string(0)?;
     let duplo = if a.present(1) { Some(a.int(1)?) } else { None };
-    let tools = a.ctx.runtime().profile().map_or(&[][..], |p| p.tools.as_slice());
+    let tools = a
+        .ctx
+        .runtime()
+        .profile()
+        .map_or(&[][..], |p| p.tools.as_slice());
     let number = tools
         .iter()
-        .filter(|t| t.name.as_ref().is_some_and(|n| n.get_ref().eq_ignore_ascii_case(&name)))
+        .filter(|t| {
+            t.name
+                .as_ref()
+                .is_some_and(|n| n.get_ref().eq_ignore_ascii_case(&name))
+        })
         .filter(|t| duplo.is_none_or(|d| i64::from(t.duplo) == i64::from(d)))
         .min_by_key(|t| t.duplo)
         .map_or(-1.0, |t| f64::from(*t.number.get_ref()));
@@ -57,7 +65,12 @@ pub(super) fn isaxis<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue
 pub(super) fn isvar<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
     a.count(1, 1)?;
     let text = a.string(0)?;
-    let name = text.split('[').next().unwrap_or_default().trim().to_ascii_uppercase();
+    let name = text
+        .split('[')
+        .next()
+        .unwrap_or_default()
+        .trim()
+        .to_ascii_uppercase();
     let known = if name.starts_with('$') {
         sysvars::lookup(&name).is_some()
     } else {

@@ -75,15 +75,14 @@ fn would_return(function: Function) -> Option<&'static str> {
             "the status of deleting tool or magazine data"
         }
         F::Getactt | F::Getacttd => "the T number of the active tool of a tool group",
-        F::Getdno | F::Setdno => "a D number of a tool's cutting edge, or the status of setting one",
+        F::Getdno | F::Setdno => {
+            "a D number of a tool's cutting edge, or the status of setting one"
+        }
         F::Gettcor | F::Settcor => "the status of reading or setting tool lengths and offsets",
         F::Gettenv | F::Toolenv => "the status of reading or saving a tool environment",
-        F::Getvarap
-        | F::Getvardft
-        | F::Getvardim
-        | F::Getvarlim
-        | F::Getvarphu
-        | F::Getvartyp => "an attribute of a variable (access right, default, dimension, limit, unit or type)",
+        F::Getvarap | F::Getvardft | F::Getvardim | F::Getvarlim | F::Getvarphu | F::Getvartyp => {
+            "an attribute of a variable (access right, default, dimension, limit, unit or type)"
+        }
         F::Gp => "a position with its attributes, for indirect programming",
         F::Intersec => "whether two contour elements intersect, and where",
         F::Isfile => ISFILE_RETURNS,
