@@ -47,6 +47,12 @@ fn run_on(profile: Profile, program: &str) -> (Vec<Reported>, ProgramEndReason) 
     (reported, end.expect("the program ends"))
 }
 
+/// A run that reports nothing and ends at `M30`.
+fn runs_clean((reported, end): (Vec<Reported>, ProgramEndReason)) {
+    assert_eq!(reported, []);
+    assert_eq!(end, ProgramEndReason::M30);
+}
+
 fn run(program: &str) -> (Vec<Reported>, ProgramEndReason) {
     run_on(
         gcodec_profile::builtin().expect("the built-in profile"),
@@ -86,9 +92,7 @@ fn every_predefined_procedure_runs_or_is_advice() {
 
 #[test]
 fn single_block_and_preprocessing_switches_pass_in_silence() {
-    let (reported, end) = run("SBLOF\nG0 X1\nSBLON\nSTOPREOF\nG0 X2\nM30\n");
-    assert_eq!(reported, []);
-    assert_eq!(end, ProgramEndReason::M30);
+    runs_clean(run("SBLOF\nG0 X1\nSBLON\nSTOPREOF\nG0 X2\nM30\n"));
 }
 
 #[test]
@@ -151,9 +155,7 @@ fn gett_gives_the_t_number_of_a_named_tool() {
         "R1=GETT(\"DRILL_8\")\nR2=GETT(\"drill_8\",2)\nR3=GETT(\"MILL_10\")\nR4=GETT(\"NONE\")\nR5=GETT(\"MILL_10\",2)\n{}M30\n",
         checks(&["3", "7", "12", "-1", "-1"])
     );
-    let (reported, end) = run_on(with_named_tools(), &program);
-    assert_eq!(reported, []);
-    assert_eq!(end, ProgramEndReason::M30);
+    runs_clean(run_on(with_named_tools(), &program));
 }
 
 #[test]
@@ -162,9 +164,7 @@ fn isaxis_and_isvar_ask_the_machine_and_the_program() {
         "DEF INT DEPTH=1\nR1=ISAXIS(1)\nR2=ISAXIS(3)\nR3=ISAXIS(4)\nR4=ISVAR(\"DEPTH\")\nR5=ISVAR(\"depht\")\nR6=ISVAR(\"$P_TOOLNO\")\nR7=ISVAR(\"$TC_DP3[1,1]\")\nR8=ISVAR(\"$P_NONE\")\nR9=ISVAR(\"R20\")\n{}M30\n",
         checks(&["1", "1", "0", "1", "0", "1", "1", "0", "1"])
     );
-    let (reported, end) = run(&program);
-    assert_eq!(reported, []);
-    assert_eq!(end, ProgramEndReason::M30);
+    runs_clean(run(&program));
 }
 
 #[test]
@@ -242,9 +242,7 @@ fn the_profile_gives_the_values_the_run_cannot_know() {
         // override it.
         checks(&["1", "1", "0", "12.5", "0"])
     );
-    let (reported, end) = run_on(profile, &program);
-    assert_eq!(reported, []);
-    assert_eq!(end, ProgramEndReason::M30);
+    runs_clean(run_on(profile, &program));
 }
 
 #[test]
@@ -253,9 +251,7 @@ fn tool_data_a_program_writes_reads_back() {
         "$TC_DP1[1,1]=120\n$TC_DP3[1,1]=50.5\n$TC_DP6[1,1]=4\n$TC_DP2[1,1]=3\n$TC_TPG5[7]=12.5\nR1=$TC_DP1[1,1]\nR2=$TC_DP3[1,1]\nR3=$TC_DP6[1,1]\nR4=$TC_DP2[1,1]\nR5=$TC_TPG5[7]\nR6=$TC_DP4[1,1]\n$TC_DP3[7,1]=70\nR7=$TC_DP3[7,1]\n{}M30\n",
         checks(&["120", "50.5", "4", "3", "12.5", "0", "70"])
     );
-    let (reported, end) = run_on(with_named_tools(), &program);
-    assert_eq!(reported, []);
-    assert_eq!(end, ProgramEndReason::M30);
+    runs_clean(run_on(with_named_tools(), &program));
 }
 
 #[test]
@@ -265,17 +261,13 @@ fn a_written_tool_length_takes_effect_at_the_next_d_selection() {
         "T7 M6 D1\nG0 Z0\nR1=$AA_IM[Z]\n$TC_DP3[7,1]=100\nG0 Z1\nR2=$AA_IM[Z]\nD1\nG0 Z0\nR3=$AA_IM[Z]\n{}M30\n",
         checks(&["80", "81", "100"])
     );
-    let (reported, end) = run_on(with_named_tools(), &program);
-    assert_eq!(reported, []);
-    assert_eq!(end, ProgramEndReason::M30);
+    runs_clean(run_on(with_named_tools(), &program));
     // On a machine without a tool table the write makes the tool's edge.
     let program = format!(
         "$TC_DP3[9,1]=30\nT9 M6 D1\nG0 Z0\nR1=$AA_IM[Z]\n{}M30\n",
         checks(&["30"])
     );
-    let (reported, end) = run(&program);
-    assert_eq!(reported, []);
-    assert_eq!(end, ProgramEndReason::M30);
+    runs_clean(run(&program));
 }
 
 #[test]

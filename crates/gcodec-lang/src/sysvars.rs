@@ -608,14 +608,7 @@ mod tests {
     #[test]
     fn catalogue_is_sorted_without_duplicates_and_found() {
         assert_eq!(CATALOGUE.len(), 2132);
-        for pair in CATALOGUE.windows(2) {
-            assert!(
-                pair[0].name < pair[1].name,
-                "{} {}",
-                pair[0].name,
-                pair[1].name
-            );
-        }
+        assert_sorted(CATALOGUE);
         for entry in CATALOGUE {
             let found = lookup(entry.name).expect(entry.name);
             assert_eq!(found.name, entry.name);
@@ -670,7 +663,11 @@ mod tests {
 
     #[test]
     fn table_is_sorted_without_duplicates() {
-        for pair in TABLE.windows(2) {
+        assert_sorted(TABLE);
+    }
+
+    fn assert_sorted(table: &[SysVar]) {
+        for pair in table.windows(2) {
             assert!(
                 pair[0].name < pair[1].name,
                 "{} must come before {}",
