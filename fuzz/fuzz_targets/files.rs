@@ -122,7 +122,8 @@ fuzz_target!(|data: &[u8]| {
         Shape::from_bits(choice >> 2),
     );
 
-    let Ok(main) = read_source(&main_path, *profile.program.max_file_size.get_ref()) else {
+    let max_len = *profile.program.max_file_size.get_ref();
+    let Ok(main) = read_source(&main_path, max_len, profile.program.text_encoding()) else {
         // UTF-16 text is refused before it is run.
         return;
     };

@@ -163,6 +163,14 @@ pub enum Op {
     ModalChangeIndirect { group: u8, index: Value },
     /// `TRANS`, `AROT`, …; no values resets the frame.
     Frame(Box<Frame>),
+    /// A group 3 command whose axis words set a value instead of moving:
+    /// the working-area limits (`G25`/`G26`, with `S` the spindle-speed
+    /// limits), the pole (`G110`/`G111`/`G112`), the axial programmable
+    /// offsets (`G58`/`G59`).
+    AxisSetting(Box<AxisSetting>),
+    /// `G74 X1=0` (reference point) or `G75 FP=2 X1=0` (fixed point): the
+    /// named machine axes go to that point at rapid, outside every frame.
+    ApproachPoint(Box<ApproachPoint>),
     /// `DEF`.
     Declare(Box<Declare>),
     /// `R1=…`, `NAME=…`, `$…=…`.
@@ -446,6 +454,45 @@ pub struct Frame {
     /// Values for axes named when the block runs (`ATRANS AX[_XX]=5`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub indirect_values: Vec<IndirectAxisValue>,
+}
+
+/// A group 3 command with its values ([`Op::AxisSetting`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AxisSetting {
+    /// `G25`, `G26`, `G110`, `G111`, `G112`, `G58` or `G59`.
+    #[schemars(with = "String")]
+    pub command: GCommand,
+    /// The axis words in the order written; a pole may also be given by
+    /// `AP`/`RP`.
+    pub values: Vec<AxisValue>,
+    /// `G25 S…`/`G26 S…`: the lower/upper spindle-speed limits.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub spindle_limits: Vec<SpindleLimit>,
+}
+
+/// A spindle-speed limit of `G25`/`G26` (`S1=…`; no extension: the master
+/// spindle).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpindleLimit {
+    pub spindle: Option<u32>,
+    pub speed: Value,
+}
+
+/// The approach of a machine-data point ([`Op::ApproachPoint`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ApproachPoint {
+    /// `G74` (reference point) or `G75` (fixed point).
+    #[schemars(with = "String")]
+    pub command: GCommand,
+    /// `FP=` of `G75` (1 when not written); `null` for `G74`.
+    pub fixed_point: Option<Value>,
+    /// The channel axes of the machine axes named (`X1=0` names the
+    /// machine axis of `X`), upper case; the programmed values only select
+    /// the axes.
+    pub axes: Vec<Cow<'static, str>>,
 }
 
 /// The rarer parts of a motion ([`Op::Motion`]).

@@ -8,7 +8,7 @@ use gcodec_source::{codes, escape_controls};
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE};
 use crate::output::{Stdout, after_output, to_stderr};
 use crate::report::{
-    DiagnosticOptions, builtin_max_file_size, load_definitions, load_profile, read, report,
+    DiagnosticOptions, EncodingOption, Reading, load_definitions, load_profile, read, report,
 };
 
 /// Compile and simulate SINUMERIK 840D sl / 828D part programs.
@@ -30,6 +30,8 @@ enum Command {
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
         #[command(flatten)]
+        encoding: EncodingOption,
+        #[command(flatten)]
         diagnostics: DiagnosticOptions,
     },
     /// Lower programs to AIL, the executable instruction list, checked
@@ -48,6 +50,8 @@ enum Command {
         /// as JSON.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
+        #[command(flatten)]
+        encoding: EncodingOption,
         #[command(flatten)]
         diagnostics: DiagnosticOptions,
     },
@@ -120,15 +124,24 @@ pub fn run(cli: Cli) -> u8 {
         Command::Parse {
             files,
             format,
+            encoding,
             diagnostics,
-        } => parse(&files, format, diagnostics),
+        } => parse(&files, format, Reading::builtin(encoding), diagnostics),
         Command::Lower {
             file,
             profile,
             definitions,
             format,
+            encoding,
             diagnostics,
-        } => lower(&file, profile.as_deref(), &definitions, format, diagnostics),
+        } => lower(
+            &file,
+            profile.as_deref(),
+            &definitions,
+            encoding,
+            format,
+            diagnostics,
+        ),
         Command::Run(args) => crate::run::run(args),
         Command::Explain { code, list } => explain(code.as_deref(), list),
         Command::Profile(ProfileCommand::Check { file, diagnostics }) => {
@@ -193,14 +206,13 @@ fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 
     }
 }
 
-fn parse(files: &[PathBuf], format: Format, options: DiagnosticOptions) -> u8 {
+fn parse(files: &[PathBuf], format: Format, reading: Reading, options: DiagnosticOptions) -> u8 {
     let mut exit = EXIT_CLEAN;
     let mut json = Vec::new();
     let mut out = format.stdout();
     let mut written = Ok(());
-    let max_len = builtin_max_file_size();
     for path in files {
-        let Ok(file) = read(path, max_len, options) else {
+        let Ok(file) = read(path, reading, options) else {
             exit = EXIT_USAGE;
             continue;
         };
@@ -238,6 +250,7 @@ fn lower(
     path: &Path,
     profile: Option<&Path>,
     definitions: &[PathBuf],
+    encoding: EncodingOption,
     format: Format,
     options: DiagnosticOptions,
 ) -> u8 {
@@ -245,12 +258,12 @@ fn lower(
         Ok(p) => p,
         Err(code) => return code,
     };
-    let max_len = *profile.program.max_file_size.get_ref();
-    let definitions = match load_definitions(definitions, max_len, options) {
+    let reading = Reading::new(&profile, encoding);
+    let definitions = match load_definitions(definitions, reading, options) {
         Ok(d) => d,
         Err(code) => return code,
     };
-    let file = match read(path, max_len, options) {
+    let file = match read(path, reading, options) {
         Ok(f) => f,
         Err(code) => return code,
     };

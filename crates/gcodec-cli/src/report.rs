@@ -5,7 +5,7 @@
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
-use gcodec_source::{Diagnostics, RenderOptions, SourceFile, render_kept};
+use gcodec_source::{Diagnostics, Encoding, RenderOptions, SourceFile, TextEncoding, render_kept};
 
 use crate::exit::EXIT_USAGE;
 use crate::output::to_stderr;
@@ -28,6 +28,62 @@ impl DiagnosticOptions {
     }
 }
 
+/// The encoding of the files a command reads, where one is named.
+#[derive(Clone, Copy, Debug, clap::Args)]
+pub struct EncodingOption {
+    /// Read every program and definition file in this encoding (a WHATWG
+    /// label: `windows-1251`, `iso-8859-2`, `utf-8`). Without it a file
+    /// is UTF-8 where it is valid UTF-8, else in the profile's
+    /// `[program] code_page` (Windows-1252 by default).
+    #[arg(long, value_name = "NAME", value_parser = parse_encoding)]
+    encoding: Option<Encoding>,
+}
+
+fn parse_encoding(label: &str) -> Result<Encoding, String> {
+    Encoding::for_label(label).ok_or_else(|| {
+        format!(
+            "`{label}` is not an encoding program text can be in; name one by its WHATWG \
+             label: `windows-1252`, `windows-1251`, `iso-8859-2`, `utf-8`"
+        )
+    })
+}
+
+/// How a command reads its program and definition files: at most
+/// `max_len` bytes each (the profile's `[program] max_file_size`),
+/// decoded as `encoding` says.
+#[derive(Clone, Copy, Debug)]
+pub struct Reading {
+    pub max_len: u64,
+    pub encoding: TextEncoding,
+}
+
+impl Reading {
+    /// The profile's limits and code page, the encoding `option` names
+    /// in place of the code page.
+    pub fn new(profile: &gcodec_profile::Profile, option: EncodingOption) -> Self {
+        Self {
+            max_len: *profile.program.max_file_size.get_ref(),
+            encoding: option
+                .encoding
+                .map_or_else(|| profile.program.text_encoding(), TextEncoding::Fixed),
+        }
+    }
+
+    /// Where no profile is chosen (`gcodec parse`, a profile's own file):
+    /// the built-in profile's.
+    pub fn builtin(option: EncodingOption) -> Self {
+        match gcodec_profile::builtin() {
+            Ok(profile) => Self::new(&profile, option),
+            Err(_) => Self {
+                max_len: gcodec_source::DEFAULT_MAX_FILE_SIZE,
+                encoding: option
+                    .encoding
+                    .map_or_else(TextEncoding::default, TextEncoding::Fixed),
+            },
+        }
+    }
+}
+
 /// Reads and checks a profile (the built-in one for `None`) in full
 /// ([`gcodec_driver::load_profile`]), reporting its diagnostics against
 /// the profile's text; a bad or unreadable profile is exit code 2.
@@ -36,8 +92,13 @@ pub fn load_profile(
     options: DiagnosticOptions,
 ) -> Result<gcodec_profile::Profile, u8> {
     let file = match path {
-        // A profile is read before any profile says how large a file may be.
-        Some(path) => read(path, builtin_max_file_size(), options)?,
+        // A profile is read before any profile says how large a file may
+        // be; TOML is UTF-8, which loading checks.
+        Some(path) => read(
+            path,
+            Reading::builtin(EncodingOption { encoding: None }),
+            options,
+        )?,
         None => gcodec_driver::builtin_profile_file(),
     };
     match gcodec_driver::load_profile(&file) {
@@ -60,34 +121,26 @@ pub fn report(diagnostics: &Diagnostics, file: Option<&SourceFile>, options: Dia
     to_stderr(&render_kept(diagnostics, file, options.render_options()));
 }
 
-/// The largest file read where no profile is chosen (`gcodec parse`, a
-/// profile's own file): the built-in profile's `[program] max_file_size`.
-pub fn builtin_max_file_size() -> u64 {
-    gcodec_profile::builtin().map_or(gcodec_source::DEFAULT_MAX_FILE_SIZE, |profile| {
-        *profile.program.max_file_size.get_ref()
-    })
-}
-
-/// Reads a file of at most `max_len` bytes; an unreadable one is reported
-/// and is exit code 2.
-pub fn read(path: &Path, max_len: u64, options: DiagnosticOptions) -> Result<SourceFile, u8> {
-    gcodec_driver::read_source(path, max_len).map_err(|d| {
+/// Reads a file as `reading` says; an unreadable one is reported and is
+/// exit code 2.
+pub fn read(path: &Path, reading: Reading, options: DiagnosticOptions) -> Result<SourceFile, u8> {
+    gcodec_driver::read_source(path, reading.max_len, reading.encoding).map_err(|d| {
         report(&vec![d].into(), None, options);
         EXIT_USAGE
     })
 }
 
-/// Reads the definition files in order, at most `max_len` bytes each;
-/// an unreadable file or one with errors is reported and is exit code 2.
+/// Reads the definition files in order, as `reading` says; an unreadable
+/// file or one with errors is reported and is exit code 2.
 pub fn load_definitions(
     paths: &[PathBuf],
-    max_len: u64,
+    reading: Reading,
     options: DiagnosticOptions,
 ) -> Result<gcodec_driver::Definitions, u8> {
     let mut definitions = gcodec_driver::Definitions::new();
     let mut bad = false;
     for path in paths {
-        let file = read(path, max_len, options)?;
+        let file = read(path, reading, options)?;
         let diagnostics = definitions.load(&file);
         report(&diagnostics, Some(&file), options);
         bad |= diagnostics.has_errors();

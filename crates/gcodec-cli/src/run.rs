@@ -15,7 +15,9 @@ use gcodec_source::escape_controls;
 
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS};
 use crate::output::{Stdout, after_output, to_stderr};
-use crate::report::{DiagnosticOptions, load_definitions, load_profile, read, report};
+use crate::report::{
+    DiagnosticOptions, EncodingOption, Reading, load_definitions, load_profile, read, report,
+};
 
 /// How events are written.
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -43,6 +45,8 @@ pub struct RunArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = RunFormat::Jsonl)]
     pub format: RunFormat,
+    #[command(flatten)]
+    pub encoding: EncodingOption,
     /// A directory searched for subprograms and cycles, after the calling
     /// program's directory and the profile's `subprogram_paths`. Repeat
     /// for several.
@@ -148,16 +152,17 @@ pub fn run(args: RunArgs) -> u8 {
         Ok(p) => Arc::new(p),
         Err(code) => return code,
     };
-    let max_len = *profile.program.max_file_size.get_ref();
-    let definitions = match load_definitions(&args.definitions, max_len, options) {
+    let reading = Reading::new(&profile, args.encoding);
+    let definitions = match load_definitions(&args.definitions, reading, options) {
         Ok(d) => Arc::new(d),
         Err(code) => return code,
     };
-    let file = match read(&args.file, max_len, options) {
+    let file = match read(&args.file, reading, options) {
         Ok(f) => f,
         Err(code) => return code,
     };
     let mut setup = RunSetup::new(profile);
+    setup.encoding = reading.encoding;
     setup.profile_file = profile_path.map(PathBuf::from);
     setup.definitions = definitions;
     setup.search_dirs = args.subprogram_paths.clone();

@@ -26,16 +26,16 @@ fn main() {
     let lines: usize = args.next().map_or(16_384, |l| l.parse().expect("a number"));
     let profile = gcodec_profile::builtin().expect("profile");
     let definitions = Definitions::new();
-    let src = std::fs::read(&path).expect("read");
+    let file = gcodec_source::SourceFile::read(std::path::Path::new(&path)).expect("read");
+    let src = file.bytes();
     let t = Instant::now();
-    let chunks = chunks(&src, lines);
+    let chunks = chunks(src, lines);
     let t_chunks = t.elapsed();
 
     let t = Instant::now();
     let (outline, _) = outline_chunks(
-        &path,
+        &file,
         ProgramKind::of_file(&path),
-        &src,
         &chunks,
         1,
         &profile,
@@ -46,10 +46,10 @@ fn main() {
     let t = Instant::now();
     let mut parsing = Duration::ZERO;
     let mut instructions = 0;
-    let mut lowering = ChunkLowering::new(&outline, &profile, &src);
+    let mut lowering = ChunkLowering::new(&outline, &profile, src);
     for chunk in &chunks {
         let started = Instant::now();
-        let parsed = parse_chunk(&src, chunk);
+        let parsed = parse_chunk(src, file.encoding(), chunk);
         parsing += started.elapsed();
         let lowered = lowering
             .lower(parsed.first_block, &parsed.blocks)

@@ -104,7 +104,7 @@ use gcodec_exec::loader::{LoadError, LoadRequest, Loaded, ProgramLoader};
 use gcodec_exec::program::Program;
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, ProgramKind};
-use gcodec_source::{ReadError, Severity, SourceFile, codes};
+use gcodec_source::{ReadError, Severity, SourceFile, TextEncoding, codes};
 use rustc_hash::FxHashMap;
 
 use crate::compile;
@@ -576,6 +576,9 @@ pub struct FileLoader {
     link_roots: Vec<PathBuf>,
     /// Where each program file read is recorded (`None`: nowhere).
     loaded_files: Option<LoadedFiles>,
+    /// How the files read are decoded (the profile's code page, unless
+    /// [`FileLoader::with_encoding`] says otherwise).
+    encoding: TextEncoding,
 }
 
 impl FileLoader {
@@ -590,9 +593,11 @@ impl FileLoader {
             .link_dirs()
             .filter_map(|dir| fs::canonicalize(dir).ok())
             .collect();
+        let profile = profile.into();
         Self {
             search,
-            profile: profile.into(),
+            encoding: profile.program.text_encoding(),
+            profile,
             definitions: definitions.into(),
             listings: FxHashMap::default(),
             callers: FxHashMap::default(),
@@ -600,6 +605,12 @@ impl FileLoader {
             link_roots,
             loaded_files: None,
         }
+    }
+
+    /// Decoding every file it reads as `encoding` says (`--encoding`).
+    pub fn with_encoding(mut self, encoding: TextEncoding) -> Self {
+        self.encoding = encoding;
+        self
     }
 
     /// Recording each program file it reads in `files`, for labelling the
@@ -700,7 +711,7 @@ impl FileLoader {
         // The real path, so a link swapped after the check is not followed.
         let max_len = *self.profile.program.max_file_size.get_ref();
         SourceFile::read_capped(&real, max_len)
-            .map(|file| file.named(path))
+            .map(|file| file.named(path).decoded(self.encoding))
             .map_err(Unread::Read)
     }
 }

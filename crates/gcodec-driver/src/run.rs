@@ -10,7 +10,7 @@ use gcodec_exec::event::EventSink;
 use gcodec_exec::vars::Global;
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, ProgramKind};
-use gcodec_source::{Diagnostics, SourceFile};
+use gcodec_source::{Diagnostics, SourceFile, TextEncoding};
 
 use crate::loaded_files::LoadedFiles;
 use crate::loader::{FileLoader, SearchPath, program_name};
@@ -34,6 +34,11 @@ pub struct RunSetup {
     /// program's first: a sink labelling the run's diagnostic events as
     /// they happen finds them there (a clone of it shares the files).
     pub loaded_files: LoadedFiles,
+    /// How called programs are decoded: the profile's code page, or one
+    /// encoding for every file (`--encoding`). The main program and the
+    /// definition files are decoded when they are read
+    /// ([`crate::read_source`]).
+    pub encoding: TextEncoding,
 }
 
 impl RunSetup {
@@ -43,6 +48,7 @@ impl RunSetup {
         let profile = profile.into();
         Self {
             options: RunOptions::for_profile(&profile),
+            encoding: profile.program.text_encoding(),
             profile,
             profile_file: None,
             definitions: Arc::new(Definitions::new()),
@@ -81,7 +87,8 @@ pub fn run_main(
         Arc::clone(&setup.profile),
         Arc::clone(&setup.definitions),
     )
-    .with_loaded_files(setup.loaded_files.clone());
+    .with_loaded_files(setup.loaded_files.clone())
+    .with_encoding(setup.encoding);
     setup.loaded_files.insert(Arc::clone(&file));
     let name = program_name(Path::new(file.name()));
     let kind = ProgramKind::of_file(file.name());

@@ -4,17 +4,23 @@
 use std::path::Path;
 
 use gcodec_profile::Profile;
-use gcodec_source::{Diagnostic, SourceFile, codes};
+use gcodec_source::{Diagnostic, SourceFile, TextEncoding, codes};
 
 /// Reads a file named on the command line, at most `max_len` bytes (the
-/// profile's `[program] max_file_size`); one that cannot be read is
-/// `gcodec::io::read`, a FIFO or a device `gcodec::io::not_a_file`, a
-/// larger file `gcodec::io::too_large`, UTF-16 text `gcodec::io::utf16`.
-pub fn read_source(path: &Path, max_len: u64) -> Result<SourceFile, Diagnostic> {
-    SourceFile::read_capped(path, max_len).map_err(|e| {
+/// profile's `[program] max_file_size`), decoded as `encoding` says; one
+/// that cannot be read is `gcodec::io::read`, a FIFO or a device
+/// `gcodec::io::not_a_file`, a larger file `gcodec::io::too_large`,
+/// UTF-16 text `gcodec::io::utf16`.
+pub fn read_source(
+    path: &Path,
+    max_len: u64,
+    encoding: TextEncoding,
+) -> Result<SourceFile, Diagnostic> {
+    let file = SourceFile::read_capped(path, max_len).map_err(|e| {
         Diagnostic::new(e.code(), format!("cannot read `{}`: {e}", path.display()))
             .with_help(e.help())
-    })
+    })?;
+    Ok(file.decoded(encoding))
 }
 
 /// The built-in profile's file (`profiles/default.toml`, compiled in).

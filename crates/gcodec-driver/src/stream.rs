@@ -62,15 +62,8 @@ pub fn run_streamed<R>(
 ) -> (R, Diagnostics) {
     let src = file.bytes();
     let chunks = chunks_at(file.line_starts(), src.len(), options.page_lines);
-    let (outline, structure_diagnostics) = outline_chunks(
-        file.name(),
-        kind,
-        src,
-        &chunks,
-        options.workers,
-        profile,
-        definitions,
-    );
+    let (outline, structure_diagnostics) =
+        outline_chunks(file, kind, &chunks, options.workers, profile, definitions);
     let outline_diagnostics = outline.diagnostics();
     let (sender, receiver) = sync_channel::<SourcePage>(PAGES_AHEAD);
     let program = Program::streamed(
@@ -99,7 +92,7 @@ pub fn run_streamed<R>(
             // The errors pass 1 found go ahead of every page.
             pages.send(SourcePage::new(Vec::new(), known_errors));
             let workers = options.workers;
-            lower_chunks(src, &chunks, workers, &outline, profile, |lowered| {
+            lower_chunks(file, &chunks, workers, &outline, profile, |lowered| {
                 pages.lowered(lowered);
             });
             (pages.parse_diagnostics, pages.diagnostics)

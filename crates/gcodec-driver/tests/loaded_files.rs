@@ -29,7 +29,8 @@ fn a_run_keeps_the_main_and_each_called_program_file() {
     let (profile, _) = load_profile(&builtin_profile_file()).expect("built-in profile");
     let max_len = *profile.program.max_file_size.get_ref();
     let setup = RunSetup::new(profile);
-    let main = Arc::new(read_source(&main, max_len).expect("read"));
+    let encoding = gcodec_source::TextEncoding::default();
+    let main = Arc::new(read_source(&main, max_len, encoding).expect("read"));
     let mut sink = DiagnosticFiles::default();
     run_main(Arc::clone(&main), &setup, &mut sink, None);
     let files = &setup.loaded_files;

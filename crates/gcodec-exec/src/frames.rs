@@ -335,6 +335,15 @@ pub struct Frame {
     id: u64,
 }
 
+/// Which translation of a frame an axial offset replaces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TranslationPart {
+    /// `TR`, the coarse translation (`G58`, `TRANS`).
+    Coarse,
+    /// `FI`, the fine translation (`G59`).
+    Fine,
+}
+
 /// Frames are equal by their contents, whatever their ids.
 impl PartialEq for Frame {
     fn eq(&self, other: &Self) -> bool {
@@ -479,6 +488,32 @@ impl Frame {
             step
         };
         next.check(keyword)?;
+        *self = next;
+        Ok(())
+    }
+
+    /// `G58` (`part` coarse) or `G59` (fine): the translation of each axis
+    /// of `values` (axis index, value) replaced, every other component
+    /// kept. On an error the frame is left as it was.
+    pub fn replace_translation(
+        &mut self,
+        axes: &FrameAxes,
+        part: TranslationPart,
+        values: &[(usize, f64)],
+    ) -> Result<(), RunError> {
+        let keyword = match part {
+            TranslationPart::Coarse => "G58",
+            TranslationPart::Fine => "G59",
+        };
+        check_values(axes, keyword, values)?;
+        let mut next = self.clone();
+        next.id = frame_id();
+        for &(i, v) in values {
+            match part {
+                TranslationPart::Coarse => next.axes[i].coarse = v,
+                TranslationPart::Fine => next.axes[i].fine = v,
+            }
+        }
         *self = next;
         Ok(())
     }

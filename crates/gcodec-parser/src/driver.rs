@@ -8,11 +8,13 @@ use chumsky::input::Input as _;
 use chumsky::span::SimpleSpan;
 use compact_str::CompactString;
 use gcodec_lexer::{Lexer, TokenKind};
-use gcodec_source::{Diagnostic, Diagnostics, SourceFile, Span, UTF8_BOM, codes, decode};
+use gcodec_source::{
+    Diagnostic, Diagnostics, Encoding, SourceFile, Span, TextEncoding, UTF8_BOM, codes,
+};
 
 use crate::ast::*;
 use crate::error::SyntaxError;
-use crate::grammar::{self, Ctx, Spanned, decode_text, operators};
+use crate::grammar::{self, Ctx, Spanned, operators};
 use crate::{fast, structure};
 use gcodec_stream::{Chunk, map_chunks};
 
@@ -56,21 +58,34 @@ impl Parse {
 pub fn parse(file: &SourceFile) -> Parse {
     // The program quotes from the file's own bytes: no copy.
     let source = SourceText::shared(file.shared_bytes());
-    parse_with(file.name(), file.bytes(), Reading::Whole, Some(source))
+    let encoding = file.encoding();
+    parse_with(
+        file.name(),
+        file.bytes(),
+        encoding,
+        Reading::Whole,
+        Some(source),
+    )
 }
 
 /// Parses bytes under a file name. A leading UTF-8 byte-order mark is not
 /// part of the program: the spans are into the bytes after it, the bytes
-/// [`SourceFile::new`] holds for `src`.
+/// [`SourceFile::new`] holds for `src`, read in the encoding it gives
+/// them (UTF-8 if they are valid UTF-8, else Windows-1252).
 pub fn parse_bytes(name: &str, src: &[u8]) -> Parse {
-    parse_with(name, src, Reading::Whole, None)
+    parse_with(name, src, detected(src), Reading::Whole, None)
+}
+
+/// The encoding of `src` when no profile or option says otherwise.
+fn detected(src: &[u8]) -> Encoding {
+    TextEncoding::default().of(without_bom(src))
 }
 
 /// Parses with the grammar only, never the fast path for constant-word
 /// blocks: the reference the fast path is tested against.
 #[doc(hidden)]
 pub fn parse_bytes_with_grammar_only(name: &str, src: &[u8]) -> Parse {
-    parse_with(name, src, Reading::GrammarOnly, None)
+    parse_with(name, src, detected(src), Reading::GrammarOnly, None)
 }
 
 /// Files at least this large are parsed on several threads, one chunk of
@@ -82,14 +97,22 @@ const PARALLEL_MIN_BYTES: usize = 4 << 20;
 /// result.
 #[doc(hidden)]
 pub fn parse_bytes_in_chunks(name: &str, src: &[u8], threads: usize) -> Parse {
+    let encoding = detected(src);
     let src = without_bom(src);
     let source = SourceText::new(src);
-    parse_in_chunks(name, src, source, Reading::Whole, split(src, threads))
+    let chunks = split(src, threads);
+    parse_in_chunks(name, src, encoding, source, Reading::Whole, chunks)
 }
 
 /// Parses `src`, whose bytes after a byte-order mark are `source` where
 /// the caller shares them (else they are copied).
-fn parse_with(name: &str, src: &[u8], reading: Reading, source: Option<SourceText>) -> Parse {
+fn parse_with(
+    name: &str,
+    src: &[u8],
+    encoding: Encoding,
+    reading: Reading,
+    source: Option<SourceText>,
+) -> Parse {
     let src = without_bom(src);
     let source = source.unwrap_or_else(|| SourceText::new(src));
     // Asking for the core count reads cgroup limits: only large files ask.
@@ -98,7 +121,7 @@ fn parse_with(name: &str, src: &[u8], reading: Reading, source: Option<SourceTex
     } else {
         std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
     };
-    parse_in_chunks(name, src, source, reading, split(src, threads))
+    parse_in_chunks(name, src, encoding, source, reading, split(src, threads))
 }
 
 /// `src` without a leading UTF-8 byte-order mark, as a [`SourceFile`]
@@ -112,6 +135,7 @@ fn without_bom(src: &[u8]) -> &[u8] {
 fn parse_in_chunks(
     name: &str,
     src: &[u8],
+    encoding: Encoding,
     source: SourceText,
     reading: Reading,
     chunks: Vec<Chunk>,
@@ -127,14 +151,14 @@ fn parse_in_chunks(
     let mut slots = runs(&mut blocks.spare_capacity_mut()[..total], &chunks);
     let found: Vec<ChunkFindings> = if chunks.len() == 1 {
         let slot = slots.pop().unwrap_or_default();
-        vec![read_chunk_into(src, &chunks[0], slot, reading)]
+        vec![read_chunk_into(src, encoding, &chunks[0], slot, reading)]
     } else {
         std::thread::scope(|scope| {
             let handles: Vec<_> = chunks
                 .iter()
                 .zip(slots)
                 .map(|(chunk, slot)| {
-                    scope.spawn(move || read_chunk_into(src, chunk, slot, reading))
+                    scope.spawn(move || read_chunk_into(src, encoding, chunk, slot, reading))
                 })
                 .collect();
             handles
@@ -199,8 +223,8 @@ pub struct ParsedChunk {
 /// Parses the lines of `chunk` of `src` as [`parse_bytes`] parses them in
 /// the whole file: the same blocks, spans and diagnostics (those sorted
 /// by span start, with a stable sort, once merged).
-pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
-    read_chunk(src, chunk, Reading::Whole)
+pub fn parse_chunk(src: &[u8], encoding: Encoding, chunk: &Chunk) -> ParsedChunk {
+    read_chunk(src, encoding, chunk, Reading::Whole)
 }
 
 /// Reads the lines of `chunk` of `src` for lowering's `Outline` of the
@@ -221,16 +245,17 @@ pub fn parse_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
 /// declaration or program end, and changes nothing the block before the
 /// plain ones has not already set. The chunk's diagnostics are not given
 /// (`diagnostics` is empty): [`parse_chunk`] gives them.
-pub fn skim_chunk(src: &[u8], chunk: &Chunk) -> ParsedChunk {
-    let mut skimmed = read_chunk(src, chunk, Reading::Skim);
+pub fn skim_chunk(src: &[u8], encoding: Encoding, chunk: &Chunk) -> ParsedChunk {
+    let mut skimmed = read_chunk(src, encoding, chunk, Reading::Skim);
     skimmed.diagnostics.clear();
     skimmed
 }
 
-fn read_chunk(src: &[u8], chunk: &Chunk, reading: Reading) -> ParsedChunk {
+fn read_chunk(src: &[u8], encoding: Encoding, chunk: &Chunk, reading: Reading) -> ParsedChunk {
     let mut blocks: Vec<Block> = Vec::with_capacity(chunk.blocks);
     let found = read_chunk_into(
         src,
+        encoding,
         chunk,
         &mut blocks.spare_capacity_mut()[..chunk.blocks],
         reading,
@@ -250,14 +275,26 @@ fn read_chunk(src: &[u8], chunk: &Chunk, reading: Reading) -> ParsedChunk {
 
 /// Parses `chunks` of `src` on `workers` threads and hands each parsed
 /// chunk to `each` in order ([`map_chunks`]).
-pub fn parse_chunks(src: &[u8], chunks: &[Chunk], workers: usize, each: impl FnMut(ParsedChunk)) {
-    map_chunks(chunks, workers, |chunk| parse_chunk(src, chunk), each);
+pub fn parse_chunks(
+    src: &[u8],
+    encoding: Encoding,
+    chunks: &[Chunk],
+    workers: usize,
+    each: impl FnMut(ParsedChunk),
+) {
+    map_chunks(chunks, workers, |c| parse_chunk(src, encoding, c), each);
 }
 
 /// [`skim_chunk`] of each of `chunks`, on `workers` threads, handed to
 /// `each` in order ([`map_chunks`]).
-pub fn skim_chunks(src: &[u8], chunks: &[Chunk], workers: usize, each: impl FnMut(ParsedChunk)) {
-    map_chunks(chunks, workers, |chunk| skim_chunk(src, chunk), each);
+pub fn skim_chunks(
+    src: &[u8],
+    encoding: Encoding,
+    chunks: &[Chunk],
+    workers: usize,
+    each: impl FnMut(ParsedChunk),
+) {
+    map_chunks(chunks, workers, |c| skim_chunk(src, encoding, c), each);
 }
 
 /// `slots` cut into consecutive runs, one per chunk of `chunks`, a slot
@@ -330,12 +367,14 @@ struct ChunkFindings {
 /// every slot of `blocks`.
 fn read_chunk_into(
     src: &[u8],
+    encoding: Encoding,
     chunk: &Chunk,
     blocks: &mut [MaybeUninit<Block>],
     reading: Reading,
 ) -> ChunkFindings {
     let mut driver = Driver {
         src,
+        encoding,
         reading,
         plain_lines_skimmable: false,
         first_chunk: chunk.bytes.start == 0,
@@ -407,6 +446,7 @@ enum Reading {
 
 struct Driver<'s, 'b> {
     src: &'s [u8],
+    encoding: Encoding,
     reading: Reading,
     /// The last block parsed leaves the plain lines after it skimmable
     /// ([`plain_lines_skimmable_after`]).
@@ -430,6 +470,14 @@ struct Driver<'s, 'b> {
 }
 
 impl<'s> Driver<'s, '_> {
+    /// The grammar's view of the source.
+    fn ctx(&self) -> Ctx<'s> {
+        Ctx {
+            src: self.src,
+            encoding: self.encoding,
+        }
+    }
+
     /// Skims the lines of `bytes` (see [`skim_chunk`]): a plain line while
     /// plain lines are skimmable becomes a block of its span, skip mark
     /// and number; every other line is parsed, one at a time, since
@@ -497,7 +545,7 @@ impl<'s> Driver<'s, '_> {
             tokens[count] = (token.kind, SimpleSpan::from(s..e));
             count += 1;
         }
-        let prefix = fast::prefix(&tokens[..count], &Ctx { src })?;
+        let prefix = fast::prefix(&tokens[..count], &self.ctx())?;
         Some(block(prefix.skip, prefix.number))
     }
 
@@ -548,7 +596,8 @@ impl<'s> Driver<'s, '_> {
                 | TokenKind::UnclosedString => {
                     if !line.broken {
                         let span = Span::new(tok.start, tok.end);
-                        self.diagnostics.push(lexical_error(tok.kind, span, src));
+                        let error = lexical_error(tok.kind, span, src, self.encoding);
+                        self.diagnostics.push(error);
                         line.broken = true;
                     }
                 }
@@ -574,7 +623,7 @@ impl<'s> Driver<'s, '_> {
         let mut lines = std::mem::take(&mut self.lines);
         let mut tokens = std::mem::take(&mut self.tokens);
         {
-            let ctx = Ctx { src: self.src };
+            let ctx = self.ctx();
             // Built only when a block needs it: most take the fast path,
             // and a skim flushes line by line.
             let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
@@ -627,7 +676,9 @@ impl<'s> Driver<'s, '_> {
             statements: Box::default(),
             comment: line.comment.map(|(s, e)| Comment {
                 span: Span::new(s, e),
-                text: decode_text(&self.src[s as usize + 1..e as usize]),
+                text: self
+                    .ctx()
+                    .decode_text(&self.src[s as usize + 1..e as usize]),
             }),
             depth: 0,
         };
@@ -696,7 +747,9 @@ impl<'s> Driver<'s, '_> {
     }
 
     fn note_header(&mut self, span: Span) {
-        let text = decode(&self.src[span.start as usize + 1..span.end as usize]);
+        let text = self
+            .encoding
+            .decode(&self.src[span.start as usize + 1..span.end as usize]);
         let text = text.trim_end();
         if !self.first_chunk || self.header.is_some() || self.content_seen {
             self.diagnostics.push(
@@ -1091,8 +1144,8 @@ fn too_deep(tokens: &[Spanned]) -> Option<SimpleSpan> {
 
 /// Diagnoses a token that cannot be part of any block; the block is then
 /// reported without running the grammar.
-fn lexical_error(kind: TokenKind, span: Span, src: &[u8]) -> Diagnostic {
-    let text = decode(&src[span.range()]);
+fn lexical_error(kind: TokenKind, span: Span, src: &[u8], encoding: Encoding) -> Diagnostic {
+    let text = encoding.decode(&src[span.range()]);
     match kind {
         TokenKind::UnclosedString => Diagnostic::new(
             codes::parse::UNCLOSED_STRING,

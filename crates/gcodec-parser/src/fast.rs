@@ -482,6 +482,7 @@ mod tests {
             &tokens,
             &Ctx {
                 src: src.as_bytes(),
+                encoding: gcodec_source::Encoding::UTF_8,
             },
         )
         .is_some()

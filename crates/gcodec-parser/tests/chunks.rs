@@ -4,6 +4,7 @@
 
 use gcodec_parser::ast::{Program, SourceText};
 use gcodec_parser::{Pairing, parse_bytes_in_chunks, parse_chunk};
+use gcodec_source::Encoding;
 use gcodec_stream::chunks;
 
 /// Parses `src` chunk by chunk, pairing structures as the chunks come.
@@ -19,7 +20,7 @@ fn parse_chunk_by_chunk(name: &str, src: &[u8], lines: usize) -> gcodec_parser::
     };
     let mut diagnostics = Vec::new();
     for chunk in chunks(src, lines) {
-        let mut parsed = parse_chunk(src, &chunk);
+        let mut parsed = parse_chunk(src, Encoding::detect(src, Encoding::WINDOWS_1252), &chunk);
         assert_eq!(
             parsed.blocks.len(),
             chunk.blocks,

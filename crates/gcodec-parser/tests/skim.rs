@@ -11,6 +11,7 @@ mod program;
 
 use gcodec_parser::ast::StatementKind;
 use gcodec_parser::{parse_chunk, plain_lines_skimmable_after, skim_chunk};
+use gcodec_source::Encoding;
 use gcodec_stream::chunks;
 use proptest::prelude::*;
 
@@ -28,8 +29,8 @@ fn may_be_left_out(kind: &StatementKind) -> bool {
 fn assert_skim_agrees(name: &str, src: &[u8], lines: usize) -> usize {
     let mut left_out = 0;
     for chunk in chunks(src, lines) {
-        let parsed = parse_chunk(src, &chunk);
-        let skimmed = skim_chunk(src, &chunk);
+        let parsed = parse_chunk(src, Encoding::UTF_8, &chunk);
+        let skimmed = skim_chunk(src, Encoding::UTF_8, &chunk);
         let place =
             |i: usize| format!("{name}, chunks of {lines}, block {}", chunk.first_block + i);
         assert_eq!(parsed.blocks.len(), skimmed.blocks.len(), "{name}");

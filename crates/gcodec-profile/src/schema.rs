@@ -108,6 +108,14 @@ pub struct Axis {
     /// Rapid traverse rate, mm/min (degrees/min for rotary axes).
     #[serde(default = "default_rapid")]
     pub rapid: Spanned<f64>,
+    /// The reference point in machine coordinates (MD34100
+    /// `$MA_REFP_SET_POS`), where `G74` goes: mm (degrees), radius.
+    #[serde(default = "default_reference_point")]
+    pub reference_point: Spanned<f64>,
+    /// Fixed points 1…4 in machine coordinates (MD30600
+    /// `$MA_FIX_POINT_POS`), where `G75 FP=n` goes: mm (degrees), radius.
+    #[serde(default)]
+    pub fixed_points: Vec<Spanned<f64>>,
 }
 
 /// Linear or rotary.
@@ -331,6 +339,11 @@ pub struct WorkOffsets {
     /// Several of `G53`, `G153`, `SUPA` in one block.
     #[serde(default = "default_duplicate_suppression_policy")]
     pub duplicate_suppression_policy: DuplicateSuppressionPolicy,
+    /// SD42440 `$SC_FRAME_OFFSET_INCR_PROG`: `true` (1, the control's
+    /// default), an incremental value after a change of the work offset or
+    /// frame traverses the change; `false` (0), only the programmed path.
+    #[serde(default = "yes")]
+    pub incremental_traverses_offset_change: bool,
     /// The translation of each settable offset, per axis: `[work_offsets.values.G54]`.
     #[serde(default)]
     pub values: BTreeMap<Spanned<String>, BTreeMap<Spanned<String>, f64>>,
@@ -343,6 +356,7 @@ impl Default for WorkOffsets {
             supported_group8_offsets: default_supported_group8_offsets(),
             legacy_aliases: BTreeMap::new(),
             duplicate_suppression_policy: default_duplicate_suppression_policy(),
+            incremental_traverses_offset_change: true,
             values: BTreeMap::new(),
         }
     }
@@ -399,6 +413,11 @@ pub struct ProgramSettings {
     /// programs and definition files.
     #[serde(default = "default_max_file_size")]
     pub max_file_size: Spanned<u64>,
+    /// The code page of program files that are not valid UTF-8 (a WHATWG
+    /// label: `windows-1252`, the control's own and the default,
+    /// `windows-1251` for Cyrillic comments, `iso-8859-2`, …).
+    #[serde(default = "default_code_page")]
+    pub code_page: Spanned<String>,
     /// The memory for variables, in bytes: the `DEF` variables of every
     /// active program level and the global user data alive at once (the
     /// control's user memory, which its machine data size).
@@ -427,6 +446,7 @@ impl Default for ProgramSettings {
             subprogram_paths: Vec::new(),
             link_target_paths: Vec::new(),
             max_file_size: default_max_file_size(),
+            code_page: default_code_page(),
             max_variable_memory: default_max_variable_memory(),
             stop_at_m0: true,
             circle_error_const: default_circle_error_const(),
@@ -460,6 +480,8 @@ fn default_axes() -> Vec<Axis> {
             geometry: true,
             diameter: false,
             rapid: default_rapid(),
+            reference_point: default_reference_point(),
+            fixed_points: Vec::new(),
         })
         .collect()
 }
@@ -470,6 +492,11 @@ fn default_spindles() -> Vec<Spanned<u32>> {
 
 fn default_rapid() -> Spanned<f64> {
     spanned(10_000.0)
+}
+
+/// Machine zero.
+fn default_reference_point() -> Spanned<f64> {
+    spanned(0.0)
 }
 
 fn default_tool_change_mode() -> ToolChangeMode {
@@ -518,6 +545,21 @@ fn default_duplicate_suppression_policy() -> DuplicateSuppressionPolicy {
 
 fn default_max_block_length() -> Spanned<u32> {
     spanned(512)
+}
+
+fn default_code_page() -> Spanned<String> {
+    spanned(gcodec_source::Encoding::WINDOWS_1252.name().to_owned())
+}
+
+impl ProgramSettings {
+    /// How program files are decoded: UTF-8 where valid, else the
+    /// profile's code page (Windows-1252 when the label is unknown, which
+    /// the profile's validation reports).
+    pub fn text_encoding(&self) -> gcodec_source::TextEncoding {
+        let code_page = gcodec_source::Encoding::for_label(self.code_page.get_ref())
+            .unwrap_or(gcodec_source::Encoding::WINDOWS_1252);
+        gcodec_source::TextEncoding::Detect { code_page }
+    }
 }
 
 fn default_max_file_size() -> Spanned<u64> {

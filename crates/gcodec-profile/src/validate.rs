@@ -114,6 +114,9 @@ fn check_spindles(spindles: &[Spanned<u32>], out: &mut Vec<Diagnostic>) {
     }
 }
 
+/// Fixed points per axis (MD30600 `$MA_FIX_POINT_POS[0…3]`).
+const MAX_FIXED_POINTS: usize = 4;
+
 fn check_axes(axes: &[Axis], out: &mut Vec<Diagnostic>) {
     let mut seen: BTreeMap<String, &Spanned<String>> = BTreeMap::new();
     for axis in axes {
@@ -145,6 +148,37 @@ fn check_axes(axes: &[Axis], out: &mut Vec<Diagnostic>) {
                 format!("the diameter axis `{name}` must be linear"),
                 "rotary",
             ));
+        }
+        if !axis.reference_point.get_ref().is_finite() {
+            out.push(error(
+                codes::profile::OUT_OF_RANGE,
+                &axis.reference_point,
+                "a reference point is a finite position".into(),
+                "here",
+            ));
+        }
+        for (n, point) in axis.fixed_points.iter().enumerate() {
+            if n == MAX_FIXED_POINTS {
+                out.push(
+                    error(
+                        codes::profile::OUT_OF_RANGE,
+                        point,
+                        format!("axis `{name}` has more than {MAX_FIXED_POINTS} fixed points"),
+                        "the fifth",
+                    )
+                    .with_help(
+                        "MD30600 holds up to four fixed points per axis (`G75 FP=1`…`FP=4`)",
+                    ),
+                );
+            }
+            if !point.get_ref().is_finite() {
+                out.push(error(
+                    codes::profile::OUT_OF_RANGE,
+                    point,
+                    "a fixed point is a finite position".into(),
+                    "here",
+                ));
+            }
         }
         if !(axis.rapid.get_ref().is_finite() && *axis.rapid.get_ref() > 0.0) {
             out.push(error(
@@ -415,6 +449,17 @@ fn check_program(p: &ProgramSettings, out: &mut Vec<Diagnostic>) {
             "here",
         ));
     }
+    if gcodec_source::Encoding::for_label(p.code_page.get_ref()).is_none() {
+        out.push(
+            error(
+                codes::profile::OUT_OF_RANGE,
+                &p.code_page,
+                format!("`{}` is not a code page program text can be in", p.code_page.get_ref()),
+                "not a code page",
+            )
+            .with_help("name an ASCII-compatible encoding by its WHATWG label: `windows-1252` (the default), `windows-1251`, `iso-8859-2`, `utf-8`"),
+        );
+    }
     if !(p.max_feed.get_ref().is_finite() && *p.max_feed.get_ref() > 0.0) {
         out.push(error(
             codes::profile::OUT_OF_RANGE,
@@ -443,6 +488,23 @@ mod tests {
             Ok(_) => Vec::new(),
             Err(d) => d.iter().map(|d| d.code.name()).collect(),
         }
+    }
+
+    #[test]
+    fn an_axis_has_at_most_four_finite_fixed_points() {
+        let axis = |points: &str| {
+            format!("[[axes]]\nname = \"X\"\nkind = \"linear\"\nfixed_points = {points}\n")
+        };
+        assert!(codes(&axis("[1.0, 2.0, 3.0, 4.0]")).is_empty());
+        assert_eq!(
+            codes(&axis("[1.0, 2.0, 3.0, 4.0, 5.0]")),
+            ["gcodec::profile::out_of_range"]
+        );
+        assert_eq!(codes(&axis("[nan]")), ["gcodec::profile::out_of_range"]);
+        assert_eq!(
+            codes("[[axes]]\nname = \"X\"\nkind = \"linear\"\nreference_point = inf\n"),
+            ["gcodec::profile::out_of_range"]
+        );
     }
 
     #[test]

@@ -79,15 +79,15 @@ impl Definitions {
     /// parser's diagnostics and the problems of the file. What is defined
     /// correctly is added even when other lines are wrong.
     pub fn load(&mut self, file: &SourceFile) -> Diagnostics {
-        self.load_bytes(file.name(), file.bytes())
+        let parsed = gcodec_parser::parse(file);
+        let mut diagnostics = parsed.diagnostics;
+        diagnostics.append(self.add_program(&parsed.program));
+        diagnostics
     }
 
     /// [`Definitions::load`] for a file's bytes under a name.
     pub fn load_bytes(&mut self, name: &str, bytes: &[u8]) -> Diagnostics {
-        let parsed = gcodec_parser::parse_bytes(name, bytes);
-        let mut diagnostics = parsed.diagnostics;
-        diagnostics.append(self.add_program(&parsed.program));
-        diagnostics
+        self.load(&SourceFile::new(name, bytes))
     }
 
     /// Definitions from source text: the definitions and the diagnostics

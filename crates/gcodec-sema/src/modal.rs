@@ -777,6 +777,8 @@ impl<'d> Graph<'d> {
                 | Op::Address(_)
                 | Op::HFunction(_)
                 | Op::Frame(_)
+                | Op::AxisSetting(_)
+                | Op::ApproachPoint(_)
                 | Op::Declare(_)
                 | Op::Assign { .. }
                 | Op::AssignList(_)

@@ -470,8 +470,8 @@ fn a_legacy_alias_lowers_as_its_group8_target() {
     let l = lower_with(&p, "G54 G58\n");
     assert_eq!(codes(&l), ["gcodec::lower::g_group_conflict"]);
     // Without an alias, G58 is the axial offset of group 3.
-    let l = lower_with(&mill(), "G58\n");
-    assert_eq!(ops(&l, "modal_change")[0]["group"], 3);
+    let l = lower_with(&mill(), "G58 X5\n");
+    assert_eq!(ops(&l, "axis_setting")[0]["command"], "G58");
     assert!(ops(&l, "work_offset").is_empty());
 }
 

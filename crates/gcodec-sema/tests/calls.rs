@@ -352,6 +352,17 @@ fn a_frame_with_an_unknown_axis_is_rejected_not_a_reset() {
 }
 
 #[test]
+fn a_g_command_after_a_frame_instruction_is_another_statement() {
+    // The parser reads `G0 Z10` as words of the frame; `G0` names no axis.
+    let l = lower_src("TRANS X5 G0 Z10\nM30\n");
+    assert_eq!(codes(&l), ["gcodec::lower::frame_not_alone"]);
+    assert!(!ops(&l).iter().any(|op| matches!(op, Op::Frame(_))));
+    // An axis letter the machine lacks stays an unknown address.
+    let l = lower_src("TRANS X5 A3\nM30\n");
+    assert_eq!(codes(&l), ["gcodec::lower::unknown_address"]);
+}
+
+#[test]
 fn a_motion_after_paths_with_different_commands_is_decided_when_it_runs() {
     use gcodec_lang::MotionKind::*;
     let l = lower_src("IF R1>0\nG0 X1\nELSE\nG1 X2 F100\nENDIF\nX3\nM30\n");

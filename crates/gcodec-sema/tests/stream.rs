@@ -6,6 +6,7 @@ use gcodec_sema::{
     ChunkLowering, Definitions, ProgramKind, lower_chunks, lower_in_parts, outline_chunks,
     resolve_from_dataflow,
 };
+use gcodec_source::SourceFile;
 use gcodec_stream::chunks;
 
 mod common;
@@ -15,6 +16,7 @@ mod program;
 
 fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Profile) {
     let parsed = gcodec_parser::parse_bytes(name, src);
+    let file = SourceFile::new(name, src);
     let definitions = Definitions::new();
     let whole = lower_in_parts(&parsed.program, profile, &definitions, 1);
     for lines in [1, 3, 64] {
@@ -27,9 +29,8 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
             // Pass 1: the outline, the chunks skimmed and their trees
             // dropped chunk by chunk.
             let (outline, structure_diagnostics) = outline_chunks(
-                name,
+                &file,
                 ProgramKind::of_file(name),
-                src,
                 &chunks,
                 workers,
                 profile,
@@ -40,7 +41,7 @@ fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Prof
             let mut document = gcodec_ail::Document::new();
             let mut parse_diagnostics = Vec::new();
             let mut taken = 0;
-            lower_chunks(src, &chunks, workers, &outline, profile, |mut lowered| {
+            lower_chunks(&file, &chunks, workers, &outline, profile, |mut lowered| {
                 taken += 1;
                 document.instructions.append(&mut lowered.instructions);
                 diagnostics.extend(lowered.diagnostics);
@@ -78,10 +79,10 @@ fn in_order(
     profile: &gcodec_profile::Profile,
     definitions: &Definitions,
 ) -> gcodec_ail::Document {
+    let file = SourceFile::new(name, src);
     let (outline, _) = outline_chunks(
-        name,
+        &file,
         ProgramKind::of_file(name),
-        src,
         chunks,
         1,
         profile,
@@ -90,7 +91,7 @@ fn in_order(
     let mut lowering = ChunkLowering::new(&outline, profile, src);
     let mut document = gcodec_ail::Document::new();
     for chunk in chunks {
-        let parsed = gcodec_parser::parse_chunk(src, chunk);
+        let parsed = gcodec_parser::parse_chunk(src, file.encoding(), chunk);
         let mut lowered = lowering
             .lower(parsed.first_block, &parsed.blocks)
             .expect("in order");
@@ -195,17 +196,10 @@ fn only_chunks_lowered_on_a_worker_carry_a_bin() {
     let definitions = Definitions::new();
     let src = b"G1 X1 F100\nMCALL CYCLE81(10,0,1,-5)\nX2\nX3\nX4\nMCALL\nX5\nX6\nX7\nM30\n";
     let chunks = chunks(src, 2);
-    let (outline, _) = outline_chunks(
-        "mcall.mpf",
-        ProgramKind::Main,
-        src,
-        &chunks,
-        2,
-        &profile,
-        &definitions,
-    );
+    let file = SourceFile::new("mcall.mpf", *src);
+    let (outline, _) = outline_chunks(&file, ProgramKind::Main, &chunks, 2, &profile, &definitions);
     let mut bins = Vec::new();
-    lower_chunks(src, &chunks, 2, &outline, &profile, |lowered| {
+    lower_chunks(&file, &chunks, 2, &outline, &profile, |lowered| {
         bins.push(lowered.spent.is_some());
     });
     // Lines 3–4 and 5–6 follow a chunk that ends with `MCALL CYCLE81` in

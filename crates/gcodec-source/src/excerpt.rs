@@ -14,8 +14,8 @@ use std::ops::Range;
 
 use miette::{MietteError, MietteSpanContents, SourceCode, SourceSpan, SpanContents};
 
+use crate::encoding::Encoding;
 use crate::escape::{escape_controls, push_escaped};
-use crate::source::cp1252;
 use crate::{SourceFile, Span};
 
 /// Lines shown as one piece when a diagnostic's labels lie this close
@@ -162,7 +162,9 @@ impl<'a> Excerpt<'a> {
             self.text.push('\n');
         }
         let line = self.line_bytes(number);
-        let utf8 = std::str::from_utf8(&self.file.bytes()[line.clone()]).ok();
+        let utf8 = (self.file.encoding() == Encoding::UTF_8)
+            .then(|| std::str::from_utf8(&self.file.bytes()[line.clone()]).ok())
+            .flatten();
         let start = self.text.len();
         let mut shown_to = line.start;
         for kept in kept_stretches(line.clone(), labels, utf8) {
@@ -188,7 +190,8 @@ impl<'a> Excerpt<'a> {
         self.text.push_str(ELLIPSIS);
     }
 
-    /// Appends the bytes `stretch` of the file (decoded as their line is),
+    /// Appends the bytes `stretch` of the file (a line of a UTF-8 file as
+    /// UTF-8, else byte by byte in the file's code page),
     /// escaped, with a point per character.
     fn push_stretch(&mut self, stretch: Range<usize>, line_start: usize, utf8: Option<&str>) {
         match utf8 {
@@ -203,7 +206,10 @@ impl<'a> Excerpt<'a> {
             None => {
                 for at in stretch {
                     self.points.push((at as u32, self.text.len() as u32));
-                    push_escaped(&mut self.text, cp1252(self.file.bytes()[at]));
+                    push_escaped(
+                        &mut self.text,
+                        self.file.encoding().decode_byte(self.file.bytes()[at]),
+                    );
                 }
             }
         }

@@ -8,6 +8,7 @@
 
 pub mod codes;
 mod diagnostic;
+mod encoding;
 mod escape;
 mod excerpt;
 mod kept;
@@ -20,11 +21,12 @@ mod span;
 
 pub use codes::Code;
 pub use diagnostic::{Diagnostic, Label, Severity};
+pub use encoding::{Encoding, TextEncoding};
 pub use escape::{EscapeControls, escape_controls, is_escaped};
 pub use kept::{Diagnostics, MAX_KEPT_PER_BLOCK, MAX_KEPT_PER_FILE, Omitted};
 pub use lines::{MAX_SOURCE_LEN, line_starts};
 pub use nearest::nearest;
 pub use read::{DEFAULT_MAX_FILE_SIZE, ReadError, UTF8_BOM};
 pub use render::{RenderOptions, render_diagnostics, render_kept};
-pub use source::{SourceFile, cp1252, cp1252_byte, decode};
+pub use source::{SourceFile, cp1252, cp1252_byte};
 pub use span::{Span, line_col, with_line_starts};

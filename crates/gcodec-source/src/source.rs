@@ -2,6 +2,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use crate::Span;
+use crate::encoding::{Encoding, TextEncoding};
 use crate::lines::{MAX_SOURCE_LEN, line_starts};
 use crate::read::{DEFAULT_MAX_FILE_SIZE, ReadError, UTF8_BOM, read_program};
 
@@ -16,6 +17,10 @@ pub struct SourceFile {
     /// ([`SourceFile::shared_bytes`]), so the file is held once.
     bytes: Arc<Vec<u8>>,
     line_starts: Vec<u32>,
+    /// What the bytes of comments and strings are read in: UTF-8 if the
+    /// file is valid UTF-8, else Windows-1252, until
+    /// [`SourceFile::decoded`] says otherwise.
+    encoding: Encoding,
 }
 
 impl SourceFile {
@@ -38,6 +43,7 @@ impl SourceFile {
         Self {
             name: name.into(),
             path: None,
+            encoding: TextEncoding::default().of(&bytes),
             bytes: Arc::new(bytes),
             line_starts,
         }
@@ -59,6 +65,7 @@ impl SourceFile {
         Ok(Self {
             name: path.display().to_string(),
             path: Some(path.to_path_buf()),
+            encoding: TextEncoding::default().of(&bytes),
             bytes: Arc::new(bytes),
             line_starts,
         })
@@ -70,6 +77,18 @@ impl SourceFile {
         self.name = path.display().to_string();
         self.path = Some(path.to_path_buf());
         self
+    }
+
+    /// The same file, its text read as `encoding` says: a legacy code
+    /// page other than Windows-1252, or one encoding for every file.
+    pub fn decoded(mut self, encoding: TextEncoding) -> Self {
+        self.encoding = encoding.of(&self.bytes);
+        self
+    }
+
+    /// The encoding the file's comments and strings are read in.
+    pub fn encoding(&self) -> Encoding {
+        self.encoding
     }
 
     /// The name used in diagnostics and dumps (the path as given).
@@ -121,22 +140,11 @@ impl SourceFile {
         (at <= end).then(|| Span::new(at, end))
     }
 
-    /// The text of a span, decoded for display (see [`decode`]).
+    /// The text of a span, in the file's encoding.
     pub fn text(&self, span: Span) -> String {
         let end = (span.end as usize).min(self.bytes.len());
         let start = (span.start as usize).min(end);
-        decode(&self.bytes[start..end])
-    }
-}
-
-/// Decodes program bytes for display: UTF-8 where the bytes are valid UTF-8,
-/// otherwise each byte as its Windows-1252 character (a superset of the
-/// printable Latin-1 range). CP1251 comments therefore display as Latin
-/// letters, but never fail and never lose a byte.
-pub fn decode(bytes: &[u8]) -> String {
-    match std::str::from_utf8(bytes) {
-        Ok(s) => s.to_owned(),
-        Err(_) => bytes.iter().map(|&b| cp1252(b)).collect(),
+        self.encoding.decode(&self.bytes[start..end]).into_owned()
     }
 }
 
@@ -208,10 +216,24 @@ mod tests {
     }
 
     #[test]
-    fn decode_falls_back_to_cp1252() {
-        assert_eq!(decode(b"abc"), "abc");
-        assert_eq!(decode("Grüße".as_bytes()), "Grüße");
-        assert_eq!(decode(b"Gr\xfc\xdfe \x80"), "Grüße €");
+    fn a_file_is_read_in_utf8_where_valid_else_in_its_code_page() {
+        let span = Span::new(0, 7);
+        let file = SourceFile::new("t.mpf", "Grüße");
+        assert_eq!(file.encoding(), Encoding::UTF_8);
+        assert_eq!(file.text(span), "Grüße");
+        let file = SourceFile::new("t.mpf", b"Gr\xfc\xdfe \x80".to_vec());
+        assert_eq!(file.encoding(), Encoding::WINDOWS_1252);
+        assert_eq!(file.text(Span::new(0, 7)), "Grüße €");
+        let cyrillic = Encoding::for_label("windows-1251").expect("a code page");
+        let file = file.decoded(TextEncoding::Detect {
+            code_page: cyrillic,
+        });
+        assert_eq!(file.text(Span::new(0, 2)), "Gr");
+        assert_eq!(file.encoding(), cyrillic);
+        let file = SourceFile::new("t.mpf", "Grüße").decoded(TextEncoding::Detect {
+            code_page: cyrillic,
+        });
+        assert_eq!(file.encoding(), Encoding::UTF_8, "valid UTF-8 stays UTF-8");
     }
 
     #[test]

@@ -11,14 +11,21 @@
 //! run: events go out, the summary adds up.
 //!
 //! Module map: `state` (modal groups, positions, frames, tool, spindles,
-//! and the system variables a program reads), `motion` (traversing blocks
-//! and arcs), `calls` (subprograms, parameters, sections), `functions`
-//! (M and H functions, tool selection and change, spindle, dwell),
-//! `summary` (the figures after the run).
+//! the pole and working-area limits, and the system variables a program
+//! reads), `motion` (traversing blocks
+//! and arcs), `polar` (end points computed from `AP`/`RP` and `ANG`),
+//! `approach` (`G74`/`G75`), `settings` (the group 3 commands whose axis
+//! words set values: `G25`/`G26`, the pole, `G58`/`G59`), `calls`
+//! (subprograms, parameters, sections), `functions` (M and H functions,
+//! tool selection and change, spindle, dwell), `summary` (the figures
+//! after the run).
 
+mod approach;
 mod calls;
 mod functions;
 mod motion;
+mod polar;
+mod settings;
 pub mod state;
 mod summary;
 mod tool_data;
@@ -634,6 +641,10 @@ impl<'r> Channel<'r> {
             }
             Op::Motion { .. } => self.motion(program, instruction).map(|()| Flow::Next),
             Op::Frame(frame) => self.frame(frame).map(|()| Flow::Next),
+            Op::AxisSetting(setting) => self.axis_setting(setting).map(|()| Flow::Next),
+            Op::ApproachPoint(approach) => self
+                .approach_point(program, instruction, approach)
+                .map(|()| Flow::Next),
             Op::Feed { value } => eval::eval_real(&self.env(), value).map(|f| {
                 self.state.feed = f;
                 Flow::Next
@@ -791,6 +802,10 @@ impl<'r> Channel<'r> {
         let previous = self.state.modal(group);
         if previous == Some(code) {
             return;
+        }
+        if group == 6 {
+            // A new working plane starts the polar angle anew (reference §2.7).
+            self.state.polar.angle = 0.0;
         }
         self.state.modal[usize::from(group) - 1] = index;
         let event = EventKind::ModalChange(ModalChangeEvent {

@@ -17,6 +17,7 @@ use crate::geometry::{self, ArcForm, BoundingBox, Direction, Point3};
 use crate::program::Program;
 use crate::value::{RtValue, RunError, finite_real};
 
+use super::polar::PolarWords;
 use super::state::MachineState;
 
 /// Buffers reused by every motion, so that a traversing block allocates
@@ -24,8 +25,12 @@ use super::state::MachineState;
 pub(super) struct MotionScratch {
     /// The start point in workpiece coordinates (mm, radius).
     pub wcs: Vec<f64>,
-    target: Vec<f64>,
-    machine: Vec<f64>,
+    /// Where incremental values count from: `wcs`, or after a change of
+    /// the frame the position in the frame it was programmed in
+    /// (SD42440, [`Channel::increment_start`]).
+    increment_start: Vec<f64>,
+    pub(super) target: Vec<f64>,
+    pub(super) machine: Vec<f64>,
     event: Event,
     /// The end tangent of the last path element (for `CT`).
     last_tangent: Option<Point3>,
@@ -37,6 +42,7 @@ impl MotionScratch {
         let map = || AxisMap::with_capacity(n);
         Self {
             wcs: vec![0.0; n],
+            increment_start: vec![0.0; n],
             target: vec![0.0; n],
             machine: vec![0.0; n],
             event: Event {
@@ -70,18 +76,6 @@ impl MotionScratch {
     }
 }
 
-/// The geometry axes of `values` as a point (0 for a geometry axis the
-/// machine lacks).
-fn point(state: &MachineState, values: &[f64]) -> Point3 {
-    let mut p = [0.0; 3];
-    for (info, v) in state.axes.iter().zip(values) {
-        if let Some(g) = info.geometry {
-            p[g] = *v;
-        }
-    }
-    p
-}
-
 impl Channel<'_> {
     pub(super) fn motion(
         &mut self,
@@ -104,9 +98,22 @@ impl Channel<'_> {
             .unwrap_or(*motion);
         self.motion.workpiece_position(&self.state);
         self.motion.target.copy_from_slice(&self.motion.wcs);
+        self.increment_start();
+        let plane = self.state.plane();
+        let (h, v, _) = plane.axes();
+        let mut polar = PolarWords::default();
+        let mut written = (false, false);
         for target in targets {
+            if polar.take(target) {
+                continue;
+            }
             let axis = self.axis(&target.axis)?;
             self.set_target(axis, &target.value, target.mode)?;
+            match self.state.axes[axis].geometry {
+                Some(g) if g == h => written.0 = true,
+                Some(g) if g == v => written.1 = true,
+                _ => {}
+            }
         }
         if let Some(details) = details {
             for target in &details.indirect_targets {
@@ -127,12 +134,17 @@ impl Channel<'_> {
                 self.not_simulated(program, instruction, "motion-details", || "spline weights, chamfers and roundings (`PW`, `PL`, `CHF`, `CHR`, `RND`) are not simulated: the path is the programmed straight or circular element".into());
             }
         }
+        let start = self.state.geometry_point(&self.motion.wcs);
+        let pole = if polar.is_polar() {
+            Some(self.polar_end_point(&polar, plane, written)?)
+        } else {
+            self.contour_angle_end_point(&polar, plane, written, start)?;
+            None
+        };
         if kind != MotionKind::Rapid && self.state.feed <= 0.0 {
             self.once(program, instruction, "no-feed", codes::run::NO_FEED, Severity::Warning, || "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into());
         }
-        let plane = self.state.plane();
-        let start = point(&self.state, &self.motion.wcs);
-        let mut end = point(&self.state, &self.motion.target);
+        let mut end = self.state.geometry_point(&self.motion.target);
         let is_arc = matches!(
             kind,
             MotionKind::ArcCw
@@ -144,7 +156,7 @@ impl Channel<'_> {
         // `TURN=` as programmed (`resolve_arc` accepted it: 0…999, whole).
         let mut arc_turns = 0;
         if is_arc {
-            let (resolved, turns) = self.arc(kind, plane, start, end, circle.as_deref())?;
+            let (resolved, turns) = self.arc(kind, plane, start, end, circle.as_deref(), pole)?;
             arc_turns = turns;
             // `AR=` with a centre computes the end point in the plane.
             end = resolved.end;
@@ -169,6 +181,25 @@ impl Channel<'_> {
             self.state
                 .to_machine(&frame, &scratch.target, &mut scratch.machine);
         }
+        self.finish_motion(program, instruction, kind, start, end, arc, arc_turns);
+        Ok(())
+    }
+
+    /// The motion from `scratch.wcs` (the start point `start`) to
+    /// `scratch.target` (`end`; in machine coordinates `scratch.machine`),
+    /// along `arc` if one: the summary's figures, the end tangent, the
+    /// event, the new position.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn finish_motion(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        kind: MotionKind,
+        start: Point3,
+        end: Point3,
+        arc: Option<geometry::Arc>,
+        arc_turns: u32,
+    ) {
         // Figures.
         let length = match &arc {
             Some(a) => a.length,
@@ -245,9 +276,32 @@ impl Channel<'_> {
         }
         scratch.event.source = source;
         self.state.machine.copy_from_slice(&self.motion.machine);
+        self.state.note_traversed_frame();
         self.block.had_motion = true;
         super::send(&mut *self.sink, &mut self.output_error, &self.motion.event);
-        Ok(())
+    }
+
+    /// Where incremental values count from (SD42440,
+    /// `incremental_traverses_offset_change`): after a change of the
+    /// frame, the position in the frame the last motion ran in, so that
+    /// the change is traversed; otherwise (and in a block whose frames are
+    /// suppressed) the position in this frame.
+    fn increment_start(&mut self) {
+        let state = &self.state;
+        let scratch = &mut self.motion;
+        match &state.traversed_frame {
+            Some(before)
+                if state
+                    .profile
+                    .work_offsets
+                    .incremental_traverses_offset_change
+                    && state.suppression.is_none()
+                    && !before.same_as(&state.total_frame()) =>
+            {
+                state.to_workpiece(before, &state.machine, &mut scratch.increment_start)
+            }
+            _ => scratch.increment_start.copy_from_slice(&scratch.wcs),
+        }
     }
 
     pub(super) fn axis(&self, name: &str) -> Result<usize, RunError> {
@@ -269,7 +323,8 @@ impl Channel<'_> {
     ) -> Result<(), RunError> {
         let value = eval::eval_real(&self.env(), value)?;
         let start = self.motion.wcs[axis];
-        let target = self.dimension(axis, value, mode, start);
+        let increment_start = self.motion.increment_start[axis];
+        let target = self.dimension(axis, value, mode, start, increment_start);
         // An increment, inch or unit conversion can overflow too.
         self.motion.target[axis] = finite_real(target, || {
             format!("the position on `{}`", self.state.axes[axis].name)
@@ -277,8 +332,17 @@ impl Channel<'_> {
         Ok(())
     }
 
-    /// `value` on `axis` as an absolute workpiece coordinate (mm, radius).
-    fn dimension(&self, axis: usize, value: f64, mode: Option<DimensionMode>, start: f64) -> f64 {
+    /// `value` on `axis` as an absolute workpiece coordinate (mm, radius):
+    /// an increment counts from `increment_start`, a rotary position from
+    /// `start`.
+    fn dimension(
+        &self,
+        axis: usize,
+        value: f64,
+        mode: Option<DimensionMode>,
+        start: f64,
+        increment_start: f64,
+    ) -> f64 {
         use DimensionMode as M;
         let info = &self.state.axes[axis];
         let mut v = value;
@@ -303,7 +367,7 @@ impl Channel<'_> {
             }
         }
         if incremental {
-            return start + v;
+            return increment_start + v;
         }
         if info.rotary {
             let delta = (v - start).rem_euclid(360.0);
@@ -325,6 +389,7 @@ impl Channel<'_> {
         start: Point3,
         end: Point3,
         circle: Option<&Circle>,
+        pole: Option<Point3>,
     ) -> Result<(geometry::Arc, u32), RunError> {
         let empty = Circle::default();
         let circle = circle.unwrap_or(&empty);
@@ -373,9 +438,11 @@ impl Channel<'_> {
             let tangent = self.motion.last_tangent.unwrap_or([0.0; 3]);
             ArcForm::Tangent { tangent }
         } else {
-            let centre = offsets(&circle.centre, true)?;
             let radius = circle.radius.as_ref().map(real).transpose()?.map(length);
             let angle = circle.opening_angle.as_ref().map(real).transpose()?;
+            // A polar end point without circle data: about the pole.
+            let centre = offsets(&circle.centre, true)?
+                .or(pole.filter(|_| radius.is_none() && angle.is_none()));
             match (centre, radius, angle) {
                 (Some(centre), _, Some(angle)) => ArcForm::AngleFromCentre {
                     direction,

@@ -23,6 +23,7 @@ use gcodec_ail::{Suppression, VarName};
 use super::tool_data::ToolData;
 use crate::event::{AxisName, Plane, SpindleState};
 use crate::frames::{Frame, FrameAxes, chain_values, frame_function};
+use crate::geometry::Point3;
 use crate::value::{FrameValue, RtValue, RunError};
 
 /// One channel axis.
@@ -48,6 +49,8 @@ pub struct Spindle {
     pub position: Option<f64>,
     /// M40…M45: 0 automatic, 1…5.
     pub gear: u32,
+    /// `G25 S…`/`G26 S…`: the lower and upper speed limits.
+    pub speed_limits: [Option<f64>; 2],
 }
 
 /// The active tool: its identity as events name it, and its number.
@@ -93,6 +96,13 @@ pub struct MachineState {
     pub spindles: Vec<Spindle>,
     /// `MCALL`: the modal call in force.
     pub(super) modal_call: Option<super::calls::ModalCall>,
+    /// The pole and the polar end point last programmed.
+    pub polar: Polar,
+    /// `G25`/`G26`.
+    pub working_area: WorkingArea,
+    /// The total frame the last motion ran in (`None` before the first):
+    /// an increment after a change traverses it (SD42440).
+    pub traversed_frame: Option<Frame>,
     /// The last total frame with what it was made of, so that a motion
     /// does not chain frames (and allocate) unless one changed.
     frame_cache: RefCell<FrameCache>,
@@ -111,6 +121,26 @@ struct FrameCache {
     settable: Frame,
     programmable: Frame,
     total: Frame,
+}
+
+/// The pole and the polar end point last programmed, in workpiece
+/// coordinates of the geometry slots (mm) and degrees.
+#[derive(Clone, Debug, Default)]
+pub struct Polar {
+    /// `G110`/`G111`/`G112`; the workpiece zero until one is programmed.
+    pub pole: Point3,
+    /// `AP`: kept until a new pole or a change of plane.
+    pub angle: f64,
+    /// `RP`: kept until it is programmed again.
+    pub radius: f64,
+}
+
+/// `G25`/`G26`: the working-area limits per channel axis, machine
+/// coordinates (mm, degrees); `None` where none is programmed.
+#[derive(Clone, Debug, Default)]
+pub struct WorkingArea {
+    pub lower: Vec<Option<f64>>,
+    pub upper: Vec<Option<f64>>,
 }
 
 /// A tool selection waiting for the change.
@@ -174,6 +204,9 @@ impl MachineState {
             feed: 0.0,
             spindles,
             modal_call: None,
+            polar: Polar::default(),
+            working_area: WorkingArea::default(),
+            traversed_frame: None,
             // A group 8 code no block selects: the first motion fills it.
             frame_cache: RefCell::new(FrameCache {
                 group8: WorkOffsetCode(0),
@@ -188,6 +221,18 @@ impl MachineState {
             supported_group8: profile.work_offsets.supported_group8(),
             profile,
         }
+    }
+
+    /// The geometry axes of `values` (indexed like the channel's axes) as
+    /// a point; 0 for a geometry axis the machine lacks.
+    pub fn geometry_point(&self, values: &[f64]) -> Point3 {
+        let mut p = [0.0; 3];
+        for (info, v) in self.axes.iter().zip(values) {
+            if let Some(g) = info.geometry {
+                p[g] = *v;
+            }
+        }
+        p
     }
 
     /// The axis named `name` (any case).
@@ -281,6 +326,27 @@ impl MachineState {
             };
         }
         Ref::map(self.frame_cache.borrow(), |c| &c.total)
+    }
+
+    /// Keeps the total frame of the motion just made, for the increments
+    /// that follow ([`Self::traversed_frame`]); a clone only when it
+    /// changed. A block under `G53`/`G153`/`SUPA` programs machine
+    /// positions and changes nothing of it.
+    pub fn note_traversed_frame(&mut self) {
+        if self.suppression.is_some() {
+            return;
+        }
+        let changed = {
+            let total = self.total_frame();
+            (!self
+                .traversed_frame
+                .as_ref()
+                .is_some_and(|f| f.same_as(&total)))
+            .then(|| total.clone())
+        };
+        if let Some(total) = changed {
+            self.traversed_frame = Some(total);
+        }
     }
 
     /// `$P_UIFRNUM`: the index of the Group 8 selection.

@@ -7,7 +7,7 @@ use gcodec_lexer::TokenKind as T;
 use gcodec_source::codes;
 
 use super::expressions::initializer;
-use super::{Ctx, Ex, In, decode_text, indices, name_token};
+use super::{Ctx, Ex, In, indices, name_token};
 use crate::ast::*;
 use crate::error::SyntaxError;
 
@@ -298,7 +298,7 @@ pub(super) fn define<'t, 's: 't>(
         .map(move |(name, body): (SimpleSpan, SimpleSpan)| {
             StatementKind::Define(Box::new(Define {
                 name: g.name(name),
-                body: decode_text(g.bytes(body)),
+                body: g.decode_text(g.bytes(body)),
                 body_span: g.span(body),
             }))
         })

@@ -13,7 +13,7 @@ use gcodec_source::codes;
 
 use super::numbers::number_value;
 use super::operators::{self, Associativity, Precedence};
-use super::{Ctx, Ex, In, args, decode_text, indices};
+use super::{Ctx, Ex, In, args, indices};
 
 use crate::ast::*;
 use crate::error::SyntaxError;
@@ -93,7 +93,7 @@ fn string<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, Expr, Ex> + Clone +
     select! { T::String => () }.map_with(move |_, e| {
         let s: SimpleSpan = e.span();
         let bytes = g.bytes(s);
-        let value = decode_text(&bytes[1..bytes.len() - 1]);
+        let value = g.decode_text(&bytes[1..bytes.len() - 1]);
         Expr {
             span: g.span(s),
             kind: ExprKind::String {

@@ -23,7 +23,9 @@ use chumsky::input::MappedInput;
 use chumsky::prelude::*;
 use compact_str::CompactString;
 use gcodec_lexer::TokenKind as T;
-use gcodec_source::{Span, codes};
+use std::borrow::Cow;
+
+use gcodec_source::{Encoding, Span, codes};
 
 pub(crate) use control::structure_keyword;
 pub(crate) use numbers::number_bytes_value;
@@ -49,6 +51,8 @@ pub(crate) struct BlockBody {
 #[derive(Clone, Copy)]
 pub(crate) struct Ctx<'s> {
     pub src: &'s [u8],
+    /// What the bytes of comments and strings are read in.
+    pub encoding: Encoding,
 }
 
 impl<'s> Ctx<'s> {
@@ -68,6 +72,15 @@ impl<'s> Ctx<'s> {
     fn name(&self, s: SimpleSpan) -> CompactString {
         CompactString::from(self.text(s))
     }
+
+    /// Program text (a comment, a string) in the file's encoding; short
+    /// text is stored inline, without a temporary `String`.
+    pub fn decode_text(&self, bytes: &[u8]) -> CompactString {
+        match self.encoding.decode(bytes) {
+            Cow::Borrowed(text) => CompactString::from(text),
+            Cow::Owned(text) => CompactString::from(text),
+        }
+    }
 }
 /// The block: skip mark, block number, label, then its statements.
 pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody, Ex> + 't {
@@ -82,15 +95,6 @@ pub(crate) fn block<'t, 's: 't>(g: Ctx<'s>) -> impl Parser<'t, In<'t>, BlockBody
             label,
             statements,
         })
-}
-
-/// Program text decoded for display (see [`gcodec_source::decode`]); short
-/// UTF-8 text is stored inline, without a temporary `String`.
-pub(crate) fn decode_text(bytes: &[u8]) -> CompactString {
-    match std::str::from_utf8(bytes) {
-        Ok(text) => CompactString::from(text),
-        Err(_) => CompactString::from(gcodec_source::decode(bytes)),
-    }
 }
 
 /// `(a, , c)` argument list; omitted arguments are `None`, `()` is empty.

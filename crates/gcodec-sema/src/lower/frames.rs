@@ -65,6 +65,24 @@ impl Lowering<'_> {
                 continue;
             }
             if !(self.is_axis(address) || rotation && address.eq_ignore_ascii_case("RPL")) {
+                if is_command_word(address) {
+                    // `TRANS X5 G0 Z10`: the parser reads every word after
+                    // the keyword as the frame's; a G command, feed,
+                    // spindle speed, tool or auxiliary function is another
+                    // statement of the block.
+                    let written = values::written(self.source, w.span);
+                    self.diagnostics.push(
+                        Diagnostic::new(
+                            codes::lower::FRAME_NOT_ALONE,
+                            format!("`{}` must be alone in its block", frame.op.keyword()),
+                        )
+                        .with_label(Span::new(span.start, w.span.start), "frame instruction")
+                        .with_label(w.span, format!("`{written}` is also in the block"))
+                        .with_help("the control rejects the block; put the frame instruction in a block of its own"),
+                    );
+                    rejected = true;
+                    continue;
+                }
                 self.diagnostics.push(
                     Diagnostic::new(
                         codes::lower::UNKNOWN_ADDRESS,
@@ -103,4 +121,13 @@ impl Lowering<'_> {
             span,
         ));
     }
+}
+
+/// A letter address that is a statement of its own in a block, never a
+/// frame's value: `G`, `F`, `S`, `T`, `D`, `M`, `H` (reference §2.6).
+fn is_command_word(address: &str) -> bool {
+    matches!(
+        address.as_bytes(),
+        [b'G' | b'F' | b'S' | b'T' | b'D' | b'M' | b'H']
+    )
 }

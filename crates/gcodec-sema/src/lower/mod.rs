@@ -34,6 +34,7 @@ use outline::{Outline, ProgramKind};
 use parts::{Entry, OpenEntry};
 
 mod addresses;
+mod axis_commands;
 mod calls;
 mod control;
 mod frames;
@@ -454,6 +455,8 @@ struct BlockPlan {
     transition: Option<(gcodec_ail::Transition, Span)>,
     /// Axes written a second time in the block, where (alarm 12010).
     repeated_axes: Vec<(Cow<'static, str>, Span)>,
+    /// `X1=0`: machine axes, which only `G74`/`G75` name.
+    machine_axis_words: Vec<axis_commands::MachineAxisWord>,
 }
 
 impl BlockPlan {
@@ -488,6 +491,7 @@ impl BlockPlan {
             spline_span,
             transition,
             repeated_axes,
+            machine_axis_words,
         } = self;
         g_codes.clear();
         suppressions.clear();
@@ -515,6 +519,7 @@ impl BlockPlan {
         *spline_span = None;
         *transition = None;
         repeated_axes.clear();
+        machine_axis_words.clear();
     }
 
     fn add_target(&mut self, target: AxisValue, span: Span) {
@@ -835,9 +840,13 @@ impl<'a> Lowering<'a> {
             .find(|(c, _)| c.group() == 2 && c.name() == "G4")
             .map(|(_, s)| *s)
             .map(|g4| (self.dwell(block, g4, plan), g4));
-        for &(command, span) in &plan.g_codes {
+        let g_codes = std::mem::take(&mut plan.g_codes);
+        for &(command, span) in &g_codes {
             let (group, code) = (command.group(), command.name());
             if group == 8 || dwell.is_some() && code == "G4" {
+                continue;
+            }
+            if self.emit_axis_command(index, command, span, plan) {
                 continue;
             }
             let modal = ggroups::is_modal(group);
@@ -856,6 +865,8 @@ impl<'a> Lowering<'a> {
                 },
             );
         }
+        plan.g_codes = g_codes;
+        self.unknown_machine_axes(plan);
         for (group, index_value, span) in std::mem::take(&mut plan.indirect_g) {
             self.emit(
                 index,
@@ -982,20 +993,16 @@ impl<'a> Lowering<'a> {
         };
         // Under an unknown command the circle data go with the motion
         // as written; the executor reads them by the command then.
-        for (axis, span) in std::mem::take(&mut plan.repeated_axes) {
-            self.diagnostics.push(
-                Diagnostic::new(
-                    codes::lower::REPEATED_AXIS,
-                    format!("`{axis}` is programmed twice in this block"),
-                )
-                .with_label(span, "again")
-                .with_help("the control rejects the block (alarm 12010); program each axis once"),
-            );
-        }
+        self.report_repeated_axes(plan);
         let circle_missing = matches!(motion, MotionKind::ArcCw | MotionKind::ArcCcw)
             && plan.circle.centre.is_empty()
             && plan.circle.radius.is_none()
-            && plan.circle.opening_angle.is_none();
+            && plan.circle.opening_angle.is_none()
+            // A polar end point: the circle is about the pole.
+            && !plan
+                .targets
+                .iter()
+                .any(|t| matches!(t.axis.as_ref(), "AP" | "RP"));
         if circle_missing {
             let code = self.modal[0].unwrap_or("G2");
             self.diagnostics.push(
@@ -1039,6 +1046,20 @@ impl<'a> Lowering<'a> {
                 details,
             },
         );
+    }
+
+    /// Axes written twice in the block (alarm 12010).
+    fn report_repeated_axes(&mut self, plan: &mut BlockPlan) {
+        for (axis, span) in std::mem::take(&mut plan.repeated_axes) {
+            self.diagnostics.push(
+                Diagnostic::new(
+                    codes::lower::REPEATED_AXIS,
+                    format!("`{axis}` is programmed twice in this block"),
+                )
+                .with_label(span, "again")
+                .with_help("the control rejects the block (alarm 12010); program each axis once"),
+            );
+        }
     }
 
     fn emit_m(&mut self, index: usize, m: mfunc::MWord, timing: MTiming, deferred: bool) {

@@ -10,7 +10,7 @@ use std::sync::Arc;
 use gcodec_lang::MClass;
 use gcodec_parser::ast::{self, Block, ControlStructure, StatementKind};
 use gcodec_profile::Profile;
-use gcodec_source::{Diagnostic, Diagnostics, Span, codes};
+use gcodec_source::{Diagnostic, Diagnostics, SourceFile, Span, codes};
 use rustc_hash::FxHashMap;
 
 use crate::definitions::Definitions;
@@ -205,7 +205,7 @@ pub fn outline<'d>(
     builder.finish(program.structures.clone())
 }
 
-/// The outline of the program `src` (named `file`), read chunk by chunk
+/// The outline of the program in `file`, read chunk by chunk
 /// on `workers` threads with each chunk's tree dropped after it (pass 1
 /// of a streamed run), and the diagnostics of pairing its structures, in
 /// source order (the outline's own are in [`Outline::diagnostics`]).
@@ -215,19 +215,19 @@ pub fn outline<'d>(
 /// the lexical and syntax diagnostics are not found here: pass 2
 /// ([`super::stream::lower_chunks`]) gives them.
 pub fn outline_chunks<'d>(
-    file: &str,
+    file: &SourceFile,
     kind: ProgramKind,
-    src: &[u8],
     chunks: &[gcodec_stream::Chunk],
     workers: usize,
     profile: &Profile,
     definitions: &'d Definitions,
 ) -> (Outline<'d>, Vec<Diagnostic>) {
-    let mut builder = OutlineBuilder::new(file, kind, profile, definitions);
+    let mut builder = OutlineBuilder::new(file.name(), kind, profile, definitions);
     builder.reserve(chunks.iter().map(|c| c.blocks).sum());
     let mut pairing = gcodec_parser::Pairing::default();
     let mut diagnostics = Vec::new();
-    gcodec_parser::skim_chunks(src, chunks, workers, |mut parsed| {
+    let (src, encoding) = (file.bytes(), file.encoding());
+    gcodec_parser::skim_chunks(src, encoding, chunks, workers, |mut parsed| {
         pairing.feed(
             &mut parsed.blocks,
             parsed.first_block,

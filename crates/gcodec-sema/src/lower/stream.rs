@@ -15,14 +15,14 @@ use std::sync::Arc;
 use gcodec_ail::Instruction;
 use gcodec_parser::ast::Block;
 use gcodec_profile::Profile;
-use gcodec_source::Diagnostics;
+use gcodec_source::{Diagnostics, SourceFile};
 
 use super::outline::Outline;
 use super::parts::{Entry, PartLedger};
 use super::{Lowering, capacity};
 use gcodec_stream::SpentBin;
 
-/// Lowers the program `src` chunk by chunk against its `outline` (pass 2
+/// Lowers the program in `file` chunk by chunk against its `outline` (pass 2
 /// of a streamed run); `each` takes the instructions of every chunk, then
 /// those of the program's end. `chunks` are consecutive from the first
 /// block, as [`gcodec_stream::chunks`] cuts them: a chunk out of order is
@@ -38,17 +38,18 @@ use gcodec_stream::SpentBin;
 /// tree is lowered on the core that parsed it, and the instructions are
 /// those a [`ChunkLowering`] gives.
 pub fn lower_chunks(
-    src: &[u8],
+    file: &SourceFile,
     chunks: &[gcodec_stream::Chunk],
     workers: usize,
     outline: &Outline<'_>,
     profile: &Profile,
     mut each: impl FnMut(LoweredChunk),
 ) {
+    let src = file.bytes();
     // Parses `chunk` and lowers it with `lowering`; gives its parse
     // diagnostics.
     let lower_part = |chunk: &gcodec_stream::Chunk, lowering: &mut Lowering<'_>| {
-        let parsed = gcodec_parser::parse_chunk(src, chunk);
+        let parsed = gcodec_parser::parse_chunk(src, file.encoding(), chunk);
         lower_blocks(lowering, parsed.first_block, &parsed.blocks);
         parsed.diagnostics
     };

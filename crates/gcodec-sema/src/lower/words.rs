@@ -12,6 +12,7 @@ use gcodec_source::{Diagnostic, Span, codes};
 
 use crate::{mfunc, tools, values};
 
+use super::axis_commands::MachineAxisWord;
 use super::{BlockPlan, Lowering, axis_name};
 impl Lowering<'_> {
     pub(super) fn word(&mut self, word: &Word, span: Span, plan: &mut BlockPlan) {
@@ -196,6 +197,13 @@ impl Lowering<'_> {
             // rejects the block.
             "A" | "B" | "C" | "Q" | "U" | "V" | "W" | "X" | "Y" | "Z" => {
                 let name = self.axis_word_name(word);
+                if let Some(axis) = self.machine_axis_of(word) {
+                    return plan.machine_axis_words.push(MachineAxisWord {
+                        axis,
+                        written: name,
+                        span: word.address_span(span),
+                    });
+                }
                 self.diagnostics.push(
                     Diagnostic::new(
                         codes::lower::UNKNOWN_ADDRESS,

@@ -42,6 +42,9 @@ super::codes! {
     INVALID_DECLARATION = invalid_declaration, Error, "a declaration with a bad type or dimension";
     EXPRESSION_TOO_DEEP = expression_too_deep, Error, "an expression nested deeper than the evaluator goes";
     CIRCLE_DATA = circle_data, Error, "a circle with neither centre, radius nor opening angle";
+    POLAR_END_POINT = polar_end_point, Error, "a polar end point (`AP=`, `RP=`) the control cannot build";
+    CONTOUR_ANGLE = contour_angle, Error, "a straight line by `ANG=` whose end point is not determined";
+    FIXED_POINT = fixed_point, Error, "a `G75` fixed point the machine data do not have";
     CIRCLE_INTERMEDIATE = circle_intermediate, Error, "a `CIP` circle without an intermediate point";
     CIRCLE_NON_FINITE = circle_non_finite, Error, "a circle with a value that is not a finite number";
     CIRCLE_TOLERANCE = circle_tolerance, Error, "a circle tolerance that is negative or not finite";
