@@ -227,6 +227,15 @@ pub enum Op {
     Message { text: Value },
     /// `STOPRE` and the like: a stop of the block preparation.
     Stop { reason: String },
+    /// `SETINT(3) PRIO=1 LIFT_Z`: the interrupt routine of an input.
+    InterruptAssign(Box<InterruptAssign>),
+    /// `ENABLE(3)`, `DISABLE(3)`, `CLRINT(3)`: what acts on an input's
+    /// interrupt assignment.
+    InterruptControl {
+        action: InterruptAction,
+        /// The input, 1…8 (checked when computed).
+        input: Value,
+    },
     /// The end of the program text.
     End,
 }
@@ -289,6 +298,36 @@ pub struct Declare {
     pub init_repeat: Option<Repeat>,
 }
 
+/// `SETINT(<input>) PRIO=<priority> <routine> [LIFTFAST] [BLSYNC]`: when
+/// the input's signal rises, the routine interrupts the program.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct InterruptAssign {
+    /// The input, 1…8 (checked when computed).
+    pub input: Value,
+    /// 1 (highest) … 128 (checked when computed).
+    pub priority: Value,
+    /// The routine's name in upper case; `null` for `LIFTFAST` alone (a
+    /// fast retraction without a routine).
+    pub routine: Option<String>,
+    /// `LIFTFAST`: retract fast before the routine.
+    pub lift_fast: bool,
+    /// `BLSYNC`: the routine starts at the end of the block in progress.
+    pub block_sync: bool,
+}
+
+/// What `ENABLE`, `DISABLE` and `CLRINT` do to an input's interrupt.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum InterruptAction {
+    /// `ENABLE(n)`: the assignment acts again.
+    Enable,
+    /// `DISABLE(n)`: the assignment stays but does not act.
+    Disable,
+    /// `CLRINT(n)`: the assignment is removed.
+    Clear,
+}
+
 /// A call of a subprogram, cycle or predefined procedure.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Call {
@@ -304,6 +343,10 @@ pub struct Call {
     /// `PCALL`: `target` is a path in the control's file system.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub by_path: bool,
+    /// `EXTCALL`: a program from external storage, looked for first in
+    /// the profile's `external_program_path` (`$SC_EXT_PROG_PATH`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub external: bool,
     pub args: Vec<Option<Value>>,
     pub passes: Option<Value>,
     /// `MCALL`: called after every traversing block until cancelled.
@@ -407,18 +450,45 @@ pub struct Address {
     /// The axis in brackets, computed when the block runs (`FA[AXN]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axis_expr: Option<Expr>,
-    /// The spindle of `SPOS[2]=`, `SPOSA[2]=`.
+    /// The spindle of `SPOS[2]=`, `SPOSA[2]=`; the number of
+    /// `TOFFL[1]=`, `FMA[2,X]=`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub extension: Option<u32>,
-    /// The spindle, computed when the block runs (`SPOS[SPINU]=`).
+    /// The spindle or number, computed when the block runs
+    /// (`SPOS[SPINU]=`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub extension_expr: Option<Expr>,
+    /// The leading axis of a generic coupling (`CPLNUM[X,Y]=` → `Y`;
+    /// `axis` is the following one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub leading_axis: Option<String>,
+    /// The leading axis, computed when the block runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub leading_axis_expr: Option<Expr>,
     pub value: Value,
     /// `AC`, `IC`, `DC`, `ACP`, `ACN`, … when written.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mode: Option<DimensionMode>,
     /// Whether the value stays in force after the block.
     pub scope: AddressScope,
+}
+
+impl Address {
+    /// `address` with `value` and nothing in brackets.
+    pub fn new(address: NamedAddress, value: Value, scope: AddressScope) -> Self {
+        Self {
+            address,
+            axis: None,
+            axis_expr: None,
+            extension: None,
+            extension_expr: None,
+            leading_axis: None,
+            leading_axis_expr: None,
+            value,
+            mode: None,
+            scope,
+        }
+    }
 }
 
 /// An H auxiliary function (reference §4.5).

@@ -131,6 +131,9 @@ pub struct SearchPath {
     extra_dirs: Vec<PathBuf>,
     /// The profile's `link_target_paths`, resolved.
     link_dirs: Vec<PathBuf>,
+    /// The profile's `external_program_path`, resolved: searched first
+    /// for `EXTCALL`.
+    external_dir: Option<PathBuf>,
 }
 
 impl SearchPath {
@@ -146,6 +149,11 @@ impl SearchPath {
     pub fn with_profile(mut self, profile: &Profile, profile_file: Option<&Path>) -> Self {
         self.profile_dirs = resolve_profile_paths(&profile.program.subprogram_paths, profile_file);
         self.link_dirs = resolve_profile_paths(&profile.program.link_target_paths, profile_file);
+        self.external_dir = resolve_profile_paths(
+            profile.program.external_program_path.as_slice(),
+            profile_file,
+        )
+        .pop();
         self
     }
 
@@ -180,6 +188,14 @@ impl SearchPath {
     pub fn for_caller(&self, caller_file: &str) -> Vec<PathBuf> {
         let mut all = vec![caller_dir(caller_file).to_path_buf()];
         all.extend(self.dirs().map(Path::to_path_buf));
+        all
+    }
+
+    /// [`Self::for_caller`] for an `EXTCALL`: the external program path
+    /// first.
+    pub fn for_external_call(&self, caller_file: &str) -> Vec<PathBuf> {
+        let mut all: Vec<PathBuf> = self.external_dir.iter().cloned().collect();
+        all.extend(self.for_caller(caller_file));
         all
     }
 }
@@ -568,7 +584,8 @@ pub struct FileLoader {
     /// Canonical directory → its listing.
     listings: FxHashMap<PathBuf, Arc<DirIndex>>,
     /// Calling program's directory → its search path and resolved names.
-    callers: FxHashMap<PathBuf, CallerDir>,
+    /// (an `EXTCALL` has a search path of its own).
+    callers: FxHashMap<(PathBuf, bool), CallerDir>,
     /// A file's place on the search path (canonical directory and file
     /// name) → the program (or why it cannot be read).
     programs: FxHashMap<PathBuf, Outcome>,
@@ -620,12 +637,17 @@ impl FileLoader {
         self
     }
 
-    /// The search path of a caller in `caller_file`: each directory once,
-    /// listed.
-    fn caller(&mut self, caller_file: &str) -> CallerDir {
+    /// The search path of a caller in `caller_file` (of its `EXTCALL`s
+    /// when `external`): each directory once, listed.
+    fn caller(&mut self, caller_file: &str, external: bool) -> CallerDir {
         let mut dirs: Vec<SearchDir> = Vec::new();
         let mut seen: Vec<PathBuf> = Vec::new();
-        for shown in self.search.for_caller(caller_file) {
+        let search = if external {
+            self.search.for_external_call(caller_file)
+        } else {
+            self.search.for_caller(caller_file)
+        };
+        for shown in search {
             let key = fs::canonicalize(&shown).unwrap_or_else(|_| shown.clone());
             if seen.contains(&key) {
                 continue;
@@ -875,21 +897,24 @@ impl ProgramLoader for FileLoader {
     }
 
     fn load(&mut self, request: &LoadRequest<'_>) -> Result<Loaded, LoadError> {
-        let dir = caller_dir(request.caller_file);
+        let key = (
+            caller_dir(request.caller_file).to_path_buf(),
+            request.external,
+        );
         if let Some(outcome) = self
             .callers
-            .get(dir)
+            .get(&key)
             .and_then(|c| c.names.get(request.name))
         {
             return cached(outcome);
         }
         let wanted = parse_request(request.name).map_err(|why| invalid_name(request, why))?;
-        let caller = match self.callers.remove(dir) {
+        let caller = match self.callers.remove(&key) {
             Some(caller) => caller,
-            None => self.caller(request.caller_file),
+            None => self.caller(request.caller_file, request.external),
         };
         let result = self.resolve(&caller.dirs, request, &wanted);
-        let caller = self.callers.entry(dir.to_path_buf()).or_insert(caller);
+        let caller = self.callers.entry(key).or_insert(caller);
         caller
             .names
             .insert(request.name.to_owned(), to_cache(&result));

@@ -66,6 +66,8 @@ pub struct LoadRequest<'a> {
     /// looked up by its last component either way; this only words the
     /// error.
     pub by_path: bool,
+    /// `EXTCALL`: looked for in the external program path first.
+    pub external: bool,
     /// The file of the calling program ([`Program::file`]): its directory
     /// is searched first.
     pub caller_file: &'a str,

@@ -31,6 +31,18 @@ const EXTERNAL: &[&str] = &[
     "gcodec::run::undefined_variable",
 ];
 
+/// Runs that stop on an error of the program itself, with the reason it
+/// is the program's: program, code.
+const STOPS_IN_THE_PROGRAM: &[(&str, &str)] = &[
+    // `PROC CYCLE32(REAL VELO, INT DIR)` run as a main program: its
+    // parameters take their defaults, and `M1=DIR` with `DIR=0` is `M1=0`,
+    // the program stop with an extension the control rejects.
+    (
+        "real/deathaxe+sublime-s840d/example.mpf",
+        "gcodec::run::m_extension_forbidden",
+    ),
+];
+
 /// Keeps the last error diagnostic and counts the rest.
 #[derive(Default)]
 struct Outcome {
@@ -112,7 +124,8 @@ fn every_main_program_runs_to_its_end_or_a_diagnosed_dependency() {
         let outcome = with_dir(&corpus, || run_main(main.program, run, &mut sink, None));
         let end = match (&outcome.reason, &sink.last_error) {
             (ProgramEndReason::Alarm, Some((code, line, message))) => {
-                if !EXTERNAL.contains(&code.as_str()) {
+                let in_program = STOPS_IN_THE_PROGRAM.contains(&(shown.as_str(), code.as_str()));
+                if !EXTERNAL.contains(&code.as_str()) && !in_program {
                     failures.push(format!("{shown}:{line}: {code}: {message}"));
                 }
                 format!("alarm {code} at line {line}")

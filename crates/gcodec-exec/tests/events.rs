@@ -225,6 +225,19 @@ fn every_kind() -> Vec<Event> {
                 blocks: 14,
             }),
         ),
+        // The newest kind, last: the tests above pick the others by place.
+        event(
+            3,
+            EventKind::Interrupt(InterruptEvent {
+                input: 3,
+                change: InterruptChange::Assigned,
+                routine: Some("LIFT_Z".into()),
+                priority: Some(1),
+                lift_fast: false,
+                block_sync: false,
+                enabled: true,
+            }),
+        ),
     ]
 }
 

@@ -47,6 +47,7 @@ fn request<'a>(name: &'a str, caller_file: &'a str) -> LoadRequest<'a> {
     LoadRequest {
         name,
         by_path: name.starts_with('/'),
+        external: false,
         caller_file,
     }
 }
@@ -756,4 +757,31 @@ fn the_corpus_cycles_load_from_their_directory() {
     }
     let error = load_err(&mut loader, "CYCLE82", &caller_file);
     assert_eq!(error.searched, [root.join("test"), root.join("Sub")]);
+}
+
+#[test]
+fn extcall_looks_in_the_external_program_path_first_then_on_the_search_path() {
+    // BOTH is in main and lib; the external program path is lib.
+    let mut profile = profile();
+    profile.program.external_program_path = Some("lib".to_owned());
+    let search = SearchPath::new().with_profile(&profile, Some(&fixtures().join("machine.toml")));
+    assert_eq!(search.for_external_call(&caller()), [lib_dir(), main_dir()]);
+    let mut loader = FileLoader::new(search, profile, Definitions::new());
+    let caller = caller();
+    let external_load = |loader: &mut FileLoader, name: &str| {
+        let request = LoadRequest {
+            external: true,
+            ..request(name, &caller)
+        };
+        found(
+            &loader
+                .load(&request)
+                .unwrap_or_else(|e| panic!("{name}: {e}")),
+        )
+    };
+    assert_eq!(external_load(&mut loader, "BOTH"), "lib/BOTH.SPF");
+    // Not there: the search path, as for any call.
+    assert_eq!(external_load(&mut loader, "NEAR"), "main/Near.SPF");
+    // A plain call of the same name keeps the caller's directory first.
+    assert_eq!(found(&load(&mut loader, "BOTH", &caller)), "main/BOTH.SPF");
 }

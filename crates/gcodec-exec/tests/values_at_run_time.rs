@@ -1,27 +1,18 @@
 //! Computed values are never wrapped into range when the block runs: one
 //! outside its range is a run-time diagnostic naming it (issue 14).
 
-use std::sync::Arc;
+use gcodec_exec::event::{EventKind, ProgramEndReason};
+use gcodec_source::Severity;
 
-use gcodec_driver::{RunSetup, run_main};
-use gcodec_exec::event::{EventKind, ProgramEndReason, VecSink};
-use gcodec_source::{Severity, SourceFile};
+mod common;
 
 /// The run's error diagnostics (code, message, line) and how it ended.
 fn run(program: &str) -> (Vec<(&'static str, String, u32)>, ProgramEndReason) {
     let profile = gcodec_profile::builtin().expect("the built-in profile");
-    let setup = RunSetup::new(profile);
-    let file = Arc::new(SourceFile::new("VALUES.MPF", program));
-    let mut sink = VecSink::new();
-    let report = run_main(file, &setup, &mut sink, None);
-    assert!(
-        !report.diagnostics.iter().any(|d| d.is_error()),
-        "{program}: {:?}",
-        report.diagnostics
-    );
+    let events = common::runs::events_of_text(profile, "VALUES.MPF", program);
     let mut errors = Vec::new();
     let mut end = None;
-    for event in &sink.events {
+    for event in &events {
         match &event.kind {
             EventKind::Diagnostic(d) if d.severity == Severity::Error => {
                 errors.push((d.code.name(), d.message.to_string(), event.source.line))

@@ -98,12 +98,12 @@ fn single_block_and_preprocessing_switches_pass_in_silence() {
 #[test]
 fn procedures_that_ended_the_run_are_advice_with_their_effect() {
     let (reported, end) =
-        run("CHANDATA(1)\nMMC(\"CYCLE\",\"A\")\nGEOAX(1,X,2,Y)\nWAITENC\nCLRINT(3)\nG0 X1\nM30\n");
+        run("CHANDATA(1)\nMMC(\"CYCLE\",\"A\")\nGEOAX(1,X,2,Y)\nWAITENC\nG0 X1\nM30\n");
     assert_eq!(end, ProgramEndReason::M30);
     let lines: Vec<_> = reported.iter().map(|r| (r.0, r.3)).collect();
     assert_eq!(
         lines,
-        [1, 2, 3, 4, 5].map(|line| ("gcodec::run::not_simulated", line))
+        [1, 2, 3, 4].map(|line| ("gcodec::run::not_simulated", line))
     );
     assert!(
         reported[2].2.contains("keeps the profile's geometry axes"),

@@ -21,6 +21,7 @@ pub mod dimension;
 pub mod frames;
 pub mod functions;
 pub mod ggroups;
+pub mod interrupts;
 pub mod keywords;
 pub mod mfunctions;
 pub mod modal;

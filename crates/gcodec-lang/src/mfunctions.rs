@@ -28,6 +28,9 @@ pub fn standard_class(value: u32, change_m: u32) -> Option<MClass> {
     })
 }
 
+/// The largest M value (reference §4.2: an INT at the interface).
+pub const MAX_M_VALUE: u32 = 2_147_483_647;
+
 /// `M0 M1 M2 M17 M30` act after the block's motion (the M-function design).
 pub fn acts_after_motion(value: u32) -> bool {
     matches!(value, 0 | 1 | 2 | 17 | 30)

@@ -308,6 +308,22 @@ pub struct MFunctions {
     /// classes are those of the `m_function` instruction.
     #[serde(default)]
     pub mcode_class_overrides: BTreeMap<Spanned<String>, MClass>,
+    /// The auxiliary-function groups of the master spindle's M functions
+    /// (MD22000 ff.): group number (1…64) → M values. A block outputs one
+    /// function of a group (alarm 14760).
+    #[serde(default = "default_auxiliary_groups")]
+    pub auxiliary_groups: BTreeMap<Spanned<String>, Vec<Spanned<u32>>>,
+}
+
+impl MFunctions {
+    /// The auxiliary-function group of the master spindle's `M<value>`,
+    /// if it is in one.
+    pub fn auxiliary_group(&self, value: u32) -> Option<&str> {
+        self.auxiliary_groups
+            .iter()
+            .find(|(_, values)| values.iter().any(|v| *v.get_ref() == value))
+            .map(|(group, _)| group.get_ref().as_str())
+    }
 }
 
 impl Default for MFunctions {
@@ -317,6 +333,7 @@ impl Default for MFunctions {
             unknown_mcode_policy: default_unknown_mcode_policy(),
             enable_extended_m_address: true,
             mcode_class_overrides: BTreeMap::new(),
+            auxiliary_groups: default_auxiliary_groups(),
         }
     }
 }
@@ -404,6 +421,10 @@ pub struct ProgramSettings {
     /// Folders searched for subprograms, relative to the profile's folder.
     #[serde(default)]
     pub subprogram_paths: Vec<String>,
+    /// The setting data `$SC_EXT_PROG_PATH` (SD42700): where `EXTCALL`
+    /// looks first, relative to the profile's folder; none by default.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub external_program_path: Option<String>,
     /// Folders a symbolic link on the search path may point into besides
     /// the search path's own (a shared cycle folder linked into each
     /// machine's folder), relative to the profile's folder.
@@ -444,6 +465,7 @@ impl Default for ProgramSettings {
             max_block_length: default_max_block_length(),
             max_feed: default_max_feed(),
             subprogram_paths: Vec::new(),
+            external_program_path: None,
             link_target_paths: Vec::new(),
             max_file_size: default_max_file_size(),
             code_page: default_code_page(),
@@ -521,6 +543,16 @@ fn default_duplo() -> u32 {
 
 fn default_tool_state() -> ToolState {
     ToolState::Enabled
+}
+
+/// Group 1 the program-flow functions, group 2 the master spindle's
+/// (MD22040 and the predefined groups of MD22050 ff.).
+fn default_auxiliary_groups() -> BTreeMap<Spanned<String>, Vec<Spanned<u32>>> {
+    let group = |values: &[u32]| values.iter().copied().map(spanned).collect();
+    BTreeMap::from([
+        (spanned("1".to_owned()), group(&[0, 1, 2, 17, 30])),
+        (spanned("2".to_owned()), group(&[3, 4, 5, 70])),
+    ])
 }
 
 fn default_max_m_per_block() -> Spanned<u32> {

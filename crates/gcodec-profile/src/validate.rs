@@ -303,6 +303,7 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
 }
 
 fn check_m_functions(m: &MFunctions, out: &mut Vec<Diagnostic>) {
+    check_auxiliary_groups(m, out);
     if !(1..=16).contains(m.max_m_per_block.get_ref()) {
         out.push(error(
             codes::profile::OUT_OF_RANGE,
@@ -326,6 +327,51 @@ fn check_m_functions(m: &MFunctions, out: &mut Vec<Diagnostic>) {
                 )
                 .with_help("keys are M values, e.g. `100 = \"custom\"`"),
             );
+        }
+    }
+}
+
+/// Groups numbered 1…64, M values of the address range, each in one group.
+fn check_auxiliary_groups(m: &MFunctions, out: &mut Vec<Diagnostic>) {
+    let mut seen: Vec<(u32, &str)> = Vec::new();
+    for (group, values) in &m.auxiliary_groups {
+        if !group
+            .get_ref()
+            .parse::<u8>()
+            .is_ok_and(|g| (1..=64).contains(&g))
+        {
+            out.push(
+                error(
+                    codes::profile::OUT_OF_RANGE,
+                    group,
+                    format!("`{}` is not an auxiliary-function group", group.get_ref()),
+                    "here",
+                )
+                .with_help("groups are numbered 1…64, e.g. `2 = [3, 4, 5, 70]`"),
+            );
+        }
+        for value in values {
+            let v = *value.get_ref();
+            if v > MAX_ADDRESS_VALUE {
+                out.push(error(
+                    codes::profile::OUT_OF_RANGE,
+                    value,
+                    format!("`{v}` is not an M value"),
+                    "here",
+                ));
+            } else if let Some((_, other)) = seen.iter().find(|(seen, _)| *seen == v) {
+                out.push(
+                    error(
+                        codes::profile::DUPLICATE,
+                        value,
+                        format!("M{v} is in group {other} already"),
+                        "again here",
+                    )
+                    .with_help("an M function belongs to one auxiliary-function group"),
+                );
+            } else {
+                seen.push((v, group.get_ref()));
+            }
         }
     }
 }

@@ -15,7 +15,7 @@ use crate::policy::by_policy;
 use crate::tools::{not_a_spindle_number, spindle_exists, unknown_spindle};
 use crate::values::{constant, source_text, tree, whole_number, written, written_number};
 /// Largest M value (the M-function design: a 32-bit non-negative INT).
-const MAX_M: f64 = 2_147_483_647.0;
+const MAX_M: f64 = gcodec_lang::mfunctions::MAX_M_VALUE as f64;
 
 /// A checked M word.
 pub(crate) struct MWord {
@@ -230,6 +230,42 @@ pub(crate) fn check_count(words: &[MWord], profile: &Profile, diagnostics: &mut 
             .with_label(first_excess.span, "one too many")
             .with_help("split the block; the limit is `max_m_per_block` in the profile"),
         );
+    }
+}
+
+/// Two M functions of one auxiliary-function group of the master spindle
+/// in a block (`S1000 M3 M5`, `M0 M30`): alarm 14760. Computed values and
+/// spindles are checked when the block runs.
+pub(crate) fn check_groups(words: &[MWord], profile: &Profile, diagnostics: &mut Diagnostics) {
+    let groups = &profile.m_functions;
+    let master = profile.machine.spindles.first().map(|s| *s.get_ref());
+    let grouped = |m: &MWord| {
+        let of_master = match m.extension {
+            None | Some(0) => m.extension_expr.is_none(),
+            Some(n) => Some(n) == master,
+        };
+        m.value
+            .filter(|_| of_master)
+            .and_then(|v| groups.auxiliary_group(v))
+    };
+    for (i, later) in words.iter().enumerate() {
+        let Some(group) = grouped(later) else {
+            continue;
+        };
+        if let Some(first) = words[..i].iter().find(|m| grouped(m) == Some(group)) {
+            diagnostics.push(
+                Diagnostic::new(
+                    codes::lower::M_GROUP_CONFLICT,
+                    format!(
+                        "`{}` and `{}` are both of auxiliary-function group {group}",
+                        first.raw, later.raw
+                    ),
+                )
+                .with_label(first.span, "first")
+                .with_label(later.span, "same group")
+                .with_help("the control outputs one M function of a group per block (alarm 14760); split the block or drop one (the groups are the profile's `auxiliary_groups`)"),
+            );
+        }
     }
 }
 

@@ -785,7 +785,9 @@ impl<'d> Graph<'d> {
                 | Op::Procedure(_)
                 | Op::External(_)
                 | Op::Message { .. }
-                | Op::Stop { .. } => {}
+                | Op::Stop { .. }
+                | Op::InterruptAssign(_)
+                | Op::InterruptControl { .. } => {}
             }
             if let Some(code) = event {
                 events.push(Event { code, line });

@@ -150,6 +150,8 @@ pub(crate) fn select(
             ));
             return None;
         }
+        // `T0` empties the spindle with tool management too.
+        (Selector::Number(0), true) if !assigned => (SelectorKind::Number, "0".to_owned()),
         (Selector::Number(_), true) if !assigned => {
             diagnostics.push(form_error(
                 span,

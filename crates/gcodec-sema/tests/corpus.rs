@@ -3,7 +3,7 @@
 //! for, and the definition files of that machine. Warnings (constructs not
 //! lowered yet, M functions the profile does not know) are allowed.
 //! `SYNTAX_CHECK.SPF` is excluded: its machine-dependent lines are errors
-//! by design (`syntax_check.rs`). Two lines written for interpreters more
+//! by design (`syntax_check.rs`). Lines written for interpreters more
 //! lenient than the control are errors on the control too
 //! ([`EXPECTED_ERRORS`]): the test requires exactly those.
 
@@ -26,6 +26,9 @@ use gcodec_testkit::corpus::{definitions, machine_profile};
 /// - `simple.mpf:2,3` (a parser test of the CEAD interpreter) programs
 ///   `G2`/`G3` end points without centre or radius (the control cannot
 ///   build the circle) and `X` twice in one block (alarm 12010).
+/// - `multiple_m_codes.mpf:4` (a test of the CEAD interpreter's M codes)
+///   writes `M3 M4 M5` in one block, three functions of the master
+///   spindle's auxiliary-function group (alarm 14760).
 const EXPECTED_ERRORS: &[(&str, u32, &str)] = &[
     (
         "peer-cead/simple.mpf",
@@ -37,6 +40,11 @@ const EXPECTED_ERRORS: &[(&str, u32, &str)] = &[
         "peer-cead/simple.mpf",
         3,
         "gcodec::lower::missing_circle_data",
+    ),
+    (
+        "peer-cead/multiple_m_codes.mpf",
+        4,
+        "gcodec::lower::m_group_conflict",
     ),
     (
         "peer-cead/edge_cases.mpf",

@@ -926,6 +926,7 @@ fn the_analysis_agrees_with_a_reference_on_random_documents() {
                     target_expr: None,
                     section: None,
                     by_path: false,
+                    external: false,
                     args: Vec::new(),
                     passes: None,
                     modal: next(2) == 0,

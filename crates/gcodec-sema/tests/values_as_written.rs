@@ -99,7 +99,7 @@ fn extension_constants_out_of_range_name_the_value_as_written() {
     for (program, message) in [
         (
             "S[0100]=1000",
-            "`S[0100]`: a spindle number is a whole number 1…99",
+            "`S[0100]`: a spindle number is a whole number 0…99",
         ),
         (
             "M[100]=3",
@@ -111,7 +111,7 @@ fn extension_constants_out_of_range_name_the_value_as_written() {
         ),
         (
             "SPOS[99999999999]=90",
-            "`SPOS[99999999999]`: a spindle number is a whole number 1…99",
+            "`SPOS[99999999999]`: a spindle number is a whole number 0…99",
         ),
         ("H0100=5", "H extension 0100 is out of range"),
         ("H[100]=5", "H extension 100 is out of range"),

@@ -214,7 +214,7 @@ impl Channel<'_> {
         let (callee, own_level) = if target.is_empty() && call.section.is_some() {
             (Arc::clone(program), false)
         } else {
-            match self.load(program, instruction, &target, call.by_path)? {
+            match self.load(program, instruction, &target, (call.by_path, call.external))? {
                 Some(callee) => (callee, true),
                 None => {
                     self.not_simulated_call(
@@ -268,18 +268,20 @@ impl Channel<'_> {
         self.enter(pc + 1, callee, active)
     }
 
-    /// Loads `target`; `None` for a standard cycle that is not on the
+    /// Loads `target` (by path for `PCALL`, from external storage first
+    /// for `EXTCALL`); `None` for a standard cycle that is not on the
     /// search path (reported as a warning).
     fn load(
         &mut self,
         program: &Arc<Program>,
         instruction: &Instruction,
         target: &str,
-        by_path: bool,
+        (by_path, external): (bool, bool),
     ) -> Result<Option<Arc<Program>>, RunError> {
         let request = LoadRequest {
             name: target,
             by_path,
+            external,
             caller_file: &program.file,
         };
         match self.loader.load(&request) {
@@ -374,7 +376,7 @@ impl Channel<'_> {
         target: &str,
         call: &Call,
     ) -> Result<ModalCall, RunError> {
-        let callee = self.load(program, instruction, target, call.by_path)?;
+        let callee = self.load(program, instruction, target, (call.by_path, call.external))?;
         let bindings = match &callee {
             Some(callee) => self.bindings(callee, call)?,
             None => Vec::new(),
@@ -492,6 +494,7 @@ impl Channel<'_> {
             target_expr: None,
             section: None,
             by_path: false,
+            external: false,
             args: Vec::new(),
             passes: None,
             modal: false,

@@ -9,6 +9,7 @@ use gcodec_ail::{
     ToolChangeTrigger, ToolSelect, Value,
 };
 use gcodec_lang::addresses::NamedAddress;
+use gcodec_lang::mfunctions::{MAX_M_VALUE, acts_after_motion};
 use gcodec_lang::{FrameOp, MClass};
 use gcodec_profile::{Policy, Tool, ToolState, UnresolvedToolPolicy};
 use gcodec_source::{Severity, codes};
@@ -26,6 +27,38 @@ use crate::program::Program;
 use crate::value::{RtValue, RunError};
 
 impl Channel<'_> {
+    /// One M function per auxiliary-function group of the master spindle
+    /// in a block (alarm 14760); constants were checked by lowering.
+    fn check_auxiliary_group(
+        &mut self,
+        value: u32,
+        extension: Option<u32>,
+        raw: &str,
+    ) -> Result<(), RunError> {
+        let profile = &self.state.profile;
+        let master = profile.machine.spindles.first().map(|s| *s.get_ref());
+        let of_master = extension.is_none_or(|n| n == 0 || Some(n) == master);
+        let group = profile
+            .m_functions
+            .auxiliary_group(value)
+            .and_then(|g| g.parse::<u8>().ok())
+            .filter(|g| of_master && (1..=64).contains(g));
+        let Some(group) = group else {
+            return Ok(());
+        };
+        let bit = 1u64 << (group - 1);
+        if self.block.m_groups & bit != 0 {
+            return Err(RunError::new(
+                codes::run::M_GROUP_CONFLICT,
+                format!(
+                    "`{raw}` is M{value}, of auxiliary-function group {group} like another M function of this block"
+                ),
+            ));
+        }
+        self.block.m_groups |= bit;
+        Ok(())
+    }
+
     pub(super) fn m_function(
         &mut self,
         program: &Arc<Program>,
@@ -38,16 +71,27 @@ impl Channel<'_> {
             (Some(v), _) => *v,
             (None, Some(expr)) => {
                 let n = eval::eval(&env, expr)?.to_int()?;
-                u32::try_from(n).map_err(|_| {
-                    RunError::new(
-                        codes::run::OVERFLOW,
-                        format!("`M={n}`: an M function is 0 or more"),
-                    )
-                })?
+                u32::try_from(n)
+                    .ok()
+                    .filter(|v| *v <= MAX_M_VALUE)
+                    .ok_or_else(|| {
+                        RunError::new(
+                            codes::run::OVERFLOW,
+                            format!("`M={n}`: M values are 0…{MAX_M_VALUE}"),
+                        )
+                    })?
             }
             (None, None) => 0,
         };
         let extension = self.extension(m.address_extension, m.address_extension_expr.as_ref())?;
+        // The rules lowering checks on constants, for a computed value.
+        if m.m_value.is_none() && extension.is_some() && acts_after_motion(value) {
+            return Err(RunError::new(
+                codes::run::M_EXTENSION_FORBIDDEN,
+                format!("`{}` is M{value}, which takes no address extension", m.raw),
+            ));
+        }
+        self.check_auxiliary_group(value, extension, &m.raw)?;
         // A computed value is classified now, as lowering classifies
         // constants.
         let computed_class = m
@@ -272,10 +316,9 @@ impl Channel<'_> {
         instruction: &Instruction,
         address: &Address,
     ) -> Result<(), RunError> {
-        let env = self.env();
-        let value = eval::eval_real(&env, &address.value)?;
         match address.address {
             NamedAddress::Spos | NamedAddress::Sposa => {
+                let value = eval::eval_real(&self.env(), &address.value)?;
                 let number = self.extension(address.extension, address.extension_expr.as_ref())?;
                 let s = self.state.spindle(number)?;
                 s.state = SpindleState::Positioned;
@@ -283,6 +326,11 @@ impl Channel<'_> {
                 self.spindle_event(program, instruction, number)?;
             }
             other => {
+                // Read, for its errors, though it has no effect: an axis
+                // (`CPLA[X]=Y`) or a string (`CPSETTYPE[X]="CP"`) as well.
+                if let Value::Expr(expr) = &address.value {
+                    eval::eval(&self.env(), expr)?;
+                }
                 let other = other.name();
                 let key = format!("address {other}");
                 self.not_simulated(program, instruction, &key, || {

@@ -17,12 +17,13 @@
 //! `approach` (`G74`/`G75`), `settings` (the group 3 commands whose axis
 //! words set values: `G25`/`G26`, the pole, `G58`/`G59`), `calls`
 //! (subprograms, parameters, sections), `functions` (M and H functions,
-//! tool selection and change, spindle, dwell), `summary` (the figures
-//! after the run).
+//! tool selection and change, spindle, dwell), `interrupts` (the
+//! routines assigned to inputs), `summary` (the figures after the run).
 
 mod approach;
 mod calls;
 mod functions;
+mod interrupts;
 mod motion;
 mod polar;
 mod settings;
@@ -176,6 +177,9 @@ struct BlockState {
     transferred: bool,
     line: u32,
     had_motion: bool,
+    /// The auxiliary-function groups (bit `group − 1`) whose M function
+    /// the block has output.
+    m_groups: u64,
     /// Where the block came from (for the CSV row).
     file: Option<Arc<str>>,
     level: u32,
@@ -482,6 +486,7 @@ impl<'r> Channel<'r> {
             transferred: false,
             line: instruction.source.line,
             had_motion: false,
+            m_groups: 0,
             file: self.observer.is_some().then(|| program.file.clone()),
             level,
             number: None,
@@ -713,6 +718,12 @@ impl<'r> Channel<'r> {
                 self.emit_at(program, instruction, event);
                 Ok(Flow::Next)
             }
+            Op::InterruptAssign(assign) => self
+                .interrupt_assign(program, instruction, assign)
+                .map(|()| Flow::Next),
+            Op::InterruptControl { action, input } => self
+                .interrupt_control(program, instruction, *action, input)
+                .map(|()| Flow::Next),
             Op::Call(call) => self.call(program, pc, instruction, call),
             Op::CancelModalCall => {
                 self.state.modal_call = None;

@@ -103,6 +103,8 @@ pub struct MachineState {
     /// The total frame the last motion ran in (`None` before the first):
     /// an increment after a change traverses it (SD42440).
     pub traversed_frame: Option<Frame>,
+    /// `SETINT`: the routine of each input.
+    pub(super) interrupts: super::interrupts::Interrupts,
     /// The last total frame with what it was made of, so that a motion
     /// does not chain frames (and allocate) unless one changed.
     frame_cache: RefCell<FrameCache>,
@@ -207,6 +209,7 @@ impl MachineState {
             polar: Polar::default(),
             working_area: WorkingArea::default(),
             traversed_frame: None,
+            interrupts: Default::default(),
             // A group 8 code no block selects: the first motion fills it.
             frame_cache: RefCell::new(FrameCache {
                 group8: WorkOffsetCode(0),

@@ -196,6 +196,7 @@ impl EvalContext for Env<'_> {
         loader.exists(&LoadRequest {
             name: &name,
             by_path: name.contains('/'),
+            external: false,
             caller_file,
         })
     }

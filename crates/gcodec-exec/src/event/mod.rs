@@ -90,7 +90,7 @@ pub struct EventSource {
 }
 
 /// The names of the event kinds, in the order of [`EventKind`].
-pub const EVENT_KINDS: [&str; 14] = [
+pub const EVENT_KINDS: [&str; 15] = [
     "motion",
     "modal_change",
     "m_function",
@@ -105,6 +105,7 @@ pub const EVENT_KINDS: [&str; 14] = [
     "stop",
     "program_end",
     "diagnostic",
+    "interrupt",
 ];
 
 /// What happened.
@@ -140,6 +141,9 @@ pub enum EventKind {
     ProgramEnd(ProgramEndEvent),
     /// A problem found while running (an alarm of the control, a warning).
     Diagnostic(DiagnosticEvent),
+    /// An input's interrupt assignment changed (`SETINT`, `ENABLE`,
+    /// `DISABLE`, `CLRINT`).
+    Interrupt(InterruptEvent),
 }
 
 impl EventKind {
@@ -160,8 +164,43 @@ impl EventKind {
             Self::Stop(_) => 11,
             Self::ProgramEnd(_) => 12,
             Self::Diagnostic(_) => 13,
+            Self::Interrupt(_) => 14,
         }
     }
+}
+
+/// An input's interrupt assignment as it is after the statement: the
+/// simulation records it, but no input ever fires.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+pub struct InterruptEvent {
+    /// The fast input, 1…8.
+    pub input: u32,
+    /// What the statement did.
+    pub change: InterruptChange,
+    /// The routine; `null` for `LIFTFAST` alone and after `CLRINT`.
+    pub routine: Option<String>,
+    /// 1 (highest) … 128; `null` after `CLRINT`.
+    pub priority: Option<u32>,
+    /// `LIFTFAST`: a fast retraction before the routine.
+    pub lift_fast: bool,
+    /// `BLSYNC`: the routine starts at the end of the block in progress.
+    pub block_sync: bool,
+    /// Whether the input's signal would start the routine now.
+    pub enabled: bool,
+}
+
+/// What an interrupt statement did to its input's assignment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum InterruptChange {
+    /// `SETINT`: assigned (or assigned anew) and enabled.
+    Assigned,
+    /// `ENABLE`.
+    Enabled,
+    /// `DISABLE`.
+    Disabled,
+    /// `CLRINT`: the assignment is removed.
+    Cleared,
 }
 
 /// A traversing block.

@@ -197,6 +197,29 @@ pub fn write_trace_line(out: &mut impl fmt::Write, event: &Event) -> fmt::Result
             }
         }
         EventKind::Return(ret) => write!(out, " {}", ret.target)?,
+        EventKind::Interrupt(interrupt) => {
+            write!(
+                out,
+                " input {} {}",
+                interrupt.input,
+                snake_name(&interrupt.change)
+            )?;
+            if let Some(routine) = &interrupt.routine {
+                write!(out, " {routine}")?;
+            }
+            if let Some(priority) = interrupt.priority {
+                write!(out, " prio {priority}")?;
+            }
+            if interrupt.lift_fast {
+                write!(out, " liftfast")?;
+            }
+            if interrupt.block_sync {
+                write!(out, " blsync")?;
+            }
+            if !interrupt.enabled {
+                write!(out, " disabled")?;
+            }
+        }
         EventKind::Stop(stop) => {
             write!(out, " {}", snake_name(&stop.reason))?;
             if let Some(detail) = &stop.detail {

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use gcodec_driver::{Definitions, FileLoader, ProgramKind, SearchPath, compile, program_name};
 use gcodec_exec::channel::{BlockObserver, Channel, RunOptions, RunOutcome};
-use gcodec_exec::event::EventSink;
+use gcodec_exec::event::{Event, EventSink, VecSink};
 use gcodec_exec::loader::Loaded;
 use gcodec_exec::program::Program;
 use gcodec_profile::Profile;
@@ -23,6 +23,22 @@ pub fn compile_main(
     let name = program_name(Path::new(file.name()));
     let kind = ProgramKind::of_file(file.name());
     compile(Arc::clone(file), kind, profile, definitions).into_loaded(name)
+}
+
+/// The events of the main program `program`, given as the text of the
+/// file `name`, run on `profile` as `gcodec run` runs it; panics when it
+/// does not compile cleanly.
+pub fn events_of_text(profile: Profile, name: &str, program: &str) -> Vec<Event> {
+    let setup = gcodec_driver::RunSetup::new(profile);
+    let file = Arc::new(SourceFile::new(name, program));
+    let mut sink = VecSink::new();
+    let report = gcodec_driver::run_main(file, &setup, &mut sink, None);
+    assert!(
+        !report.diagnostics.iter().any(|d| d.is_error()),
+        "{program}: {:?}",
+        report.diagnostics
+    );
+    sink.events
 }
 
 /// What a run is given besides its main program.

@@ -20,16 +20,34 @@ pub(super) fn call_by_name<'t, 's: 't>(
     select! { T::Ident => () }
         .map_with(|_, e| e.span())
         .then(args(expr).or_not())
-        .map(move |(s, args)| {
-            StatementKind::Call(Box::new(Call {
-                target: CallTarget::Name {
-                    span: g.span(s),
-                    name: g.name(s),
-                },
-                args,
-                passes: None,
-            }))
-        })
+        .map(move |(s, args)| call_of_name(g, s, args))
+}
+
+/// The call of the name at `s` with `args` (`None`: no parentheses).
+fn call_of_name(g: Ctx<'_>, s: SimpleSpan, args: Option<Vec<Option<Expr>>>) -> StatementKind {
+    StatementKind::Call(Box::new(Call {
+        target: CallTarget::Name {
+            span: g.span(s),
+            name: g.name(s),
+        },
+        args,
+        passes: None,
+    }))
+}
+
+/// `EXTCALL "NAME"`: the call of an external program as CAM systems
+/// write it, without the parentheses of the documented `EXTCALL("NAME")`;
+/// it reads as that form.
+pub(super) fn extcall_without_parentheses<'t, 's: 't>(
+    g: Ctx<'s>,
+    expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
+) -> impl Parser<'t, In<'t>, StatementKind, Ex> + Clone + 't {
+    select! { T::Ident => () }
+        .map_with(|_, e| e.span())
+        .filter(move |s: &SimpleSpan| g.text(*s).eq_ignore_ascii_case("EXTCALL"))
+        .then_ignore(just(T::String).rewind())
+        .then(expr)
+        .map(move |(s, program)| call_of_name(g, s, Some(vec![Some(program)])))
 }
 
 /// `RET`, `RET(args)`.

@@ -21,6 +21,7 @@ pub(crate) fn statements<'t, 's: 't>(
         word_statement(g, expr.clone()),
         frame(g, expr.clone()).map(Some),
         assignment_or_named_word(g, expr.clone()).map(Some),
+        calls::extcall_without_parentheses(g, expr.clone()).map(Some),
         calls::call_by_name(g, expr.clone()).map(Some),
         starts_with_keyword
             .ignore_then(keyword_statement(g, expr))

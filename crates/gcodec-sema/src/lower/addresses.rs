@@ -12,7 +12,9 @@ use std::borrow::Cow;
 
 use gcodec_ail::{Address, AxisValue, HFunction, IndirectAxisValue, MTiming, Op, Value};
 use gcodec_lang::DimensionMode;
-use gcodec_lang::addresses::{AddressRole, AddressScope, NamedAddress, TransitionKind};
+use gcodec_lang::addresses::{
+    AddressRole, AddressScope, NamedAddress, Operand, TransitionKind, is_written_as_address,
+};
 use gcodec_lang::ggroups;
 use gcodec_parser::ast::{self, Extension, StatementKind, Word, WordValue};
 use gcodec_profile::AxisKind;
@@ -32,6 +34,34 @@ pub(super) enum Modifiers {
     Spindle,
     /// An axis of the kind given, or unknown until run time.
     Axis(Option<AxisKind>),
+}
+
+/// The number of `TOFFL[1]`, `FMA[2,X]`.
+pub(super) enum AddressNumber {
+    Constant(u32),
+    Computed(gcodec_ail::Expr),
+}
+
+/// Where the bracketed parts of a setting go in its instruction.
+trait SettingParts {
+    fn set_axis(&mut self, axis: AxisRef);
+    fn set_number(&mut self, number: AddressNumber);
+}
+
+impl SettingParts for Address {
+    fn set_axis(&mut self, axis: AxisRef) {
+        match axis {
+            AxisRef::Named(name) => self.axis = Some(name),
+            AxisRef::Computed(expr) => self.axis_expr = Some(expr),
+        }
+    }
+
+    fn set_number(&mut self, number: AddressNumber) {
+        match number {
+            AddressNumber::Constant(n) => self.extension = Some(n),
+            AddressNumber::Computed(expr) => self.extension_expr = Some(expr),
+        }
+    }
 }
 
 /// How an axis is named in brackets (`FA[X]`, `AX[_Z]`).
@@ -196,6 +226,13 @@ impl Lowering<'_> {
                 return None;
             }
         };
+        self.axis_in_brackets(address, index)
+    }
+
+    /// The axis `index` names in `address[index]`: a constant axis name
+    /// must be one of the profile's; a variable is resolved when the block
+    /// runs. `None` when rejected (diagnostic pushed).
+    fn axis_in_brackets(&mut self, address: &str, index: &ast::Expr) -> Option<AxisRef> {
         match &index.kind {
             ast::ExprKind::Var { var }
                 if var.indices.is_empty() && var.kind == ast::VarKind::Name =>
@@ -268,7 +305,7 @@ impl Lowering<'_> {
                 Some(_) => {
                     let written = values::written(self.source, *span);
                     self.diagnostics.push(crate::tools::not_a_spindle_number(
-                        address, &written, "1…99", *span,
+                        address, &written, "0…99", *span,
                     ));
                     Err(())
                 }
@@ -326,9 +363,27 @@ impl Lowering<'_> {
         let takes_extension = matches!(
             role,
             AddressRole::IndirectAxis
-                | AddressRole::Setting { axis: true, .. }
-                | AddressRole::Setting { spindle: true, .. }
+                | AddressRole::Setting {
+                    operand: Operand::Axis | Operand::Spindle | Operand::Number,
+                    ..
+                }
         );
+        if let AddressRole::Setting {
+            operand: Operand::NumberAxis | Operand::AxisPair,
+            ..
+        } = role
+        {
+            return self.diagnostics.push(
+                Diagnostic::new(
+                    codes::lower::MISSING_AXIS,
+                    format!("`{name}` takes two values in brackets"),
+                )
+                .with_label(span, "here")
+                .with_help(format!(
+                    "write `{name}[…,X]=…`, the axis last (reference §2.2)"
+                )),
+            );
+        }
         if !takes_extension && let Some(ext) = extension {
             let at = match ext {
                 Extension::Number { span, .. } | Extension::Index { span, .. } => *span,
@@ -345,48 +400,36 @@ impl Lowering<'_> {
             );
         }
         match role {
-            AddressRole::Setting {
-                scope,
-                axis,
-                spindle,
-            } => {
-                let (axis_name, axis_expr) = if axis {
-                    match self.bracket_axis(word, span) {
-                        Some(AxisRef::Named(n)) => (Some(n), None),
-                        Some(AxisRef::Computed(e)) => (None, Some(e)),
+            AddressRole::Setting { scope, operand } => {
+                let mut setting = Address {
+                    mode,
+                    ..Address::new(address, value, scope)
+                };
+                match operand {
+                    Operand::Axis => match self.bracket_axis(word, span) {
+                        Some(axis) => setting.set_axis(axis),
                         None => return,
-                    }
-                } else {
-                    (None, None)
-                };
-                let (ext, ext_expr) = if spindle {
-                    match self.spindle_extension(name, extension) {
-                        Ok(found) => found,
+                    },
+                    Operand::Spindle => match self.spindle_extension(name, extension) {
+                        Ok((ext, ext_expr)) => {
+                            setting.extension = ext;
+                            setting.extension_expr = ext_expr;
+                        }
                         Err(()) => return,
-                    }
-                } else {
-                    (None, None)
-                };
-                let key = (address, axis_name.clone(), ext);
-                if axis_expr.is_none() && ext_expr.is_none() {
-                    if let Some((_, first)) = plan.address_keys.iter().find(|(k, _)| *k == key) {
-                        return self.repeated(name, span, *first);
-                    }
-                    plan.address_keys.push((key, span));
+                    },
+                    Operand::Number => match extension {
+                        Some(Extension::Number { value, .. }) => setting.extension = Some(*value),
+                        Some(Extension::Index { index, span }) => {
+                            match self.address_number(name, index, *span) {
+                                Some(number) => setting.set_number(number),
+                                None => return,
+                            }
+                        }
+                        None => {}
+                    },
+                    Operand::None | Operand::NumberAxis | Operand::AxisPair => {}
                 }
-                plan.addresses.push((
-                    Op::Address(Box::new(Address {
-                        address,
-                        axis: axis_name,
-                        axis_expr,
-                        extension: ext,
-                        extension_expr: ext_expr,
-                        value,
-                        mode,
-                        scope,
-                    })),
-                    span,
-                ));
+                self.push_setting(setting, span, plan);
             }
             AddressRole::AdditiveOffset => {
                 let ok = match &value {
@@ -408,16 +451,7 @@ impl Lowering<'_> {
                 }
                 plan.address_keys.push((key, span));
                 plan.after_edge.push((
-                    Op::Address(Box::new(Address {
-                        address,
-                        axis: None,
-                        axis_expr: None,
-                        extension: None,
-                        extension_expr: None,
-                        value,
-                        mode: None,
-                        scope: AddressScope::Modal,
-                    })),
+                    Op::Address(Box::new(Address::new(address, value, AddressScope::Modal))),
                     span,
                 ));
             }
@@ -464,6 +498,105 @@ impl Lowering<'_> {
                 plan.spline_span.get_or_insert(span);
             }
         }
+    }
+
+    /// An `address` instruction of a setting, unless the block wrote it
+    /// already (same axis and extension).
+    fn push_setting(&mut self, setting: Address, span: Span, plan: &mut BlockPlan) {
+        let constant = setting.axis_expr.is_none()
+            && setting.extension_expr.is_none()
+            && setting.leading_axis_expr.is_none();
+        if constant {
+            let key = (setting.address, setting.axis.clone(), setting.extension);
+            if let Some((_, first)) = plan.address_keys.iter().find(|(k, _)| *k == key) {
+                return self.repeated(setting.address.name(), span, *first);
+            }
+            plan.address_keys.push((key, span));
+        }
+        plan.addresses.push((Op::Address(Box::new(setting)), span));
+    }
+
+    /// The number in `TOFFL[1]`, `FMA[2,X]`: a whole number ≥ 0, or
+    /// computed when the block runs.
+    fn address_number(
+        &mut self,
+        name: &str,
+        index: &ast::Expr,
+        span: Span,
+    ) -> Option<AddressNumber> {
+        match values::constant(index) {
+            Some(n) if n >= 0.0 && n.fract() == 0.0 && n <= f64::from(u32::MAX) => {
+                Some(AddressNumber::Constant(n as u32))
+            }
+            Some(_) => {
+                self.diagnostics.push(
+                    Diagnostic::new(
+                        codes::lower::INVALID_VALUE,
+                        format!(
+                            "`{name}[{}]` takes a whole number ≥ 0 in brackets",
+                            values::source_text(index)
+                        ),
+                    )
+                    .with_label(span, "not a whole number ≥ 0"),
+                );
+                None
+            }
+            None => {
+                self.check_variables(index);
+                Some(AddressNumber::Computed(values::tree(index)))
+            }
+        }
+    }
+
+    /// `FMA[2,X]=…`, `CPLNUM[X,Y]=…`: a setting with two values in
+    /// brackets, a number or the following axis, then an axis.
+    fn place_two_index_setting(
+        &mut self,
+        address: NamedAddress,
+        (first, second): (&ast::Expr, &ast::Expr),
+        value: Value,
+        span: Span,
+        plan: &mut BlockPlan,
+    ) {
+        let AddressRole::Setting { scope, operand } = address.role() else {
+            return;
+        };
+        let name = address.name();
+        let mut setting = Address::new(address, value, scope);
+        match operand {
+            Operand::NumberAxis => {
+                let number = self.address_number(name, first, first.span);
+                let axis = self.axis_in_brackets(name, second);
+                let (Some(number), Some(axis)) = (number, axis) else {
+                    return;
+                };
+                setting.set_number(number);
+                setting.set_axis(axis);
+            }
+            Operand::AxisPair => {
+                let following = self.axis_in_brackets(name, first);
+                let leading = self.axis_in_brackets(name, second);
+                let (Some(following), Some(leading)) = (following, leading) else {
+                    return;
+                };
+                setting.set_axis(following);
+                match leading {
+                    AxisRef::Named(axis) => setting.leading_axis = Some(axis),
+                    AxisRef::Computed(axis) => setting.leading_axis_expr = Some(axis),
+                }
+            }
+            _ => {
+                return self.diagnostics.push(
+                    Diagnostic::new(
+                        codes::lower::EXTENSION_NOT_ALLOWED,
+                        format!("`{name}` takes at most one value in brackets"),
+                    )
+                    .with_label(second.span, "second value")
+                    .with_help("only `FMA[n,axis]` and the generic coupling's `CPL…[following,leading]` take two (reference §2.2)"),
+                );
+            }
+        }
+        self.push_setting(setting, span, plan);
     }
 
     fn repeated(&mut self, address: &str, span: Span, first: Span) {
@@ -541,35 +674,77 @@ impl Lowering<'_> {
         plan: &mut BlockPlan,
     ) -> bool {
         let target = &assign.target;
-        if target.kind != ast::VarKind::Name || !target.indices.is_empty() {
+        if target.kind != ast::VarKind::Name {
             return false;
         }
-        let ast::Initializer::Expr(expr) = &assign.value else {
-            return false;
-        };
         // `XV=10`: an axis whose name is longer than a letter and a number
         // reads as an assignment too.
-        if let Some(axis) = self.axis_kind(&target.name) {
+        if target.indices.is_empty()
+            && let ast::Initializer::Expr(expr) = &assign.value
+            && let Some(axis) = self.axis_kind(&target.name)
+        {
             self.axis_assignment(axis, target, expr, span, plan);
             return true;
         }
         let upper = target.name.to_ascii_uppercase();
-        let (address, spindle) = match upper.as_str() {
-            "FAD" | "DISR" | "DISCL" => (upper.as_str(), None),
-            name => {
-                let digits_at = name
+        let (named, spindle) = match NamedAddress::named(&upper) {
+            Some(named) if !is_written_as_address(&upper) => (named, None),
+            _ => {
+                let digits_at = upper
                     .find(|c: char| c.is_ascii_digit())
-                    .unwrap_or(name.len());
-                let (head, digits) = name.split_at(digits_at);
-                match (head, digits.parse::<u32>()) {
-                    ("SPOS" | "SPOSA", Ok(n)) if digits.len() <= 2 => (head, Some(n)),
+                    .unwrap_or(upper.len());
+                let (head, digits) = upper.split_at(digits_at);
+                // `SPOS2=90`; `FA2=400`, a number where the address takes
+                // an axis in brackets (`extension_not_allowed`).
+                let numbered = |named: NamedAddress| {
+                    matches!(
+                        named.role(),
+                        AddressRole::Setting {
+                            operand: Operand::Spindle | Operand::Axis,
+                            ..
+                        }
+                    )
+                };
+                match (NamedAddress::named(head), digits.parse::<u32>()) {
+                    (Some(named), Ok(n))
+                        if numbered(named) && digits.len() <= 2 && target.indices.is_empty() =>
+                    {
+                        (named, Some(n))
+                    }
                     _ => return false,
                 }
             }
         };
-        let Some(named) = NamedAddress::named(address) else {
+        // A variable of the program's own named like an address (`DEF
+        // REAL OSE` in a definition file) stays that variable.
+        if self.outline.names.declares(&target.name, target.span.start) {
             return false;
+        }
+        let address = named.name();
+        let ast::Initializer::Expr(expr) = &assign.value else {
+            // `MEASA[X]=(1,1,-1)`: a list of values.
+            self.not_lowered(span, &format!("the list of values of `{address}`"));
+            return true;
         };
+        match target.indices.as_slice() {
+            [] | [_] => {}
+            [first, second] => {
+                self.check_variables(expr);
+                let value = values::value(expr);
+                self.place_two_index_setting(named, (first, second), value, span, plan);
+                return true;
+            }
+            [_, _, third, ..] => {
+                self.diagnostics.push(
+                    Diagnostic::new(
+                        codes::lower::EXTENSION_NOT_ALLOWED,
+                        format!("`{address}` takes at most two values in brackets"),
+                    )
+                    .with_label(third.span, "third value"),
+                );
+                return true;
+            }
+        }
         self.check_variables(expr);
         // `SPOS2=DC(90)`: the modifier is a call in an assignment.
         let (value, mode) = match &expr.kind {
@@ -612,7 +787,13 @@ impl Lowering<'_> {
             }
             _ => (values::value(expr), None),
         };
-        let extension = spindle.map(|value| Extension::Number { span, value });
+        let extension = match target.indices.first() {
+            Some(index) => Some(Extension::Index {
+                span: index.span,
+                index: Box::new(index.clone()),
+            }),
+            None => spindle.map(|value| Extension::Number { span, value }),
+        };
         let word = Word::new(
             span,
             address,
@@ -744,16 +925,7 @@ impl Lowering<'_> {
     ) {
         let span = spline_span.unwrap_or_default();
         let address = |address: NamedAddress, value: Value| {
-            Op::Address(Box::new(Address {
-                address,
-                axis: None,
-                axis_expr: None,
-                extension: None,
-                extension_expr: None,
-                value,
-                mode: None,
-                scope: AddressScope::Block,
-            }))
+            Op::Address(Box::new(Address::new(address, value, AddressScope::Block)))
         };
         if let Some(spline) = spline {
             if let Some(v) = spline.weight {

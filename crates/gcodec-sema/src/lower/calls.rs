@@ -73,6 +73,16 @@ impl Lowering<'_> {
                 ));
             }
         }
+        if let Some(action) = super::interrupts::control_action(upper)
+            && let Some(args) = &call.args
+        {
+            return self.interrupt_control(upper, action, args, span, plan);
+        }
+        if upper == "EXTCALL"
+            && let Some(args) = &call.args
+        {
+            return self.external_call(args, span, plan);
+        }
         if upper == "MSG"
             && let Some(args) = &call.args
         {
@@ -113,6 +123,7 @@ impl Lowering<'_> {
             target_expr: None,
             section: None,
             by_path: false,
+            external: false,
             args: args.iter().map(|a| a.as_ref().map(values::value)).collect(),
             passes,
             modal,
@@ -222,6 +233,36 @@ impl Lowering<'_> {
                 target_expr,
                 section,
                 by_path: false,
+                external: false,
+                args: Vec::new(),
+                passes: None,
+                modal: false,
+            })),
+            span,
+        ));
+    }
+
+    /// `EXTCALL("/_N_EXT_DIR/SUB")`, `EXTCALL "SUB"`: a program from
+    /// external storage, its name or path computed when the call runs.
+    fn external_call(&mut self, args: &[Option<ast::Expr>], span: Span, plan: &mut BlockPlan) {
+        let [Some(program)] = args else {
+            return self.diagnostics.push(
+                Diagnostic::new(
+                    codes::lower::INVALID_VALUE,
+                    format!("`EXTCALL` takes one program name, {} given", args.len()),
+                )
+                .with_label(span, "here")
+                .with_help("write `EXTCALL(\"NAME\")` or `EXTCALL(\"path/NAME\")`"),
+            );
+        };
+        self.check_variables(program);
+        plan.calls.push((
+            Op::Call(Box::new(gcodec_ail::Call {
+                target: String::new(),
+                target_expr: Some(values::tree(program)),
+                section: None,
+                by_path: false,
+                external: true,
                 args: Vec::new(),
                 passes: None,
                 modal: false,
@@ -256,6 +297,7 @@ impl Lowering<'_> {
                 target_expr: None,
                 section: None,
                 by_path: true,
+                external: false,
                 args: args.iter().map(|a| a.as_ref().map(values::value)).collect(),
                 passes: None,
                 modal: false,

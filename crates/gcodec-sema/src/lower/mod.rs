@@ -38,6 +38,7 @@ mod axis_commands;
 mod calls;
 mod control;
 mod frames;
+mod interrupts;
 pub(crate) mod outline;
 mod parts;
 mod statements;
@@ -677,8 +678,11 @@ impl<'a> Lowering<'a> {
             self.check_structure_block(facts, block);
             self.structure_parts(facts, block, &mut plan);
         }
-        for statement in &block.statements {
-            self.statement(block, index, statement, &mut plan);
+        let interrupt = self.interrupt_assignment(block, &mut plan);
+        for (at, statement) in block.statements.iter().enumerate() {
+            if !interrupt.contains(&at) {
+                self.statement(block, index, statement, &mut plan);
+            }
         }
         // Jump targets and structure labels come first: a jump to a skipped
         // block lands before its skip test.
@@ -945,10 +949,14 @@ impl<'a> Lowering<'a> {
         deferred: bool,
     ) -> Vec<mfunc::MWord> {
         mfunc::check_count(&plan.m_functions, self.profile, &mut self.diagnostics);
+        mfunc::check_groups(&plan.m_functions, self.profile, &mut self.diagnostics);
         // Only blocks with motion and M0/M1/M2/M17/M30 allocate here.
         let mut after = Vec::new();
         for m in std::mem::take(&mut plan.m_functions) {
-            if has_motion && m.value.is_some_and(acts_after_motion) {
+            // A computed value (`M=2*15`) may be a program-flow function,
+            // which acts after the motion: it waits for the motion, so
+            // that a stop or end never drops it (SPEC §10.3).
+            if has_motion && m.value.is_none_or(acts_after_motion) {
                 after.push(m);
             } else {
                 self.emit_m(index, m, MTiming::InBlock, deferred);

@@ -27,6 +27,7 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use gcodec_ail::Op;
+use gcodec_lang::addresses::NamedAddress;
 use gcodec_lang::{DataType, UnaryOp};
 use gcodec_parser::ast::{self, StatementKind};
 use gcodec_profile::Profile;
@@ -299,6 +300,18 @@ impl<'a> Names<'a> {
     }
 
     /// What `name`, used at byte offset `at`, is.
+    /// Whether the program declares `name` at `at` (a `DEF` before or
+    /// after, a parameter, global user data, a macro or a name assumed
+    /// defined): then it is that, even where it spells an address.
+    pub(super) fn declares(&self, name: &str, at: u32) -> bool {
+        let section = self.section_at(at);
+        section.locals.get(name).is_some()
+            || self.definitions.variable(name).is_some()
+            || section.macros.get(name).is_some_and(|&from| from <= at)
+            || self.definitions.macro_named(name).is_some()
+            || self.definitions.is_assumed(name)
+    }
+
     fn resolve(&self, name: &str, at: u32) -> Resolved {
         let section = self.section_at(at);
         let mut later = None;
@@ -338,19 +351,11 @@ fn is_machine_axis(name: &str) -> bool {
         && bytes[2..].iter().all(u8::is_ascii_digit)
 }
 
-/// Addresses the parser reads as assignments because they are written
-/// like variables: with an axis or spindle index (`ACC[X]=50`,
-/// `FA[X]=1000`, `POS[Y]=10`, `SPOS[2]=90`, `OS[Z]=1`, reference §2.6) or
-/// as `NAME=value` (`MEAS=1`, `MEAW=1`: measuring; `OSP1[Z]=10`,
-/// `OST1[Z]=0`: oscillation). They are known to the control, not
-/// undefined names; their lowering belongs to the address words.
+/// A named address (`MEAS`, `OS`, `FMA`, reference §2.6) or the
+/// polynomial coefficients `PO`: known to the control, not undefined
+/// names; their lowering belongs to the addresses.
 fn is_address_name(name: &str) -> bool {
-    const NAMES: &[&str] = &[
-        "ACC", "AX", "FA", "FGREF", "FL", "FMA", "JERKLIM", "MEAS", "MEAW", "OS", "OSCTRL", "OSE",
-        "OSNSC", "OSP1", "OSP2", "OST1", "OST2", "OVRA", "PO", "POS", "POSA", "SPOS", "SPOSA",
-        "VELOLIM",
-    ];
-    NAMES.iter().any(|n| n.eq_ignore_ascii_case(name))
+    NamedAddress::named(name).is_some() || name.eq_ignore_ascii_case("PO")
 }
 
 /// `TR`, `FI`, `RT`, `SC`, `MI`: a component index of a frame

@@ -96,8 +96,10 @@ impl Lowering<'_> {
             "S" => {
                 let (spindle, spindle_expr) = match word.extension() {
                     None => (None, None),
+                    // Extension 0 is the master spindle, as for `M0=3` and
+                    // `SPOS0=` (reference §4.2).
                     Some(Extension::Number { value, span }) => {
-                        if !tools::spindle_exists(self.profile, *value) {
+                        if *value != 0 && !tools::spindle_exists(self.profile, *value) {
                             self.diagnostics.push(tools::unknown_spindle(*value, *span));
                             return;
                         }
@@ -105,8 +107,8 @@ impl Lowering<'_> {
                     }
                     // `S[SPINU]=…`: the spindle is chosen when the block runs.
                     Some(Extension::Index { index, span }) => match values::constant(index) {
-                        Some(n) if n.fract() == 0.0 && (1.0..=99.0).contains(&n) => {
-                            if !tools::spindle_exists(self.profile, n as u32) {
+                        Some(n) if n.fract() == 0.0 && (0.0..=99.0).contains(&n) => {
+                            if n != 0.0 && !tools::spindle_exists(self.profile, n as u32) {
                                 self.diagnostics
                                     .push(tools::unknown_spindle(n as u32, *span));
                                 return;
@@ -117,7 +119,7 @@ impl Lowering<'_> {
                             let written = values::written(self.source, *span);
                             return self
                                 .diagnostics
-                                .push(tools::not_a_spindle_number("S", &written, "1…99", *span));
+                                .push(tools::not_a_spindle_number("S", &written, "0…99", *span));
                         }
                         None => {
                             self.check_variables(index);

@@ -31,6 +31,8 @@ super::codes! {
     FRAME_NOT_ALONE = frame_not_alone, Error, "a frame instruction with other statements in its block";
     BLOCK_TOO_LONG = block_too_long, Error, "a block longer than the control accepts";
     INVALID_VALUE = invalid_value, Error, "a value an address or statement does not take";
+    INTERRUPT = interrupt, Error, "an interrupt assignment or switch the control rejects";
+    M_GROUP_CONFLICT = m_group_conflict, Error, alarm 14760, "two M functions of one auxiliary-function group in one block";
     UNKNOWN_SYSTEM_VARIABLE = unknown_system_variable, Error, "a system variable the control does not have";
     SYSTEM_VARIABLE_INDEX = system_variable_index, Error, "a system variable index of the wrong number or kind";
     UNDEFINED_VARIABLE = undefined_variable, Error, "a name that is no variable where it is used";

@@ -22,6 +22,9 @@ super::codes! {
     UNKNOWN_EDGE = unknown_edge, Warning, "a cutting edge the active tool does not have";
     NO_FEED = no_feed, Warning, "a feed motion without a feed";
     CYCLE_ALARM = cycle_alarm, Error, "an alarm raised by the program (`SETAL`)";
+    INTERRUPT = interrupt, Error, "a computed interrupt input or priority, or a switch of an input without a routine";
+    M_EXTENSION_FORBIDDEN = m_extension_forbidden, Error, "a computed M value that takes no address extension, with one";
+    M_GROUP_CONFLICT = m_group_conflict, Error, alarm 14760, "two M functions of one auxiliary-function group in one block";
     FRAME = frame, Error, "a frame the frame work rejects";
     DIVISION_BY_ZERO = division_by_zero, Error, "a division by zero";
     DOMAIN = domain, Error, "a function argument outside the function's domain";
