@@ -26,6 +26,11 @@ enum Command {
         /// `.mpf` / `.spf` files to parse.
         #[arg(required = true)]
         files: Vec<PathBuf>,
+        /// A definition file (`SMAC.DEF`, `MGUD.DEF`) whose macros the
+        /// programs use: they are parsed with them expanded. Repeat for
+        /// several files.
+        #[arg(long = "definitions", value_name = "FILE.DEF")]
+        definitions: Vec<PathBuf>,
         /// Output: the syntax tree as indented text, or as JSON.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
@@ -123,10 +128,17 @@ pub fn run(cli: Cli) -> u8 {
     match cli.command {
         Command::Parse {
             files,
+            definitions,
             format,
             encoding,
             diagnostics,
-        } => parse(&files, format, Reading::builtin(encoding), diagnostics),
+        } => parse(
+            &files,
+            &definitions,
+            format,
+            Reading::builtin(encoding),
+            diagnostics,
+        ),
         Command::Lower {
             file,
             profile,
@@ -206,17 +218,27 @@ fn show_profile(profile: &gcodec_profile::Profile, format: ProfileFormat) -> u8 
     }
 }
 
-fn parse(files: &[PathBuf], format: Format, reading: Reading, options: DiagnosticOptions) -> u8 {
+fn parse(
+    files: &[PathBuf],
+    definitions: &[PathBuf],
+    format: Format,
+    reading: Reading,
+    options: DiagnosticOptions,
+) -> u8 {
     let mut exit = EXIT_CLEAN;
     let mut json = Vec::new();
     let mut out = format.stdout();
     let mut written = Ok(());
+    let definitions = match load_definitions(definitions, reading, options) {
+        Ok(d) => d,
+        Err(code) => return code,
+    };
     for path in files {
         let Ok(file) = read(path, reading, options) else {
             exit = EXIT_USAGE;
             continue;
         };
-        let parsed = gcodec_driver::parse(&file);
+        let parsed = gcodec_driver::parse_with(&file, &definitions);
         report(&parsed.diagnostics, Some(&file), options);
         if parsed.has_errors() && exit == EXIT_CLEAN {
             exit = EXIT_DIAGNOSTICS;

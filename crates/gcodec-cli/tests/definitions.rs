@@ -1,6 +1,7 @@
-//! `gcodec lower --definitions FILE.DEF`: global user data for the
-//! program, read from definition files; IO errors and bad files are exit
-//! code 2.
+//! `gcodec lower --definitions FILE.DEF`: global user data and macros
+//! for the program, read from definition files; IO errors and bad files
+//! are exit code 2. `parse` and `run` take the flag too, and see the
+//! macros expanded.
 
 mod common;
 
@@ -84,4 +85,57 @@ fn a_bad_definition_file_is_exit_code_2_with_its_diagnostics() {
     assert!(err.contains("gcodec::definitions::duplicate"), "{err}");
     assert!(err.contains("BAD.DEF"), "{err}");
     assert!(out.stdout.is_empty());
+}
+
+/// A `SMAC.DEF` and a `MMAC.DEF` as a machine maker ships them: a
+/// constant, an M code and a keyword.
+fn macro_files(test: &str) -> [std::path::PathBuf; 2] {
+    [
+        temp_file(
+            test,
+            "SMAC.DEF",
+            "DEFINE MAXN AS 100\nDEFINE LIFT_ON AS M17\nM17\n",
+        ),
+        temp_file(
+            test,
+            "MMAC.DEF",
+            "DEFINE WHEN_LOW AS IF R1<50\nDEFINE DONE AS ENDIF\n",
+        ),
+    ]
+}
+
+const MACRO_PROGRAM: &str = "R1=MAXN\nWHEN_LOW\nG1 X10 F100\nDONE\nLIFT_ON\n";
+
+#[test]
+fn macros_of_definition_files_are_expanded_for_parse_lower_and_run() {
+    let program = temp_file("macros", "main.mpf", MACRO_PROGRAM);
+    let [smac, mmac] = macro_files("macros");
+    let with_definitions = |command: &str| {
+        gcodec([
+            command.as_ref(),
+            program.as_os_str(),
+            "--definitions".as_ref(),
+            smac.as_os_str(),
+            "--definitions".as_ref(),
+            mmac.as_os_str(),
+        ])
+    };
+    let out = with_definitions("parse");
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let tree = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        tree.contains("R[1] = 100") && tree.contains("M17"),
+        "{tree}"
+    );
+    let out = with_definitions("lower");
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let listing = String::from_utf8_lossy(&out.stdout);
+    assert!(!listing.contains("call"), "{listing}");
+    let out = with_definitions("run");
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let events = String::from_utf8_lossy(&out.stdout);
+    assert!(events.contains("\"m_value\":17"), "{events}");
+    // Without them `MAXN` is not defined and `LIFT_ON` is a call.
+    let out = gcodec(["lower".as_ref(), program.as_os_str()]);
+    assert!(stderr(&out).contains("gcodec::lower::undefined_variable"));
 }

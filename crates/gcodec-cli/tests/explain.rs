@@ -252,10 +252,12 @@ fn run_example(code: &Code, files: &[ExampleFile], role: Role) -> String {
         "profile-check" => vec!["profile".into(), "check".into(), path("PROFILE.TOML")],
         other => vec![other.to_owned(), path("MAIN.MPF")],
     };
-    if matches!(command, "lower" | "run") {
+    if matches!(command, "parse" | "lower" | "run") {
         for file in &files {
             match file.lang.as_str() {
-                "toml" => args.extend(["--profile".to_owned(), path(&file.name)]),
+                "toml" if command != "parse" => {
+                    args.extend(["--profile".to_owned(), path(&file.name)])
+                }
                 "def" => args.extend(["--definitions".to_owned(), path(&file.name)]),
                 _ => {}
             }

@@ -182,6 +182,17 @@ fn a_missing_subprogram_is_an_alarm_naming_the_search_path() {
 }
 
 #[test]
+fn a_missing_program_named_like_a_g_command_suggests_the_command() {
+    // `GO` with the letter O is a call of a program `GO`.
+    let file = temp_file("run-go", "rapid.mpf", "N10 GO X10\nN20 M30\n");
+    let out = gcodec(["run".as_ref(), file.as_os_str()]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    let err = stderr(&out);
+    assert!(err.contains("gcodec::run::program_not_found"), "{err}");
+    assert!(err.contains("the G command `G0`?"), "{err}");
+}
+
+#[test]
 fn a_run_time_error_in_a_called_program_is_labelled_in_its_file() {
     let main = temp_file(
         "run-called-error",

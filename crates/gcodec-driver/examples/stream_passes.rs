@@ -49,7 +49,7 @@ fn main() {
     let mut lowering = ChunkLowering::new(&outline, &profile, src);
     for chunk in &chunks {
         let started = Instant::now();
-        let parsed = parse_chunk(src, file.encoding(), chunk);
+        let parsed = parse_chunk(src, file.encoding(), chunk, definitions.macros());
         parsing += started.elapsed();
         let lowered = lowering
             .lower(parsed.first_block, &parsed.blocks)

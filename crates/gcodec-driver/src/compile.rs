@@ -7,6 +7,7 @@ use std::sync::Arc;
 use gcodec_ail::Document;
 use gcodec_exec::loader::Loaded;
 use gcodec_exec::program::Program;
+use gcodec_parser::Parse;
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, ProgramKind};
 use gcodec_source::{Diagnostics, SourceFile};
@@ -58,6 +59,12 @@ impl Compiled {
 /// lower`, the exit) for longer than the thread costs.
 const FREE_APART: usize = 100_000;
 
+/// Parses the program in `file` with the macros of `definitions`
+/// expanded, as [`compile`] parses it.
+pub fn parse_with(file: &SourceFile, definitions: &Definitions) -> Parse {
+    gcodec_parser::parse_with_macros(file, definitions.macros())
+}
+
 /// Parses and lowers the program in `file`, started as `kind`, for the
 /// machine `profile` describes, with the global names of `definitions`.
 pub fn compile(
@@ -66,7 +73,7 @@ pub fn compile(
     profile: &Profile,
     definitions: &Definitions,
 ) -> Compiled {
-    let parsed = gcodec_parser::parse(&file);
+    let parsed = parse_with(&file, definitions);
     let lowered = gcodec_sema::lower_program(&parsed.program, kind, profile, definitions);
     let tree = parsed.program;
     if tree.blocks.len() > FREE_APART {

@@ -21,11 +21,12 @@ pub mod compile;
 mod diagnostics;
 mod loaded_files;
 pub mod loader;
+mod meant_command;
 pub mod run;
 mod setup;
 pub mod stream;
 
-pub use compile::{Compiled, compile, compile_text};
+pub use compile::{Compiled, compile, compile_text, parse_with};
 pub use diagnostics::runtime_diagnostic;
 pub use gcodec_ail::{Document, write_listing};
 pub use gcodec_exec::budget::DEFAULT_MAX_WORK;

@@ -109,6 +109,7 @@ use rustc_hash::FxHashMap;
 
 use crate::compile;
 use crate::loaded_files::LoadedFiles;
+use crate::meant_command::not_found_help;
 
 /// The longest program name looked for, in bytes (the control allows
 /// far fewer). Longer names are not found.
@@ -870,9 +871,12 @@ fn not_found(
             shown(request.name),
         ),
         searched,
-        help: Some(format!(
-            "pass the directory holding {} with --subprogram-path",
-            wanted.file_name()
+        help: Some(not_found_help(
+            request.name,
+            format!(
+                "pass the directory holding {} with --subprogram-path",
+                wanted.file_name()
+            ),
         )),
     }
 }
@@ -1024,7 +1028,10 @@ impl ProgramLoader for MemoryLoader {
                     self.files.len()
                 ),
                 searched: Vec::new(),
-                help: Some(format!("add {} to the loader", wanted.file_name())),
+                help: Some(not_found_help(
+                    request.name,
+                    format!("add {} to the loader", wanted.file_name()),
+                )),
             });
         };
         let entry = &mut self.files[index];

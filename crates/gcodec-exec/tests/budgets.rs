@@ -17,7 +17,7 @@ use gcodec_source::{Code, SourceFile, codes};
 static BUILTIN: std::sync::LazyLock<Profile> =
     std::sync::LazyLock::new(|| gcodec_profile::builtin().expect("the built-in profile"));
 
-/// The bytes of a `DEF REAL A[1024,1024]`: 2^20 elements of 24 bytes.
+/// The bytes of a `DEF REAL ARR[1024,1024]`: 2^20 elements of 24 bytes.
 const BIG_ARRAY_BYTES: u64 = (1 << 20) * 24;
 
 struct Ran {
@@ -171,10 +171,10 @@ fn a_section_that_nests_itself_stops_at_the_programs_levels() {
     assert_eq!(ran.blocks, 32);
 }
 
-/// `DEF REAL A1[1024,1024]` … `A<count>`, one a line.
+/// `DEF REAL AA1[1024,1024]` … `AA<count>`, one a line.
 fn big_declarations(count: usize) -> String {
     (1..=count)
-        .map(|n| format!("DEF REAL A{n}[1024,1024]\n"))
+        .map(|n| format!("DEF REAL AA{n}[1024,1024]\n"))
         .collect()
 }
 
@@ -187,7 +187,7 @@ fn declarations_past_the_memory_for_variables_stop_at_the_one_that_does_not_fit(
     assert_eq!(
         message,
         format!(
-            "`A11` needs {BIG_ARRAY_BYTES} bytes, and {} of the {DEFAULT_MAX_VARIABLE_MEMORY} \
+            "`AA11` needs {BIG_ARRAY_BYTES} bytes, and {} of the {DEFAULT_MAX_VARIABLE_MEMORY} \
              bytes for variables are in use (the profile's `[program] max_variable_memory`)",
             10 * BIG_ARRAY_BYTES
         )
@@ -205,7 +205,7 @@ fn global_data_past_the_memory_for_variables_is_reported_at_its_definition() {
     let (diagnostic, event) = ran.alarm();
     assert_eq!(diagnostic.code, codes::run::VARIABLE_MEMORY);
     assert!(
-        diagnostic.message.starts_with("`A11` needs"),
+        diagnostic.message.starts_with("`AA11` needs"),
         "{}",
         diagnostic.message
     );

@@ -27,12 +27,12 @@ fn run(program: &str) -> (Vec<(&'static str, String, u32)>, ProgramEndReason) {
 #[test]
 fn computed_address_extensions_outside_0_to_99_are_named() {
     for (value, word) in [
-        ("-1", "S[N]=100"),
-        ("-1", "M[N]=3"),
-        ("100", "H[N]=1"),
-        ("-7", "SPOS[N]=90"),
+        ("-1", "S[NN]=100"),
+        ("-1", "M[NN]=3"),
+        ("100", "H[NN]=1"),
+        ("-7", "SPOS[NN]=90"),
     ] {
-        let program = format!("DEF INT N={value}\nN10 {word}\nN20 M30\n");
+        let program = format!("DEF INT NN={value}\nN10 {word}\nN20 M30\n");
         let (errors, end) = run(&program);
         let message = format!("the address extension {value} is outside 0…99");
         assert_eq!(errors, [("gcodec::run::overflow", message, 2)], "{word}");

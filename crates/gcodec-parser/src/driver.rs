@@ -15,6 +15,8 @@ use gcodec_source::{
 use crate::ast::*;
 use crate::error::SyntaxError;
 use crate::grammar::{self, Ctx, Spanned, operators};
+use crate::macros::{Expanded, Macros};
+use crate::misspelt::Misspelt;
 use crate::{fast, structure};
 use gcodec_stream::{Chunk, map_chunks};
 
@@ -56,16 +58,20 @@ impl Parse {
 
 /// Parses one source file.
 pub fn parse(file: &SourceFile) -> Parse {
+    parse_with_macros(file, &Macros::default())
+}
+
+/// Parses one source file with the macros of its definition files
+/// expanded (see [`Macros`]).
+pub fn parse_with_macros(file: &SourceFile, macros: &Macros) -> Parse {
     // The program quotes from the file's own bytes: no copy.
     let source = SourceText::shared(file.shared_bytes());
-    let encoding = file.encoding();
-    parse_with(
-        file.name(),
-        file.bytes(),
-        encoding,
-        Reading::Whole,
-        Some(source),
-    )
+    let how = How {
+        reading: Reading::Whole,
+        macros,
+        encoding: file.encoding(),
+    };
+    parse_with(file.name(), file.bytes(), how, Some(source))
 }
 
 /// Parses bytes under a file name. A leading UTF-8 byte-order mark is not
@@ -73,19 +79,24 @@ pub fn parse(file: &SourceFile) -> Parse {
 /// [`SourceFile::new`] holds for `src`, read in the encoding it gives
 /// them (UTF-8 if they are valid UTF-8, else Windows-1252).
 pub fn parse_bytes(name: &str, src: &[u8]) -> Parse {
-    parse_with(name, src, detected(src), Reading::Whole, None)
-}
-
-/// The encoding of `src` when no profile or option says otherwise.
-fn detected(src: &[u8]) -> Encoding {
-    TextEncoding::default().of(without_bom(src))
+    parse_with(
+        name,
+        src,
+        How::plain(Reading::Whole, src, &Macros::default()),
+        None,
+    )
 }
 
 /// Parses with the grammar only, never the fast path for constant-word
 /// blocks: the reference the fast path is tested against.
 #[doc(hidden)]
 pub fn parse_bytes_with_grammar_only(name: &str, src: &[u8]) -> Parse {
-    parse_with(name, src, detected(src), Reading::GrammarOnly, None)
+    parse_with(
+        name,
+        src,
+        How::plain(Reading::GrammarOnly, src, &Macros::default()),
+        None,
+    )
 }
 
 /// Files at least this large are parsed on several threads, one chunk of
@@ -97,22 +108,37 @@ const PARALLEL_MIN_BYTES: usize = 4 << 20;
 /// result.
 #[doc(hidden)]
 pub fn parse_bytes_in_chunks(name: &str, src: &[u8], threads: usize) -> Parse {
-    let encoding = detected(src);
+    let macros = Macros::default();
+    let how = How::plain(Reading::Whole, src, &macros);
     let src = without_bom(src);
     let source = SourceText::new(src);
-    let chunks = split(src, threads);
-    parse_in_chunks(name, src, encoding, source, Reading::Whole, chunks)
+    parse_in_chunks(name, src, source, how, split(src, threads))
+}
+
+/// How the lines of a file are read: in full or skimmed, with which
+/// macros expanded, in which encoding.
+#[derive(Clone, Copy)]
+struct How<'m> {
+    reading: Reading,
+    macros: &'m Macros,
+    encoding: Encoding,
+}
+
+impl<'m> How<'m> {
+    /// `macros` (none, for a bare file), and the encoding of `src` when no
+    /// profile or option says otherwise.
+    fn plain(reading: Reading, src: &[u8], macros: &'m Macros) -> Self {
+        Self {
+            reading,
+            macros,
+            encoding: TextEncoding::default().of(without_bom(src)),
+        }
+    }
 }
 
 /// Parses `src`, whose bytes after a byte-order mark are `source` where
 /// the caller shares them (else they are copied).
-fn parse_with(
-    name: &str,
-    src: &[u8],
-    encoding: Encoding,
-    reading: Reading,
-    source: Option<SourceText>,
-) -> Parse {
+fn parse_with(name: &str, src: &[u8], how: How<'_>, source: Option<SourceText>) -> Parse {
     let src = without_bom(src);
     let source = source.unwrap_or_else(|| SourceText::new(src));
     // Asking for the core count reads cgroup limits: only large files ask.
@@ -121,7 +147,7 @@ fn parse_with(
     } else {
         std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
     };
-    parse_in_chunks(name, src, encoding, source, reading, split(src, threads))
+    parse_in_chunks(name, src, source, how, split(src, threads))
 }
 
 /// `src` without a leading UTF-8 byte-order mark, as a [`SourceFile`]
@@ -135,9 +161,8 @@ fn without_bom(src: &[u8]) -> &[u8] {
 fn parse_in_chunks(
     name: &str,
     src: &[u8],
-    encoding: Encoding,
     source: SourceText,
-    reading: Reading,
+    how: How<'_>,
     chunks: Vec<Chunk>,
 ) -> Parse {
     // One block per line: the program's blocks are allocated once, and each
@@ -151,15 +176,13 @@ fn parse_in_chunks(
     let mut slots = runs(&mut blocks.spare_capacity_mut()[..total], &chunks);
     let found: Vec<ChunkFindings> = if chunks.len() == 1 {
         let slot = slots.pop().unwrap_or_default();
-        vec![read_chunk_into(src, encoding, &chunks[0], slot, reading)]
+        vec![read_chunk_into(src, &chunks[0], slot, how)]
     } else {
         std::thread::scope(|scope| {
             let handles: Vec<_> = chunks
                 .iter()
                 .zip(slots)
-                .map(|(chunk, slot)| {
-                    scope.spawn(move || read_chunk_into(src, encoding, chunk, slot, reading))
-                })
+                .map(|(chunk, slot)| scope.spawn(move || read_chunk_into(src, chunk, slot, how)))
                 .collect();
             handles
                 .into_iter()
@@ -223,8 +246,14 @@ pub struct ParsedChunk {
 /// Parses the lines of `chunk` of `src` as [`parse_bytes`] parses them in
 /// the whole file: the same blocks, spans and diagnostics (those sorted
 /// by span start, with a stable sort, once merged).
-pub fn parse_chunk(src: &[u8], encoding: Encoding, chunk: &Chunk) -> ParsedChunk {
-    read_chunk(src, encoding, chunk, Reading::Whole)
+/// Macros are expanded as [`parse_with_macros`] expands them.
+pub fn parse_chunk(src: &[u8], encoding: Encoding, chunk: &Chunk, macros: &Macros) -> ParsedChunk {
+    let how = How {
+        reading: Reading::Whole,
+        macros,
+        encoding,
+    };
+    read_chunk(src, chunk, how)
 }
 
 /// Reads the lines of `chunk` of `src` for lowering's `Outline` of the
@@ -244,21 +273,27 @@ pub fn parse_chunk(src: &[u8], encoding: Encoding, chunk: &Chunk) -> ParsedChunk
 /// word). So a block left out holds no structure, jump, definition,
 /// declaration or program end, and changes nothing the block before the
 /// plain ones has not already set. The chunk's diagnostics are not given
-/// (`diagnostics` is empty): [`parse_chunk`] gives them.
-pub fn skim_chunk(src: &[u8], encoding: Encoding, chunk: &Chunk) -> ParsedChunk {
-    let mut skimmed = read_chunk(src, encoding, chunk, Reading::Skim);
+/// (`diagnostics` is empty): [`parse_chunk`] gives them. With macros,
+/// every line is parsed: a plain line may use a macro that stands for a
+/// structure keyword.
+pub fn skim_chunk(src: &[u8], encoding: Encoding, chunk: &Chunk, macros: &Macros) -> ParsedChunk {
+    let how = How {
+        reading: Reading::Skim,
+        macros,
+        encoding,
+    };
+    let mut skimmed = read_chunk(src, chunk, how);
     skimmed.diagnostics.clear();
     skimmed
 }
 
-fn read_chunk(src: &[u8], encoding: Encoding, chunk: &Chunk, reading: Reading) -> ParsedChunk {
+fn read_chunk(src: &[u8], chunk: &Chunk, how: How<'_>) -> ParsedChunk {
     let mut blocks: Vec<Block> = Vec::with_capacity(chunk.blocks);
     let found = read_chunk_into(
         src,
-        encoding,
         chunk,
         &mut blocks.spare_capacity_mut()[..chunk.blocks],
-        reading,
+        how,
     );
     // SAFETY: `read_chunk_into` wrote every one of the `chunk.blocks` slots
     // (one block per line; `chunks` counted the lines).
@@ -280,9 +315,11 @@ pub fn parse_chunks(
     encoding: Encoding,
     chunks: &[Chunk],
     workers: usize,
+    macros: &Macros,
     each: impl FnMut(ParsedChunk),
 ) {
-    map_chunks(chunks, workers, |c| parse_chunk(src, encoding, c), each);
+    let parse = |chunk: &Chunk| parse_chunk(src, encoding, chunk, macros);
+    map_chunks(chunks, workers, parse, each);
 }
 
 /// [`skim_chunk`] of each of `chunks`, on `workers` threads, handed to
@@ -292,9 +329,11 @@ pub fn skim_chunks(
     encoding: Encoding,
     chunks: &[Chunk],
     workers: usize,
+    macros: &Macros,
     each: impl FnMut(ParsedChunk),
 ) {
-    map_chunks(chunks, workers, |c| skim_chunk(src, encoding, c), each);
+    let skim = |chunk: &Chunk| skim_chunk(src, encoding, chunk, macros);
+    map_chunks(chunks, workers, skim, each);
 }
 
 /// `slots` cut into consecutive runs, one per chunk of `chunks`, a slot
@@ -367,13 +406,17 @@ struct ChunkFindings {
 /// every slot of `blocks`.
 fn read_chunk_into(
     src: &[u8],
-    encoding: Encoding,
     chunk: &Chunk,
     blocks: &mut [MaybeUninit<Block>],
-    reading: Reading,
+    How {
+        reading,
+        macros,
+        encoding,
+    }: How<'_>,
 ) -> ChunkFindings {
     let mut driver = Driver {
         src,
+        macros,
         encoding,
         reading,
         plain_lines_skimmable: false,
@@ -446,6 +489,9 @@ enum Reading {
 
 struct Driver<'s, 'b> {
     src: &'s [u8],
+    /// The macros each line is expanded with.
+    macros: &'b Macros,
+    /// What the bytes of comments and strings are read in.
     encoding: Encoding,
     reading: Reading,
     /// The last block parsed leaves the plain lines after it skimmable
@@ -470,14 +516,6 @@ struct Driver<'s, 'b> {
 }
 
 impl<'s> Driver<'s, '_> {
-    /// The grammar's view of the source.
-    fn ctx(&self) -> Ctx<'s> {
-        Ctx {
-            src: self.src,
-            encoding: self.encoding,
-        }
-    }
-
     /// Skims the lines of `bytes` (see [`skim_chunk`]): a plain line while
     /// plain lines are skimmable becomes a block of its span, skip mark
     /// and number; every other line is parsed, one at a time, since
@@ -490,7 +528,8 @@ impl<'s> Driver<'s, '_> {
             let end =
                 memchr::memchr(b'\n', &src[start..bytes.end]).map_or(bytes.end, |p| start + p + 1);
             let text_end = if src[end - 1] == b'\n' { end - 1 } else { end };
-            let left_out = (self.plain_lines_skimmable && is_plain(&src[start..text_end]))
+            let skimmable = self.plain_lines_skimmable && self.macros.is_empty();
+            let left_out = (skimmable && is_plain(&src[start..text_end]))
                 .then(|| self.plain_block(start, text_end))
                 .flatten();
             match left_out {
@@ -545,7 +584,7 @@ impl<'s> Driver<'s, '_> {
             tokens[count] = (token.kind, SimpleSpan::from(s..e));
             count += 1;
         }
-        let prefix = fast::prefix(&tokens[..count], &self.ctx())?;
+        let prefix = fast::prefix(&tokens[..count], &Ctx::new(src, self.encoding))?;
         Some(block(prefix.skip, prefix.number))
     }
 
@@ -623,18 +662,27 @@ impl<'s> Driver<'s, '_> {
         let mut lines = std::mem::take(&mut self.lines);
         let mut tokens = std::mem::take(&mut self.tokens);
         {
-            let ctx = self.ctx();
+            let ctx = Ctx::new(self.src, self.encoding);
             // Built only when a block needs it: most take the fast path,
             // and a skim flushes line by line.
             let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
             for line in &lines {
-                let block = self.parse_line(line, &tokens[line.tokens.clone()], &ctx, &parser);
+                let line_tokens = &tokens[line.tokens.clone()];
+                let expanded = (!line.broken)
+                    .then(|| {
+                        Expanded::line(self.src, (line.start, line.end), line_tokens, self.macros)
+                    })
+                    .flatten();
+                let block = match expanded {
+                    None => self.parse_line(line, line_tokens, &ctx, &parser, line.end as usize),
+                    Some(expanded) => self.parse_expanded_line(line, line_tokens, expanded),
+                };
                 self.content_seen |=
                     !block.statements.is_empty() || block.label.is_some() || block.number.is_some();
                 if block
                     .statements
                     .iter()
-                    .any(|s| structure::is_structure_statement(&s.kind))
+                    .any(|s| structure::is_paired_statement(&s.kind))
                 {
                     self.structure_blocks
                         .push(self.first_block + self.filled as u32);
@@ -654,12 +702,74 @@ impl<'s> Driver<'s, '_> {
         self.tokens = tokens;
     }
 
+    /// A line whose macros are expanded: parsed from its expansion, with
+    /// each diagnostic inside an expansion naming the macro. A line whose
+    /// expansion does not end is reported and parsed as a block in error.
+    fn parse_expanded_line(
+        &mut self,
+        line: &Line,
+        line_tokens: &[Spanned],
+        expanded: Result<Expanded, crate::macros::ExpansionError>,
+    ) -> Block {
+        let expanded = match expanded {
+            Ok(expanded) => expanded,
+            Err(error) => {
+                self.diagnostics.push(error.diagnostic());
+                let broken = Line {
+                    tokens: line.tokens.clone(),
+                    broken: true,
+                    ..*line
+                };
+                let ctx = Ctx::new(self.src, self.encoding);
+                let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
+                return self.parse_line(&broken, line_tokens, &ctx, &parser, line.end as usize);
+            }
+        };
+        let first = self.diagnostics.len();
+        if let Some(&(kind, span)) = expanded.tokens.iter().find(|t| is_lexical_error(t.0)) {
+            let mut d = lexical_error(
+                kind,
+                Span::new(span.start as u32, span.end as u32),
+                &expanded.bytes,
+                self.encoding,
+            );
+            for label in &mut d.labels {
+                label.span = expanded.map_span(SimpleSpan::from(label.span.range()));
+            }
+            self.diagnostics.push(d);
+        }
+        let broken = self.diagnostics.len() > first;
+        let ctx = Ctx::expanded(&expanded, self.encoding);
+        let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
+        let this = Line {
+            tokens: line.tokens.clone(),
+            broken,
+            ..*line
+        };
+        let mut eoi = expanded.bytes.len();
+        if expanded.bytes.last() == Some(&b'\r') {
+            eoi -= 1;
+        }
+        let block = self.parse_line(&this, &expanded.tokens, &ctx, &parser, eoi);
+        for d in &mut self.diagnostics[first..] {
+            let note = d.span().and_then(|span| expanded.note(span, self.macros));
+            if let Some((at, note)) = note {
+                d.labels.push(gcodec_source::Label {
+                    span: at,
+                    message: Some(note.into()),
+                });
+            }
+        }
+        block
+    }
+
     fn parse_line<'t, P>(
         &mut self,
         line: &Line,
         tokens: &'t [Spanned],
         ctx: &Ctx<'_>,
         parser: &impl std::ops::Deref<Target = P>,
+        eoi: usize,
     ) -> Block
     where
         P: chumsky::Parser<'t, grammar::In<'t>, grammar::BlockBody, grammar::Ex>,
@@ -676,8 +786,7 @@ impl<'s> Driver<'s, '_> {
             statements: Box::default(),
             comment: line.comment.map(|(s, e)| Comment {
                 span: Span::new(s, e),
-                text: self
-                    .ctx()
+                text: Ctx::new(self.src, self.encoding)
                     .decode_text(&self.src[s as usize + 1..e as usize]),
             }),
             depth: 0,
@@ -715,6 +824,10 @@ impl<'s> Driver<'s, '_> {
             );
             return with_prefix(block, tokens, ctx);
         }
+        if let Some(misspelt) = Misspelt::in_tokens(tokens, ctx) {
+            self.diagnostics.push(misspelt.diagnostic());
+            return with_prefix(block, tokens, ctx);
+        }
         if self.reading != Reading::GrammarOnly
             && let Some(body) = fast::block(tokens, ctx)
         {
@@ -723,7 +836,7 @@ impl<'s> Driver<'s, '_> {
             block.statements = self.checked(body.statements);
             return block;
         }
-        let eoi = SimpleSpan::from(end as usize..end as usize);
+        let eoi = SimpleSpan::from(eoi..eoi);
         let (body, errors) = parser
             .parse(tokens.split_token_span(eoi))
             .into_output_errors();
@@ -924,7 +1037,7 @@ pub(crate) fn is_plain(line: &[u8]) -> bool {
                 let plain = match &line[start..i] {
                     [b'M' | b'm' | b'_'] => false,
                     [_] => true,
-                    name => is_plain_name(name),
+                    name => is_plain_name(name) && !is_misspelt_closer(name),
                 };
                 if !plain {
                     return false;
@@ -1056,6 +1169,15 @@ fn is_plain_name(name: &[u8]) -> bool {
             || operators::is_word_operator(token.kind))
 }
 
+/// A name that misspells a closer (`ENDIFF`) is no plain line's: pairing
+/// must see it to name it when its structure is left unclosed.
+fn is_misspelt_closer(name: &[u8]) -> bool {
+    std::str::from_utf8(name)
+        .ok()
+        .and_then(structure::near_closer)
+        .is_some()
+}
+
 /// Whether the driver keeps a token of `kind` for the grammar.
 fn kept(kind: TokenKind) -> bool {
     !matches!(
@@ -1142,6 +1264,14 @@ fn too_deep(tokens: &[Spanned]) -> Option<SimpleSpan> {
     None
 }
 
+/// Tokens that cannot be part of any block (see [`lexical_error`]).
+fn is_lexical_error(kind: TokenKind) -> bool {
+    matches!(
+        kind,
+        TokenKind::Error | TokenKind::Header | TokenKind::BadQuoted | TokenKind::UnclosedString
+    )
+}
+
 /// Diagnoses a token that cannot be part of any block; the block is then
 /// reported without running the grammar.
 fn lexical_error(kind: TokenKind, span: Span, src: &[u8], encoding: Encoding) -> Diagnostic {
@@ -1183,6 +1313,11 @@ fn lexical_error(kind: TokenKind, span: Span, src: &[u8], encoding: Encoding) ->
         .with_help("a header line looks like `%_N_NAME_MPF` and stands alone on the first line"),
         _ => {
             let byte = src.get(span.start as usize).copied().unwrap_or(0);
+            if byte == b'!'
+                && let Some(misspelt) = Misspelt::around_bang(src, span.start as usize)
+            {
+                return misspelt.diagnostic();
+            }
             let shown = if byte.is_ascii_graphic() {
                 format!("`{}`", byte as char)
             } else {

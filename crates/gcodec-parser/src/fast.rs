@@ -480,10 +480,7 @@ mod tests {
             .collect();
         block(
             &tokens,
-            &Ctx {
-                src: src.as_bytes(),
-                encoding: gcodec_source::Encoding::UTF_8,
-            },
+            &Ctx::new(src.as_bytes(), gcodec_source::Encoding::UTF_8),
         )
         .is_some()
     }

@@ -18,13 +18,16 @@ mod driver;
 mod error;
 mod fast;
 mod grammar;
+mod macros;
+mod misspelt;
 mod structure;
 mod tree;
 
 pub use driver::{
     MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, ParsedChunk, parse, parse_bytes,
     parse_bytes_in_chunks, parse_bytes_with_grammar_only, parse_chunk, parse_chunks,
-    plain_lines_skimmable_after, skim_chunk, skim_chunks,
+    parse_with_macros, plain_lines_skimmable_after, skim_chunk, skim_chunks,
 };
+pub use macros::{MAX_EXPANDED_BYTES, MAX_MACRO_DEPTH, Macro, Macros};
 pub use structure::Pairing;
 pub use tree::{write_expr, write_tree};

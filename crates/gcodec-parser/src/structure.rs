@@ -15,10 +15,45 @@ struct Open {
     kind: StructureKind,
     index: usize,
     span: Span,
+    /// The first call after the opener that misspells its closer.
+    misspelt: Option<Span>,
+}
+
+/// The closers, for the help of a structure never closed.
+const CLOSERS: [&str; 5] = ["ENDIF", "ENDWHILE", "ENDFOR", "ENDLOOP", "UNTIL"];
+
+/// The closer a call by name misspells (`ENDIFF`, `ENDWHIL`), if any: such
+/// a call leaves its structure unclosed, and the diagnostic names it.
+/// Only names that begin like a closer are compared, so that reading a
+/// plain line stays cheap.
+pub(crate) fn near_closer(name: &str) -> Option<&'static str> {
+    let begins_like_one = name
+        .get(..2)
+        .is_some_and(|b| b.eq_ignore_ascii_case("EN") || b.eq_ignore_ascii_case("UN"));
+    begins_like_one
+        .then(|| gcodec_source::nearest(name, CLOSERS))
+        .flatten()
+}
+
+/// The closer a statement misspells: a call by a name near a closer.
+fn misspelt_closer(kind: &StatementKind) -> Option<&'static str> {
+    match kind {
+        StatementKind::Call(call) => match &call.target {
+            CallTarget::Name { name, .. } => near_closer(name),
+            CallTarget::Number { .. } => None,
+        },
+        _ => None,
+    }
+}
+
+/// True for the statements pairing must see: those that open, split or
+/// close a control structure, and calls that misspell a closer.
+pub(crate) fn is_paired_statement(kind: &StatementKind) -> bool {
+    is_structure_statement(kind) || misspelt_closer(kind).is_some()
 }
 
 /// True for the statements that open, split or close a control structure.
-pub(crate) fn is_structure_statement(kind: &StatementKind) -> bool {
+fn is_structure_statement(kind: &StatementKind) -> bool {
     matches!(
         kind,
         StatementKind::If(_)
@@ -37,7 +72,7 @@ pub(crate) fn is_structure_statement(kind: &StatementKind) -> bool {
 
 /// Pairs the structures of `program` and sets every block's depth.
 /// `structure_blocks` lists, in order, the indices of the blocks holding a
-/// structure statement (see [`is_structure_statement`]); the parser
+/// statement pairing must see (see [`is_paired_statement`]); the parser
 /// collects them while parsing, in parallel, so this serial pass visits
 /// only those blocks' statements.
 pub(crate) fn pair(
@@ -113,6 +148,7 @@ impl Pairing {
                         kind,
                         index: structures.len() - 1,
                         span: st.span,
+                        misspelt: None,
                     });
                     if stack.len() == CONTROL_NESTING_LIMIT + 1 {
                         diagnostics.push(
@@ -125,6 +161,16 @@ impl Pairing {
                             .with_label(st.span, "this structure is too deep for the control")
                             .with_help("SINUMERIK allows 16 nested control structures per program level; move inner parts into a subprogram"),
                         );
+                    }
+                    continue;
+                }
+                if let Some(closer) = misspelt_closer(&st.kind) {
+                    let open = stack
+                        .iter_mut()
+                        .rev()
+                        .find(|o| closer_word(o.kind) == closer);
+                    if let Some(open) = open {
+                        open.misspelt.get_or_insert(st.span);
                     }
                     continue;
                 }
@@ -233,13 +279,20 @@ fn closer_word(kind: StructureKind) -> &'static str {
 fn unclosed(open: &Open, expected_at: Span, where_: &'static str) -> Diagnostic {
     let opener = opener_word(open.kind);
     let closer = closer_word(open.kind);
-    Diagnostic::new(
+    let d = Diagnostic::new(
         codes::parse::UNCLOSED_STRUCTURE,
         format!("`{opener}` is never closed by `{closer}`"),
     )
     .with_label(open.span, format!("`{opener}` opened here"))
-    .with_label(expected_at, format!("`{closer}` expected {where_}"))
-    .with_help(format!(
-        "add `{closer}` in a block of its own where the structure ends"
-    ))
+    .with_label(expected_at, format!("`{closer}` expected {where_}"));
+    match open.misspelt {
+        Some(at) => d
+            .with_label(at, format!("did you mean `{closer}`?"))
+            .with_help(format!(
+                "this is read as a call of a subprogram, not as `{closer}`; write `{closer}`"
+            )),
+        None => d.with_help(format!(
+            "add `{closer}` in a block of its own where the structure ends"
+        )),
+    }
 }

@@ -3,7 +3,7 @@
 //! the chunks come: neither split may change the tree or the diagnostics.
 
 use gcodec_parser::ast::{Program, SourceText};
-use gcodec_parser::{Pairing, parse_bytes_in_chunks, parse_chunk};
+use gcodec_parser::{Macros, Pairing, parse_bytes_in_chunks, parse_chunk};
 use gcodec_source::Encoding;
 use gcodec_stream::chunks;
 
@@ -20,7 +20,8 @@ fn parse_chunk_by_chunk(name: &str, src: &[u8], lines: usize) -> gcodec_parser::
     };
     let mut diagnostics = Vec::new();
     for chunk in chunks(src, lines) {
-        let mut parsed = parse_chunk(src, Encoding::detect(src, Encoding::WINDOWS_1252), &chunk);
+        let encoding = Encoding::detect(src, Encoding::WINDOWS_1252);
+        let mut parsed = parse_chunk(src, encoding, &chunk, &Macros::default());
         assert_eq!(
             parsed.blocks.len(),
             chunk.blocks,

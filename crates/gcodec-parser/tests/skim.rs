@@ -10,7 +10,7 @@
 mod program;
 
 use gcodec_parser::ast::StatementKind;
-use gcodec_parser::{parse_chunk, plain_lines_skimmable_after, skim_chunk};
+use gcodec_parser::{Macros, parse_chunk, plain_lines_skimmable_after, skim_chunk};
 use gcodec_source::Encoding;
 use gcodec_stream::chunks;
 use proptest::prelude::*;
@@ -29,8 +29,8 @@ fn may_be_left_out(kind: &StatementKind) -> bool {
 fn assert_skim_agrees(name: &str, src: &[u8], lines: usize) -> usize {
     let mut left_out = 0;
     for chunk in chunks(src, lines) {
-        let parsed = parse_chunk(src, Encoding::UTF_8, &chunk);
-        let skimmed = skim_chunk(src, Encoding::UTF_8, &chunk);
+        let parsed = parse_chunk(src, Encoding::UTF_8, &chunk, &Macros::default());
+        let skimmed = skim_chunk(src, Encoding::UTF_8, &chunk, &Macros::default());
         let place =
             |i: usize| format!("{name}, chunks of {lines}, block {}", chunk.first_block + i);
         assert_eq!(parsed.blocks.len(), skimmed.blocks.len(), "{name}");
@@ -130,7 +130,7 @@ fn edge_cases_skim_as_they_parse() {
         "N290 X1 'H1F'",
         "LBL: X1",
         "N300 X2",
-        "DEF REAL A",
+        "DEF REAL AA",
         "N310 X3",
         "N320 X4\r",
         "",
@@ -189,8 +189,8 @@ fn line() -> impl Strategy<Value = String> {
         "LBL:",
         "GOTOF LBL",
         "GOTOB N10",
-        "DEF REAL A",
-        "A=1",
+        "DEF REAL AA",
+        "AA=1",
         "PROC P",
         "ENDPROC",
         "RET",

@@ -6,7 +6,8 @@
 //! `_N_MMAC_DEF`, `_N_UMAC_DEF` (reference §7.3). A part program may use
 //! them without a `DEF` of its own. [`Definitions`] holds what such files
 //! define, for [`crate::lower_with`]: the names with their types and
-//! array dimensions, and the macro names.
+//! array dimensions, and the macros, which the parser expands in the
+//! programs (`gcodec_parser::parse_with_macros`).
 //!
 //! A definition file holds `DEF`, `DEFINE` and `REDEF` statements, comment
 //! lines, and usually `M17` or `M30` at its end; anything else in it is an
@@ -15,6 +16,7 @@
 
 use gcodec_lang::DataType;
 use gcodec_parser::ast::{self, StatementKind};
+use gcodec_parser::{Macro, Macros};
 use gcodec_source::{Diagnostic, Diagnostics, SourceFile, Span, codes};
 
 use crate::types::{self, NameMap, constant_count};
@@ -51,21 +53,12 @@ pub struct GlobalVariable {
     pub col: u32,
 }
 
-/// A macro of a definition file (`DEFINE NAME AS text`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Macro {
-    /// The name as written.
-    pub name: String,
-    /// The text it stands for, as written.
-    pub body: String,
-}
-
 /// The global names a program may use without defining them: global user
 /// data and macros, read from definition files.
 #[derive(Clone, Debug, Default)]
 pub struct Definitions {
     variables: NameMap<GlobalVariable>,
-    macros: NameMap<Macro>,
+    macros: Macros,
     assumed: NameMap<()>,
 }
 
@@ -177,11 +170,23 @@ impl Definitions {
                 }
             }
             StatementKind::Define(define) => {
+                if !is_expandable_name(&define.name) {
+                    diagnostics.push(
+                        Diagnostic::new(
+                            codes::lower::NOT_LOWERED,
+                            format!("the macro `{}` is named like a DIN word and is not expanded", define.name),
+                        )
+                        .with_label(statement.span, "not expanded")
+                        .with_help("gcodec expands macros named by identifiers (two letters or `_` first); `M6` and the like are read as the words they spell"),
+                    );
+                }
                 let item = Macro {
                     name: define.name.to_string(),
                     body: define.body.to_string(),
+                    file: program.file.clone(),
+                    line: program.line_col(statement.span.start).0,
                 };
-                if self.macros.insert_new(&define.name, item).is_some() {
+                if !self.macros.insert(item) {
                     diagnostics.push(
                         Diagnostic::new(
                             codes::definitions::DUPLICATE,
@@ -245,6 +250,11 @@ impl Definitions {
         self.macros.get(name)
     }
 
+    /// The macros, for the parser to expand.
+    pub fn macros(&self) -> &Macros {
+        &self.macros
+    }
+
     /// How many variables are defined.
     pub fn len(&self) -> usize {
         self.variables.len()
@@ -252,13 +262,23 @@ impl Definitions {
 
     /// Whether nothing is defined (neither variables nor macros).
     pub fn is_empty(&self) -> bool {
-        self.variables.len() == 0 && self.macros.len() == 0 && self.assumed.len() == 0
+        self.variables.len() == 0 && self.macros.is_empty() && self.assumed.len() == 0
     }
 
     /// The variables, in no particular order.
     pub fn variables(&self) -> impl Iterator<Item = &GlobalVariable> {
         self.variables.values()
     }
+}
+
+/// Whether the parser expands uses of a macro of this name: the
+/// identifiers, whose first two characters are letters or `_`.
+fn is_expandable_name(name: &str) -> bool {
+    let bytes = name.as_bytes();
+    bytes.len() >= 2
+        && bytes[..2]
+            .iter()
+            .all(|b| b.is_ascii_alphabetic() || *b == b'_')
 }
 
 /// `M2`, `M17`, `M30`: the end of a program or definition file.

@@ -214,6 +214,12 @@ impl<V> NameMap<V> {
     pub(crate) fn values(&self) -> impl Iterator<Item = &V> {
         self.map.values()
     }
+
+    /// The names with their values, in upper case, in no particular
+    /// order.
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (&str, &V)> {
+        self.map.iter().map(|(name, value)| (&**name, value))
+    }
 }
 
 #[cfg(test)]

@@ -26,6 +26,32 @@ fn assert_clean(lowered: &Lowered) {
     assert!(lowered.diagnostics.is_empty(), "{:#?}", lowered.diagnostics);
 }
 
+#[test]
+fn an_unknown_axis_names_the_machines_axes_and_the_nearest() {
+    let help = |src: &str| {
+        let l = lower_with(&mill(), src);
+        assert_eq!(codes(&l), ["gcodec::lower::unknown_address"], "{src}");
+        l.diagnostics[0]
+            .help
+            .as_deref()
+            .unwrap_or_default()
+            .to_owned()
+    };
+    let listed = "this machine's axes (the profile's `[[axes]]`) are `X`, `Y`, `Z`, `C`";
+    assert_eq!(help("G1 A10 F100\n"), listed);
+    assert_eq!(
+        help("G1 X1=10 F100\n"),
+        format!(
+            "did you mean `X`? T{}; `X1` names the machine axis of `X` only with `G74`/`G75`",
+            &listed[1..]
+        )
+    );
+    assert_eq!(
+        help("G0 AX[Z2]=5\n"),
+        format!("did you mean `Z`? T{}", &listed[1..])
+    );
+}
+
 // ---- named addresses ----
 
 #[test]
@@ -229,7 +255,7 @@ fn an_axis_named_by_a_number_is_reported() {
 
 #[test]
 fn h_functions_are_output_like_m_functions() {
-    let l = lower_with(&mill(), "DEF INT I=1\nH5 H2=7 H[I]=R1 H=QU(9) M3\n");
+    let l = lower_with(&mill(), "DEF INT II=1\nH5 H2=7 H[II]=R1 H=QU(9) M3\n");
     assert_clean(&l);
     let h = ops(&l, "h_function");
     assert_eq!(
@@ -238,7 +264,7 @@ fn h_functions_are_output_like_m_functions() {
     );
     assert_eq!(h[1]["address_extension"], 2);
     assert_eq!(h[1]["raw"], "H2=7");
-    assert_eq!(h[2]["address_extension_expr"]["name"], "I");
+    assert_eq!(h[2]["address_extension_expr"]["name"], "II");
     assert_eq!(h[2]["h_value"], Value::Null);
     assert_eq!(h[2]["h_expr"]["var_kind"], "r_parameter");
     assert_eq!(h[3]["quick"], true);

@@ -220,7 +220,7 @@ fn modal_calls_and_their_cancel() {
 #[test]
 fn indirect_and_path_calls() {
     let l = lower_src(
-        "DEF STRING[20] P\nCALL P\nCALL BLOCK LB TO N20\nCALL \"SUB\" BLOCK \"N10\" TO \"N20\"\nPCALL /_N_WKS_DIR/_N_W_WPD/_N_SUB_SPF(1,2)\nLB: M30\n",
+        "DEF STRING[20] PRG\nCALL PRG\nCALL BLOCK LB TO N20\nCALL \"SUB\" BLOCK \"N10\" TO \"N20\"\nPCALL /_N_WKS_DIR/_N_W_WPD/_N_SUB_SPF(1,2)\nLB: M30\n",
     );
     let calls: Vec<&gcodec_ail::Call> = ops(&l)
         .into_iter()
@@ -241,7 +241,7 @@ fn indirect_and_path_calls() {
 
 #[test]
 fn a_procedure_keeps_its_signature() {
-    let l = lower_src("PROC CONTOUR(REAL X1, VAR INT N, REAL D=2) SBLOF DISPLOF\nRET\n");
+    let l = lower_src("PROC CONTOUR(REAL XX1, VAR INT NN, REAL DD=2) SBLOF DISPLOF\nRET\n");
     assert!(l.diagnostics.is_empty(), "{:#?}", l.diagnostics);
     let Op::Procedure(p) = ops(&l)[0] else {
         panic!("{}", listing(&l));
@@ -263,9 +263,9 @@ fn a_procedure_keeps_its_signature() {
     assert_eq!(
         params,
         [
-            ("X1", "REAL".to_owned(), false, false),
-            ("N", "INT".to_owned(), true, false),
-            ("D", "REAL".to_owned(), false, true)
+            ("XX1", "REAL".to_owned(), false, false),
+            ("NN", "INT".to_owned(), true, false),
+            ("DD", "REAL".to_owned(), false, true)
         ]
     );
 }
@@ -301,7 +301,7 @@ fn calls_are_checked_against_extern_signatures() {
 
 #[test]
 fn calls_of_the_files_own_procedure_are_checked() {
-    let l = lower_src("PROC COUNTDOWN(INT N)\nIF N>0\nCOUNTDOWN(N-1, 2)\nENDIF\nM17\n");
+    let l = lower_src("PROC COUNTDOWN(INT NN)\nIF NN>0\nCOUNTDOWN(NN-1, 2)\nENDIF\nM17\n");
     assert_eq!(codes(&l), ["gcodec::lower::too_many_arguments"]);
     // Modal calls too.
     let l = lower_src("EXTERN CYC(REAL)\nMCALL CYC(1, 2)\nM30\n");

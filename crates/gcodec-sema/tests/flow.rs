@@ -125,7 +125,7 @@ fn missing_targets_warn_and_gotoc_goes_on() {
 
 #[test]
 fn declarations_lower_per_variable() {
-    let l = lower_src("DEF REAL A=1.5, B[3]=(1,2,3)\nDEF INT N\n");
+    let l = lower_src("DEF REAL AA=1.5, BB[3]=(1,2,3)\nDEF INT NN\n");
     let declared: Vec<_> = l
         .document
         .instructions
@@ -138,9 +138,9 @@ fn declarations_lower_per_variable() {
     assert_eq!(
         declared,
         [
-            ("A".to_owned(), "REAL".to_owned(), 1),
-            ("B".to_owned(), "REAL".to_owned(), 3),
-            ("N".to_owned(), "INT".to_owned(), 0)
+            ("AA".to_owned(), "REAL".to_owned(), 1),
+            ("BB".to_owned(), "REAL".to_owned(), 3),
+            ("NN".to_owned(), "INT".to_owned(), 0)
         ]
     );
 }

@@ -91,7 +91,7 @@ fn in_order(
     let mut lowering = ChunkLowering::new(&outline, profile, src);
     let mut document = gcodec_ail::Document::new();
     for chunk in chunks {
-        let parsed = gcodec_parser::parse_chunk(src, file.encoding(), chunk);
+        let parsed = gcodec_parser::parse_chunk(src, file.encoding(), chunk, definitions.macros());
         let mut lowered = lowering
             .lower(parsed.first_block, &parsed.blocks)
             .expect("in order");
@@ -153,16 +153,16 @@ fn the_generated_program_lowers_the_same_streamed() {
 #[test]
 fn flow_names_and_calls_across_chunks() {
     let profile = gcodec_profile::builtin().unwrap();
-    let src = "DEF REAL A, B[3]\nDEFINE M_ON AS M3\nEXTERN SUB(REAL, VAR REAL)\nN10 G55 G0 X0\n\
-               LBL: X1\nFOR R1=1 TO 3\nG1 X=R1 F100\nENDFOR\nIF A>0 GOTOF END_LBL\nGOTOB LBL\n\
-               WHILE A<3\nA=A+1\nIF A==2\nG2 X1 Y1 CR=5\nELSE\nX3\nENDIF\nENDWHILE\n\
-               REPEAT LBL P=2\nSUB(1, A)\nSUB(1, 2, 3)\nGOTOF N10\nLBL: X4\nEND_LBL: M30\n";
+    let src = "DEF REAL AA, BB[3]\nDEFINE M_ON AS M3\nEXTERN SUB(REAL, VAR REAL)\nN10 G55 G0 X0\n\
+               LBL: X1\nFOR R1=1 TO 3\nG1 X=R1 F100\nENDFOR\nIF AA>0 GOTOF END_LBL\nGOTOB LBL\n\
+               WHILE AA<3\nAA=AA+1\nIF AA==2\nG2 X1 Y1 CR=5\nELSE\nX3\nENDIF\nENDWHILE\n\
+               REPEAT LBL P=2\nSUB(1, AA)\nSUB(1, 2, 3)\nGOTOF N10\nLBL: X4\nEND_LBL: M30\n";
     assert_streamed_agrees("flow.mpf", src.as_bytes(), &profile);
     let computed = "R1=1\nGOTOF \"L\"<<R1\nL1: X1\nN20 X2\nL2: X3\nM30\n";
     assert_streamed_agrees("computed.mpf", computed.as_bytes(), &profile);
     let late = "G1 X1 F100\nDEF REAL LATE\nX2\nM30\nDEF INT OTHER\nPROC LAST\nX3\nM17\n";
     assert_streamed_agrees("late.mpf", late.as_bytes(), &profile);
-    let procedure = "PROC SUB(REAL A, VAR REAL B)\nB=A*2\nG1 X=A F100\nM17\n";
+    let procedure = "PROC SUB(REAL AA, VAR REAL BB)\nBB=AA*2\nG1 X=AA F100\nM17\n";
     assert_streamed_agrees("SUB.SPF", procedure.as_bytes(), &profile);
     let unclosed = "IF R1>0\nX1\nWHILE 1\nX2\n\nENDIF\nELSE\n";
     assert_streamed_agrees("unclosed.mpf", unclosed.as_bytes(), &profile);

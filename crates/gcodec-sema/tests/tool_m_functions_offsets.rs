@@ -398,14 +398,14 @@ fn work_offsets_duplicate_suppression_policy() {
     assert_eq!(ops(&first, "work_offset")[0]["suppression"], "g53");
 }
 
-/// Computed values (`T=NAMES[I]`, `M1=DIR`, `D=EDGES[I]`) are lowered to
+/// Computed values (`T=NAMES[IDX]`, `M1=DIR`, `D=EDGES[IDX]`) are lowered to
 /// expressions the executor evaluates, not rejected.
 #[test]
 fn computed_tool_m_and_edge_values_are_expressions() {
     let managed = profile("[tool_change]\ntool_management_enabled = true\n");
     let l = lower_with(
         &managed,
-        "DEF STRING[32] NAMES[4]\nDEF INT I, EDGES[4], DIR\nT=NAMES[I] D=EDGES[I] M1=DIR",
+        "DEF STRING[32] NAMES[4]\nDEF INT IDX, EDGES[4], DIR\nT=NAMES[IDX] D=EDGES[IDX] M1=DIR",
     );
     assert_eq!(errors(&l), [] as [&str; 0]);
     let t = &ops(&l, "tool_select")[0];

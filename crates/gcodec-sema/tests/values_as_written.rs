@@ -145,19 +145,19 @@ fn declarations_name_lengths_counts_and_characters_as_written() {
             "`STRING[099999999999]`: a string length is a whole number 1…4294967295",
         ),
         (
-            "DEF REAL A[3]=REP(0,99999999999999999999)",
+            "DEF REAL AA[3]=REP(0,99999999999999999999)",
             "gcodec::lower::index_out_of_range",
-            "99999999999999999999 values do not fit in `A`, which has 3 elements",
+            "99999999999999999999 values do not fit in `AA`, which has 3 elements",
         ),
         (
-            "DEF REAL A[3]=REP(0,-0.50)",
+            "DEF REAL AA[3]=REP(0,-0.50)",
             "gcodec::lower::invalid_value",
             "the count of `REP` must be a whole number of at least 1, not -0.50",
         ),
         (
-            "DEF CHAR C=0256",
+            "DEF CHAR CC=0256",
             "gcodec::lower::type_mismatch",
-            "`C` is CHAR (0…255); 0256 is outside",
+            "`CC` is CHAR (0…255); 0256 is outside",
         ),
     ] {
         assert_eq!(
@@ -174,7 +174,7 @@ fn array_sizes_beyond_64_bits_are_left_to_the_run() {
     // panic nor wrap the count, and the run refuses the declaration.
     let lowered = lower_with(
         &profile(""),
-        "DEF REAL A[4294967295,4294967295,4294967295]=(1,2)\nM30",
+        "DEF REAL AA[4294967295,4294967295,4294967295]=(1,2)\nM30",
     );
     assert!(!lowered.has_errors(), "{:?}", lowered.diagnostics);
 }

@@ -92,6 +92,28 @@ fn an_undefined_name_is_an_error() {
 }
 
 #[test]
+fn an_undefined_name_near_a_defined_one_is_suggested() {
+    let l = run("DEF REAL DEPTH=5\nG1 Z=DEPHT F100\n");
+    assert_eq!(errors(&l), [UNDEFINED]);
+    let label = l.diagnostics[0].labels[0]
+        .message
+        .as_deref()
+        .unwrap_or_default();
+    assert_eq!(label, "unknown name: did you mean `DEPTH`?");
+    // Global user data too; nothing near, nothing suggested.
+    let l = run_with("R1=GR_TAPR[1]\nR2=QQQQ\n", &mgud());
+    let labels: Vec<_> = l
+        .diagnostics
+        .iter()
+        .map(|d| d.labels[0].message.as_deref().unwrap_or_default())
+        .collect();
+    assert_eq!(
+        labels,
+        ["unknown name: did you mean `GR_TAPER`?", "unknown name"]
+    );
+}
+
+#[test]
 fn def_makes_a_name_known_in_any_case() {
     let l = run("DEF REAL lAYER_HEIGHT\nLAYER_HEIGHT=2.5\nG1 Z=IC(layer_height) F100\n");
     assert_eq!(errors(&l), [] as [&str; 0]);
@@ -236,6 +258,21 @@ fn a_name_defined_twice_is_an_error() {
     );
 }
 
+#[test]
+fn a_name_that_is_an_axis_of_the_machine_is_an_error() {
+    const NAME_IS_AXIS: &str = "gcodec::lower::name_is_axis";
+    let grinder = common::profile("grinder_fb422.toml");
+    let l = lower(&parse("DEF REAL XV=3\nXV=4\n"), &grinder);
+    assert_eq!(errors(&l), [NAME_IS_AXIS]);
+    assert!(only_error(&l).contains("`XV` is an axis of this machine"));
+    let l = lower(&parse("PROC TST(REAL xv)\nRET\n"), &grinder);
+    assert_eq!(errors(&l), [NAME_IS_AXIS]);
+    // Machine axis names are axes on every machine; `XV` is none on the
+    // default one.
+    assert_eq!(errors(&run("DEF INT AX2\n")), [NAME_IS_AXIS]);
+    assert_eq!(errors(&run("DEF REAL XV=3\n")), [] as [&str; 0]);
+}
+
 // ---- types ----
 
 #[test]
@@ -315,13 +352,13 @@ DEF REAL RR=II
 DEF BOOL BB=RR
 DEF CHAR CC=\"A\"
 DEF STRING[10] SS=CC
-DEF BOOL B2=SS
-DEF STRING[20] S2=\"N=\"<<II
+DEF BOOL BB2=SS
+DEF STRING[20] SS2=\"N=\"<<II
 DEF AXIS AXN=AXNAME(\"X\")
 DEF FRAME FR=CTRANS(X,1):CROT(Z,2)
-DEF REAL R2=MYFUNC(1)
-DEF INT I2=$A_IN[1]
-DEF STRING[8] S3=STRLEN(SS)<>0
+DEF REAL RR2=MYFUNC(1)
+DEF INT II2=$A_IN[1]
+DEF STRING[8] SS3=STRLEN(SS)<>0
 RR=SIN(30)*II+R1 DIV 2
 II=STRLEN(SS)
 SS[0]=\"B\"
@@ -330,7 +367,7 @@ FR[X,TR]=5
     let l = run(src);
     // `STRLEN(SS)<>0` is BOOL, which does not convert to STRING.
     assert_eq!(errors(&l), [TYPE_MISMATCH]);
-    assert!(only_error(&l).contains("`S3`"));
+    assert!(only_error(&l).contains("`SS3`"));
 }
 
 // ---- arrays ----

@@ -7,6 +7,7 @@ use gcodec_lexer::TokenKind as T;
 use gcodec_source::codes;
 
 use super::expressions::initializer;
+use super::names::declared_name;
 use super::{Ctx, Ex, In, indices, name_token};
 use crate::ast::*;
 use crate::error::SyntaxError;
@@ -55,7 +56,7 @@ fn type_spec<'t, 's: 't>(
                 span,
                 codes::parse::INVALID_WORD,
                 "only STRING takes a length in `[…]`",
-                Some("array dimensions follow the variable name: `DEF REAL A[3]`"),
+                Some("array dimensions follow the variable name: `DEF REAL TAB[3]`"),
             )),
         })
 }
@@ -121,7 +122,7 @@ pub(super) fn def<'t, 's: 't>(
     g: Ctx<'s>,
     expr: impl Parser<'t, In<'t>, Expr, Ex> + Clone + 't,
 ) -> impl Parser<'t, In<'t>, StatementKind, Ex> + Clone + 't {
-    let var = name_token()
+    let var = declared_name(g)
         .then(dims(expr.clone()))
         .then(
             just(T::Eq)
@@ -157,7 +158,7 @@ pub(super) fn proc_def<'t, 's: 't>(
     let param = just(T::Var)
         .or_not()
         .then(type_spec(g, expr.clone()))
-        .then(name_token())
+        .then(declared_name(g))
         .then(dims(expr.clone()))
         .then(just(T::Eq).ignore_then(expr.clone()).or_not())
         .map_with(move |((((by_ref, ty), name), dims), default), e| Param {

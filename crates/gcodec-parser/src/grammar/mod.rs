@@ -12,6 +12,7 @@ mod control;
 mod declarations;
 mod expressions;
 mod frames;
+mod names;
 mod numbers;
 pub(crate) mod operators;
 mod prefix;
@@ -32,6 +33,7 @@ pub(crate) use numbers::number_bytes_value;
 
 use crate::ast::*;
 use crate::error::SyntaxError;
+use crate::macros::Expanded;
 
 pub(crate) type Spanned = (T, SimpleSpan);
 pub(crate) type In<'t> = MappedInput<'t, T, SimpleSpan, &'t [Spanned]>;
@@ -46,18 +48,42 @@ pub(crate) struct BlockBody {
     pub statements: Vec<Statement>,
 }
 
-/// Source access for the grammar's closures: the file bytes and the line
-/// the current block sits on.
+/// Source access for the grammar's closures: the bytes the tokens index
+/// (the file's, or a line with its macros expanded) and how their spans
+/// map to the file.
 #[derive(Clone, Copy)]
 pub(crate) struct Ctx<'s> {
     pub src: &'s [u8],
+    pub expansion: Option<&'s Expanded>,
     /// What the bytes of comments and strings are read in.
     pub encoding: Encoding,
 }
 
 impl<'s> Ctx<'s> {
+    /// The file's own bytes, read in `encoding`.
+    pub fn new(src: &'s [u8], encoding: Encoding) -> Self {
+        Self {
+            src,
+            expansion: None,
+            encoding,
+        }
+    }
+
+    /// A line with its macros expanded, read in `encoding`.
+    pub fn expanded(expansion: &'s Expanded, encoding: Encoding) -> Self {
+        Self {
+            src: &expansion.bytes,
+            expansion: Some(expansion),
+            encoding,
+        }
+    }
+
+    /// A token span as a span of the file.
     pub fn span(&self, s: SimpleSpan) -> Span {
-        Span::new(s.start as u32, s.end as u32)
+        match self.expansion {
+            None => Span::new(s.start as u32, s.end as u32),
+            Some(expansion) => expansion.map_span(s),
+        }
     }
 
     pub fn bytes(&self, s: SimpleSpan) -> &'s [u8] {

@@ -144,6 +144,28 @@ impl Lowering<'_> {
             .map(|a| a.kind)
     }
 
+    /// The help of an axis the machine lacks: its axes, and the one
+    /// nearest to `name` where one is near.
+    pub(super) fn axes_help(&self, name: &str) -> String {
+        let axes: Vec<&str> = self
+            .profile
+            .axes
+            .iter()
+            .map(|a| a.name.get_ref().as_str())
+            .collect();
+        let listed = axes
+            .iter()
+            .map(|a| format!("`{a}`"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        match gcodec_source::nearest(name, axes.iter().copied()) {
+            Some(near) => format!(
+                "did you mean `{near}`? This machine's axes (the profile's `[[axes]]`) are {listed}"
+            ),
+            None => format!("this machine's axes (the profile's `[[axes]]`) are {listed}"),
+        }
+    }
+
     /// Reports a dimension modifier the address does not take (reference
     /// §2.5); `false` when the word is rejected.
     pub(super) fn check_modifier(&mut self, word: &Word, value: &WordValue) -> bool {
@@ -252,7 +274,7 @@ impl Lowering<'_> {
                             format!("`{name}` is not an axis of this machine"),
                         )
                         .with_label(var.span, "unknown axis")
-                        .with_help("the profile's `[[axes]]` lists the machine's axes"),
+                        .with_help(self.axes_help(&name)),
                     );
                     return None;
                 }

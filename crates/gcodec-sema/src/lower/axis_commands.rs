@@ -108,17 +108,23 @@ impl Lowering<'_> {
     /// Machine-axis words of a block that approaches no point name no axis
     /// of the machine.
     pub(super) fn unknown_machine_axes(&mut self, plan: &mut BlockPlan) {
-        for word in plan.machine_axis_words.drain(..) {
+        for word in std::mem::take(&mut plan.machine_axis_words) {
+            let help = format!(
+                "{}; `{}` names the machine axis of `{}` only with `G74`/`G75`",
+                self.axes_help(&word.written),
+                word.written,
+                word.axis
+            );
             self.diagnostics.push(
                 Diagnostic::new(
                     codes::lower::UNKNOWN_ADDRESS,
-                    format!("`{}` is not an axis or address of this machine", word.written),
+                    format!(
+                        "`{}` is not an axis or address of this machine",
+                        word.written
+                    ),
                 )
                 .with_label(word.span, "unknown here")
-                .with_help(format!(
-                    "`{}` is the machine axis of `{}`, named so only with `G74`/`G75`; the profile's `[[axes]]` lists the machine's axes",
-                    word.written, word.axis
-                )),
+                .with_help(help),
             );
         }
     }

@@ -90,9 +90,12 @@ impl Lowering<'_> {
                     )
                     .with_label(w.word.address_span(w.span), "not an axis")
                     .with_help(if rotation {
-                        "frames name the machine's axes (the profile's `[[axes]]`), or `RPL=` for a rotation in the plane"
+                        format!(
+                            "{}; or `RPL=` for a rotation in the plane",
+                            self.axes_help(address)
+                        )
                     } else {
-                        "frames name the machine's axes (the profile's `[[axes]]`)"
+                        self.axes_help(address)
                     }),
                 );
                 rejected = true;

@@ -51,6 +51,12 @@ impl Outline<'_> {
         &self.diagnostics
     }
 
+    /// The macros of the definitions, which the program's chunks are
+    /// parsed with.
+    pub fn macros(&self) -> &gcodec_parser::Macros {
+        self.names.macros()
+    }
+
     /// Whether the program starts in its caller's modal state: a
     /// [`ProgramKind::Subprogram`], or one opening with `PROC`.
     pub fn is_subprogram(&self) -> bool {
@@ -227,7 +233,8 @@ pub fn outline_chunks<'d>(
     let mut pairing = gcodec_parser::Pairing::default();
     let mut diagnostics = Vec::new();
     let (src, encoding) = (file.bytes(), file.encoding());
-    gcodec_parser::skim_chunks(src, encoding, chunks, workers, |mut parsed| {
+    let macros = definitions.macros();
+    gcodec_parser::skim_chunks(src, encoding, chunks, workers, macros, |mut parsed| {
         pairing.feed(
             &mut parsed.blocks,
             parsed.first_block,

@@ -49,7 +49,7 @@ pub fn lower_chunks(
     // Parses `chunk` and lowers it with `lowering`; gives its parse
     // diagnostics.
     let lower_part = |chunk: &gcodec_stream::Chunk, lowering: &mut Lowering<'_>| {
-        let parsed = gcodec_parser::parse_chunk(src, file.encoding(), chunk);
+        let parsed = gcodec_parser::parse_chunk(src, file.encoding(), chunk, outline.macros());
         lower_blocks(lowering, parsed.first_block, &parsed.blocks);
         parsed.diagnostics
     };

@@ -250,6 +250,10 @@ impl<'a> NameCollector<'a> {
 }
 
 impl<'a> Names<'a> {
+    pub(super) fn macros(&self) -> &'a gcodec_parser::Macros {
+        self.definitions.macros()
+    }
+
     fn start_section(&mut self, start: u32) {
         self.sections.push(Section {
             start,
@@ -265,6 +269,16 @@ impl<'a> Names<'a> {
         defined_at: u32,
         diagnostics: &mut Diagnostics,
     ) {
+        if self.axes.contains(name) || is_machine_axis(name) {
+            diagnostics.push(
+                Diagnostic::new(
+                    codes::lower::NAME_IS_AXIS,
+                    format!("`{name}` is an axis of this machine and cannot name a variable"),
+                )
+                .with_label(span, "declared here")
+                .with_help("the control reads the name as the axis (`NAME=5` moves it); rename the variable, e.g. `U_VALUE`"),
+            );
+        }
         let section = self.sections.last_mut().expect("one section");
         let local = Local {
             shape,
@@ -297,6 +311,24 @@ impl<'a> Names<'a> {
             .saturating_sub(1);
         self.current.store(i, Ordering::Relaxed);
         &self.sections[i]
+    }
+
+    /// The defined variable nearest to the undefined `name` used at `at`:
+    /// a local of its section defined before `at`, or a global one.
+    pub(super) fn nearest(&self, name: &str, at: u32) -> Option<String> {
+        let section = self.section_at(at);
+        let locals = section
+            .locals
+            .iter()
+            .filter(|(_, local)| local.defined_at <= at)
+            .map(|(name, _)| name.to_owned());
+        let globals = self
+            .definitions
+            .variables()
+            .map(|g| g.name.to_ascii_uppercase());
+        let mut candidates: Vec<String> = locals.chain(globals).collect();
+        candidates.sort_unstable();
+        gcodec_source::nearest(name, candidates.iter().map(String::as_str)).map(str::to_owned)
     }
 
     /// What `name`, used at byte offset `at`, is.
@@ -542,16 +574,24 @@ impl Lowering<'_> {
                 )
                 .with_label(var.span, "not defined yet")
                 .with_label(defined, "defined here")
-                .with_help("the control knows a name from its `DEF` on (alarm 12550); move the `DEF` up"),
+                .with_help(
+                    "the control knows a name from its `DEF` on (alarm 12550); move the `DEF` up",
+                ),
             ),
-            Resolved::Undefined => self.diagnostics.push(
-                Diagnostic::new(
-                    codes::lower::UNDEFINED_VARIABLE,
-                    format!("`{}` is not defined", var.name),
+            Resolved::Undefined => {
+                let label = match self.outline.names.nearest(&var.name, var.span.start) {
+                    Some(near) => format!("unknown name: did you mean `{near}`?"),
+                    None => "unknown name".to_owned(),
+                };
+                self.diagnostics.push(
+                    Diagnostic::new(
+                        codes::lower::UNDEFINED_VARIABLE,
+                        format!("`{}` is not defined", var.name),
+                    )
+                    .with_label(var.span, label)
+                    .with_help("define it with `DEF` at the start of the program (or as a `PROC` parameter); for global user data pass its definition file (`--definitions FILE.DEF`); the control raises alarm 12550 \"name not defined\""),
                 )
-                .with_label(var.span, "unknown name")
-                .with_help("define it with `DEF` at the start of the program (or as a `PROC` parameter); for global user data pass its definition file (`--definitions FILE.DEF`); the control raises alarm 12550 \"name not defined\""),
-            ),
+            }
         }
         for (i, index) in var.indices.iter().enumerate() {
             if i >= components_from && frame_component(index) {
@@ -590,7 +630,7 @@ impl Lowering<'_> {
                 )
                 .with_label(var.span, "wrong number of indices")
                 .with_help(
-                    "write one index per declared dimension (`A[i,j]` for `DEF REAL A[3,4]`)",
+                    "write one index per declared dimension (`TAB[I_ROW,I_COL]` for `DEF REAL TAB[3,4]`)",
                 ),
             );
             return;
@@ -1039,7 +1079,7 @@ fn not_an_array(name: &str, span: Span) -> Diagnostic {
         format!("`{name}` is a single value: a list of values needs an array"),
     )
     .with_label(span, "a list of values")
-    .with_help("`SET(…)`, `(…)` and `REP(…)` fill array elements; declare an array (`DEF REAL A[3]`) or assign one value")
+    .with_help("`SET(…)`, `(…)` and `REP(…)` fill array elements; declare an array (`DEF REAL TAB[3]`) or assign one value")
 }
 
 /// "first", "second", … of `rank` indices, for messages.

@@ -212,7 +212,7 @@ impl Lowering<'_> {
                         format!("`{name}` is not an axis or address of this machine"),
                     )
                     .with_label(word.address_span(span), "unknown here")
-                    .with_help("the profile's `[[axes]]` lists the machine's axes"),
+                    .with_help(self.axes_help(&name)),
                 )
             }
             _ => self.not_lowered(span, &format!("the address `{address}`")),

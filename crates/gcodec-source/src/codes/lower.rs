@@ -37,6 +37,7 @@ super::codes! {
     SYSTEM_VARIABLE_INDEX = system_variable_index, Error, "a system variable index of the wrong number or kind";
     UNDEFINED_VARIABLE = undefined_variable, Error, "a name that is no variable where it is used";
     DUPLICATE_DEFINITION = duplicate_definition, Error, "a variable defined twice";
+    NAME_IS_AXIS = name_is_axis, Error, "a variable or parameter named like one of the machine's axes";
     MISPLACED_DEFINITION = misplaced_definition, Error, "a `DEF` after the first executable statement";
     INDEX_COUNT = index_count, Error, "a variable with the wrong number of indices";
     INDEX_OUT_OF_RANGE = index_out_of_range, Error, "a constant index outside the variable's dimension";
