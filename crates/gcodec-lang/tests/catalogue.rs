@@ -45,26 +45,13 @@ fn check(
     elsewhere: &BTreeSet<String>,
     not_listed: &[(&str, &str)],
 ) {
-    let excused: BTreeSet<&str> = not_listed.iter().map(|(name, _)| *name).collect();
-    let known = |name: &String| catalogue.contains(name) || elsewhere.contains(name);
-    let unknown: Vec<&String> = ours
-        .iter()
-        .filter(|n| !known(n) && !excused.contains(n.as_str()))
-        .collect();
-    assert!(
-        unknown.is_empty(),
-        "{what}: not in the catalogue: {unknown:?}"
+    let known: BTreeSet<String> = catalogue.union(elsewhere).cloned().collect();
+    covers(
+        &format!("{what}: not in the catalogue"),
+        &known,
+        ours,
+        not_listed,
     );
-    for (name, _) in not_listed {
-        assert!(
-            ours.contains(*name),
-            "{what}: {name} is excused but not ours"
-        );
-        assert!(
-            !known(&name.to_string()),
-            "{what}: {name} is in the catalogue now"
-        );
-    }
     let lacking = catalogue.iter().filter(|n| !ours.contains(*n)).count();
     eprintln!(
         "{what}: {} known, {lacking} of the catalogue's {} not yet",
@@ -74,30 +61,39 @@ fn check(
 }
 
 /// Checks that every name of `catalogue` is in `ours`, except those in
-/// `left_out` (each with its reason), which must not be.
+/// `left_out` (each with its reason).
 fn check_complete(
     what: &str,
     ours: &BTreeSet<String>,
     catalogue: &BTreeSet<String>,
     left_out: &[(&str, &str)],
 ) {
-    let excused: BTreeSet<&str> = left_out.iter().map(|(name, _)| *name).collect();
-    let lacking: Vec<&String> = catalogue
-        .iter()
-        .filter(|n| !ours.contains(*n) && !excused.contains(n.as_str()))
-        .collect();
-    assert!(
-        lacking.is_empty(),
-        "{what}: the catalogue's names gcodec lacks: {lacking:?}"
+    covers(
+        &format!("{what}: the catalogue's names gcodec lacks"),
+        ours,
+        catalogue,
+        left_out,
     );
-    for (name, _) in left_out {
+}
+
+/// Every name of `names` is in `set` or excused (each with its reason);
+/// an excused name is one of `names` and not in `set`, so that an excuse
+/// no longer needed fails.
+fn covers(what: &str, set: &BTreeSet<String>, names: &BTreeSet<String>, excused: &[(&str, &str)]) {
+    let excused_names: BTreeSet<&str> = excused.iter().map(|(name, _)| *name).collect();
+    let missing: Vec<&String> = names
+        .iter()
+        .filter(|n| !set.contains(*n) && !excused_names.contains(n.as_str()))
+        .collect();
+    assert!(missing.is_empty(), "{what}: {missing:?}");
+    for (name, _) in excused {
         assert!(
-            catalogue.contains(*name),
-            "{what}: {name} is left out but not in the catalogue"
+            names.contains(*name),
+            "{what}: {name} is excused but not listed"
         );
         assert!(
-            !ours.contains(*name),
-            "{what}: {name} is left out but ours now"
+            !set.contains(*name),
+            "{what}: {name} is excused but no longer needs to be"
         );
     }
 }
