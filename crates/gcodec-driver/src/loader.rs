@@ -882,6 +882,24 @@ fn not_found(
 }
 
 impl ProgramLoader for FileLoader {
+    /// On the caller's search path, each directory listed as `load` lists
+    /// it (a listing made before is reused, none is kept).
+    fn exists(&self, request: &LoadRequest<'_>) -> Option<bool> {
+        let wanted = parse_request(request.name).ok()?;
+        let found = self
+            .search
+            .for_caller(request.caller_file)
+            .iter()
+            .any(|dir| {
+                let key = fs::canonicalize(dir).unwrap_or_else(|_| dir.clone());
+                match self.listings.get(&key) {
+                    Some(index) => index.find(&wanted).is_some(),
+                    None => DirIndex::list(dir).find(&wanted).is_some(),
+                }
+            });
+        Some(found)
+    }
+
     fn load(&mut self, request: &LoadRequest<'_>) -> Result<Loaded, LoadError> {
         let key = (
             caller_dir(request.caller_file).to_path_buf(),
@@ -993,6 +1011,11 @@ impl MemoryLoader {
 }
 
 impl ProgramLoader for MemoryLoader {
+    fn exists(&self, request: &LoadRequest<'_>) -> Option<bool> {
+        let wanted = parse_request(request.name).ok()?;
+        Some(wanted.find_in(&self.index).is_some())
+    }
+
     fn load(&mut self, request: &LoadRequest<'_>) -> Result<Loaded, LoadError> {
         let wanted = parse_request(request.name).map_err(|why| invalid_name(request, why))?;
         let Some(&index) = wanted.find_in(&self.index) else {

@@ -872,9 +872,8 @@ fn scale_zero(what: &str, axis: &str) -> RunError {
 /// translation), `CFINE(axis, value, …)` (fine translation), `CROT(axis,
 /// angle, …)` (RPY, geometry axes), `CSCALE(axis, factor, …)`,
 /// `CMIRROR(axis, …)` and `INVFRAME(frame)`; with no arguments the first
-/// five give the neutral frame. `CRPL`, `CROTS`, `MEAFRAME` are known but
-/// not supported ([`codes::run::UNKNOWN_FUNCTION`] saying so). `None`:
-/// `function` is no frame function.
+/// five give the neutral frame. `None`: `function` is none of these
+/// (`CRPL`, `CROTS` and `MEAFRAME` are not simulated).
 pub fn frame_function(
     axes: &FrameAxes,
     function: Function,
@@ -922,10 +921,6 @@ pub fn frame_function(
                 "`INVFRAME` takes one frame",
             )),
         },
-        Function::Crpl | Function::Crots | Function::Meaframe => Err(RunError::new(
-            codes::run::UNKNOWN_FUNCTION,
-            format!("`{name}` is not supported by the executor yet"),
-        )),
         _ => return None,
     };
     Some(frame.and_then(|f| {

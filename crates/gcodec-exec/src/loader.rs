@@ -26,17 +26,32 @@ pub trait ProgramLoader {
     /// The program `request` names, lowered; the same `Arc` for every
     /// later request of the same program.
     fn load(&mut self, request: &LoadRequest<'_>) -> Result<Loaded, LoadError>;
+
+    /// Whether [`ProgramLoader::load`] would find the program `request`
+    /// names (`ISFILE`), without loading it; `None` where the loader
+    /// cannot tell (the default) or `request` names no program.
+    fn exists(&self, _request: &LoadRequest<'_>) -> Option<bool> {
+        None
+    }
 }
 
 impl<T: ProgramLoader + ?Sized> ProgramLoader for &mut T {
     fn load(&mut self, request: &LoadRequest<'_>) -> Result<Loaded, LoadError> {
         (**self).load(request)
     }
+
+    fn exists(&self, request: &LoadRequest<'_>) -> Option<bool> {
+        (**self).exists(request)
+    }
 }
 
 impl<T: ProgramLoader + ?Sized> ProgramLoader for Box<T> {
     fn load(&mut self, request: &LoadRequest<'_>) -> Result<Loaded, LoadError> {
         (**self).load(request)
+    }
+
+    fn exists(&self, request: &LoadRequest<'_>) -> Option<bool> {
+        (**self).exists(request)
     }
 }
 

@@ -35,6 +35,8 @@ use gcodec_source::{Code, codes, cp1252, cp1252_byte};
 pub struct RunError {
     pub code: &'static Code,
     pub message: String,
+    /// How to fix it or what the control would do, where that is known.
+    pub help: Option<&'static str>,
 }
 
 impl RunError {
@@ -42,7 +44,13 @@ impl RunError {
         Self {
             code,
             message: message.into(),
+            help: None,
         }
+    }
+
+    pub fn with_help(mut self, help: &'static str) -> Self {
+        self.help = Some(help);
+        self
     }
 
     pub(crate) fn type_mismatch(from: &RtValue, to: &str) -> Self {

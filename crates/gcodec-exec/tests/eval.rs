@@ -462,34 +462,37 @@ fn function_errors_have_codes() {
 /// A runtime that provides one predefined function the evaluator does not
 /// compute itself: the executor's hook for frame and tool-management
 /// functions.
-struct WithIsAxis;
+struct WithModaxval;
 
-impl RuntimeInterface for WithIsAxis {
+impl RuntimeInterface for WithModaxval {
     fn function(
         &self,
         function: Function,
         _args: &[Option<RtValue>],
     ) -> Option<Result<RtValue, RunError>> {
-        (function == Function::Isaxis).then_some(Ok(RtValue::Bool(true)))
+        (function == Function::Modaxval).then_some(Ok(RtValue::Real(10.0)))
     }
 }
 
 #[test]
 fn the_runtime_provides_further_functions() {
     let vars = Variables::default();
-    let e = call("ISAXIS", vec![n(1.0)]);
+    let e = call("MODAXVAL", vec![n(370.0)]);
     assert_eq!(
-        eval(&Env::new(&vars, &WithIsAxis), &e),
-        Ok(RtValue::Bool(true))
+        eval(&Env::new(&vars, &WithModaxval), &e),
+        Ok(RtValue::Real(10.0))
     );
+    // Without the runtime's answer a predefined function is not simulated.
     assert_eq!(
         eval(&Env::new(&vars, &NoMachine), &e).unwrap_err().code,
-        codes::run::UNKNOWN_FUNCTION
+        codes::run::NOT_SIMULATED
     );
     // A name the vocabulary does not list is no function of the runtime.
     let user = call("TWICE", vec![n(4.0)]);
     assert_eq!(
-        eval(&Env::new(&vars, &WithIsAxis), &user).unwrap_err().code,
+        eval(&Env::new(&vars, &WithModaxval), &user)
+            .unwrap_err()
+            .code,
         codes::run::UNKNOWN_FUNCTION
     );
 }

@@ -8,10 +8,18 @@
 //!
 //! # What is listed
 //!
-//! The real list (05/2017) has about 2160 variables and several thousand
-//! machine and setting data; a compiler should treat `$` names as an open
-//! set resolved against a catalogue (language reference §7.4). This table
-//! is the part of that catalogue the project has evidence for:
+//! Two tables. The catalogue (`data/system-variables.tsv`, the control's
+//! lists of 05/2017 as the shared reference gives them, turned into a
+//! sorted table by `build.rs`) holds every system variable of the lists,
+//! 2132 `$` names, with its data type and number of dimensions: a
+//! catalogue entry's indices are counted, not kinded
+//! ([`IndexShape::Dims`]). The registry below refines the names programs
+//! use, and adds the machine and setting data the lists lack, with the
+//! exact shape of their indices, whether a program may write them and a
+//! description. [`lookup`] asks the registry first, then the catalogue.
+//!
+//! The registry is the part of the control's vocabulary the project has
+//! evidence for:
 //!
 //! - every `$` name used in the shared program corpus (`shared/corpus`),
 //!   including names that appear only in commented-out lines, because the
@@ -78,6 +86,9 @@ pub enum IndexShape {
     /// An array of frames: `[n]` for a whole frame (`$P_UIFR[1]=CTRANS(X,10)`)
     /// or `[n, axis, component]` for one component (`$P_UIFR[1,X,TR]=10`).
     FrameComponent,
+    /// This many indices, of a kind the catalogue does not give (an axis
+    /// or a number): `$VA_IM[X]`, `$AC_PARAM[1]`, `$TC_MPP1[m,p]`.
+    Dims(u8),
     /// Not settled by the sources: any number and kind of index is accepted.
     ///
     /// No built-in entry uses it today — every listed name's shape follows
@@ -96,7 +107,7 @@ impl IndexShape {
         match self {
             IndexShape::None => count == 0,
             IndexShape::Axis | IndexShape::Number => count == 1,
-            IndexShape::Numbers(n) => count == usize::from(n),
+            IndexShape::Numbers(n) | IndexShape::Dims(n) => count == usize::from(n),
             IndexShape::Frame => count == 0 || count == 2,
             IndexShape::FrameComponent => count == 1 || count == 3,
             IndexShape::Any => true,
@@ -131,6 +142,9 @@ pub struct SysVar {
     pub writable: bool,
     /// What it holds, in a few words.
     pub description: &'static str,
+    /// Its data type as the catalogue gives it; `None` in the registry,
+    /// where [`SysVar::data_type`] finds it.
+    pub ty: Option<DataType>,
 }
 
 /// Shorthand that keeps each table entry on one line.
@@ -145,8 +159,11 @@ const fn var(
         shape,
         writable,
         description,
+        ty: None,
     }
 }
+
+include!(concat!(env!("OUT_DIR"), "/catalogue_sysvars.rs"));
 
 use IndexShape::{Axis, Frame, FrameComponent, Number, Numbers};
 
@@ -411,13 +428,21 @@ impl SysVarId {
     /// registry lists it; `None` for other spellings (`$$P_UIFR`,
     /// `$p_uifr`, `$R5`), which [`lookup`] reads as the same variable.
     pub fn exactly(name: &str) -> Option<Self> {
-        let at = TABLE.binary_search_by(|entry| entry.name.cmp(name)).ok()?;
-        Some(Self(at as u16))
+        if let Ok(at) = TABLE.binary_search_by(|entry| entry.name.cmp(name)) {
+            return Some(Self(at as u16));
+        }
+        let at = CATALOGUE
+            .binary_search_by(|entry| entry.name.cmp(name))
+            .ok()?;
+        Some(Self((TABLE.len() + at) as u16))
     }
 
-    /// The registry's entry.
+    /// The entry: the registry's, else the catalogue's.
     pub fn var(self) -> &'static SysVar {
-        &TABLE[usize::from(self.0)]
+        let at = usize::from(self.0);
+        TABLE
+            .get(at)
+            .unwrap_or_else(|| &CATALOGUE[at - TABLE.len()])
     }
 
     /// The name with one `$`, in upper case (`$P_UIFR`).
@@ -425,7 +450,7 @@ impl SysVarId {
         self.var().name
     }
 
-    /// The listed variable `name`, found when the constants above are
+    /// The registry's variable `name`, found when the constants above are
     /// compiled: a name the registry lacks stops the build, never a run.
     const fn listed(name: &str) -> Self {
         let mut at = 0;
@@ -485,21 +510,32 @@ impl SysVar {
             // A whole frame, or one of an array of frames; a component is REAL.
             (IndexShape::Frame, 0) | (IndexShape::FrameComponent, 1) => return Some(Frame),
             (IndexShape::Frame, 2) | (IndexShape::FrameComponent, 3) => return Some(Real),
+            // Indices that fit no form of a frame: no type to check against.
+            (IndexShape::Frame | IndexShape::FrameComponent, _) => return None,
             _ => {}
         }
-        if self.name.starts_with("$TC_DP") {
-            return Some(Real);
+        if self.ty.is_some() {
+            return self.ty;
         }
-        SYSTEM_TYPES
-            .binary_search_by(|(entry, _)| entry.cmp(&self.name))
+        if let Ok(i) = SYSTEM_TYPES.binary_search_by(|(entry, _)| entry.cmp(&self.name)) {
+            return Some(SYSTEM_TYPES[i].1);
+        }
+        CATALOGUE
+            .binary_search_by(|entry| entry.name.cmp(self.name))
             .ok()
-            .map(|i| SYSTEM_TYPES[i].1)
+            .and_then(|i| CATALOGUE[i].ty)
     }
 }
 
-/// All listed variables, sorted by name (without the `$R<n>` form).
-pub fn all() -> &'static [SysVar] {
-    TABLE
+/// Every known variable once (without the `$R<n>` form): the registry's,
+/// then the catalogue's the registry does not refine, each part sorted by
+/// name.
+pub fn all() -> impl Iterator<Item = &'static SysVar> {
+    TABLE.iter().chain(
+        CATALOGUE
+            .iter()
+            .filter(|entry| TABLE.binary_search_by(|t| t.name.cmp(entry.name)).is_err()),
+    )
 }
 
 /// The system variable `name`, if it is known.
@@ -510,7 +546,7 @@ pub fn all() -> &'static [SysVar] {
 /// part of the name: pass `$P_UIFR`, not `$P_UIFR[1]`. `$R` followed by
 /// digits (`$R5`) is an R parameter and returns the `$R<n>` entry.
 ///
-/// Binary search over the sorted table; no allocation.
+/// Binary search over the registry, then the catalogue; no allocation.
 pub fn lookup(name: &str) -> Option<&'static SysVar> {
     let key = strip_dollars(name)?;
     let numbered_r = key
@@ -519,10 +555,13 @@ pub fn lookup(name: &str) -> Option<&'static SysVar> {
     if numbered_r {
         return Some(&R_NUMBERED);
     }
-    TABLE
-        .binary_search_by(|entry| compare_ignore_case(&entry.name[1..], key))
-        .ok()
-        .map(|i| &TABLE[i])
+    let find = |table: &'static [SysVar]| {
+        table
+            .binary_search_by(|entry| compare_ignore_case(&entry.name[1..], key))
+            .ok()
+            .map(|i| &table[i])
+    };
+    find(TABLE).or_else(|| find(CATALOGUE))
 }
 
 /// Whether `name` has the prefix of machine data (`$MN_`, `$MC_`, `$MA_`)
@@ -567,8 +606,68 @@ mod tests {
     use std::path::{Path, PathBuf};
 
     #[test]
+    fn catalogue_is_sorted_without_duplicates_and_found() {
+        assert_eq!(CATALOGUE.len(), 2132);
+        assert_sorted(CATALOGUE);
+        for entry in CATALOGUE {
+            let found = lookup(entry.name).expect(entry.name);
+            assert_eq!(found.name, entry.name);
+            assert!(entry.ty.is_some(), "{}", entry.name);
+            let id = SysVarId::exactly(entry.name).unwrap();
+            assert_eq!(id.var(), found, "{}", entry.name);
+        }
+        let va_im = lookup("$va_im").unwrap();
+        assert_eq!(
+            (va_im.shape, va_im.ty),
+            (IndexShape::Dims(1), Some(DataType::Real))
+        );
+        assert_eq!(
+            lookup("$P_ISTEST").unwrap().data_type(0),
+            Some(DataType::Bool)
+        );
+        assert!(!lookup("$P_SEARCH").unwrap().writable);
+        assert_eq!(
+            all().count(),
+            TABLE.len() + CATALOGUE.len() - refined().count()
+        );
+    }
+
+    /// The registry's entries the catalogue lists too.
+    fn refined() -> impl Iterator<Item = (&'static SysVar, &'static SysVar)> {
+        TABLE.iter().filter_map(|entry| {
+            CATALOGUE
+                .binary_search_by(|c| c.name.cmp(entry.name))
+                .ok()
+                .map(|i| (entry, &CATALOGUE[i]))
+        })
+    }
+
+    /// A registry entry takes the indices its catalogue entry counts, and
+    /// its type, where the registry gives one, is the catalogue's.
+    #[test]
+    fn registry_agrees_with_the_catalogue() {
+        for (entry, listed) in refined() {
+            let IndexShape::Dims(dims) = listed.shape else {
+                assert_eq!(entry.shape, listed.shape, "{}", entry.name);
+                continue;
+            };
+            assert!(entry.shape.accepts(usize::from(dims)), "{}", entry.name);
+        }
+        assert_eq!(lookup("$TC_DP1").unwrap().data_type(2), Some(DataType::Int));
+        assert_eq!(
+            lookup("$TC_DP3").unwrap().data_type(2),
+            Some(DataType::Real)
+        );
+        assert_eq!(lookup("$AA_IM").unwrap().data_type(1), Some(DataType::Real));
+    }
+
+    #[test]
     fn table_is_sorted_without_duplicates() {
-        for pair in TABLE.windows(2) {
+        assert_sorted(TABLE);
+    }
+
+    fn assert_sorted(table: &[SysVar]) {
+        for pair in table.windows(2) {
             assert!(
                 pair[0].name < pair[1].name,
                 "{} must come before {}",

@@ -17,6 +17,7 @@ mod group8;
 mod m_classes;
 mod reset;
 mod schema;
+pub mod system_variables;
 mod validate;
 
 pub use group8::{group8_index, group8_range};

@@ -36,6 +36,23 @@ pub struct Profile {
     pub program: ProgramSettings,
     #[serde(default)]
     pub g_codes: GCodes,
+    /// Values of system variables the simulation cannot know (test mode,
+    /// block search, inputs, measured values): `"$P_ISTEST" = true`,
+    /// `"$A_IN[3]" = false`, `"$AC_MEA" = 1` (for every index). Read by
+    /// the run only where it has no value of its own; see
+    /// [`crate::system_variables`].
+    #[serde(default)]
+    pub system_variables: BTreeMap<Spanned<String>, SystemValue>,
+}
+
+/// A value of `[system_variables]`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(untagged)]
+pub enum SystemValue {
+    Bool(bool),
+    Int(i64),
+    Real(f64),
+    Text(String),
 }
 
 /// Which G commands the control has. By default every command of the
@@ -200,6 +217,19 @@ impl Profile {
 }
 
 impl Tool {
+    /// A tool with no name, duplo 1 and no edges, as a program's write of
+    /// its data makes it (not written in any profile: no span).
+    pub fn unnamed(number: u32) -> Self {
+        Self {
+            number: Spanned::new(0..0, number),
+            name: None,
+            duplo: default_duplo(),
+            location: None,
+            state: default_tool_state(),
+            edges: Vec::new(),
+        }
+    }
+
     /// Whether a tool selection of `kind` naming `value` (a T number, a
     /// magazine location, a name in any case; as AIL writes a selection)
     /// selects this tool. A computed selection is known only at run time:
@@ -215,6 +245,23 @@ impl Tool {
                 .is_some_and(|n| n.get_ref().eq_ignore_ascii_case(value)),
             SelectorKind::Computed => true,
         }
+    }
+
+    /// The cutting edge `D<d>`, made with no length and radius if the
+    /// tool lacks it.
+    pub fn edge_or_new(&mut self, d: u32) -> &mut Edge {
+        let at = match self.edges.iter().position(|e| *e.d.get_ref() == d) {
+            Some(at) => at,
+            None => {
+                self.edges.push(Edge {
+                    d: Spanned::new(0..0, d),
+                    length: 0.0,
+                    radius: 0.0,
+                });
+                self.edges.len() - 1
+            }
+        };
+        &mut self.edges[at]
     }
 
     /// The cutting edge `D<d>`.

@@ -22,6 +22,7 @@ pub(crate) fn check(profile: &Profile) -> Vec<Diagnostic> {
     check_work_offsets(profile, &mut out);
     check_program(&profile.program, &mut out);
     check_g_codes(&profile.g_codes, &mut out);
+    crate::system_variables::check(profile, &mut out);
     out
 }
 

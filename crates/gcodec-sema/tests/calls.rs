@@ -450,3 +450,31 @@ fn frame_values_for_axes_named_in_brackets() {
     assert_eq!(codes(&l), ["gcodec::lower::unknown_address"]);
     assert!(!ops(&l).iter().any(|op| matches!(op, Op::Frame(_))));
 }
+
+#[test]
+fn predefined_procedures_take_the_arguments_of_their_signature() {
+    for wrong in [
+        "SBLOF(1)",
+        "CHANDATA()",
+        "CHANDATA(1,2)",
+        "SETAL(1,\"A\",3)",
+        "STOPREOF(2)",
+    ] {
+        let l = lower_src(&format!("{wrong}\nM30\n"));
+        assert_eq!(codes(&l), ["gcodec::lower::argument_count"], "{wrong}");
+    }
+    for right in [
+        "SBLOF",
+        "CHANDATA(1)",
+        "SETAL(61000,\"A\")",
+        "GEOAX(1,X)",
+        "GEOAX()",
+        "TRANSMIT(1)",
+    ] {
+        let l = lower_src(&format!("{right}\nM30\n"));
+        assert_eq!(codes(&l), Vec::<&str>::new(), "{right}");
+    }
+    // A program the file declares is checked against its declaration.
+    let l = lower_src("EXTERN CHANDATA(REAL, REAL)\nCHANDATA(1,2)\nM30\n");
+    assert_eq!(codes(&l), Vec::<&str>::new());
+}

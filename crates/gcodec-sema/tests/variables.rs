@@ -424,6 +424,36 @@ R1=$P_ACTFRAME[Z,SC]+$AA_IM[X]+$A_IN[1]+$TC_DP1[1,1]+$P_TOOLNO
     }
 }
 
+#[test]
+fn every_system_variable_of_the_controls_lists_is_known() {
+    // Unknown before the catalogue was in the vocabulary (issue 16).
+    let ok = "\
+R1=$VA_IM[X]+$AA_MM[X]+$P_S[1]+$AC_PARAM[3]+$TC_MPP1[1,2]
+IF $P_SEARCH OR $P_ISTEST GOTOF END
+END: M30
+";
+    assert_eq!(codes(&run(ok)), [] as [&str; 0]);
+    // The catalogue counts the indices: the kind of index is not checked.
+    let l = run("R1=$VA_IM\n");
+    assert_eq!(errors(&l), [SYSVAR_INDEX]);
+    assert!(
+        only_error(&l).contains("`$VA_IM` takes one index"),
+        "{}",
+        only_error(&l)
+    );
+}
+
+#[test]
+fn an_unknown_system_variable_suggests_the_nearest_name() {
+    let l = run("IF $P_ISTST GOTOF END\nEND: M30\n");
+    assert_eq!(errors(&l), ["gcodec::lower::unknown_system_variable"]);
+    let help = l.diagnostics[0].help.as_deref().unwrap_or_default();
+    assert!(help.starts_with("did you mean `$P_ISTEST`?"), "{help}");
+    let l = run("R1=$QQQQQ_QQQ\n");
+    let help = l.diagnostics[0].help.as_deref().unwrap_or_default();
+    assert!(help.starts_with("check the spelling"), "{help}");
+}
+
 // ---- REP and lists of values ----
 
 #[test]

@@ -10,7 +10,7 @@
 use std::sync::Arc;
 
 use gcodec_ail::{Call, Declare, Expr, Instruction, Op, Parameter, RepeatSection, Value, VarKind};
-use gcodec_lang::procedures::Procedure;
+use gcodec_lang::procedures::{Effect, Procedure};
 use gcodec_source::{Severity, codes};
 
 use super::{Channel, Flow, Level, LevelKind};
@@ -127,9 +127,10 @@ fn argument_value(value: &RtValue) -> ArgumentValue {
 }
 
 impl Channel<'_> {
-    /// `SETAL(n)` raises alarm `n` (the run ends); the other predefined
-    /// procedures do not change what the simulation shows and are
-    /// reported once. `None` when `target` is none.
+    /// `SETAL(n)` raises alarm `n` (the run ends); a predefined procedure
+    /// without effect on what the simulation shows passes in silence; the
+    /// others are advice once, naming the effect left out. `None` when
+    /// `target` is none.
     fn predefined(
         &mut self,
         program: &Arc<Program>,
@@ -138,7 +139,7 @@ impl Channel<'_> {
         call: &Call,
     ) -> Option<Result<Flow, RunError>> {
         let procedure = Procedure::named(target)?;
-        if procedure == Procedure::Setal {
+        if procedure.effect() == Effect::Alarm {
             let env = self.env();
             let number = call
                 .args
@@ -163,9 +164,11 @@ impl Channel<'_> {
             self.emit_at(program, instruction, event);
             return Some(Ok(Flow::End(ProgramEndReason::Alarm)));
         }
-        self.not_simulated(program, instruction, target, || {
-            format!("the predefined procedure `{target}` has no effect in the simulation")
-        });
+        if let Some(left_out) = procedure.effect().left_out() {
+            self.not_simulated(program, instruction, target, || {
+                format!("the predefined procedure `{target}` {left_out}")
+            });
+        }
         Some(Ok(Flow::Next))
     }
 

@@ -605,12 +605,11 @@ impl Channel<'_> {
         let Some(tool) = &self.state.active_tool else {
             return;
         };
-        let profile = Arc::clone(&self.state.profile);
-        let Some(entry) = profile.tool(tool.number) else {
+        let Some(entry) = self.state.tool_data.tool(tool.number) else {
             return;
         };
-        match entry.edge(d) {
-            Some(e) => self.state.tool_length = e.length,
+        match entry.edge(d).map(|e| e.length) {
+            Some(length) => self.state.tool_length = length,
             None if programmed => {
                 let message = format!(
                     "tool {} has no cutting edge D{d} in the tool table; no length offset",

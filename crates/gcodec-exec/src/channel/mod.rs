@@ -29,6 +29,7 @@ mod polar;
 mod settings;
 pub mod state;
 mod summary;
+mod tool_data;
 
 use std::borrow::Cow;
 use std::io;
@@ -693,7 +694,12 @@ impl<'r> Channel<'r> {
                     .map(|()| Flow::Next)
             }
             Op::Assign { target, value } => {
-                eval::assign(&mut self.vars, &mut self.state, target, value).map(|()| Flow::Next)
+                let programs = self
+                    .stack
+                    .last()
+                    .map(|level| (&*self.loader as &dyn ProgramLoader, &*level.program.file));
+                eval::assign_in(&mut self.vars, &mut self.state, programs, target, value)
+                    .map(|()| Flow::Next)
             }
             Op::AssignList(list) => {
                 eval::assign_list(&mut self.vars, &self.state, list).map(|()| Flow::Next)
@@ -734,7 +740,11 @@ impl<'r> Channel<'r> {
     }
 
     fn env(&self) -> Env<'_> {
-        Env::new(&self.vars, &self.state)
+        let env = Env::new(&self.vars, &self.state);
+        match self.stack.last() {
+            Some(level) => env.with_programs(&*self.loader, &level.program.file),
+            None => env,
+        }
     }
 
     fn jump_to_label(
@@ -879,7 +889,7 @@ impl<'r> Channel<'r> {
             code,
             Severity::Error,
             error.message,
-            None,
+            error.help,
         );
         reason
     }

@@ -20,6 +20,7 @@ use crate::eval::{
 };
 use gcodec_ail::{Suppression, VarName};
 
+use super::tool_data::ToolData;
 use crate::event::{AxisName, Plane, SpindleState};
 use crate::frames::{Frame, FrameAxes, chain_values, frame_function};
 use crate::geometry::Point3;
@@ -88,6 +89,8 @@ pub struct MachineState {
     pub edge: u32,
     /// The active edge's length, mm.
     pub tool_length: f64,
+    /// The run's tool table and the tool data the program wrote.
+    pub(super) tool_data: ToolData,
     /// The programmed F, in the unit of group 15.
     pub feed: f64,
     pub spindles: Vec<Spindle>,
@@ -199,6 +202,7 @@ impl MachineState {
             pending: None,
             edge: 0,
             tool_length: 0.0,
+            tool_data: ToolData::new(&profile),
             feed: 0.0,
             spindles,
             modal_call: None,
@@ -523,7 +527,10 @@ impl RuntimeInterface for MachineState {
                 self.to_workpiece(&self.total_frame(), &self.machine, &mut wcs);
                 Ok(RtValue::Real(self.as_programmed(axis, wcs[axis])))
             }
-            _ => profile_system_variable(Some(&self.profile), var, indices),
+            _ => match self.tool_data.read(id, indices) {
+                Some(value) => value,
+                None => profile_system_variable(Some(&self.profile), var, indices),
+            },
         }
     }
 
@@ -560,7 +567,13 @@ impl RuntimeInterface for MachineState {
                 self.settable[slot] = Frame::from_value(&self.frame_axes, &frame)?;
                 Ok(())
             }
-            _ => Err(RunError::new(
+            (Some(id), _) => self.tool_data.write(id, indices, value).unwrap_or_else(|| {
+                Err(RunError::new(
+                    codes::run::READ_ONLY,
+                    format!("the system variable `{name}` cannot be written in the simulation"),
+                ))
+            }),
+            (None, _) => Err(RunError::new(
                 codes::run::READ_ONLY,
                 format!("the system variable `{name}` cannot be written in the simulation"),
             )),

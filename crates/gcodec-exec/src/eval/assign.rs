@@ -9,6 +9,7 @@ use gcodec_source::codes;
 use super::{
     Env, EvalContext, RuntimeInterface, eval_value, int_indices, numbered_r, system_indices,
 };
+use crate::loader::ProgramLoader;
 use crate::value::{RtValue, RunError};
 use crate::vars::{Init, Scope, Variables, undefined};
 
@@ -35,8 +36,24 @@ pub fn assign(
     target: &Expr,
     value: &Value,
 ) -> Result<(), RunError> {
+    assign_in(vars, rt, None, target, value)
+}
+
+/// [`assign`], the value and indices evaluated with the programs a
+/// loader finds for a call from the running program's file (`ISFILE`).
+pub fn assign_in(
+    vars: &mut Variables,
+    rt: &mut dyn RuntimeInterface,
+    programs: Option<(&dyn ProgramLoader, &str)>,
+    target: &Expr,
+    value: &Value,
+) -> Result<(), RunError> {
     let (kind, name, indices) = target_parts(target)?;
     let env = Env::new(vars, &*rt);
+    let env = match programs {
+        Some((loader, caller_file)) => env.with_programs(loader, caller_file),
+        None => env,
+    };
     let v = eval_value(&env, value)?;
     if kind == VarKind::System && !is_r_system(name) {
         let idx = system_indices(&env, indices, 0)?;

@@ -20,7 +20,7 @@
 
 mod assign;
 mod functions;
-mod profile_variables;
+pub(crate) mod profile_variables;
 
 use std::sync::Arc;
 
@@ -31,10 +31,11 @@ use gcodec_lang::{BinaryOp, UnaryOp};
 use gcodec_profile::Profile;
 use gcodec_source::{codes, cp1252_byte};
 
+use crate::loader::{LoadRequest, ProgramLoader};
 use crate::value::{FrameValue, RtValue, RunError, finite_real, format_real, real_to_int};
 use crate::vars::{Variables, undefined};
 
-pub use assign::{assign, assign_list, declare};
+pub use assign::{assign, assign_in, assign_list, declare};
 pub use functions::sprint;
 pub use profile_variables::profile_system_variable;
 pub(crate) use profile_variables::{profile_offsets, settable_offset};
@@ -145,18 +146,38 @@ impl RuntimeInterface for NoMachine {}
 pub trait EvalContext {
     fn variables(&self) -> &Variables;
     fn runtime(&self) -> &dyn RuntimeInterface;
+
+    /// Whether the program `name` (a name or path) is on the running
+    /// program's search path (`ISFILE`); `None` where the context has no
+    /// search path or `name` names no program.
+    fn program_exists(&self, _name: &str) -> Option<bool> {
+        None
+    }
 }
 
-/// The plain context: a variable store and a runtime.
+/// The plain context: a variable store and a runtime, and the programs
+/// the running one can call.
 #[derive(Clone, Copy)]
 pub struct Env<'a> {
     pub vars: &'a Variables,
     pub runtime: &'a dyn RuntimeInterface,
+    /// The loader and the running program's file.
+    programs: Option<(&'a dyn ProgramLoader, &'a str)>,
 }
 
 impl<'a> Env<'a> {
     pub fn new(vars: &'a Variables, runtime: &'a dyn RuntimeInterface) -> Self {
-        Self { vars, runtime }
+        Self {
+            vars,
+            runtime,
+            programs: None,
+        }
+    }
+
+    /// With the programs `loader` finds for a call from `caller_file`.
+    pub fn with_programs(mut self, loader: &'a dyn ProgramLoader, caller_file: &'a str) -> Self {
+        self.programs = Some((loader, caller_file));
+        self
     }
 }
 
@@ -167,6 +188,17 @@ impl EvalContext for Env<'_> {
 
     fn runtime(&self) -> &dyn RuntimeInterface {
         self.runtime
+    }
+
+    fn program_exists(&self, name: &str) -> Option<bool> {
+        let (loader, caller_file) = self.programs?;
+        let name = name.trim().to_ascii_uppercase();
+        loader.exists(&LoadRequest {
+            name: &name,
+            by_path: name.contains('/'),
+            external: false,
+            caller_file,
+        })
     }
 }
 

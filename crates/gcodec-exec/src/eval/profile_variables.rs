@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use gcodec_ail::VarName;
 use gcodec_lang::sysvars::SysVarId;
-use gcodec_profile::{Profile, ToolChangeMode};
+use gcodec_profile::{Profile, SystemValue, Tool, ToolChangeMode};
 use gcodec_source::codes;
 
 use crate::value::{FrameAxis, FrameValue, RtValue, RunError};
@@ -26,9 +26,12 @@ use crate::value::{FrameAxis, FrameValue, RtValue, RunError};
 ///   its length, `$TC_DP6` its radius, the other parameters 2…25 0; the
 ///   tool type `$TC_DP1` is not in the profile (an error);
 /// * `$P_AXN1`…`$P_AXN3`: the geometry axes in channel order;
-/// * `$MC_TOOL_CHANGE_MODE`: 0 (`direct`) or 1 (`deferred_m6`).
+/// * `$MC_TOOL_CHANGE_MODE`: 0 (`direct`) or 1 (`deferred_m6`);
+/// * any other: the value the profile's `[system_variables]` gives it
+///   ([`Profile::system_value`]).
 ///
-/// Any other variable is [`codes::run::SYSTEM_VARIABLE`] naming it.
+/// A variable none of these answers is [`codes::run::SYSTEM_VARIABLE`],
+/// naming it and the profile entry that would give its value.
 pub fn profile_system_variable(
     profile: Option<&Profile>,
     var: &VarName,
@@ -47,7 +50,7 @@ pub fn profile_system_variable(
         ));
     };
     let Some(id) = id else {
-        return Err(no_value(name));
+        return profile_value(profile, name, indices);
     };
     match id {
         SysVarId::P_TOOLNO | SysVarId::P_TOOLP | SysVarId::P_TOOL => {
@@ -83,19 +86,49 @@ pub fn profile_system_variable(
         }
         SysVarId::P_UIFR => settable_frame(profile, name, indices),
         _ => match SysVarId::TC_DP.iter().position(|&dp| dp == id) {
-            Some(k) => tool_parameter(profile, name, k + 1, indices),
-            None => Err(no_value(name)),
+            Some(k) => tool_parameter(&profile.tools, name, k + 1, indices),
+            None => profile_value(profile, name, indices),
         },
     }
 }
 
-fn no_value(name: &str) -> RunError {
-    RunError::new(
+/// The value `[system_variables]` gives `name` with `indices`, else the
+/// error naming the entry that would.
+fn profile_value(profile: &Profile, name: &str, indices: &[RtValue]) -> Result<RtValue, RunError> {
+    let name = format!("${}", name.trim_start_matches('$').to_ascii_uppercase());
+    let written: Vec<String> = indices.iter().map(index_text).collect();
+    if let Some(value) = profile.system_value(&name, &written) {
+        return Ok(match value {
+            SystemValue::Bool(b) => RtValue::Bool(*b),
+            SystemValue::Int(n) => i32::try_from(*n).map_or(RtValue::Real(*n as f64), RtValue::Int),
+            SystemValue::Real(r) => RtValue::Real(*r),
+            SystemValue::Text(t) => RtValue::String(Arc::from(t.as_str())),
+        });
+    }
+    let key = if written.is_empty() {
+        name.clone()
+    } else {
+        format!("{name}[{}]", written.join(","))
+    };
+    Err(RunError::new(
         codes::run::SYSTEM_VARIABLE,
         format!(
-            "the system variable `{name}` has no value here: the machine profile does not give it"
+            "the system variable `{key}` has no value in the simulation; the machine profile gives it as `\"{key}\" = …` in `[system_variables]`"
         ),
-    )
+    ))
+}
+
+/// An index as a `[system_variables]` key writes it: a whole number in
+/// digits, an axis by its name.
+fn index_text(index: &RtValue) -> String {
+    match index {
+        RtValue::Int(n) => n.to_string(),
+        RtValue::Real(r) if r.fract() == 0.0 && r.abs() < 1e15 => format!("{r:.0}"),
+        RtValue::Axis(a) | RtValue::String(a) => a.to_ascii_uppercase(),
+        other => other
+            .to_text()
+            .map_or_else(|_| String::new(), |t| t.to_string()),
+    }
 }
 
 fn no_indices(name: &str, indices: &[RtValue]) -> Result<(), RunError> {
@@ -172,8 +205,9 @@ pub(crate) fn profile_offsets(
         .flat_map(|(_, axes)| axes.iter().map(|(axis, &v)| (axis.get_ref().as_str(), v)))
 }
 
-fn tool_parameter(
-    profile: &Profile,
+/// `$TC_DP<k>[t, d]` (`name`) of the tool table `tools`.
+pub(crate) fn tool_parameter(
+    tools: &[Tool],
     name: &str,
     k: usize,
     indices: &[RtValue],
@@ -184,7 +218,7 @@ fn tool_parameter(
     let (t, d) = (t.to_int()?, d.to_int()?);
     let tool = u32::try_from(t)
         .ok()
-        .and_then(|t| profile.tool(t))
+        .and_then(|t| tools.iter().find(|tool| *tool.number.get_ref() == t))
         .ok_or_else(|| {
             RunError::new(
                 codes::run::INDEX_OUT_OF_RANGE,

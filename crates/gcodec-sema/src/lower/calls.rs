@@ -6,6 +6,7 @@ use std::collections::HashMap;
 
 use gcodec_ail::{Op, Value};
 use gcodec_lang::ggroups;
+use gcodec_lang::procedures::Procedure;
 use gcodec_parser::ast::{self, CallTarget, JumpTarget, StatementKind};
 use gcodec_source::{Diagnostic, Span, codes};
 
@@ -133,6 +134,9 @@ impl Lowering<'_> {
     /// a variable for each `VAR` parameter (the callee writes to it).
     fn check_arguments(&mut self, upper: &str, args: &[Option<ast::Expr>], span: Span) {
         let Some(signature) = self.outline.signatures.get(upper) else {
+            if let Some(procedure) = Procedure::named(upper) {
+                self.check_procedure_arity(procedure, args.len(), span);
+            }
             return;
         };
         let declared = signature.span;
@@ -171,6 +175,36 @@ impl Lowering<'_> {
                 .with_help("the subprogram writes its result back through a `VAR` parameter; pass a variable or R parameter"),
             );
         }
+    }
+
+    /// A predefined procedure's arguments against its arity, where the
+    /// catalogue's signature settles it.
+    fn check_procedure_arity(&mut self, procedure: Procedure, count: usize, span: Span) {
+        let arity = procedure.arity();
+        if arity.accepts(count) {
+            return;
+        }
+        let takes = match (arity.min, arity.max) {
+            (0, Some(0)) => "no arguments".to_owned(),
+            (1, Some(1)) => "1 argument".to_owned(),
+            (n, Some(m)) if n == m => format!("{n} arguments"),
+            (n, Some(m)) if m == n + 1 => format!("{n} or {m} arguments"),
+            (n, Some(m)) => format!("{n} to {m} arguments"),
+            (n, None) => format!("at least {n} arguments"),
+        };
+        let name = procedure.name();
+        self.diagnostics.push(
+            Diagnostic::new(
+                codes::lower::ARGUMENT_COUNT,
+                format!(
+                    "the predefined procedure `{name}` takes {takes}, this call passes {count}"
+                ),
+            )
+            .with_label(span, "this call")
+            .with_help(format!(
+                "the control rejects the call; pass {takes} to `{name}`"
+            )),
+        );
     }
 
     /// `CALL "NAME"`, `CALL PROGRAM1`, `CALL BLOCK A TO B`,

@@ -447,13 +447,22 @@ impl Lowering<'_> {
 
     fn check_system_variable(&mut self, var: &ast::VarRef) {
         let Some(known) = sysvars::lookup(&var.name) else {
+            let spelling = "check the spelling against the SINUMERIK lists of system variables and machine data";
+            let written = var.name.trim_start_matches('$');
+            let help = match gcodec_source::nearest(
+                written,
+                sysvars::all().map(|v| v.name.trim_start_matches('$')),
+            ) {
+                Some(near) => format!("did you mean `${near}`? {spelling}"),
+                None => spelling.to_owned(),
+            };
             self.diagnostics.push(
                 Diagnostic::new(
                     codes::lower::UNKNOWN_SYSTEM_VARIABLE,
                     format!("`{}` is not a system variable of the control", var.name),
                 )
                 .with_label(var.span, "unknown")
-                .with_help("check the spelling against the SINUMERIK lists of system variables and machine data"),
+                .with_help(help),
             );
             for index in &var.indices {
                 self.check_variables(index);
@@ -1106,6 +1115,10 @@ fn shape_text(shape: IndexShape) -> &'static str {
         IndexShape::Numbers(_) => "several number indices",
         IndexShape::Frame => "no index (the whole frame) or `[axis, component]`",
         IndexShape::FrameComponent => "`[n]` (a whole frame) or `[n, axis, component]`",
+        IndexShape::Dims(1) => "one index",
+        IndexShape::Dims(2) => "two indices",
+        IndexShape::Dims(3) => "three indices",
+        IndexShape::Dims(_) => "several indices",
         IndexShape::Any => "any indices",
     }
 }

@@ -49,6 +49,7 @@ super::codes! {
     LABEL_IN_STRUCTURE_BLOCK = label_in_structure_block, Error, "a label on a block with a control-structure keyword";
     SKIPPED_STRUCTURE_BLOCK = skipped_structure_block, Error, "a skip mark on a block with a control-structure keyword";
     TOO_MANY_ARGUMENTS = too_many_arguments, Error, "a call with more arguments than the called program takes";
+    ARGUMENT_COUNT = argument_count, Error, "a predefined procedure called with a number of arguments it does not take";
     ARGUMENT_NOT_VARIABLE = argument_not_variable, Error, "a value passed for a `VAR` parameter, which needs a variable";
     PROC_NOT_FIRST = proc_not_first, Error, "`PROC` after other statements";
 }

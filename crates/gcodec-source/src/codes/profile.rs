@@ -14,5 +14,6 @@ super::codes! {
     UNKNOWN_G_CODE = unknown_g_code, Error, "a G command name the control does not have";
     UNSUPPORTED_DEFAULT = unsupported_default, Error, "a reset default the profile says the control lacks";
     CONFLICTING_DEFAULTS = conflicting_defaults, Error, "a group 8 reset default other than `default_group8_offset`";
+    UNKNOWN_SYSTEM_VARIABLE = unknown_system_variable, Error, "a `[system_variables]` key that is no system variable of the control";
     ALIAS_CONFLICT = alias_conflict, Error, "a legacy alias for a command of another group than 3";
 }

@@ -1,12 +1,16 @@
 //! The built-in functions (reference §7.6). [`call`] dispatches by
 //! function id to the family that computes it — arithmetic and rounding,
-//! trigonometry, conversions, strings, `SPRINT` formatting — and hands
-//! any other function to the runtime, which provides the frame functions
-//! and those of tool management.
+//! trigonometry, conversions, strings, `SPRINT` formatting, the
+//! machine's inquiries (`GETT`, `ISAXIS`, `ISVAR`, `ISFILE`) — and hands any other
+//! function to the runtime, which provides the frame functions. A
+//! function neither computes is not simulated: an error naming what it
+//! would return.
 
 mod arithmetic;
 mod conversions;
 mod format;
+mod inquiry;
+mod not_simulated;
 mod strings;
 mod trigonometry;
 
@@ -64,6 +68,10 @@ pub(super) fn call<C: EvalContext + ?Sized>(
         F::Match => strings::find(&a),
         F::Substr => strings::substr(&a),
         F::Sprint => format::sprint_call(&a),
+        F::Gett => inquiry::gett(&a),
+        F::Isaxis => inquiry::isaxis(&a),
+        F::Isvar => inquiry::isvar(&a),
+        F::Isfile => inquiry::isfile(&a),
         _ => runtime_function(&a),
     };
     match result {
@@ -74,14 +82,17 @@ pub(super) fn call<C: EvalContext + ?Sized>(
     }
 }
 
-/// A function the executor provides (frames, tool management), its
-/// arguments evaluated in order, an omitted one as `None`.
+/// A function the executor provides (frames), its arguments evaluated
+/// in order, an omitted one as `None`; else one it does not simulate.
 fn runtime_function<C: EvalContext + ?Sized>(a: &Args<'_, C>) -> Result<RtValue, RunError> {
     let values = evaluate_all(a.ctx, a.args, a.depth)?;
     a.ctx
         .runtime()
         .function(a.function, &values)
-        .unwrap_or_else(|| Err(unknown_function(a.name())))
+        .unwrap_or_else(|| {
+            Err(not_simulated::not_simulated(a.function)
+                .unwrap_or_else(|| unknown_function(a.name())))
+        })
 }
 
 /// The arguments of a call evaluated in order, an omitted one as `None`.
