@@ -3,6 +3,9 @@
 //! `--encoding` names one for every file; spans stay byte offsets into
 //! the file as stored.
 
+use std::path::Path;
+use std::process::Output;
+
 use serde_json::Value;
 
 mod common;
@@ -30,6 +33,18 @@ fn profile_with_code_page(test: &str, code_page: &str) -> std::path::PathBuf {
         "the built-in profile has a [program] table"
     );
     temp_file(test, "machine.toml", &builtin)
+}
+
+/// `gcodec run PROGRAM --profile PROFILE --format text`.
+fn run_text(program: &Path, profile: &Path) -> Output {
+    gcodec([
+        "run".as_ref(),
+        program.as_os_str(),
+        "--profile".as_ref(),
+        profile.as_os_str(),
+        "--format".as_ref(),
+        "text".as_ref(),
+    ])
 }
 
 fn parse_json(args: &[&str]) -> Value {
@@ -63,26 +78,12 @@ fn encoding_names_the_code_page_and_spans_stay_byte_offsets() {
 fn the_profiles_code_page_decodes_what_is_not_utf8() {
     let path = cyrillic_program("code_page");
     let profile = profile_with_code_page("code_page", "windows-1251");
-    let out = gcodec([
-        "run".as_ref(),
-        path.as_os_str(),
-        "--profile".as_ref(),
-        profile.as_os_str(),
-        "--format".as_ref(),
-        "text".as_ref(),
-    ]);
+    let out = run_text(&path, &profile);
     assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
     assert!(stdout(&out).contains("message \"При\""), "{}", stdout(&out));
     // A valid UTF-8 file stays UTF-8 on that machine.
     let utf8 = temp_file("code_page", "UTF8.MPF", "MSG(\"Grüße\")\nM30\n");
-    let out = gcodec([
-        "run".as_ref(),
-        utf8.as_os_str(),
-        "--profile".as_ref(),
-        profile.as_os_str(),
-        "--format".as_ref(),
-        "text".as_ref(),
-    ]);
+    let out = run_text(&utf8, &profile);
     assert!(
         stdout(&out).contains("message \"Grüße\""),
         "{}",
@@ -117,14 +118,7 @@ fn a_called_program_is_decoded_as_the_profile_says() {
     let sub = main.with_file_name("SUBCYR.SPF");
     std::fs::write(&sub, b"MSG(\"\xcf\xf0\xe8\")\nM17\n").expect("write");
     let profile = profile_with_code_page("called", "windows-1251");
-    let out = gcodec([
-        "run".as_ref(),
-        main.as_os_str(),
-        "--profile".as_ref(),
-        profile.as_os_str(),
-        "--format".as_ref(),
-        "text".as_ref(),
-    ]);
+    let out = run_text(&main, &profile);
     assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
     assert!(stdout(&out).contains("message \"При\""), "{}", stdout(&out));
 }
