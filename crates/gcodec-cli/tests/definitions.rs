@@ -139,3 +139,32 @@ fn macros_of_definition_files_are_expanded_for_parse_lower_and_run() {
     let out = gcodec(["lower".as_ref(), program.as_os_str()]);
     assert!(stderr(&out).contains("gcodec::lower::undefined_variable"));
 }
+
+/// A lowering or run diagnostic inside a macro's expansion names the
+/// macro, as the parser's do: the program shows only the use.
+#[test]
+fn a_diagnostic_inside_an_expansion_names_the_macro() {
+    let program = temp_file("expansion_note", "main.mpf", "R1=MAXN\nM30\n");
+    let umac = temp_file(
+        "expansion_note",
+        "UMAC.DEF",
+        "DEFINE MAXN AS NOT_DEFINED_ANYWHERE\n",
+    );
+    for command in ["lower", "run"] {
+        let out = gcodec([
+            command.as_ref(),
+            program.as_os_str(),
+            "--definitions".as_ref(),
+            umac.as_os_str(),
+        ]);
+        let err = stderr(&out);
+        assert!(
+            err.contains("gcodec::lower::undefined_variable"),
+            "{command}: {err}"
+        );
+        assert!(
+            err.contains("in the expansion of the macro `MAXN`"),
+            "{command}: {err}"
+        );
+    }
+}

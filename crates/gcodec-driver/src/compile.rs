@@ -81,8 +81,12 @@ pub fn compile(
     } else {
         drop(tree);
     }
+    let mut lowering_diagnostics = lowered.diagnostics;
+    definitions
+        .macros()
+        .label_expansions(file.bytes(), &mut lowering_diagnostics);
     let mut diagnostics = parsed.diagnostics;
-    diagnostics.append(lowered.diagnostics);
+    diagnostics.append(lowering_diagnostics);
     diagnostics.sort_by_start();
     Compiled {
         file,

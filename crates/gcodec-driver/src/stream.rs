@@ -109,10 +109,14 @@ pub fn run_streamed<R>(
     // In the order the whole program's parse and lowering give them: a
     // stable sort keeps the parser's ahead of the pairing's, the
     // outline's and the lowering's at one place.
-    let (parse_diagnostics, lowering_diagnostics) = lowered;
+    let (parse_diagnostics, mut lowering_diagnostics) = lowered;
+    let mut outline_diagnostics = outline_diagnostics.clone();
+    let macros = definitions.macros();
+    macros.label_expansions(src, &mut outline_diagnostics);
+    macros.label_expansions(src, &mut lowering_diagnostics);
     let mut diagnostics = parse_diagnostics;
     diagnostics.append(structure_diagnostics.into());
-    diagnostics.append(outline_diagnostics.clone());
+    diagnostics.append(outline_diagnostics);
     diagnostics.append(lowering_diagnostics);
     diagnostics.sort_by_start();
     (result, diagnostics)

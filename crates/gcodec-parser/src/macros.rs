@@ -62,6 +62,45 @@ impl Macros {
     fn index(&self, name: &str) -> Option<usize> {
         self.by_name.get(&name.to_ascii_uppercase()).copied()
     }
+
+    /// Labels each diagnostic of `src` whose first label lies on a macro's
+    /// use with the macro it expands to. The parser labels its own as it
+    /// expands; lowering sees only the expanded tree, whose nodes a macro
+    /// produced sit at the use, so its diagnostics are labelled here.
+    pub fn label_expansions(&self, src: &[u8], diagnostics: &mut [Diagnostic]) {
+        if self.is_empty() {
+            return;
+        }
+        for d in diagnostics {
+            let Some(span) = d.span() else { continue };
+            let text = src.get(span.range()).unwrap_or_default();
+            let named = std::str::from_utf8(text)
+                .ok()
+                .and_then(|name| self.get(name.trim()));
+            let Some(m) = named else { continue };
+            let note = m.expansion_note();
+            if d.labels
+                .iter()
+                .any(|l| l.message.as_deref() == Some(note.as_str()))
+            {
+                continue;
+            }
+            d.labels.push(gcodec_source::Label {
+                span,
+                message: Some(note.into()),
+            });
+        }
+    }
+}
+
+impl Macro {
+    /// What a diagnostic in this macro's expansion says of it.
+    fn expansion_note(&self) -> String {
+        format!(
+            "in the expansion of the macro `{}` ({}:{}: `{}`)",
+            self.name, self.file, self.line, self.body
+        )
+    }
 }
 
 /// Where a piece of an expanded line comes from.
@@ -207,14 +246,7 @@ impl Expanded {
             .uses
             .iter()
             .find(|(used, _)| used.start <= span.start && span.end <= used.end)?;
-        let m = &macros.list[*index];
-        Some((
-            *used,
-            format!(
-                "in the expansion of the macro `{}` ({}:{}: `{}`)",
-                m.name, m.file, m.line, m.body
-            ),
-        ))
+        Some((*used, macros.list[*index].expansion_note()))
     }
 }
 
