@@ -363,10 +363,36 @@ impl Channel<'_> {
             .iter()
             .map(|arg| {
                 arg.as_ref()
-                    .map(|value| eval::eval_value(&env, value).map(|v| argument_value(&v)))
+                    .map(|value| match self.whole_array(value) {
+                        Some(shown) => Ok(ArgumentValue::Text(shown)),
+                        None => eval::eval_value(&env, value).map(|v| argument_value(&v)),
+                    })
                     .transpose()
             })
             .collect()
+    }
+
+    /// An argument that names a whole array (`FILL(ARR)` for a `VAR REAL
+    /// A[3]`), as the `call` event shows it: its name and dimensions,
+    /// `ARR[3]`. Its elements are passed by the binding, not as a value.
+    fn whole_array(&self, value: &Value) -> Option<String> {
+        let Value::Expr(expr) = value else {
+            return None;
+        };
+        let Expr::Var {
+            var_kind: VarKind::User,
+            name,
+            indices,
+        } = &**expr
+        else {
+            return None;
+        };
+        let dims = self.vars.get(name.as_str())?.dims();
+        if !indices.is_empty() || dims.is_empty() {
+            return None;
+        }
+        let dims: Vec<String> = dims.iter().map(usize::to_string).collect();
+        Some(format!("{}[{}]", name.as_str(), dims.join(",")))
     }
 
     fn prepare_modal_call(
