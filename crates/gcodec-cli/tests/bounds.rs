@@ -12,11 +12,13 @@ use common::*;
 const WORDS: usize = 5_000;
 
 /// `G1 X0 X1 … X4999`: one `block_too_long` and a `repeated_axis` per
-/// word after the first.
-fn repeated_axes() -> std::path::PathBuf {
+/// word after the first, in a folder of the `test` that reads it (tests
+/// run in parallel: one writing the file while another reads it made the
+/// reader see a part of it).
+fn repeated_axes(test: &str) -> std::path::PathBuf {
     let words: Vec<String> = (0..WORDS).map(|i| format!("X{i}")).collect();
     temp_file(
-        "bounds",
+        test,
         "AXES.MPF",
         &format!("G1 {} F100\nM30\n", words.join(" ")),
     )
@@ -24,7 +26,7 @@ fn repeated_axes() -> std::path::PathBuf {
 
 #[test]
 fn a_block_keeps_a_bounded_number_of_diagnostics_and_counts_all() {
-    let program = repeated_axes();
+    let program = repeated_axes("bounded");
     for command in ["lower", "run"] {
         let out = gcodec(
             [command, "--max-diagnostics", "0"]
@@ -52,7 +54,7 @@ fn a_block_keeps_a_bounded_number_of_diagnostics_and_counts_all() {
 /// The reports of a block of 25 kB show a few dozen bytes of it each.
 #[test]
 fn a_long_block_is_not_echoed() {
-    let program = repeated_axes();
+    let program = repeated_axes("not_echoed");
     let length = std::fs::metadata(&program).expect("the program").len() as usize;
     let out = gcodec(["lower".to_string(), program.display().to_string()]);
     let err = stderr(&out);
