@@ -1,6 +1,7 @@
 //! Statements that were read as something else (issue 16), run:
 //! interrupt assignments, named addresses, M functions of one
-//! auxiliary-function group, computed M values, `T0`, `EXTCALL`.
+//! auxiliary-function group, computed M values, `T0`, `EXTCALL`, a jump
+//! to the label a STRING variable names.
 
 use gcodec_exec::event::{Event, EventKind, ProgramEndReason};
 use gcodec_source::Severity;
@@ -157,4 +158,23 @@ fn t0_empties_the_spindle_with_and_without_tool_management() {
             "{mode} {management}"
         );
     }
+}
+
+/// `GOTOF ZIEL` with `DEF STRING[8] ZIEL="MARKE"` jumps to the label the
+/// string names (it was lowered as a jump to a label `ZIEL` and stopped
+/// with alarm 14080); a name that is neither stays a missing target.
+#[test]
+fn a_jump_to_a_string_variable_goes_to_the_label_it_names() {
+    let ran =
+        events("DEF STRING[8] ZIEL=\"MARKE\"\nGOTOF ZIEL\nG1 X99 F100\nMARKE:\nG1 X1 F100\nM30\n");
+    assert_eq!(errors(&ran), (Vec::new(), ProgramEndReason::M30));
+    let reached: Vec<u32> = ran
+        .iter()
+        .filter(|e| matches!(e.kind, EventKind::Motion(_)))
+        .map(|e| e.source.line)
+        .collect();
+    assert_eq!(reached, [5], "the block after the jump is skipped");
+    let (codes, end) = errors(&events("GOTOF NOWHERE\nM30\n"));
+    assert_eq!(codes, [("gcodec::run::jump_target_not_found", 1)]);
+    assert_eq!(end, ProgramEndReason::Alarm);
 }

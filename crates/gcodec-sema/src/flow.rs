@@ -201,9 +201,15 @@ impl FlowBuilder {
             calls_own_section,
             restarts,
         } = self;
-        let computed_jumps = jumps
-            .iter()
-            .any(|(_, _, target)| matches!(target, JumpTarget::Expr(_)));
+        // A label no block carries may be a STRING variable that names the
+        // label (`GOTOF ZIEL`): searched when it runs, like an expression.
+        let computed_jumps = jumps.iter().any(|(_, _, target)| match target {
+            JumpTarget::Expr(_) => true,
+            JumpTarget::Label { name, .. } => {
+                !labels.contains_key(name.to_ascii_uppercase().as_str())
+            }
+            JumpTarget::BlockNumber { .. } => false,
+        });
         // Only the block numbers some jump or section names are indexed:
         // most blocks of a program have a number, few are jumped to.
         let named = jumps.iter().map(|(_, _, t)| t).chain(

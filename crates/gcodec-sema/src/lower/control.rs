@@ -382,6 +382,26 @@ impl<'a> Lowering<'a> {
                     span,
                 ));
             }
+            Resolved::Missing(_)
+                if let ast::JumpTarget::Label { name, span: at } = target
+                    && self.outline.names.is_string_variable(name, at.start) =>
+            {
+                // `GOTOF ZIEL` with `DEF STRING[8] ZIEL`: the string names
+                // the label, found when the jump runs.
+                plan.tail.push((
+                    Op::ComputedJump(Box::new(gcodec_ail::ComputedJump {
+                        target: gcodec_ail::Expr::Var {
+                            var_kind: gcodec_ail::VarKind::User,
+                            name: gcodec_ail::VarName::Text(name.to_ascii_uppercase().into()),
+                            indices: Vec::new(),
+                        },
+                        search: search.ail(),
+                        continue_if_missing: jump.goto == GotoKind::GotoC,
+                        condition: condition.map(|c| *c),
+                    })),
+                    span,
+                ));
+            }
             Resolved::Missing(name) if jump.goto == GotoKind::GotoC => {
                 // GOTOC goes on with the next block: nothing to do.
                 let _ = name;

@@ -344,6 +344,19 @@ impl<'a> Names<'a> {
             || self.definitions.is_assumed(name)
     }
 
+    /// Whether `name` is a STRING variable at `at` (a jump target it
+    /// names is the label the string holds).
+    pub(super) fn is_string_variable(&self, name: &str, at: u32) -> bool {
+        matches!(
+            self.resolve(name, at),
+            Resolved::Variable(Shape {
+                ty: DataType::String { .. },
+                rank: 0,
+                ..
+            })
+        )
+    }
+
     fn resolve(&self, name: &str, at: u32) -> Resolved {
         let section = self.section_at(at);
         let mut later = None;
