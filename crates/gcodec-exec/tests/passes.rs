@@ -3,11 +3,10 @@
 //! block that wrote the call, pass after pass (SPEC §11.1), not at the
 //! last block the previous pass ran.
 
-use std::sync::Arc;
+use gcodec_driver::RunSetup;
+use gcodec_exec::event::{Event, EventKind};
 
-use gcodec_driver::{RunSetup, run_main};
-use gcodec_exec::event::{Event, EventKind, VecSink};
-use gcodec_source::SourceFile;
+mod common;
 
 /// The (file, line) of every `call` event of `program` (`MAIN.MPF`), with
 /// `PASS3.SPF` beside it on the search path.
@@ -16,15 +15,7 @@ fn call_positions(program: &str) -> Vec<(String, u32)> {
     std::fs::write(dir.path().join("PASS3.SPF"), "G1 X1 F100\nM17\n").expect("write PASS3.SPF");
     let mut setup = RunSetup::new(gcodec_profile::builtin().expect("the built-in profile"));
     setup.search_dirs = vec![dir.path().to_owned()];
-    let file = Arc::new(SourceFile::new("MAIN.MPF", program));
-    let mut sink = VecSink::new();
-    let report = run_main(file, &setup, &mut sink, None);
-    assert!(
-        !report.diagnostics.iter().any(|d| d.is_error()),
-        "{:#?}",
-        report.diagnostics
-    );
-    sink.events
+    common::runs::events_of_text_with(&setup, "MAIN.MPF", program)
         .iter()
         .filter(|e: &&Event| matches!(e.kind, EventKind::Call(_)))
         .map(|e| (e.source.file.to_string(), e.source.line))

@@ -308,20 +308,6 @@ fn read_chunk(src: &[u8], chunk: &Chunk, how: How<'_>) -> ParsedChunk {
     }
 }
 
-/// Parses `chunks` of `src` on `workers` threads and hands each parsed
-/// chunk to `each` in order ([`map_chunks`]).
-pub fn parse_chunks(
-    src: &[u8],
-    encoding: Encoding,
-    chunks: &[Chunk],
-    workers: usize,
-    macros: &Macros,
-    each: impl FnMut(ParsedChunk),
-) {
-    let parse = |chunk: &Chunk| parse_chunk(src, encoding, chunk, macros);
-    map_chunks(chunks, workers, parse, each);
-}
-
 /// [`skim_chunk`] of each of `chunks`, on `workers` threads, handed to
 /// `each` in order ([`map_chunks`]).
 pub fn skim_chunks(
@@ -516,6 +502,11 @@ struct Driver<'s, 'b> {
 }
 
 impl<'s> Driver<'s, '_> {
+    /// The grammar's view of the file's own bytes.
+    fn ctx(&self) -> Ctx<'s> {
+        Ctx::new(self.src, self.encoding)
+    }
+
     /// Skims the lines of `bytes` (see [`skim_chunk`]): a plain line while
     /// plain lines are skimmable becomes a block of its span, skip mark
     /// and number; every other line is parsed, one at a time, since
@@ -584,7 +575,7 @@ impl<'s> Driver<'s, '_> {
             tokens[count] = (token.kind, SimpleSpan::from(s..e));
             count += 1;
         }
-        let prefix = fast::prefix(&tokens[..count], &Ctx::new(src, self.encoding))?;
+        let prefix = fast::prefix(&tokens[..count], &self.ctx())?;
         Some(block(prefix.skip, prefix.number))
     }
 
@@ -662,7 +653,7 @@ impl<'s> Driver<'s, '_> {
         let mut lines = std::mem::take(&mut self.lines);
         let mut tokens = std::mem::take(&mut self.tokens);
         {
-            let ctx = Ctx::new(self.src, self.encoding);
+            let ctx = self.ctx();
             // Built only when a block needs it: most take the fast path,
             // and a skim flushes line by line.
             let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
@@ -720,7 +711,7 @@ impl<'s> Driver<'s, '_> {
                     broken: true,
                     ..*line
                 };
-                let ctx = Ctx::new(self.src, self.encoding);
+                let ctx = self.ctx();
                 let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
                 return self.parse_line(&broken, line_tokens, &ctx, &parser, line.end as usize);
             }
@@ -786,7 +777,8 @@ impl<'s> Driver<'s, '_> {
             statements: Box::default(),
             comment: line.comment.map(|(s, e)| Comment {
                 span: Span::new(s, e),
-                text: Ctx::new(self.src, self.encoding)
+                text: self
+                    .ctx()
                     .decode_text(&self.src[s as usize + 1..e as usize]),
             }),
             depth: 0,

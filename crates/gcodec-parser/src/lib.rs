@@ -25,8 +25,8 @@ mod tree;
 
 pub use driver::{
     MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, ParsedChunk, parse, parse_bytes,
-    parse_bytes_in_chunks, parse_bytes_with_grammar_only, parse_chunk, parse_chunks,
-    parse_with_macros, plain_lines_skimmable_after, skim_chunk, skim_chunks,
+    parse_bytes_in_chunks, parse_bytes_with_grammar_only, parse_chunk, parse_with_macros,
+    plain_lines_skimmable_after, skim_chunk, skim_chunks,
 };
 pub use macros::{MAX_EXPANDED_BYTES, MAX_MACRO_DEPTH, Macro, Macros};
 pub use structure::Pairing;

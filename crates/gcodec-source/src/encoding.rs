@@ -37,11 +37,10 @@ impl Encoding {
 
     /// UTF-8 when `bytes` are valid UTF-8, else `fallback`.
     pub fn detect(bytes: &[u8], fallback: Self) -> Self {
-        if std::str::from_utf8(bytes).is_ok() {
-            Self::UTF_8
-        } else {
-            fallback
+        TextEncoding::Detect {
+            code_page: fallback,
         }
+        .of(bytes)
     }
 
     /// The characters of `bytes`; a byte sequence the encoding has no
@@ -79,8 +78,14 @@ pub enum TextEncoding {
 impl TextEncoding {
     /// The encoding of a file of `bytes`.
     pub fn of(self, bytes: &[u8]) -> Encoding {
+        self.given(std::str::from_utf8(bytes).is_ok())
+    }
+
+    /// The encoding of a file whose bytes are valid UTF-8 or not.
+    pub fn given(self, valid_utf8: bool) -> Encoding {
         match self {
-            Self::Detect { code_page } => Encoding::detect(bytes, code_page),
+            Self::Detect { .. } if valid_utf8 => Encoding::UTF_8,
+            Self::Detect { code_page } => code_page,
             Self::Fixed(encoding) => encoding,
         }
     }

@@ -17,6 +17,9 @@ pub struct SourceFile {
     /// ([`SourceFile::shared_bytes`]), so the file is held once.
     bytes: Arc<Vec<u8>>,
     line_starts: Vec<u32>,
+    /// Whether the bytes are valid UTF-8, found once when the file is
+    /// made: every choice of [`TextEncoding`] starts from it.
+    valid_utf8: bool,
     /// What the bytes of comments and strings are read in: UTF-8 if the
     /// file is valid UTF-8, else Windows-1252, until
     /// [`SourceFile::decoded`] says otherwise.
@@ -40,10 +43,23 @@ impl SourceFile {
             bytes.truncate(MAX_SOURCE_LEN);
         }
         let line_starts = line_starts(&bytes);
+        Self::of_bytes(name.into(), None, bytes, line_starts)
+    }
+
+    /// A file of `bytes` (a byte-order mark dropped), read as UTF-8 where
+    /// they are valid UTF-8, else in Windows-1252.
+    fn of_bytes(
+        name: String,
+        path: Option<PathBuf>,
+        bytes: Vec<u8>,
+        line_starts: Vec<u32>,
+    ) -> Self {
+        let valid_utf8 = std::str::from_utf8(&bytes).is_ok();
         Self {
-            name: name.into(),
-            path: None,
-            encoding: TextEncoding::default().of(&bytes),
+            name,
+            path,
+            valid_utf8,
+            encoding: TextEncoding::default().given(valid_utf8),
             bytes: Arc::new(bytes),
             line_starts,
         }
@@ -62,13 +78,13 @@ impl SourceFile {
     /// dropped.
     pub fn read_capped(path: &Path, max_len: u64) -> Result<Self, ReadError> {
         let (bytes, line_starts) = read_program(path, max_len)?;
-        Ok(Self {
-            name: path.display().to_string(),
-            path: Some(path.to_path_buf()),
-            encoding: TextEncoding::default().of(&bytes),
-            bytes: Arc::new(bytes),
+        let name = path.display().to_string();
+        Ok(Self::of_bytes(
+            name,
+            Some(path.to_path_buf()),
+            bytes,
             line_starts,
-        })
+        ))
     }
 
     /// The same file named by another path that leads to it (a symbolic
@@ -82,7 +98,7 @@ impl SourceFile {
     /// The same file, its text read as `encoding` says: a legacy code
     /// page other than Windows-1252, or one encoding for every file.
     pub fn decoded(mut self, encoding: TextEncoding) -> Self {
-        self.encoding = encoding.of(&self.bytes);
+        self.encoding = encoding.given(self.valid_utf8);
         self
     }
 

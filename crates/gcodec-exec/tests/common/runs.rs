@@ -29,10 +29,19 @@ pub fn compile_main(
 /// file `name`, run on `profile` as `gcodec run` runs it; panics when it
 /// does not compile cleanly.
 pub fn events_of_text(profile: Profile, name: &str, program: &str) -> Vec<Event> {
-    let setup = gcodec_driver::RunSetup::new(profile);
+    events_of_text_with(&gcodec_driver::RunSetup::new(profile), name, program)
+}
+
+/// [`events_of_text`] with the run set up as `setup` says (search
+/// directories, options).
+pub fn events_of_text_with(
+    setup: &gcodec_driver::RunSetup,
+    name: &str,
+    program: &str,
+) -> Vec<Event> {
     let file = Arc::new(SourceFile::new(name, program));
     let mut sink = VecSink::new();
-    let report = gcodec_driver::run_main(file, &setup, &mut sink, None);
+    let report = gcodec_driver::run_main(file, setup, &mut sink, None);
     assert!(
         !report.diagnostics.iter().any(|d| d.is_error()),
         "{program}: {:?}",
