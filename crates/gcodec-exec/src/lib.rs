@@ -20,6 +20,7 @@ pub mod geometry;
 pub mod loader;
 pub mod machine;
 pub mod program;
-pub mod session;
 pub mod value;
 pub mod vars;
+
+pub use channel::session;
