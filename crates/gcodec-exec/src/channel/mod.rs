@@ -17,7 +17,8 @@
 //! `approach` (`G74`/`G75`), `settings` (the group 3 commands whose axis
 //! words set values: `G25`/`G26`, the pole, `G58`/`G59`), `calls`
 //! (subprograms, parameters, sections), `functions` (M and H functions,
-//! tool selection and change, spindle, dwell), `interrupts` (the
+//! spindle, dwell, named addresses, programmable frames), `tools` (tool
+//! selection and change, cutting edges), `interrupts` (the
 //! routines assigned to inputs), `summary` (the figures after the run).
 
 mod approach;
@@ -30,6 +31,7 @@ mod settings;
 pub mod state;
 mod summary;
 mod tool_data;
+mod tools;
 
 use std::borrow::Cow;
 use std::io;
