@@ -17,5 +17,6 @@ pub mod frames;
 pub mod geometry;
 pub mod loader;
 pub mod program;
+pub mod tool_resolution;
 pub mod value;
 pub mod vars;

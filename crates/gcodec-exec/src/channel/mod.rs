@@ -56,6 +56,7 @@ use crate::event::{
 use crate::geometry::CircleTolerance;
 use crate::loader::ProgramLoader;
 use crate::program::Program;
+use crate::tool_resolution::{TableResolver, ToolResolver};
 use crate::value::RunError;
 use crate::vars::{Global, Scope, Variables};
 
@@ -182,6 +183,9 @@ struct BlockState {
     /// The auxiliary-function groups (bit `group − 1`) whose M function
     /// the block has output.
     m_groups: u64,
+    /// The `D` the block programmed: a change later in the block (`T1 M6
+    /// D2` lowers the `D` first) takes it instead of the default edge.
+    edge: Option<u32>,
     /// Where the block came from (for the CSV row).
     file: Option<Arc<str>>,
     level: u32,
@@ -196,6 +200,9 @@ pub struct Channel<'r> {
     loader: &'r mut dyn ProgramLoader,
     sink: &'r mut dyn EventSink,
     observer: Option<&'r mut dyn BlockObserver>,
+    /// What a `T` selection names ([`TableResolver`] unless an
+    /// application supplies its own).
+    tool_resolver: Box<dyn ToolResolver + 'r>,
     stack: Vec<Level>,
     summary: RunSummary,
     block: BlockState,
@@ -234,6 +241,7 @@ impl<'r> Channel<'r> {
             loader,
             sink,
             observer: None,
+            tool_resolver: Box::new(TableResolver),
             stack: Vec::new(),
             summary: RunSummary::default(),
             block: BlockState::default(),
@@ -251,6 +259,13 @@ impl<'r> Channel<'r> {
     /// Also hands the state after each block to `observer`.
     pub fn with_observer(mut self, observer: &'r mut dyn BlockObserver) -> Self {
         self.observer = Some(observer);
+        self
+    }
+
+    /// Resolves tool selections with `resolver` instead of the profile's
+    /// tool table.
+    pub fn with_tool_resolver(mut self, resolver: Box<dyn ToolResolver + 'r>) -> Self {
+        self.tool_resolver = resolver;
         self
     }
 
@@ -489,6 +504,7 @@ impl<'r> Channel<'r> {
             line: instruction.source.line,
             had_motion: false,
             m_groups: 0,
+            edge: None,
             file: self.observer.is_some().then(|| program.file.clone()),
             level,
             number: None,

@@ -5,14 +5,16 @@
 use std::sync::Arc;
 
 use gcodec_ail::{Instruction, SelectorKind, ToolChangeTrigger, ToolSelect, Value};
-use gcodec_profile::{Policy, Tool, ToolState, UnresolvedToolPolicy};
+use gcodec_profile::{EdgeWithoutTool, PendingSelectionScope, Policy, UnresolvedToolPolicy};
 use gcodec_source::{Severity, codes};
 
 use super::Channel;
-use super::state::ToolRef;
 use crate::eval;
 use crate::event::{EventKind, SelectionSource, ToolChangeEvent, ToolSelectEvent};
 use crate::program::Program;
+use crate::tool_resolution::{
+    PendingTool, ResolutionContext, ToolRef, ToolResolution, ToolSelector,
+};
 use crate::value::{RtValue, RunError};
 
 impl Channel<'_> {
@@ -41,105 +43,121 @@ impl Channel<'_> {
             }
             None => (select.selector_kind, select.selector_value.clone()),
         };
-        let resolved = self.resolve_tool(program, instruction, kind, &value)?;
+        let selector = ToolSelector { kind, value };
+        // `T0` selects no tool: there is nothing to resolve.
+        let resolved = if selector.value == "0" && kind != SelectorKind::Name {
+            None
+        } else {
+            Some(self.resolve_tool(program, instruction, &selector)?)
+        };
         let event = EventKind::ToolSelect(ToolSelectEvent {
-            selector_kind: kind,
-            selector_value: value,
+            selector_kind: selector.kind,
+            selector_value: selector.value,
             selected_tool: resolved.as_ref().map(|(t, _)| t.label.clone()),
             spindle_extension: select.spindle_extension,
             timing: select.timing,
         });
         self.emit_at(program, instruction, event);
-        self.state.pending = Some(super::state::PendingTool {
+        self.state.pending = Some(PendingTool {
             substituted: resolved.as_ref().is_some_and(|(_, s)| *s),
             tool: resolved.map(|(t, _)| t),
         });
         Ok(())
     }
 
-    /// Resolves a selection against the tool table (`None`: `T0`, no tool),
-    /// with whether a sister tool was substituted.
+    /// Asks the channel's resolver what `selector` names, with whether a
+    /// replacement tool was chosen; an unresolved or ambiguous selection
+    /// follows `on_unresolved_tool`.
     fn resolve_tool(
         &mut self,
         program: &Arc<Program>,
         instruction: &Instruction,
-        kind: SelectorKind,
-        value: &str,
-    ) -> Result<Option<(ToolRef, bool)>, RunError> {
-        if value == "0" && kind != SelectorKind::Name {
-            return Ok(None);
-        }
+        selector: &ToolSelector,
+    ) -> Result<(ToolRef, bool), RunError> {
         let profile = Arc::clone(&self.state.profile);
-        let management = profile.tool_change.tool_management_enabled;
-        let literal = || match kind {
-            SelectorKind::Name => ToolRef {
-                label: value.to_owned(),
-                number: 0,
-            },
-            _ => ToolRef {
-                label: format!("T{value}"),
-                number: value.parse().unwrap_or(0),
-            },
+        let context = ResolutionContext {
+            active_tool: self.state.active_tool.as_ref(),
+            tools: self.state.tool_data.tools(),
+            tool_management: profile.tool_change.tool_management_enabled,
         };
-        if profile.tools.is_empty() {
-            return Ok(Some((literal(), false)));
-        }
-        let label = |tool: &Tool| match (&tool.name, management) {
-            (Some(name), true) => name.get_ref().clone(),
-            _ => format!("T{}", tool.number.get_ref()),
-        };
-        let candidates: Vec<&Tool> = match kind {
-            SelectorKind::Number | SelectorKind::Location => profile
-                .tools
-                .iter()
-                .filter(|t| t.is_selected_by(kind, value))
-                .collect(),
-            _ => {
-                let mut sisters: Vec<&Tool> = profile
-                    .tools
-                    .iter()
-                    .filter(|t| t.is_selected_by(SelectorKind::Name, value))
-                    .collect();
-                sisters.sort_by_key(|t| t.duplo);
-                sisters
+        let resolution = self
+            .tool_resolver
+            .resolve_selection(selector, &profile, &context);
+        let (code, why, fallback) = match resolution {
+            ToolResolution::Resolved { tool, substituted }
+                if !substituted || profile.tool_change.allow_substitution =>
+            {
+                return Ok((tool, substituted));
             }
-        };
-        let usable = candidates
-            .iter()
-            .position(|t| t.state == ToolState::Enabled);
-        let chosen = match usable {
-            Some(0) => Some((candidates[0], false)),
-            Some(i) if profile.tool_change.allow_substitution => Some((candidates[i], true)),
-            _ => None,
-        };
-        if let Some((tool, substituted)) = chosen {
-            return Ok(Some((
-                ToolRef {
-                    label: label(tool),
-                    number: *tool.number.get_ref(),
-                },
-                substituted,
-            )));
-        }
-        let why = if candidates.is_empty() {
-            format!("no tool `{value}` in the machine's tool table")
-        } else {
-            format!("the tool `{value}` is disabled or locked and no sister tool may replace it")
+            ToolResolution::Resolved { tool, .. } => (
+                codes::run::UNRESOLVED_TOOL,
+                format!(
+                    "the tool resolver replaces `{}` by {}, and the profile allows no substitution",
+                    selector.value, tool.label
+                ),
+                None,
+            ),
+            ToolResolution::Unresolved { why } => (codes::run::UNRESOLVED_TOOL, why, None),
+            ToolResolution::Ambiguous { mut candidates } => {
+                // The resolver's order is no rule: the message and the
+                // fallback do not depend on it.
+                candidates.sort_by(|a, b| (a.number, &a.label).cmp(&(b.number, &b.label)));
+                candidates.dedup();
+                match candidates.len() {
+                    0 => (
+                        codes::run::UNRESOLVED_TOOL,
+                        format!(
+                            "no tool `{}` among the resolver's candidates",
+                            selector.value
+                        ),
+                        None,
+                    ),
+                    1 => return Ok((candidates.swap_remove(0), false)),
+                    _ => {
+                        let names: Vec<&str> =
+                            candidates.iter().map(|t| t.label.as_str()).collect();
+                        (
+                            codes::run::AMBIGUOUS_TOOL,
+                            format!(
+                                "the tool `{}` is ambiguous: {} fit, and the tool resolver has no rule to choose",
+                                selector.value,
+                                names.join(", ")
+                            ),
+                            candidates.into_iter().next(),
+                        )
+                    }
+                }
+            }
         };
         match profile.tool_change.on_unresolved_tool {
-            UnresolvedToolPolicy::Error => Err(RunError::new(codes::run::UNRESOLVED_TOOL, why)),
+            UnresolvedToolPolicy::Error => Err(RunError::new(code, why)),
             UnresolvedToolPolicy::Warning => {
-                self.diagnostic_at(
-                    program,
-                    instruction,
-                    codes::run::UNRESOLVED_TOOL,
-                    Severity::Warning,
-                    why,
-                    None,
-                );
-                Ok(Some((literal(), false)))
+                self.diagnostic_at(program, instruction, code, Severity::Warning, why, None);
+                Ok((selector.literal(), false))
             }
-            UnresolvedToolPolicy::Fallback => Ok(Some((literal(), false))),
+            UnresolvedToolPolicy::Fallback => {
+                Ok((fallback.unwrap_or_else(|| selector.literal()), false))
+            }
+        }
+    }
+
+    /// A program level opens: with `pending_selection_scope =
+    /// "program_level"` it starts with no pending selection, and the
+    /// caller's is put aside (returned) until the level closes.
+    pub(super) fn enter_pending_scope(&mut self) -> Option<PendingTool> {
+        match self.state.profile.tool_change.pending_selection_scope {
+            PendingSelectionScope::Channel => None,
+            PendingSelectionScope::ProgramLevel => self.state.pending.take(),
+        }
+    }
+
+    /// A program level closes: with `"program_level"` its own selection is
+    /// dropped and the caller's (`caller`) comes back.
+    pub(super) fn leave_pending_scope(&mut self, caller: Option<PendingTool>) {
+        if self.state.profile.tool_change.pending_selection_scope
+            == PendingSelectionScope::ProgramLevel
+        {
+            self.state.pending = caller;
         }
     }
 
@@ -190,15 +208,36 @@ impl Channel<'_> {
         self.state.active_tool = new;
         self.figures_slot = None;
         self.emit_at(program, instruction, event);
-        // The new tool's first edge is active (MD20270 = 1), D0 without a
-        // tool.
-        let edge = if self.state.active_tool.is_some() {
-            1
-        } else {
-            0
-        };
-        self.set_edge(program, instruction, edge, false);
-        Ok(())
+        self.edge_after_change(program, instruction)
+    }
+
+    /// The edge after a change: the `D` of its block, else MD20270
+    /// (`cutting_edge_default`); `D0` without a tool, whatever the default.
+    fn edge_after_change(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+    ) -> Result<(), RunError> {
+        if self.state.active_tool.is_none() {
+            return self.set_edge(program, instruction, 0, false);
+        }
+        if let Some(d) = self.block.edge {
+            return self.set_edge(program, instruction, d, true);
+        }
+        match *self
+            .state
+            .profile
+            .tool_change
+            .cutting_edge_default
+            .get_ref()
+        {
+            // −2: the old tool's offset stays until a `D` is programmed.
+            -2 => Ok(()),
+            // −1: the old edge number, of the new tool.
+            -1 => self.set_edge(program, instruction, self.state.edge, false),
+            // Validation keeps the default within −2…32000.
+            n => self.set_edge(program, instruction, u32::try_from(n).unwrap_or(0), false),
+        }
     }
 
     pub(super) fn cutting_edge(
@@ -214,28 +253,35 @@ impl Channel<'_> {
                 format!("`D{d}`: an edge is 0 or more"),
             )
         })?;
-        self.set_edge(program, instruction, d, true);
-        Ok(())
+        self.block.edge = Some(d);
+        self.set_edge(program, instruction, d, true)
     }
 
-    /// Activates edge `d` of the active tool and its length offset.
+    /// Activates edge `d` of the active tool and its length offset
+    /// (`programmed`: a `D` of the program, not a change's default).
     fn set_edge(
         &mut self,
         program: &Arc<Program>,
         instruction: &Instruction,
         d: u32,
         programmed: bool,
-    ) {
+    ) -> Result<(), RunError> {
         self.state.edge = d;
         self.state.tool_length = 0.0;
         if d == 0 {
-            return;
+            return Ok(());
         }
         let Some(tool) = &self.state.active_tool else {
-            return;
+            return match self.state.profile.tool_change.edge_without_tool {
+                EdgeWithoutTool::NoOffset => Ok(()),
+                EdgeWithoutTool::Alarm => Err(RunError::new(
+                    codes::run::EDGE_WITHOUT_TOOL,
+                    format!("`D{d}` with no tool in the spindle"),
+                )),
+            };
         };
         let Some(entry) = self.state.tool_data.tool(tool.number) else {
-            return;
+            return Ok(());
         };
         match entry.edge(d).map(|e| e.length) {
             Some(length) => self.state.tool_length = length,
@@ -255,5 +301,6 @@ impl Channel<'_> {
             }
             None => {}
         }
+        Ok(())
     }
 }
