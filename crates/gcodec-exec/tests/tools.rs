@@ -21,38 +21,34 @@ fn tool(label: &str, number: u32) -> ToolRef {
     }
 }
 
-/// A tool-management database that holds two tools for every name and no
-/// rule to choose; it gives them out of number order.
-struct TwoOfEach;
+/// A resolver that gives the same answer to every selection.
+struct Answer(ToolResolution);
 
-impl ToolResolver for TwoOfEach {
+impl ToolResolver for Answer {
     fn resolve_selection(
         &self,
         _: &ToolSelector,
         _: &Profile,
         _: &ResolutionContext<'_>,
     ) -> ToolResolution {
-        ToolResolution::Ambiguous {
-            candidates: vec![tool("T5", 5), tool("T3", 3)],
-        }
+        self.0.clone()
     }
 }
 
-/// A resolver that replaces every selection by the sister tool T9.
-struct AlwaysT9;
+/// A tool-management database that holds two tools for every name and no
+/// rule to choose; it gives them out of number order.
+fn two_of_each() -> Option<Box<dyn ToolResolver>> {
+    Some(Box::new(Answer(ToolResolution::Ambiguous {
+        candidates: vec![tool("T5", 5), tool("T3", 3)],
+    })))
+}
 
-impl ToolResolver for AlwaysT9 {
-    fn resolve_selection(
-        &self,
-        _: &ToolSelector,
-        _: &Profile,
-        _: &ResolutionContext<'_>,
-    ) -> ToolResolution {
-        ToolResolution::Resolved {
-            tool: tool("T9", 9),
-            substituted: true,
-        }
-    }
+/// A resolver that replaces every selection by the sister tool T9.
+fn always_t9() -> Option<Box<dyn ToolResolver>> {
+    Some(Box::new(Answer(ToolResolution::Resolved {
+        tool: tool("T9", 9),
+        substituted: true,
+    })))
 }
 
 fn machine(tool_change: &str) -> Profile {
@@ -85,7 +81,7 @@ fn an_ambiguous_selection_follows_on_unresolved_tool() {
             &machine(&policy(name)),
             "N10 T7\nN20 M6\nN30 M30\n",
             &[],
-            Some(Box::new(TwoOfEach)),
+            two_of_each(),
         );
         insta::assert_snapshot!(format!("ambiguous_{name}"), jsonl(&events));
     }
@@ -93,7 +89,7 @@ fn an_ambiguous_selection_follows_on_unresolved_tool() {
 
 #[test]
 fn the_ambiguous_alarm_lists_the_candidates_by_number() {
-    let events = run_tools(&machine(""), "T7\nM30\n", &[], Some(Box::new(TwoOfEach)));
+    let events = run_tools(&machine(""), "T7\nM30\n", &[], two_of_each());
     let message = events
         .iter()
         .find_map(|e| match &e.kind {
@@ -119,7 +115,7 @@ fn a_resolver_substitutes_only_with_allow_substitution() {
             expect("$P_TOOLNO", 9.0)
         ),
         &[],
-        Some(Box::new(AlwaysT9)),
+        always_t9(),
     );
     assert_clean(&allowed, "allowed");
     let change = changes(&allowed)[0];
@@ -128,7 +124,7 @@ fn a_resolver_substitutes_only_with_allow_substitution() {
         (Some("T9"), true)
     );
 
-    let refused = run_tools(&machine(""), "T7\nM6\nM30\n", &[], Some(Box::new(AlwaysT9)));
+    let refused = run_tools(&machine(""), "T7\nM6\nM30\n", &[], always_t9());
     assert_eq!(
         diagnostics(&refused, Severity::Error),
         (
@@ -193,6 +189,16 @@ fn a_tool_the_program_writes_resolves() {
 
 // ---- the pending selection per program level ----
 
+/// `main` calling `SUB` (`sub`) under `pending_selection_scope = scope`.
+fn run_with_sub(scope: &str, main: &str, sub: &str) -> Vec<gcodec_exec::event::Event> {
+    run_tools(
+        &machine(&format!("pending_selection_scope = \"{scope}\"")),
+        main,
+        &[("SUB.SPF", sub)],
+        None,
+    )
+}
+
 /// A selection before a call and the change in the subprogram: with the
 /// channel scope the subprogram changes to it; per program level the
 /// subprogram has none (its change keeps the tool) and the caller's comes
@@ -205,12 +211,7 @@ fn a_selection_before_a_call_is_changed_in_it_per_scope() {
     ] {
         let main = format!("T1\nSUB\n{}M6\nM30\n", expect("$P_TOOLP", pending_after));
         let sub = format!("M6\n{}M17\n", expect("$P_TOOLNO", sub_tool));
-        let events = run_tools(
-            &machine(&format!("pending_selection_scope = \"{scope}\"")),
-            &main,
-            &[("SUB.SPF", &sub)],
-            None,
-        );
+        let events = run_with_sub(scope, &main, &sub);
         assert_clean(&events, scope);
         let new: Vec<_> = changes(&events)
             .iter()
@@ -229,12 +230,7 @@ fn a_selection_in_a_subprogram_is_changed_after_its_return_per_scope() {
     {
         let main = format!("SUB\n{}M6\nM30\n", expect("$P_TOOLP", pending_after));
         let sub = format!("T2\n{}M17\n", expect("$P_TOOLP", 2.0));
-        let events = run_tools(
-            &machine(&format!("pending_selection_scope = \"{scope}\"")),
-            &main,
-            &[("SUB.SPF", &sub)],
-            None,
-        );
+        let events = run_with_sub(scope, &main, &sub);
         assert_clean(&events, scope);
         assert_eq!(changes(&events)[0].new_tool.as_deref(), new_tool, "{scope}");
     }
@@ -246,12 +242,7 @@ fn a_selection_in_a_subprogram_is_changed_after_its_return_per_scope() {
 fn every_pass_of_a_call_starts_without_a_selection_per_program_level() {
     let main = format!("T1\nSUB P3\n{}M30\n", expect("$P_TOOLP", 1.0));
     let sub = format!("{}T2\nM17\n", expect("$P_TOOLP", 0.0));
-    let events = run_tools(
-        &machine("pending_selection_scope = \"program_level\""),
-        &main,
-        &[("SUB.SPF", &sub)],
-        None,
-    );
+    let events = run_with_sub("program_level", &main, &sub);
     assert_clean(&events, "passes");
 }
 
