@@ -16,11 +16,14 @@ use gcodec_source::{Severity, codes};
 
 use super::session::SessionError;
 use super::{Channel, Flow};
-use crate::event::{Event, EventKind, EventSource, MAction, ProgramEndReason};
+use gcodec_ail::ToolChangeTrigger;
+
+use crate::event::{Event, EventKind, EventSource, MAction, ProgramEndReason, SelectionSource};
 use crate::machine::{
     AbortCause, Answer, AuxiliaryFunction, Machine, MachineAction, Outcome, PendingToken, Wait,
 };
 use crate::program::Program;
+use crate::tool_resolution::ToolRef;
 use crate::value::{RtValue, RunError};
 
 /// A machine action the run waits for.
@@ -47,7 +50,17 @@ pub(crate) enum Continuation {
     /// The instruction runs again with the value read.
     Reread { key: String },
     /// The tool change is reported and takes effect as the machine says.
-    ToolChange(Box<super::tools::ChangeInProgress>),
+    ToolChange(Box<ChangeInProgress>),
+}
+
+/// A tool change the machine is asked to make.
+#[derive(Clone, Debug)]
+pub(crate) struct ChangeInProgress {
+    pub previous: Option<String>,
+    pub new: Option<ToolRef>,
+    pub source: SelectionSource,
+    pub substituted: bool,
+    pub trigger: ToolChangeTrigger,
 }
 
 /// A read of a system variable that neither the channel nor the profile

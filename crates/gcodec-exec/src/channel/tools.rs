@@ -8,7 +8,7 @@ use gcodec_ail::{Instruction, SelectorKind, ToolChangeTrigger, ToolSelect, Value
 use gcodec_profile::{EdgeWithoutTool, PendingSelectionScope, Policy, UnresolvedToolPolicy};
 use gcodec_source::{Severity, codes};
 
-use super::machine_calls::Continuation;
+use super::machine_calls::{ChangeInProgress, Continuation};
 use super::{Channel, Flow};
 use crate::eval;
 use crate::event::{EventKind, SelectionSource, ToolChangeEvent, ToolSelectEvent};
@@ -18,16 +18,6 @@ use crate::tool_resolution::{
     PendingTool, ResolutionContext, ToolRef, ToolResolution, ToolSelector,
 };
 use crate::value::{RtValue, RunError};
-
-/// A tool change the machine is asked to make.
-#[derive(Clone, Debug)]
-pub(crate) struct ChangeInProgress {
-    previous: Option<String>,
-    new: Option<ToolRef>,
-    source: SelectionSource,
-    substituted: bool,
-    trigger: ToolChangeTrigger,
-}
 
 impl Channel<'_> {
     pub(super) fn tool_select(
