@@ -7,7 +7,8 @@
 //! ([`event`]), values, expressions and variables ([`value`], [`eval`],
 //! [`vars`]), the budgets of work and memory a run draws on
 //! ([`budget`]), circle geometry ([`geometry`]), programmable frames
-//! ([`frames`]).
+//! ([`frames`]), and the toolchanger protocol with its simulated changer
+//! ([`toolchanger`]).
 
 pub mod budget;
 pub mod channel;
@@ -17,5 +18,6 @@ pub mod frames;
 pub mod geometry;
 pub mod loader;
 pub mod program;
+pub mod toolchanger;
 pub mod value;
 pub mod vars;

@@ -70,7 +70,10 @@ pub enum InjectAt {
 pub enum InjectAction {
     /// The changer raises its fault line with `reason` (> 0 soft, ≤ 0
     /// hard) for `hold_cycles`, or until a `Clear` when `None`.
-    Fault { reason: i32, hold_cycles: Option<u32> },
+    Fault {
+        reason: i32,
+        hold_cycles: Option<u32>,
+    },
     /// The changer raises clear-fault for one cycle (and drops a fault line
     /// held until cleared).
     Clear,
@@ -88,8 +91,8 @@ pub fn load_scenario(text: &str) -> Result<Scenario, Vec<Diagnostic>> {
     if let Err(e) = text.parse::<toml::Table>() {
         return Err(vec![toml_diagnostic(codes::scenario::SYNTAX, &e)]);
     }
-    let raw: RawScenario = toml::from_str(text)
-        .map_err(|e| vec![toml_diagnostic(codes::scenario::SCHEMA, &e)])?;
+    let raw: RawScenario =
+        toml::from_str(text).map_err(|e| vec![toml_diagnostic(codes::scenario::SCHEMA, &e)])?;
     let mut problems = Vec::new();
     let scenario = check(raw, &mut problems);
     problems.sort_by_key(|d| d.span().map_or(0, |s| s.start));
@@ -163,7 +166,10 @@ fn check(raw: RawScenario, out: &mut Vec<Diagnostic>) -> Scenario {
     let initial_fault = match (&raw.initial_fault, &raw.initial_fault_reason) {
         (Some(fault), Some(reason)) if *fault.get_ref() => Some(*reason.get_ref()),
         (Some(fault), None) if *fault.get_ref() => {
-            out.push(missing(fault, "`initial_fault = true` needs `initial_fault_reason`"));
+            out.push(missing(
+                fault,
+                "`initial_fault = true` needs `initial_fault_reason`",
+            ));
             None
         }
         (_, Some(reason)) => {
@@ -194,7 +200,10 @@ fn check_injection(raw: &RawInjection, out: &mut Vec<Diagnostic>) -> Option<Inje
     let pass = match (raw.pass.as_ref(), *raw.at.get_ref()) {
         (Some(pass), RawAt::Block) => at_least_one(pass, out),
         (Some(pass), _) => {
-            out.push(not_applicable(pass, "`pass` counts the runs of a line: it is for `at = \"block\"` only"));
+            out.push(not_applicable(
+                pass,
+                "`pass` counts the runs of a line: it is for `at = \"block\"` only",
+            ));
             1
         }
         (None, _) => 1,
@@ -207,9 +216,7 @@ fn check_injection(raw: &RawInjection, out: &mut Vec<Diagnostic>) -> Option<Inje
         RawAt::Block => InjectAt::Block { line: n, pass },
     };
     let action = *raw.action.get_ref();
-    let unused = |key: &str| {
-        format!("`{key}` is not used by `action = \"{}\"`", action.name())
-    };
+    let unused = |key: &str| format!("`{key}` is not used by `action = \"{}\"`", action.name());
     if let (Some(reason), false) = (&raw.fault_reason, action == RawAction::Fault) {
         out.push(not_applicable(reason, &unused("fault_reason")));
     }
@@ -246,8 +253,13 @@ fn check_injection(raw: &RawInjection, out: &mut Vec<Diagnostic>) -> Option<Inje
             },
             Some(reason) => {
                 out.push(
-                    error(codes::scenario::OUT_OF_RANGE, reason, "an abort reason is 1 or more".into(), "here")
-                        .with_help("an operator's abort is 8; see docs/toolchanger.md for the reasons"),
+                    error(
+                        codes::scenario::OUT_OF_RANGE,
+                        reason,
+                        "an abort reason is 1 or more".into(),
+                        "here",
+                    )
+                    .with_help("an operator's abort is 8; see docs/toolchanger.md for the reasons"),
                 );
                 return None;
             }
@@ -263,7 +275,10 @@ fn check_injection(raw: &RawInjection, out: &mut Vec<Diagnostic>) -> Option<Inje
         RawAction::DelayAck => match hold_cycles {
             Some(cycles) => InjectAction::DelayAck { cycles },
             None => {
-                out.push(missing(&raw.action, "a delayed acknowledgement needs `hold_cycles`, the delay"));
+                out.push(missing(
+                    &raw.action,
+                    "a delayed acknowledgement needs `hold_cycles`, the delay",
+                ));
                 return None;
             }
         },
@@ -289,15 +304,30 @@ fn at_least_one(value: &Spanned<u32>, out: &mut Vec<Diagnostic>) -> u32 {
 }
 
 fn missing<T>(at: &Spanned<T>, message: &str) -> Diagnostic {
-    error(codes::scenario::MISSING_VALUE, at, message.to_owned(), "here")
+    error(
+        codes::scenario::MISSING_VALUE,
+        at,
+        message.to_owned(),
+        "here",
+    )
 }
 
 fn not_applicable<T>(at: &Spanned<T>, message: &str) -> Diagnostic {
-    error(codes::scenario::KEY_NOT_APPLICABLE, at, message.to_owned(), "not used")
-        .with_help("remove the key, or change the entry it belongs to")
+    error(
+        codes::scenario::KEY_NOT_APPLICABLE,
+        at,
+        message.to_owned(),
+        "not used",
+    )
+    .with_help("remove the key, or change the entry it belongs to")
 }
 
-fn error<T>(code: &'static Code, at: &Spanned<T>, message: String, label: &'static str) -> Diagnostic {
+fn error<T>(
+    code: &'static Code,
+    at: &Spanned<T>,
+    message: String,
+    label: &'static str,
+) -> Diagnostic {
     Diagnostic::new(code, message).with_label(span(at.span()), label)
 }
 

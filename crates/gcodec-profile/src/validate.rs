@@ -557,7 +557,9 @@ fn check_toolchanger(t: &ToolchangerSettings, tools: &[Tool], out: &mut Vec<Diag
     }
     let mut pockets: BTreeMap<u32, &Spanned<u32>> = BTreeMap::new();
     for tool in tools {
-        let Some(pocket) = tool.location else { continue };
+        let Some(pocket) = tool.location else {
+            continue;
+        };
         if let Some(first) = pockets.insert(pocket, &tool.number) {
             out.push(
                 error(
@@ -620,10 +622,19 @@ mod tests {
         assert!(crate::builtin().expect("loads").toolchanger.is_none());
         assert_eq!(
             codes("[toolchanger]\ncycle_time = 0.0\ntimeout_cycles = 0\n"),
-            ["gcodec::profile::out_of_range", "gcodec::profile::out_of_range"]
+            [
+                "gcodec::profile::out_of_range",
+                "gcodec::profile::out_of_range"
+            ]
         );
-        assert_eq!(codes("[toolchanger]\ncycle_time = nan\n"), ["gcodec::profile::out_of_range"]);
-        assert_eq!(codes("[toolchanger]\nrandom_pockets = true\n"), ["gcodec::profile::schema"]);
+        assert_eq!(
+            codes("[toolchanger]\ncycle_time = nan\n"),
+            ["gcodec::profile::out_of_range"]
+        );
+        assert_eq!(
+            codes("[toolchanger]\nrandom_pockets = true\n"),
+            ["gcodec::profile::schema"]
+        );
         let tools = "[[tools]]\nnumber = 5\nlocation = 3\n[[tools]]\nnumber = 10\nlocation = 3\n";
         assert!(codes(&format!("[toolchanger]\n{tools}")).is_empty());
         assert_eq!(

@@ -193,7 +193,10 @@ fn an_action_without_its_value_is_missing_value() {
     );
     assert_eq!(
         rejected("[[inject]]\nat = \"change\"\nn = 1\naction = \"delay_ack\"\n"),
-        [("gcodec::scenario::missing_value", "\"delay_ack\"".to_owned())]
+        [(
+            "gcodec::scenario::missing_value",
+            "\"delay_ack\"".to_owned()
+        )]
     );
     assert_eq!(
         rejected("initial_fault = true\n"),
@@ -262,8 +265,8 @@ fn every_example_scenario_loads() {
 #[test]
 fn the_example_profiles_load_with_their_toolchanger() {
     for (name, random) in [("iov2.toml", false), ("random.toml", true)] {
-        let text = std::fs::read_to_string(examples_dir().join("profile").join(name))
-            .expect("readable");
+        let text =
+            std::fs::read_to_string(examples_dir().join("profile").join(name)).expect("readable");
         let profile = gcodec_profile::load(&text).unwrap_or_else(|d| panic!("{name}: {d:#?}"));
         let toolchanger = profile.toolchanger.expect("a [toolchanger] table");
         assert!(toolchanger.support_start_change, "{name}");

@@ -25,7 +25,8 @@
 //! [`CsvWriter`].
 //!
 //! This file holds the event model and [`EventSink`]; the work-offset
-//! context of a motion is in `work_offset.rs`, axis names and
+//! context of a motion is in `work_offset.rs`, the toolchanger's edges
+//! in `toolchanger.rs`, axis names and
 //! [`AxisMap`] in `axis_map.rs`, the sinks in `jsonl.rs`, `text.rs` and
 //! `sinks.rs`, the CSV rows in `csv.rs`, and the number texts the writers
 //! share in `numbers.rs`. Everything public is re-exported here.
@@ -36,6 +37,7 @@ mod jsonl;
 mod numbers;
 mod sinks;
 mod text;
+mod toolchanger;
 mod work_offset;
 
 use std::borrow::Cow;
@@ -56,6 +58,7 @@ pub use csv::{BlockRow, CsvWriter, MAIN_MODAL_GROUPS, ModalColumn};
 pub use jsonl::JsonlSink;
 pub use sinks::{CountingSink, VecSink};
 pub use text::{TextSink, write_trace_line};
+pub use toolchanger::{ToolchangerEdge, ToolchangerEvent};
 pub use work_offset::{SuppressionMask, WorkOffsetContext};
 
 /// One runtime event: what happened and where.
@@ -90,7 +93,7 @@ pub struct EventSource {
 }
 
 /// The names of the event kinds, in the order of [`EventKind`].
-pub const EVENT_KINDS: [&str; 15] = [
+pub const EVENT_KINDS: [&str; 16] = [
     "motion",
     "modal_change",
     "m_function",
@@ -106,6 +109,7 @@ pub const EVENT_KINDS: [&str; 15] = [
     "program_end",
     "diagnostic",
     "interrupt",
+    "toolchanger",
 ];
 
 /// What happened.
@@ -144,6 +148,9 @@ pub enum EventKind {
     /// An input's interrupt assignment changed (`SETINT`, `ENABLE`,
     /// `DISABLE`, `CLRINT`).
     Interrupt(InterruptEvent),
+    /// An edge of the toolchanger protocol (SPEC §12): a request, an
+    /// acknowledgement, a committed change, a fault, an abort.
+    Toolchanger(ToolchangerEvent),
 }
 
 impl EventKind {
@@ -165,6 +172,7 @@ impl EventKind {
             Self::ProgramEnd(_) => 12,
             Self::Diagnostic(_) => 13,
             Self::Interrupt(_) => 14,
+            Self::Toolchanger(_) => 15,
         }
     }
 }
