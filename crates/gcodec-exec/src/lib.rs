@@ -2,8 +2,10 @@
 //! runtime events as they happen (SPEC §11).
 //!
 //! [`channel::Channel`] runs a [`program::Program`] with a machine profile,
-//! a [`loader::ProgramLoader`] for the subprograms it calls and an
-//! [`event::EventSink`]. Its parts: runtime events and their sinks
+//! a [`loader::ProgramLoader`] for the subprograms it calls, an
+//! [`event::EventSink`] and a [`machine::Machine`] behind it; a
+//! [`session::Session`] lets an application step the run and answer the
+//! machine's pending actions. Its parts: runtime events and their sinks
 //! ([`event`]), values, expressions and variables ([`value`], [`eval`],
 //! [`vars`]), the budgets of work and memory a run draws on
 //! ([`budget`]), circle geometry ([`geometry`]), programmable frames
@@ -17,7 +19,9 @@ pub mod event;
 pub mod frames;
 pub mod geometry;
 pub mod loader;
+pub mod machine;
 pub mod program;
+pub mod session;
 pub mod toolchanger;
 pub mod value;
 pub mod vars;

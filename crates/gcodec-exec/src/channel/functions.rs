@@ -14,6 +14,7 @@ use gcodec_lang::{FrameOp, MClass};
 use gcodec_profile::{Policy, Tool, ToolState, UnresolvedToolPolicy};
 use gcodec_source::{Severity, codes};
 
+use super::machine_calls::Continuation;
 use super::state::ToolRef;
 use super::{Channel, Flow};
 use crate::eval;
@@ -23,6 +24,7 @@ use crate::event::{
     ToolSelectEvent,
 };
 use crate::frames;
+use crate::machine::{AuxiliaryFunction, MachineAction, Wait};
 use crate::program::Program;
 use crate::value::{RtValue, RunError};
 
@@ -147,6 +149,38 @@ impl Channel<'_> {
             action,
         });
         self.emit_at(program, instruction, event);
+        // The change M is the machine's tool change (`tool_change`).
+        if action != MAction::ToolChange {
+            let function = AuxiliaryFunction::M { value, extension };
+            let answer = self
+                .machine
+                .auxiliary_function(&function, &mut self.machine_events);
+            let action_of = || MachineAction::AuxiliaryFunction(function);
+            let continuation = Continuation::MAction {
+                action,
+                value,
+                extension,
+            };
+            let ready =
+                self.machine_answer(program, pc, instruction, answer, action_of, continuation)?;
+            if ready.is_none() {
+                return Ok(Flow::Pending);
+            }
+        }
+        self.m_action(program, pc, instruction, action, value, extension)
+    }
+
+    /// What the channel itself does for an M function once the PLC has
+    /// it: spindles, gear stages, stops, the end of the program.
+    pub(super) fn m_action(
+        &mut self,
+        program: &Arc<Program>,
+        pc: usize,
+        instruction: &Instruction,
+        action: MAction,
+        value: u32,
+        extension: Option<u32>,
+    ) -> Result<Flow, RunError> {
         let spindle = |state| (extension, state);
         let change = match action {
             MAction::SpindleCw => Some(spindle(SpindleState::Cw)),
@@ -266,10 +300,11 @@ impl Channel<'_> {
     pub(super) fn dwell(
         &mut self,
         program: &Arc<Program>,
+        pc: usize,
         instruction: &Instruction,
         seconds: Option<&Value>,
         revolutions: Option<&Value>,
-    ) -> Result<(), RunError> {
+    ) -> Result<Flow, RunError> {
         let env = self.env();
         let seconds = seconds.map(|v| eval::eval_real(&env, v)).transpose()?;
         let revolutions = revolutions.map(|v| eval::eval_real(&env, v)).transpose()?;
@@ -282,15 +317,27 @@ impl Channel<'_> {
             revolutions,
         });
         self.emit_at(program, instruction, event);
-        Ok(())
+        let wait = Wait::Dwell {
+            seconds: time.max(0.0),
+        };
+        let answer = self.machine.wait(&wait, &mut self.machine_events);
+        let action = || MachineAction::Wait(wait);
+        let ready =
+            self.machine_answer(program, pc, instruction, answer, action, Continuation::Next)?;
+        Ok(if ready.is_some() {
+            Flow::Next
+        } else {
+            Flow::Pending
+        })
     }
 
     pub(super) fn h_function(
         &mut self,
         program: &Arc<Program>,
+        pc: usize,
         instruction: &Instruction,
         h: &HFunction,
-    ) -> Result<(), RunError> {
+    ) -> Result<Flow, RunError> {
         let env = self.env();
         let value = match (&h.h_value, &h.h_expr) {
             (Some(v), _) => *v,
@@ -305,7 +352,18 @@ impl Channel<'_> {
             phase: h.timing,
         });
         self.emit_at(program, instruction, event);
-        Ok(())
+        let function = AuxiliaryFunction::H { value, extension };
+        let answer = self
+            .machine
+            .auxiliary_function(&function, &mut self.machine_events);
+        let action = || MachineAction::AuxiliaryFunction(function);
+        let ready =
+            self.machine_answer(program, pc, instruction, answer, action, Continuation::Next)?;
+        Ok(if ready.is_some() {
+            Flow::Next
+        } else {
+            Flow::Pending
+        })
     }
 
     /// `SPOS`/`SPOSA` position a spindle; the other named addresses do not

@@ -24,6 +24,7 @@ mod approach;
 mod calls;
 mod functions;
 mod interrupts;
+mod machine_calls;
 mod motion;
 mod polar;
 mod settings;
@@ -53,6 +54,7 @@ use crate::event::{
 };
 use crate::geometry::CircleTolerance;
 use crate::loader::ProgramLoader;
+use crate::machine::{Machine, MachineEvents, SimulatedMachine};
 use crate::program::Program;
 use crate::value::RunError;
 use crate::vars::{Global, Scope, Variables};
@@ -166,6 +168,19 @@ enum Flow {
     /// top of the stack.
     Switch,
     End(ProgramEndReason),
+    /// The machine is still working on what the instruction asked
+    /// (`Channel::pending` says what): the run pauses at it.
+    Pending,
+}
+
+/// Why the run loop gave control back.
+pub(crate) enum Halt {
+    /// The run is over.
+    End(ProgramEndReason),
+    /// A machine action is pending (`Channel::pending`).
+    Pending,
+    /// A block ended and the sink has events to hand over.
+    Yield,
 }
 
 /// The block being executed.
@@ -192,7 +207,18 @@ pub struct Channel<'r> {
     pub vars: Variables,
     options: RunOptions,
     loader: &'r mut dyn ProgramLoader,
-    sink: &'r mut dyn EventSink,
+    sink: Box<dyn EventSink + 'r>,
+    machine: Box<dyn Machine + 'r>,
+    /// Asked of the machine when the run starts: it is told of every
+    /// block.
+    machine_watches_blocks: bool,
+    /// What the machine reports with an answer, emitted at once.
+    machine_events: MachineEvents,
+    /// The machine action the run waits for, and how to go on.
+    pending: Option<machine_calls::PendingAction>,
+    /// Where the run loop left off at a pause: the line of the
+    /// instruction run before (see `run_levels`).
+    paused_previous_line: Option<Option<u32>>,
     observer: Option<&'r mut dyn BlockObserver>,
     stack: Vec<Level>,
     summary: RunSummary,
@@ -218,11 +244,12 @@ impl<'r> Channel<'r> {
         profile: Arc<Profile>,
         options: RunOptions,
         loader: &'r mut dyn ProgramLoader,
-        sink: &'r mut dyn EventSink,
+        sink: impl EventSink + 'r,
     ) -> Self {
         // The profile has no key for MD28050 (the number of R parameters).
         let max_memory = *profile.program.max_variable_memory.get_ref();
         let vars = Variables::default().with_budgets(options.max_work, max_memory);
+        let machine = Box::new(SimulatedMachine::new(Arc::clone(&profile)));
         let state = MachineState::new(profile);
         let motion = motion::MotionScratch::new(&state);
         Self {
@@ -230,7 +257,12 @@ impl<'r> Channel<'r> {
             vars,
             options,
             loader,
-            sink,
+            sink: Box::new(sink),
+            machine,
+            machine_watches_blocks: false,
+            machine_events: MachineEvents::new(),
+            pending: None,
+            paused_previous_line: None,
             observer: None,
             stack: Vec::new(),
             summary: RunSummary::default(),
@@ -244,6 +276,13 @@ impl<'r> Channel<'r> {
             figures_slot: None,
             global_error: None,
         }
+    }
+
+    /// Runs against `machine` instead of the [`SimulatedMachine`] of the
+    /// profile.
+    pub fn with_machine(mut self, machine: impl Machine + 'r) -> Self {
+        self.machine = Box::new(machine);
+        self
     }
 
     /// Also hands the state after each block to `observer`.
@@ -284,21 +323,48 @@ impl<'r> Channel<'r> {
     }
 
     /// Runs `main` to its end and writes the final `program_end` event.
-    /// An error writing events ends the run and is returned.
-    pub fn run(mut self, main: Arc<Program>) -> io::Result<RunOutcome> {
+    /// An error writing events ends the run and is returned. A machine
+    /// action left pending ends the run with an alarm: nothing here can
+    /// answer it (a [`crate::session::Session`] can).
+    pub fn run(self, main: Arc<Program>) -> io::Result<RunOutcome> {
+        crate::session::Session::new(self, main).run_to_end()
+    }
+
+    /// Starts the run of `main`: its level, the definitions' globals, its
+    /// parameters. `Some`: the run ends before its first block.
+    pub(crate) fn begin(&mut self, main: Arc<Program>) -> Option<ProgramEndReason> {
+        self.machine_watches_blocks = self.machine.watches_blocks();
         self.stack.push(Level {
-            program: main,
+            program: Arc::clone(&main),
             pc: 0,
             program_level: 0,
             kind: LevelKind::Main,
         });
-        let main = Arc::clone(&self.stack[0].program);
-        let reason = if let Some((source, error)) = self.global_error.take() {
-            self.alarm_in_definitions(source, error)
-        } else {
-            self.run_main(&main)
-        };
+        if let Some((source, error)) = self.global_error.take() {
+            return Some(self.alarm_in_definitions(source, error));
+        }
+        match self.bind_main(&main) {
+            Ok(()) => None,
+            Err(error) => Some(match main.instruction(0) {
+                Some(first) => self.alarm(&main, &first, error),
+                None => ProgramEndReason::Alarm,
+            }),
+        }
+    }
+
+    /// Runs on until the end, a pending machine action or a pause for
+    /// the sink.
+    pub(crate) fn advance(&mut self) -> Halt {
+        self.run_levels()
+    }
+
+    /// Ends the run: the machine abandons what it was doing if the run
+    /// ends in an alarm, the `program_end` event, the outcome.
+    pub(crate) fn finish(&mut self, reason: ProgramEndReason) -> io::Result<RunOutcome> {
         self.end_block();
+        if reason == ProgramEndReason::Alarm {
+            self.abort_machine(crate::machine::AbortCause::Alarm);
+        }
         let end = Event {
             kind: EventKind::ProgramEnd(ProgramEndEvent {
                 reason,
@@ -313,21 +379,10 @@ impl<'r> Channel<'r> {
         self.sink.finish()?;
         Ok(RunOutcome {
             reason,
-            summary: self.summary,
+            summary: std::mem::take(&mut self.summary),
             errors: self.errors,
             warnings: self.warnings,
         })
-    }
-
-    /// Binds the main program's parameters and runs it.
-    fn run_main(&mut self, main: &Arc<Program>) -> ProgramEndReason {
-        match self.bind_main(main) {
-            Ok(()) => self.run_levels(),
-            Err(error) => match main.instruction(0) {
-                Some(first) => self.alarm(main, &first, error),
-                None => ProgramEndReason::Alarm,
-            },
-        }
     }
 
     /// A global variable did not fit: its alarm at its definition.
@@ -341,10 +396,10 @@ impl<'r> Channel<'r> {
         ProgramEndReason::Alarm
     }
 
-    fn run_levels(&mut self) -> ProgramEndReason {
+    fn run_levels(&mut self) -> Halt {
         loop {
             let Some(top) = self.stack.last() else {
-                return ProgramEndReason::EndOfText;
+                return Halt::End(ProgramEndReason::EndOfText);
             };
             let program = Arc::clone(&top.program);
             let mut pc = top.pc;
@@ -362,11 +417,14 @@ impl<'r> Channel<'r> {
             // The line of the instruction run before `pc` in sequence (0:
             // none, at the program's start): blocks with errors between
             // it and `pc` are reached.
-            let mut previous_line = (pc == 0).then_some(0);
+            let mut previous_line = self
+                .paused_previous_line
+                .take()
+                .unwrap_or((pc == 0).then_some(0));
             loop {
                 if repeat_end == Some(pc) {
                     match self.repeat_pass_done() {
-                        Some(reason) => return reason,
+                        Some(reason) => return Halt::End(reason),
                         None => break,
                     }
                 }
@@ -374,13 +432,13 @@ impl<'r> Channel<'r> {
                     match program.page(pc) {
                         Some(next) => page = next,
                         None if program.is_forgotten(pc) => {
-                            return self.forgotten(&program, pc);
+                            return Halt::End(self.forgotten(&program, pc));
                         }
                         // Past the last instruction (lowering always ends
                         // with `end`; a hand-made document may not).
                         None => {
                             match self.return_from_call(&program, pc.saturating_sub(1), false) {
-                                Flow::End(reason) => return reason,
+                                Flow::End(reason) => return Halt::End(reason),
                                 _ => break,
                             }
                         }
@@ -392,7 +450,7 @@ impl<'r> Channel<'r> {
                 let line = instruction.source.line;
                 if section_end.is_some_and(|end| line > end) {
                     match self.return_from_call(&program, pc, true) {
-                        Flow::End(reason) => return reason,
+                        Flow::End(reason) => return Halt::End(reason),
                         _ => break,
                     }
                 }
@@ -404,7 +462,7 @@ impl<'r> Channel<'r> {
                                 top.pc = pc;
                             }
                             match self.run_modal_call(&program, pc) {
-                                Flow::End(reason) => return reason,
+                                Flow::End(reason) => return Halt::End(reason),
                                 _ => break,
                             }
                         }
@@ -412,10 +470,17 @@ impl<'r> Channel<'r> {
                     let after = previous_line.filter(|_| !self.block.transferred);
                     if let Some(error) = page.error_reached(after, line) {
                         let error = error.clone();
-                        return self.block_with_errors(&program, instruction, error);
+                        return Halt::End(self.block_with_errors(&program, instruction, error));
+                    }
+                    if self.sink.wants_yield() {
+                        if let Some(top) = self.stack.last_mut() {
+                            top.pc = pc;
+                        }
+                        self.paused_previous_line = Some(previous_line);
+                        return Halt::Yield;
                     }
                     if let Some(reason) = self.start_block(&program, instruction) {
-                        return reason;
+                        return Halt::End(reason);
                     }
                 }
                 previous_line = Some(line);
@@ -432,10 +497,14 @@ impl<'r> Channel<'r> {
                         self.block.transferred = true;
                         break;
                     }
-                    Flow::End(reason) => return reason,
+                    Flow::End(reason) => return Halt::End(reason),
+                    Flow::Pending => {
+                        self.paused_previous_line = Some(previous_line);
+                        return Halt::Pending;
+                    }
                 }
                 if self.output_error.is_some() {
-                    return ProgramEndReason::Alarm;
+                    return Halt::End(ProgramEndReason::Alarm);
                 }
             }
         }
@@ -496,6 +565,9 @@ impl<'r> Channel<'r> {
         }
         self.summary.blocks += 1;
         self.figures().blocks += 1;
+        if self.machine_watches_blocks {
+            self.machine_block(program, instruction);
+        }
         if self.summary.blocks > self.options.max_steps {
             let message = format!(
                 "the run stopped after {} blocks (--max-steps): an endless loop, or a longer program than expected",
@@ -592,6 +664,14 @@ impl<'r> Channel<'r> {
 
     /// Runs one instruction.
     fn execute(&mut self, program: &Arc<Program>, pc: usize, instruction: &Instruction) -> Flow {
+        let flow = self.execute_op(program, pc, instruction);
+        if !matches!(flow, Flow::Pending) {
+            self.state.machine_reads.instruction_done();
+        }
+        flow
+    }
+
+    fn execute_op(&mut self, program: &Arc<Program>, pc: usize, instruction: &Instruction) -> Flow {
         let result = match &instruction.op {
             Op::Label { .. } | Op::External(_) | Op::Procedure(_) => Ok(Flow::Next),
             Op::SkipBlock { level, end } => {
@@ -670,15 +750,17 @@ impl<'r> Channel<'r> {
             Op::Dwell {
                 seconds,
                 revolutions,
-            } => self
-                .dwell(program, instruction, seconds.as_ref(), revolutions.as_ref())
-                .map(|()| Flow::Next),
+            } => self.dwell(
+                program,
+                pc,
+                instruction,
+                seconds.as_ref(),
+                revolutions.as_ref(),
+            ),
             Op::Address(address) => self
                 .address(program, instruction, address)
                 .map(|()| Flow::Next),
-            Op::HFunction(h) => self
-                .h_function(program, instruction, h)
-                .map(|()| Flow::Next),
+            Op::HFunction(h) => self.h_function(program, pc, instruction, h),
             Op::MFunction(m) => self.m_function(program, pc, instruction, m),
             Op::ToolSelect(select) => self
                 .tool_select(program, instruction, select)
@@ -735,7 +817,14 @@ impl<'r> Channel<'r> {
         };
         match result {
             Ok(flow) => flow,
-            Err(error) => Flow::End(self.alarm(program, instruction, error)),
+            Err(error) => {
+                if error.code == codes::run::SYSTEM_VARIABLE
+                    && let Some(read) = self.state.machine_reads.take_unanswered()
+                {
+                    return self.read_from_machine(program, pc, instruction, read, error);
+                }
+                Flow::End(self.alarm(program, instruction, error))
+            }
         }
     }
 

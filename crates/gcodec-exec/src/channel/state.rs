@@ -20,6 +20,7 @@ use crate::eval::{
 };
 use gcodec_ail::{Suppression, VarName};
 
+use super::machine_calls::MachineReads;
 use super::tool_data::ToolData;
 use crate::event::{AxisName, Plane, SpindleState};
 use crate::frames::{Frame, FrameAxes, chain_values, frame_function};
@@ -105,6 +106,8 @@ pub struct MachineState {
     pub traversed_frame: Option<Frame>,
     /// `SETINT`: the routine of each input.
     pub(super) interrupts: super::interrupts::Interrupts,
+    /// The reads of system variables the machine answers.
+    pub(super) machine_reads: MachineReads,
     /// The last total frame with what it was made of, so that a motion
     /// does not chain frames (and allocate) unless one changed.
     frame_cache: RefCell<FrameCache>,
@@ -210,6 +213,7 @@ impl MachineState {
             working_area: WorkingArea::default(),
             traversed_frame: None,
             interrupts: Default::default(),
+            machine_reads: MachineReads::default(),
             // A group 8 code no block selects: the first motion fills it.
             frame_cache: RefCell::new(FrameCache {
                 group8: WorkOffsetCode(0),
@@ -451,14 +455,10 @@ impl MachineState {
     }
 }
 
-impl RuntimeInterface for MachineState {
-    fn profile(&self) -> Option<&Profile> {
-        Some(&self.profile)
-    }
-
+impl MachineState {
     /// The channel's own state first; the profile's defaults for the rest
     /// ([`profile_system_variable`]).
-    fn system_variable(&self, var: &VarName, indices: &[RtValue]) -> Result<RtValue, RunError> {
+    fn own_system_variable(&self, var: &VarName, indices: &[RtValue]) -> Result<RtValue, RunError> {
         let name = var.as_str();
         let one_axis = |what: &str| -> Result<usize, RunError> {
             match indices {
@@ -531,6 +531,31 @@ impl RuntimeInterface for MachineState {
                 Some(value) => value,
                 None => profile_system_variable(Some(&self.profile), var, indices),
             },
+        }
+    }
+}
+
+impl RuntimeInterface for MachineState {
+    fn profile(&self) -> Option<&Profile> {
+        Some(&self.profile)
+    }
+
+    /// The channel's own state first, then the profile's defaults
+    /// ([`profile_system_variable`]), then what the machine answered
+    /// (`channel::machine_calls`): a read none of them answers is kept
+    /// for the channel to ask the machine.
+    fn system_variable(&self, var: &VarName, indices: &[RtValue]) -> Result<RtValue, RunError> {
+        match self.own_system_variable(var, indices) {
+            Err(error) if error.code == codes::run::SYSTEM_VARIABLE => {
+                match self.machine_reads.lookup(var.as_str(), indices) {
+                    Some(value) => Ok(value),
+                    None => {
+                        self.machine_reads.unanswered(var.as_str(), indices);
+                        Err(error)
+                    }
+                }
+            }
+            result => result,
         }
     }
 

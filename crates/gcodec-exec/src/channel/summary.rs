@@ -26,6 +26,11 @@ pub struct ToolSummary {
     /// Time at feed, seconds (path length / F under G94; per revolution
     /// under G95 with the spindle speed; dwell included).
     pub feed_time: f64,
+    /// Time the machine took for its own actions while this tool was
+    /// active, seconds: the toolchanger's cycles of a tool change (left
+    /// out of the JSON while 0: a run without a toolchanger).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub machine_time: f64,
     /// Of the geometry axes' end points and arc extremes, workpiece
     /// coordinates, mm; `null` when the tool did not move.
     pub bounding_box: Option<BoundingBox>,
@@ -97,6 +102,7 @@ impl RunSummary {
             total.feed_length += t.feed_length;
             total.rapid_time += t.rapid_time;
             total.feed_time += t.feed_time;
+            total.machine_time += t.machine_time;
             total.bounding_box = match (total.bounding_box, t.bounding_box) {
                 (Some(a), Some(b)) => Some(a.union(&b)),
                 (a, b) => a.or(b),
@@ -113,15 +119,19 @@ impl fmt::Display for RunSummary {
         let line = |f: &mut fmt::Formatter<'_>, name: &str, t: &ToolSummary| {
             write!(
                 f,
-                "{name:<14} blocks {:>9}  path {:>11.3} mm (rapid {:.3}, feed {:.3})  time {} (rapid {}, feed {})",
+                "{name:<14} blocks {:>9}  path {:>11.3} mm (rapid {:.3}, feed {:.3})  time {} (rapid {}, feed {}",
                 t.blocks,
                 t.rapid_length + t.feed_length,
                 t.rapid_length,
                 t.feed_length,
-                duration(t.rapid_time + t.feed_time),
+                duration(t.rapid_time + t.feed_time + t.machine_time),
                 duration(t.rapid_time),
                 duration(t.feed_time),
             )?;
+            if t.machine_time > 0.0 {
+                write!(f, ", tool changes {}", duration(t.machine_time))?;
+            }
+            write!(f, ")")?;
             match &t.bounding_box {
                 Some(b) => writeln!(
                     f,
@@ -139,6 +149,10 @@ impl fmt::Display for RunSummary {
         }
         Ok(())
     }
+}
+
+fn is_zero(seconds: &f64) -> bool {
+    *seconds == 0.0
 }
 
 /// `1h02m03.4s`, `2m03.4s`, `3.4s`.

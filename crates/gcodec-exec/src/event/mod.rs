@@ -56,7 +56,7 @@ pub use crate::geometry::Plane;
 pub use axis_map::{AxisMap, AxisName, axis_name, axis_names};
 pub use csv::{BlockRow, CsvWriter, MAIN_MODAL_GROUPS, ModalColumn};
 pub use jsonl::JsonlSink;
-pub use sinks::{CountingSink, VecSink};
+pub use sinks::{CountingSink, EventQueue, VecSink};
 pub use text::{TextSink, write_trace_line};
 pub use toolchanger::{ToolchangerEdge, ToolchangerEvent};
 pub use work_offset::{SuppressionMask, WorkOffsetContext};
@@ -553,6 +553,9 @@ pub enum ProgramEndReason {
     /// `M0` (or `M1` with optional stop selected) stopped the program; the
     /// simulation does not wait for NC start (`--no-stop` goes on).
     Stopped,
+    /// The application stepping the run cancelled it (a
+    /// `gcodec::run::cancelled` diagnostic just before).
+    Cancelled,
 }
 
 /// A problem found while running.
@@ -634,6 +637,12 @@ pub trait EventSink {
     fn finish(&mut self) -> io::Result<()> {
         Ok(())
     }
+
+    /// Whether a [`crate::session::Session`] should hand over at the end
+    /// of the block: the sink holds events for the application.
+    fn wants_yield(&self) -> bool {
+        false
+    }
 }
 
 impl<S: EventSink + ?Sized> EventSink for &mut S {
@@ -644,6 +653,10 @@ impl<S: EventSink + ?Sized> EventSink for &mut S {
     fn finish(&mut self) -> io::Result<()> {
         (**self).finish()
     }
+
+    fn wants_yield(&self) -> bool {
+        (**self).wants_yield()
+    }
 }
 
 impl<S: EventSink + ?Sized> EventSink for Box<S> {
@@ -653,5 +666,9 @@ impl<S: EventSink + ?Sized> EventSink for Box<S> {
 
     fn finish(&mut self) -> io::Result<()> {
         (**self).finish()
+    }
+
+    fn wants_yield(&self) -> bool {
+        (**self).wants_yield()
     }
 }

@@ -1,7 +1,10 @@
 //! The sinks that write nothing: [`VecSink`] keeps the events (tests),
-//! [`CountingSink`] counts them by kind (benchmarks).
+//! [`CountingSink`] counts them by kind (benchmarks), [`EventQueue`]
+//! holds them for the application stepping a session.
 
+use std::cell::RefCell;
 use std::io;
+use std::rc::Rc;
 
 use super::{EVENT_KINDS, Event, EventSink};
 
@@ -53,5 +56,36 @@ impl EventSink for CountingSink {
     fn event(&mut self, event: &Event) -> io::Result<()> {
         self.by_kind[event.kind.index()] += 1;
         Ok(())
+    }
+}
+
+/// The events of a stepped run, for the application to take between
+/// steps: a clone shares the queue, so the application keeps one and
+/// gives the channel another. A session hands over at the end of every
+/// block after which the queue holds events.
+#[derive(Clone, Debug, Default)]
+pub struct EventQueue {
+    events: Rc<RefCell<Vec<Event>>>,
+}
+
+impl EventQueue {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The events queued since last taken, in order.
+    pub fn take(&self) -> Vec<Event> {
+        std::mem::take(&mut *self.events.borrow_mut())
+    }
+}
+
+impl EventSink for EventQueue {
+    fn event(&mut self, event: &Event) -> io::Result<()> {
+        self.events.borrow_mut().push(event.clone());
+        Ok(())
+    }
+
+    fn wants_yield(&self) -> bool {
+        !self.events.borrow().is_empty()
     }
 }

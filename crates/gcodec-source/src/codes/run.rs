@@ -15,6 +15,9 @@ super::codes! {
     WORK_LIMIT = work_limit, Error, "the run stopped when its array work passed `--max-work`";
     VARIABLE_MEMORY = variable_memory, Error, "a declaration that does not fit the memory for variables";
     INTERRUPTED = interrupted, Error, "the run interrupted (Ctrl-C)";
+    CANCELLED = cancelled, Error, "the run cancelled by the application that steps it";
+    MACHINE_ERROR = machine_error, Error, "a machine action that failed (a tool change, an M function, a wait)";
+    MACHINE_ACTION_UNANSWERED = machine_action_unanswered, Error, "a machine action left pending in a run nothing can resume";
     NOT_SIMULATED = not_simulated, Advice, "a construct the simulation does not model";
     UNRESOLVED_TOOL = unresolved_tool, Error, "a tool not in the machine's tool table";
     M6_WITHOUT_PENDING = m6_without_pending, Warning, "a tool change without a selected tool";

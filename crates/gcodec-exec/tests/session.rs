@@ -1,0 +1,372 @@
+//! A run an application steps: the machine's pending answers pause it,
+//! `resume` goes on without asking again, `cancel` stops it cleanly
+//! (SPEC §11.10).
+
+mod common;
+
+use std::sync::Arc;
+
+use gcodec_driver::{Definitions, MemoryLoader};
+use gcodec_exec::channel::{Channel, RunOptions};
+use gcodec_exec::event::{Event, EventKind, EventQueue, ProgramEndReason, VecSink};
+use gcodec_exec::machine::{
+    AbortCause, Answer, AuxiliaryFunction, Machine, MachineAction, MachineError, MachineEvents,
+    Outcome, PendingToken, Wait,
+};
+use gcodec_exec::session::{Session, SessionError, Step};
+use gcodec_exec::value::RtValue;
+use gcodec_profile::Profile;
+use gcodec_source::SourceFile;
+
+/// A machine that answers M100, dwells and reads of `$A_DBB` later, and
+/// counts what it is asked.
+#[derive(Default)]
+struct LateMachine {
+    calls: Vec<String>,
+    aborts: Vec<AbortCause>,
+    next: u64,
+    /// Answer at once with this instead of pending.
+    ready_read: Option<RtValue>,
+    fail_m: bool,
+}
+
+impl LateMachine {
+    fn token(&mut self) -> PendingToken {
+        self.next += 1;
+        PendingToken(self.next)
+    }
+}
+
+impl Machine for LateMachine {
+    fn auxiliary_function(&mut self, f: &AuxiliaryFunction, _: &mut MachineEvents) -> Answer<()> {
+        self.calls.push(format!("{f:?}"));
+        match f {
+            AuxiliaryFunction::M { value: 100, .. } if self.fail_m => {
+                Answer::Error(MachineError::new("the PLC refuses M100"))
+            }
+            AuxiliaryFunction::M { value: 100, .. } => Answer::Pending(self.token()),
+            _ => Answer::Ready(()),
+        }
+    }
+
+    fn wait(&mut self, wait: &Wait, _: &mut MachineEvents) -> Answer<()> {
+        self.calls.push(format!("{wait:?}"));
+        Answer::Pending(self.token())
+    }
+
+    fn system_variable(&mut self, name: &str, _: &[RtValue]) -> Answer<Option<RtValue>> {
+        self.calls.push(name.to_owned());
+        match &self.ready_read {
+            Some(value) => Answer::Ready(Some(value.clone())),
+            None => Answer::Pending(self.token()),
+        }
+    }
+
+    fn abort(&mut self, cause: AbortCause, _: &mut MachineEvents) {
+        self.aborts.push(cause);
+    }
+}
+
+const PROGRAM: &str = "N10 M100\nN20 G4 F1.5\nN30 R1=$A_DBB[0]+1\nN40 MSG(\"R1=\"<<R1)\nN50 M30\n";
+
+fn main_program(profile: &Profile, text: &str) -> Arc<gcodec_exec::program::Program> {
+    let file = Arc::new(SourceFile::new("LATE.MPF", text));
+    let loaded = common::runs::compile_main(&file, profile, &Definitions::new());
+    assert!(!loaded.has_errors, "{text}: {:?}", loaded.diagnostics);
+    loaded.program
+}
+
+fn messages(events: &[Event]) -> Vec<String> {
+    events
+        .iter()
+        .filter_map(|e| match &e.kind {
+            EventKind::Message(m) => Some(m.text.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
+fn codes(events: &[Event]) -> Vec<String> {
+    events
+        .iter()
+        .filter_map(|e| match &e.kind {
+            EventKind::Diagnostic(d) => Some(d.code.to_string()),
+            _ => None,
+        })
+        .collect()
+}
+
+fn end_reason(events: &[Event]) -> Option<ProgramEndReason> {
+    events.iter().find_map(|e| match &e.kind {
+        EventKind::ProgramEnd(end) => Some(end.reason),
+        _ => None,
+    })
+}
+
+/// Steps `session` to its end, answering each pending action with what
+/// `answer` gives; the actions in order.
+fn step_through(
+    session: &mut Session<'_>,
+    mut answer: impl FnMut(&MachineAction) -> Outcome,
+) -> Vec<MachineAction> {
+    let mut actions = Vec::new();
+    for _ in 0..1000 {
+        match session.step() {
+            Step::Events => {}
+            Step::Pending(pending) => {
+                let outcome = answer(&pending.action);
+                actions.push(pending.action);
+                session.resume(pending.token, outcome).expect("resumed");
+            }
+            Step::Ended(outcome) => {
+                outcome.expect("events written");
+                return actions;
+            }
+        }
+    }
+    panic!("the session did not end");
+}
+
+#[test]
+fn pending_actions_pause_the_run_and_resume_without_being_asked_again() {
+    let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
+    let main = main_program(&profile, PROGRAM);
+    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
+    let mut sink = VecSink::new();
+    let mut machine = LateMachine::default();
+    let options = RunOptions::for_profile(&profile);
+    let channel = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
+        .with_machine(&mut machine);
+    let mut session = Session::new(channel, main);
+    let actions = step_through(&mut session, |action| match action {
+        MachineAction::SystemVariable { .. } => Outcome::Value(Some(RtValue::Int(41))),
+        _ => Outcome::Done,
+    });
+    drop(session);
+    assert_eq!(
+        actions,
+        vec![
+            MachineAction::AuxiliaryFunction(AuxiliaryFunction::M {
+                value: 100,
+                extension: None
+            }),
+            MachineAction::Wait(Wait::Dwell { seconds: 1.5 }),
+            MachineAction::SystemVariable {
+                name: "$A_DBB".into(),
+                indices: vec![RtValue::Int(0)]
+            },
+        ]
+    );
+    // Each asked once: the read's instruction ran again with the answer.
+    assert_eq!(
+        machine.calls,
+        vec![
+            "M { value: 100, extension: None }",
+            "Dwell { seconds: 1.5 }",
+            "$A_DBB",
+            "M { value: 30, extension: None }",
+        ]
+    );
+    assert_eq!(messages(&sink.events), vec!["R1=42"]);
+    let m_events = sink
+        .events
+        .iter()
+        .filter(|e| matches!(e.kind, EventKind::MFunction(_)))
+        .count();
+    assert_eq!(m_events, 2, "M100 and M30, each reported once");
+    assert_eq!(end_reason(&sink.events), Some(ProgramEndReason::M30));
+    assert!(machine.aborts.is_empty());
+}
+
+#[test]
+fn a_machine_answering_at_once_runs_the_read_again_with_its_value() {
+    let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
+    let main = main_program(&profile, "R1=$A_DBB[3]*2\nMSG(\"R1=\"<<R1)\nM30\n");
+    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
+    let mut sink = VecSink::new();
+    let mut machine = LateMachine {
+        ready_read: Some(RtValue::Real(2.5)),
+        ..LateMachine::default()
+    };
+    let options = RunOptions::for_profile(&profile);
+    let outcome = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
+        .with_machine(&mut machine)
+        .run(main)
+        .expect("events written");
+    assert_eq!(outcome.errors, 0);
+    assert_eq!(messages(&sink.events), vec!["R1=5"]);
+    assert_eq!(machine.calls[0], "$A_DBB");
+}
+
+#[test]
+fn a_read_no_one_answers_is_the_alarm_it_always_was() {
+    let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
+    let main = main_program(&profile, "R1=$A_DBB[0]\nM30\n");
+    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
+    let mut sink = VecSink::new();
+    let options = RunOptions::for_profile(&profile);
+    let outcome = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
+        .run(main)
+        .expect("events written");
+    assert_eq!(outcome.reason, ProgramEndReason::Alarm);
+    assert_eq!(codes(&sink.events), vec!["gcodec::run::system_variable"]);
+}
+
+#[test]
+fn resume_refuses_a_wrong_token_or_outcome_and_keeps_the_action_pending() {
+    let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
+    let main = main_program(&profile, PROGRAM);
+    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
+    let mut sink = VecSink::new();
+    let options = RunOptions::for_profile(&profile);
+    let channel = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
+        .with_machine(LateMachine::default());
+    let mut session = Session::new(channel, main);
+    assert_eq!(
+        session.resume(PendingToken(1), Outcome::Done),
+        Err(SessionError::NothingPending)
+    );
+    let Step::Pending(pending) = session.step() else {
+        panic!("M100 is pending");
+    };
+    assert_eq!(pending.source.line, 1);
+    assert!(matches!(
+        session.resume(PendingToken(99), Outcome::Done),
+        Err(SessionError::WrongToken { .. })
+    ));
+    assert!(matches!(
+        session.resume(pending.token, Outcome::Value(None)),
+        Err(SessionError::WrongOutcome { .. })
+    ));
+    assert_eq!(session.pending(), Some(pending.clone()));
+    assert_eq!(session.resume(pending.token, Outcome::Done), Ok(()));
+    let Step::Pending(next) = session.step() else {
+        panic!("the dwell is pending");
+    };
+    assert_eq!(
+        next.action,
+        MachineAction::Wait(Wait::Dwell { seconds: 1.5 })
+    );
+}
+
+#[test]
+fn cancel_abandons_the_pending_action_and_ends_the_run_there() {
+    let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
+    let main = main_program(&profile, PROGRAM);
+    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
+    let mut sink = VecSink::new();
+    let mut machine = LateMachine::default();
+    let options = RunOptions::for_profile(&profile);
+    let channel = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
+        .with_machine(&mut machine);
+    let mut session = Session::new(channel, main);
+    let Step::Pending(pending) = session.step() else {
+        panic!("M100 is pending");
+    };
+    session
+        .resume(pending.token, Outcome::Done)
+        .expect("resumed");
+    let Step::Pending(dwell) = session.step() else {
+        panic!("the dwell is pending");
+    };
+    session.cancel();
+    let Step::Ended(outcome) = session.step() else {
+        panic!("the run ends");
+    };
+    let outcome = outcome.expect("events written");
+    assert_eq!(outcome.reason, ProgramEndReason::Cancelled);
+    assert_eq!(outcome.errors, 1);
+    // Over: stepping again says so, resuming finds nothing.
+    assert!(matches!(session.step(), Step::Ended(Ok(_))));
+    assert_eq!(
+        session.resume(dwell.token, Outcome::Done),
+        Err(SessionError::NothingPending)
+    );
+    drop(session);
+    assert_eq!(machine.aborts, vec![AbortCause::Cancelled]);
+    let cancelled = sink
+        .events
+        .iter()
+        .find(|e| matches!(&e.kind, EventKind::Diagnostic(d) if d.code == gcodec_source::codes::run::CANCELLED))
+        .expect("the cancel is reported");
+    assert_eq!(cancelled.source.line, 2, "at the dwell that was pending");
+    assert_eq!(end_reason(&sink.events), Some(ProgramEndReason::Cancelled));
+    assert!(
+        messages(&sink.events).is_empty(),
+        "nothing after the dwell ran"
+    );
+}
+
+#[test]
+fn a_failed_action_is_an_alarm_and_the_machine_is_told_the_run_aborts() {
+    let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
+    let main = main_program(&profile, PROGRAM);
+    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
+    let mut sink = VecSink::new();
+    let mut machine = LateMachine {
+        fail_m: true,
+        ..LateMachine::default()
+    };
+    let options = RunOptions::for_profile(&profile);
+    let outcome = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
+        .with_machine(&mut machine)
+        .run(main)
+        .expect("events written");
+    assert_eq!(outcome.reason, ProgramEndReason::Alarm);
+    assert_eq!(codes(&sink.events), vec!["gcodec::run::machine_error"]);
+    assert_eq!(machine.aborts, vec![AbortCause::Alarm]);
+}
+
+#[test]
+fn a_run_that_cannot_wait_ends_with_an_alarm_at_the_pending_action() {
+    let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
+    let main = main_program(&profile, PROGRAM);
+    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
+    let mut sink = VecSink::new();
+    let options = RunOptions::for_profile(&profile);
+    let outcome = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
+        .with_machine(LateMachine::default())
+        .run(main)
+        .expect("events written");
+    assert_eq!(outcome.reason, ProgramEndReason::Alarm);
+    assert_eq!(
+        codes(&sink.events),
+        vec!["gcodec::run::machine_action_unanswered"]
+    );
+}
+
+#[test]
+fn an_event_queue_hands_events_over_block_by_block_and_loses_none() {
+    let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
+    let text = "G0 X10\nG1 X20 F100\nM3 S1000\nG4 F1\nX30\nM30\n";
+    let main = main_program(&profile, text);
+    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
+    let mut whole = VecSink::new();
+    let options = RunOptions::for_profile(&profile);
+    Channel::new(
+        Arc::clone(&profile),
+        options.clone(),
+        &mut loader,
+        &mut whole,
+    )
+    .run(Arc::clone(&main))
+    .expect("events written");
+    let queue = EventQueue::new();
+    let channel = Channel::new(Arc::clone(&profile), options, &mut loader, queue.clone());
+    let mut session = Session::new(channel, main);
+    let mut batches = Vec::new();
+    loop {
+        match session.step() {
+            Step::Events => batches.push(queue.take()),
+            Step::Pending(pending) => panic!("the simulated machine answers at once: {pending:?}"),
+            Step::Ended(outcome) => {
+                outcome.expect("events written");
+                batches.push(queue.take());
+                break;
+            }
+        }
+    }
+    assert!(batches.len() >= 6, "a batch per block: {}", batches.len());
+    let stepped: Vec<Event> = batches.into_iter().flatten().collect();
+    assert_eq!(stepped, whole.events);
+}
