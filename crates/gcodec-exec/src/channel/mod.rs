@@ -212,6 +212,9 @@ pub struct Channel<'r> {
     /// Asked of the machine when the run starts: it is told of every
     /// block.
     machine_watches_blocks: bool,
+    /// Asked of the sink when the run starts: it may want the run to
+    /// hand over at the end of a block.
+    sink_may_yield: bool,
     /// What the machine reports with an answer, emitted at once.
     machine_events: MachineEvents,
     /// The machine action the run waits for, and how to go on.
@@ -260,6 +263,7 @@ impl<'r> Channel<'r> {
             sink: Box::new(sink),
             machine,
             machine_watches_blocks: false,
+            sink_may_yield: false,
             machine_events: MachineEvents::new(),
             pending: None,
             paused_previous_line: None,
@@ -334,6 +338,7 @@ impl<'r> Channel<'r> {
     /// parameters. `Some`: the run ends before its first block.
     pub(crate) fn begin(&mut self, main: Arc<Program>) -> Option<ProgramEndReason> {
         self.machine_watches_blocks = self.machine.watches_blocks();
+        self.sink_may_yield = self.sink.may_yield();
         self.stack.push(Level {
             program: Arc::clone(&main),
             pc: 0,
@@ -472,7 +477,7 @@ impl<'r> Channel<'r> {
                         let error = error.clone();
                         return Halt::End(self.block_with_errors(&program, instruction, error));
                     }
-                    if self.sink.wants_yield() {
+                    if self.sink_may_yield && self.sink.wants_yield() {
                         if let Some(top) = self.stack.last_mut() {
                             top.pc = pc;
                         }

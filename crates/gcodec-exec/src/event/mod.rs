@@ -643,6 +643,13 @@ pub trait EventSink {
     fn wants_yield(&self) -> bool {
         false
     }
+
+    /// Whether [`EventSink::wants_yield`] can ever be true: asked once,
+    /// when the run starts, so that a sink that never hands over costs
+    /// nothing per block.
+    fn may_yield(&self) -> bool {
+        false
+    }
 }
 
 impl<S: EventSink + ?Sized> EventSink for &mut S {
@@ -657,6 +664,10 @@ impl<S: EventSink + ?Sized> EventSink for &mut S {
     fn wants_yield(&self) -> bool {
         (**self).wants_yield()
     }
+
+    fn may_yield(&self) -> bool {
+        (**self).may_yield()
+    }
 }
 
 impl<S: EventSink + ?Sized> EventSink for Box<S> {
@@ -670,5 +681,9 @@ impl<S: EventSink + ?Sized> EventSink for Box<S> {
 
     fn wants_yield(&self) -> bool {
         (**self).wants_yield()
+    }
+
+    fn may_yield(&self) -> bool {
+        (**self).may_yield()
     }
 }

@@ -88,4 +88,8 @@ impl EventSink for EventQueue {
     fn wants_yield(&self) -> bool {
         !self.events.borrow().is_empty()
     }
+
+    fn may_yield(&self) -> bool {
+        true
+    }
 }
