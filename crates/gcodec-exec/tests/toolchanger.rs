@@ -73,6 +73,24 @@ fn abort_reasons(events: &[ToolchangerEvent]) -> Vec<i32> {
 
 use ToolchangerEdge as E;
 
+/// `T<tool>` then the change M on the non-random traces' machine: the
+/// changer, the change's report and the change's events.
+fn prepare_then_change(
+    scenario: &str,
+    number: u32,
+) -> (
+    SimulatedChanger,
+    Report<ChangeOutcome>,
+    Vec<ToolchangerEvent>,
+) {
+    let mut c = changer(&iov2(), scenario);
+    let mut events = Vec::new();
+    prepare(&mut c, tool(number), &mut events);
+    let mut events = Vec::new();
+    let changed = change(&mut c, &mut events);
+    (c, changed, events)
+}
+
 // --- trace-nonrandom-faults.txt -----------------------------------------
 
 /// S1: `T1` then `M6`.
@@ -189,14 +207,10 @@ fn trace_soft_fault_skips_the_change() {
 /// (`pocket_prepped` 2); gcodec drops it (SPEC §12.3, issue 330).
 #[test]
 fn trace_abort_during_changing_keeps_the_tool_and_drops_the_prepare() {
-    let mut c = changer(
-        &iov2(),
+    let (c, changed, events) = prepare_then_change(
         "ack_cycles = 3\ninitial_tool = 1\n[[inject]]\nat = \"change\"\nn = 1\nafter_cycles = 1\naction = \"abort\"\nabort_reason = 8\n",
+        2,
     );
-    let mut events = Vec::new();
-    prepare(&mut c, tool(2), &mut events);
-    let mut events = Vec::new();
-    let changed = change(&mut c, &mut events);
     assert_eq!(
         changed.outcome,
         ChangeOutcome::Aborted {
@@ -254,14 +268,10 @@ fn trace_t0_unloads_with_the_full_handshake() {
 /// (SPEC §12.3).
 #[test]
 fn trace_fault_while_changing_aborts_with_101_and_keeps_it() {
-    let mut c = changer(
-        &iov2(),
+    let (_, changed, events) = prepare_then_change(
         "ack_cycles = 3\ninitial_tool = 2\n[[inject]]\nat = \"change\"\nn = 1\nafter_cycles = 1\naction = \"fault\"\nfault_reason = -9\n",
+        1,
     );
-    let mut events = Vec::new();
-    prepare(&mut c, tool(1), &mut events);
-    let mut events = Vec::new();
-    let changed = change(&mut c, &mut events);
     assert_eq!(
         changed.outcome,
         ChangeOutcome::Aborted {

@@ -13,6 +13,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::span;
+use crate::validate::error;
 
 /// A scenario: the changer's behaviour and the faults to inject.
 #[derive(Clone, Debug, PartialEq)]
@@ -320,15 +321,6 @@ fn not_applicable<T>(at: &Spanned<T>, message: &str) -> Diagnostic {
         "not used",
     )
     .with_help("remove the key, or change the entry it belongs to")
-}
-
-fn error<T>(
-    code: &'static Code,
-    at: &Spanned<T>,
-    message: String,
-    label: &'static str,
-) -> Diagnostic {
-    Diagnostic::new(code, message).with_label(span(at.span()), label)
 }
 
 fn toml_diagnostic(code: &'static Code, error: &toml::de::Error) -> Diagnostic {

@@ -75,7 +75,7 @@ fn check_g_codes(g: &GCodes, out: &mut Vec<Diagnostic>) {
     }
 }
 
-fn error<T>(
+pub(crate) fn error<T>(
     code: &'static Code,
     at: &Spanned<T>,
     message: String,

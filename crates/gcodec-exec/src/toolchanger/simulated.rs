@@ -111,6 +111,20 @@ impl SimulatedChanger {
         }
     }
 
+    /// A request is raised: its event, and the operation the changer
+    /// follows.
+    fn raised(
+        &mut self,
+        handshake: Handshake,
+        event: ToolchangerEvent,
+        events: &mut Vec<ToolchangerEvent>,
+    ) -> Answer {
+        events.push(event);
+        self.operation = Some(handshake);
+        self.device.operation(handshake, self.cycles);
+        Answer::Raised
+    }
+
     /// An abort is raised: whatever was prepared or under way is off, so
     /// that no later change loads a stale prepare (LinuxCNC issue 330).
     fn aborted(&mut self) {
@@ -176,15 +190,13 @@ impl Toolchanger for SimulatedChanger {
         if let Err(pending) = self.protocol.prepare(number, prepared.pocket.unwrap_or(0)) {
             return Answer::AbortPending(pending.0);
         }
-        events.push(self.tool_event(
+        let event = self.tool_event(
             ToolchangerEdge::PrepareRequested,
             self.protocol.state(),
             Some(&prepared),
-        ));
+        );
         self.preparing = Some(prepared);
-        self.operation = Some(Handshake::Prepare);
-        self.device.operation(Handshake::Prepare, self.cycles);
-        Answer::Raised
+        self.raised(Handshake::Prepare, event, events)
     }
 
     fn request_start_change(&mut self, events: &mut Vec<ToolchangerEvent>) -> Answer {
@@ -194,14 +206,12 @@ impl Toolchanger for SimulatedChanger {
         if let Err(pending) = self.protocol.start_change() {
             return Answer::AbortPending(pending.0);
         }
-        events.push(self.tool_event(
+        let event = self.tool_event(
             ToolchangerEdge::StartChangeRequested,
             self.protocol.state(),
             self.prepared.as_ref(),
-        ));
-        self.operation = Some(Handshake::StartChange);
-        self.device.operation(Handshake::StartChange, self.cycles);
-        Answer::Raised
+        );
+        self.raised(Handshake::StartChange, event, events)
     }
 
     /// With a fault latched the change is raised even for the tool in the
@@ -224,14 +234,12 @@ impl Toolchanger for SimulatedChanger {
         if let Err(pending) = self.protocol.change() {
             return Answer::AbortPending(pending.0);
         }
-        events.push(self.tool_event(
+        let event = self.tool_event(
             ToolchangerEdge::ChangeRequested,
             self.protocol.state(),
             self.prepared.as_ref(),
-        ));
-        self.operation = Some(Handshake::Change);
-        self.device.operation(Handshake::Change, self.cycles);
-        Answer::Raised
+        );
+        self.raised(Handshake::Change, event, events)
     }
 
     fn request_abort(&mut self, reason: AbortReason, events: &mut Vec<ToolchangerEvent>) -> Answer {

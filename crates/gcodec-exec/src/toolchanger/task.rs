@@ -165,6 +165,20 @@ fn failed(changer: &mut dyn Toolchanger, events: &mut Vec<ToolchangerEvent>) -> 
     aborted_with(changer, pending, events)
 }
 
+/// Waits for the answer to a request; when an abort fails it (or the
+/// wait times out: reason 102), waits for that abort, and gives its
+/// reason.
+fn wait_or_abort(
+    changer: &mut dyn Toolchanger,
+    events: &mut Vec<ToolchangerEvent>,
+) -> Option<AbortReason> {
+    match wait(changer, events) {
+        Waited::Done => None,
+        Waited::Failed => Some(failed(changer, events)),
+        Waited::TimedOut => Some(aborted_with(changer, AbortReason::ACK_TIMEOUT, events)),
+    }
+}
+
 /// `T`: prepares `tool` (`None`: no tool, an unload) and waits until the
 /// changer has it ready.
 pub fn prepare(
@@ -181,16 +195,9 @@ pub fn prepare(
     let outcome = match changer.request_prepare(tool, events) {
         Answer::AlreadyInSpindle => PrepareOutcome::AlreadyInSpindle,
         Answer::AbortPending(reason) => aborted(changer, reason),
-        _ => match wait(changer, events) {
-            Waited::Done => PrepareOutcome::Prepared,
-            Waited::Failed => {
-                let reason = failed(changer, events);
-                aborted(changer, reason)
-            }
-            Waited::TimedOut => {
-                let reason = aborted_with(changer, AbortReason::ACK_TIMEOUT, events);
-                aborted(changer, reason)
-            }
+        _ => match wait_or_abort(changer, events) {
+            None => PrepareOutcome::Prepared,
+            Some(reason) => aborted(changer, reason),
         },
     };
     report(changer, outcome, start)
@@ -243,23 +250,16 @@ pub fn change(
         Answer::AlreadyInSpindle => ChangeOutcome::AlreadyInSpindle,
         Answer::NothingPrepared => ChangeOutcome::NotPrepared,
         Answer::AbortPending(reason) => aborted(changer, reason),
-        _ => match wait(changer, events) {
-            Waited::Done => ChangeOutcome::Committed,
-            Waited::Failed => {
-                let reason = failed(changer, events);
-                match changer.fault() {
-                    Some(fault) if reason == AbortReason::TOOLCHANGER_FAULT && !fault.is_hard() => {
-                        ChangeOutcome::Skipped {
-                            fault_reason: fault,
-                        }
+        _ => match wait_or_abort(changer, events) {
+            None => ChangeOutcome::Committed,
+            Some(reason) => match changer.fault() {
+                Some(fault) if reason == AbortReason::TOOLCHANGER_FAULT && !fault.is_hard() => {
+                    ChangeOutcome::Skipped {
+                        fault_reason: fault,
                     }
-                    _ => aborted(changer, reason),
                 }
-            }
-            Waited::TimedOut => {
-                let reason = aborted_with(changer, AbortReason::ACK_TIMEOUT, events);
-                aborted(changer, reason)
-            }
+                _ => aborted(changer, reason),
+            },
         },
     };
     report(changer, outcome, start)
