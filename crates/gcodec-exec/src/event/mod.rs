@@ -25,8 +25,8 @@
 //! [`CsvWriter`].
 //!
 //! This file holds the event model and [`EventSink`]; the work-offset
-//! context of a motion is in `work_offset.rs`, the toolchanger's edges
-//! in `toolchanger.rs`, axis names and
+//! context of a motion is in `work_offset.rs` (the toolchanger's edges
+//! are the toolchanger's, `crate::toolchanger`), axis names and
 //! [`AxisMap`] in `axis_map.rs`, the sinks in `jsonl.rs`, `text.rs` and
 //! `sinks.rs`, the CSV rows in `csv.rs`, and the number texts the writers
 //! share in `numbers.rs`. Everything public is re-exported here.
@@ -37,7 +37,6 @@ mod jsonl;
 mod numbers;
 mod sinks;
 mod text;
-mod toolchanger;
 mod work_offset;
 
 use std::borrow::Cow;
@@ -53,12 +52,12 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 pub use crate::geometry::Plane;
+pub use crate::toolchanger::{ToolchangerEdge, ToolchangerEvent};
 pub use axis_map::{AxisMap, AxisName, axis_name, axis_names};
 pub use csv::{BlockRow, CsvWriter, MAIN_MODAL_GROUPS, ModalColumn};
 pub use jsonl::JsonlSink;
 pub use sinks::{CountingSink, EventQueue, VecSink};
 pub use text::{TextSink, write_trace_line};
-pub use toolchanger::{ToolchangerEdge, ToolchangerEvent};
 pub use work_offset::{SuppressionMask, WorkOffsetContext};
 
 /// One runtime event: what happened and where.

@@ -12,11 +12,12 @@
 //! acknowledgement does to the operation, and which tool is in the
 //! spindle afterwards.
 //!
-//! Every protocol edge is a [`ToolchangerEvent`] appended to the vector
-//! the caller passes; the caller adds the source position when it emits
+//! Every protocol edge is a [`ToolchangerEvent`] (`event.rs`; the runtime
+//! event kind `toolchanger`) appended to the vector the caller passes; the caller adds the source position when it emits
 //! them as runtime events.
 
 mod device;
+mod event;
 mod pockets;
 mod protocol;
 mod reason;
@@ -28,7 +29,7 @@ pub use reason::{AbortReason, FaultReason};
 pub use simulated::SimulatedChanger;
 pub use task::{AbortOutcome, ChangeOutcome, PrepareOutcome, Report, abort, change, prepare};
 
-pub use crate::event::{ToolchangerEdge, ToolchangerEvent};
+pub use event::{ToolchangerEdge, ToolchangerEvent};
 
 /// A tool as the changer knows it: its number and its name as the run's
 /// `tool_change` event gives it (`T3`, or the tool's name with tool

@@ -13,8 +13,8 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::ToolchangerEdge;
 use super::reason::{AbortReason, FaultReason};
-use crate::event::ToolchangerEdge;
 
 /// The protocol's state, numbered as iov2's `state` pin.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]

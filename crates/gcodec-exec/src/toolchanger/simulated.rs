@@ -9,7 +9,7 @@ use super::pockets::Pockets;
 use super::protocol::{ChangerState, Protocol};
 use super::reason::{AbortReason, FaultReason};
 use super::{Answer, ChangerTool, Prepared, Status, Toolchanger};
-use crate::event::{ToolchangerEdge, ToolchangerEvent};
+use super::{ToolchangerEdge, ToolchangerEvent};
 
 /// The default toolchanger: acknowledges as the scenario says (every
 /// handshake after one cycle, no faults, by default).

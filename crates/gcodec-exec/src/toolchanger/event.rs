@@ -3,7 +3,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use crate::toolchanger::{AbortReason, ChangerState};
+use super::{AbortReason, ChangerState};
 
 /// One edge of the toolchanger protocol (SPEC §12).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
