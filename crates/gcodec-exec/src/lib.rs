@@ -21,7 +21,8 @@ pub mod geometry;
 pub mod loader;
 pub mod machine;
 pub mod program;
-pub mod session;
 pub mod toolchanger;
 pub mod value;
 pub mod vars;
+
+pub use channel::session;

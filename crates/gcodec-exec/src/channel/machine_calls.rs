@@ -14,13 +14,13 @@ use std::sync::Arc;
 use gcodec_ail::Instruction;
 use gcodec_source::{Severity, codes};
 
+use super::session::SessionError;
 use super::{Channel, Flow};
 use crate::event::{Event, EventKind, EventSource, MAction, ProgramEndReason};
 use crate::machine::{
     AbortCause, Answer, AuxiliaryFunction, Machine, MachineAction, Outcome, PendingToken, Wait,
 };
 use crate::program::Program;
-use crate::session::SessionError;
 use crate::value::{RtValue, RunError};
 
 /// A machine action the run waits for.

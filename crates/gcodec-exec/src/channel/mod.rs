@@ -27,6 +27,7 @@ mod interrupts;
 mod machine_calls;
 mod motion;
 mod polar;
+pub mod session;
 mod settings;
 pub mod state;
 mod summary;
@@ -331,7 +332,7 @@ impl<'r> Channel<'r> {
     /// action left pending ends the run with an alarm: nothing here can
     /// answer it (a [`crate::session::Session`] can).
     pub fn run(self, main: Arc<Program>) -> io::Result<RunOutcome> {
-        crate::session::Session::new(self, main).run_to_end()
+        session::Session::new(self, main).run_to_end()
     }
 
     /// Starts the run of `main`: its level, the definitions' globals, its

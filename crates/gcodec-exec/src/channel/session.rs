@@ -22,7 +22,7 @@
 use std::io;
 use std::sync::Arc;
 
-use crate::channel::{Channel, Halt, RunOutcome};
+use super::{Channel, Halt, RunOutcome};
 use crate::event::{EventSource, ProgramEndReason};
 use crate::machine::{Machine, MachineAction, Outcome, PendingToken};
 use crate::program::Program;
