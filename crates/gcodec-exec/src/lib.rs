@@ -21,6 +21,7 @@ pub mod geometry;
 pub mod loader;
 pub mod machine;
 pub mod program;
+pub mod tool_resolution;
 pub mod toolchanger;
 pub mod value;
 pub mod vars;

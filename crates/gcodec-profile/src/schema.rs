@@ -200,6 +200,19 @@ pub struct ToolChange {
     pub allow_substitution: bool,
     #[serde(default = "default_m6_without_pending_policy")]
     pub m6_without_pending_policy: Policy,
+    /// Whether a preselected tool is channel state or belongs to the
+    /// program level that selected it.
+    #[serde(default = "default_pending_selection_scope")]
+    pub pending_selection_scope: PendingSelectionScope,
+    /// MD20270 `$MC_CUTTING_EDGE_DEFAULT`: the edge after a change without
+    /// a `D` (0 none, n edge n, −1 the old edge number, −2 the old tool's
+    /// offset until a `D` is programmed).
+    #[serde(default = "default_cutting_edge_default")]
+    pub cutting_edge_default: Spanned<i64>,
+    /// MD22562 `$MC_TOOL_CHANGE_ERROR_MODE` bit 2: what `D` > 0 does with
+    /// no tool in the spindle.
+    #[serde(default = "default_edge_without_tool")]
+    pub edge_without_tool: EdgeWithoutTool,
 }
 
 impl Default for ToolChange {
@@ -211,8 +224,32 @@ impl Default for ToolChange {
             on_unresolved_tool: default_on_unresolved_tool(),
             allow_substitution: false,
             m6_without_pending_policy: default_m6_without_pending_policy(),
+            pending_selection_scope: default_pending_selection_scope(),
+            cutting_edge_default: default_cutting_edge_default(),
+            edge_without_tool: default_edge_without_tool(),
         }
     }
+}
+
+/// Where a pending tool selection lives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PendingSelectionScope {
+    /// Channel state, kept across a call and its return (the control).
+    Channel,
+    /// Per program level: a subprogram starts with none, and its own is
+    /// dropped at its return, where the caller's comes back.
+    ProgramLevel,
+}
+
+/// `D` > 0 without a tool (MD22562 bit 2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EdgeWithoutTool {
+    /// The edge is active with no offset (bit 2 = 0).
+    NoOffset,
+    /// A tool alarm (bit 2 = 1).
+    Alarm,
 }
 
 /// `direct` or `deferred_m6`.
@@ -598,6 +635,19 @@ fn default_on_unresolved_tool() -> UnresolvedToolPolicy {
 
 fn default_m6_without_pending_policy() -> Policy {
     Policy::Warning
+}
+
+fn default_pending_selection_scope() -> PendingSelectionScope {
+    PendingSelectionScope::Channel
+}
+
+/// The new tool's first edge.
+fn default_cutting_edge_default() -> Spanned<i64> {
+    spanned(1)
+}
+
+fn default_edge_without_tool() -> EdgeWithoutTool {
+    EdgeWithoutTool::NoOffset
 }
 
 fn default_duplo() -> u32 {

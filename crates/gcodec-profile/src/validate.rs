@@ -11,6 +11,8 @@ use crate::schema::*;
 use crate::span;
 /// Largest M value and T number (`0…2147483647`, per the M-function design).
 const MAX_ADDRESS_VALUE: u32 = i32::MAX as u32;
+/// The largest cutting edge number (`D32000`).
+const MAX_EDGE: u32 = 32_000;
 
 pub(crate) fn check(profile: &Profile) -> Vec<Diagnostic> {
     let mut out = Vec::new();
@@ -243,6 +245,18 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
             "here",
         ));
     }
+    let edge = *change.cutting_edge_default.get_ref();
+    if !(-2..=i64::from(MAX_EDGE)).contains(&edge) {
+        out.push(
+            error(
+                codes::profile::OUT_OF_RANGE,
+                &change.cutting_edge_default,
+                format!("`cutting_edge_default` ranges over -2…{MAX_EDGE}"),
+                "here",
+            )
+            .with_help("MD20270: 0 no edge, n edge n, -1 the old edge number, -2 the old tool's offset until a `D`"),
+        );
+    }
     let mut numbers: BTreeMap<(u32, u32), &Spanned<u32>> = BTreeMap::new();
     let mut names: BTreeMap<(String, u32), &Spanned<String>> = BTreeMap::new();
     for tool in &profile.tools {
@@ -285,11 +299,11 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
         let mut edges = BTreeSet::new();
         for edge in &tool.edges {
             let d = *edge.d.get_ref();
-            if !(1..=32_000).contains(&d) {
+            if !(1..=MAX_EDGE).contains(&d) {
                 out.push(error(
                     codes::profile::OUT_OF_RANGE,
                     &edge.d,
-                    "cutting edges are D1…D32000 (D0 deselects)".into(),
+                    format!("cutting edges are D1…D{MAX_EDGE} (D0 deselects)"),
                     "here",
                 ));
             }

@@ -199,6 +199,23 @@ fn duplicate_tools_and_unnamed_tools_under_tool_management() {
     )));
 }
 
+/// MD20270 is −2…32000 (−2 and −1 keep the old edge or offset, 0 none).
+#[test]
+fn a_cutting_edge_default_below_minus_two_or_beyond_the_edges() {
+    for edge in [-3, 32_001] {
+        let text = format!("{MACHINE}[tool_change]\ncutting_edge_default = {edge}\n");
+        assert!(
+            rejected(&text).contains("`cutting_edge_default` ranges over -2…32000"),
+            "{edge}"
+        );
+    }
+    for edge in [-2, -1, 0, 32_000] {
+        let text = format!("{MACHINE}[tool_change]\ncutting_edge_default = {edge}\n");
+        let profile = load(&text).unwrap_or_else(|d| panic!("{edge}: {d:#?}"));
+        assert_eq!(*profile.tool_change.cutting_edge_default.get_ref(), edge);
+    }
+}
+
 #[test]
 fn duplicate_and_misdeclared_axes() {
     insta::assert_snapshot!(rejected(&format!(

@@ -1,6 +1,7 @@
 //! The test-matrix rows of the tool-change, M-function and work-offset
 //! designs that belong to parsing, lowering and the modal engine, one
-//! named test each (the executor rows belong to `gcodec run`).
+//! named test each (the executor rows are `gcodec-exec`'s
+//! `tool_change_design_matrix`).
 
 use serde_json::{Value, json};
 
@@ -10,110 +11,118 @@ use common::{codes, errors, kinds, lower_with, machine as profile, ops};
 
 // ---- tool change ----
 
-/// Tool-change matrix, parser tests: accepted/rejected selector forms by
-/// management mode.
-#[test]
-fn tool_change_selector_forms_by_management_mode() {
-    let plain = profile("");
-    for accepted in ["T5", "T=5", "T1=5", "T0"] {
-        let l = lower_with(&plain, accepted);
+/// The parser and AIL rows of the tool-change design's test matrix, and
+/// the lowering side of its M-function row; the executor and integration
+/// rows are `gcodec-exec`'s `tests/tool_change_design_matrix.rs`.
+mod tool_change_design_matrix {
+    use super::*;
+
+    /// Tool-change matrix, parser tests: accepted/rejected selector forms by
+    /// management mode.
+    #[test]
+    fn parser_selector_forms_by_management_mode() {
+        let plain = profile("");
+        for accepted in ["T5", "T=5", "T1=5", "T0"] {
+            let l = lower_with(&plain, accepted);
+            assert_eq!(
+                errors(&l),
+                [] as [&str; 0],
+                "{accepted} without tool management"
+            );
+            assert_eq!(
+                ops(&l, "tool_select")[0]["selector_kind"],
+                "number",
+                "{accepted}"
+            );
+        }
+        for rejected in ["T=\"DRILL\"", "T1=\"DRILL\""] {
+            let l = lower_with(&plain, rejected);
+            assert_eq!(
+                errors(&l),
+                ["gcodec::lower::tool_selector_form"],
+                "{rejected}"
+            );
+            assert!(ops(&l, "tool_select").is_empty());
+        }
+        let managed = profile("[tool_change]\ntool_management_enabled = true\n");
+        for (accepted, kind) in [
+            ("T=\"DRILL\"", "name"),
+            ("T1=\"DRILL\"", "name"),
+            ("T=5", "location"),
+            ("T1=5", "location"),
+        ] {
+            let l = lower_with(&managed, accepted);
+            assert_eq!(
+                errors(&l),
+                [] as [&str; 0],
+                "{accepted} with tool management"
+            );
+            assert_eq!(
+                ops(&l, "tool_select")[0]["selector_kind"],
+                kind,
+                "{accepted}"
+            );
+        }
+        let l = lower_with(&managed, "T5");
+        assert_eq!(errors(&l), ["gcodec::lower::tool_selector_form"]);
+    }
+
+    /// Tool-change matrix, AIL tests: normalized instruction shape + timing
+    /// metadata.
+    #[test]
+    fn ail_normalized_instruction_shape_and_timing() {
+        let deferred = lower_with(&profile(""), "T1=7");
         assert_eq!(
-            errors(&l),
-            [] as [&str; 0],
-            "{accepted} without tool management"
+            ops(&deferred, "tool_select"),
+            [json!({
+                "kind": "tool_select",
+                "selector_kind": "number",
+                "selector_value": "7",
+                "spindle_extension": 1,
+                "timing": "deferred_until_m6",
+                "raw": "T1=7"
+            })]
         );
+        assert!(
+            ops(&deferred, "tool_change").is_empty(),
+            "T only preselects"
+        );
+
+        let direct = lower_with(
+            &profile("[tool_change]\ntool_change_mode = \"direct\"\n"),
+            "T7",
+        );
+        assert_eq!(ops(&direct, "tool_select")[0]["timing"], "immediate");
         assert_eq!(
-            ops(&l, "tool_select")[0]["selector_kind"],
-            "number",
-            "{accepted}"
+            ops(&direct, "tool_change"),
+            [json!({"kind": "tool_change", "trigger": "t_word"})]
         );
     }
-    for rejected in ["T=\"DRILL\"", "T1=\"DRILL\""] {
-        let l = lower_with(&plain, rejected);
+
+    /// Tool-change matrix, integration (lowering; the run is
+    /// `gcodec-exec`'s `tool_change_design_matrix`): M6 goes through the M-code path (class
+    /// `tool`) and triggers the change; the cutting edge follows the tool.
+    #[test]
+    fn integration_change_m_lowers_through_the_m_code_path() {
+        let l = lower_with(&profile(""), "T5 M6 D1");
+        let kinds = kinds(&l);
         assert_eq!(
-            errors(&l),
-            ["gcodec::lower::tool_selector_form"],
-            "{rejected}"
+            kinds,
+            [
+                "tool_select",
+                "cutting_edge",
+                "m_function",
+                "tool_change",
+                "end"
+            ]
         );
-        assert!(ops(&l, "tool_select").is_empty());
+        assert_eq!(ops(&l, "m_function")[0]["class"], "tool");
+        assert_eq!(ops(&l, "tool_change")[0]["trigger"], "m6");
+        // A machine that changes with another M code.
+        let l = lower_with(&profile("[tool_change]\nchange_m_code = 206\n"), "T5 M206");
+        assert_eq!(ops(&l, "m_function")[0]["class"], "tool");
+        assert_eq!(ops(&l, "tool_change").len(), 1);
     }
-    let managed = profile("[tool_change]\ntool_management_enabled = true\n");
-    for (accepted, kind) in [
-        ("T=\"DRILL\"", "name"),
-        ("T1=\"DRILL\"", "name"),
-        ("T=5", "location"),
-        ("T1=5", "location"),
-    ] {
-        let l = lower_with(&managed, accepted);
-        assert_eq!(
-            errors(&l),
-            [] as [&str; 0],
-            "{accepted} with tool management"
-        );
-        assert_eq!(
-            ops(&l, "tool_select")[0]["selector_kind"],
-            kind,
-            "{accepted}"
-        );
-    }
-    let l = lower_with(&managed, "T5");
-    assert_eq!(errors(&l), ["gcodec::lower::tool_selector_form"]);
-}
-
-/// Tool-change matrix, AIL tests: normalized instruction shape + timing
-/// metadata.
-#[test]
-fn tool_change_normalized_instruction_shape_and_timing() {
-    let deferred = lower_with(&profile(""), "T1=7");
-    assert_eq!(
-        ops(&deferred, "tool_select"),
-        [json!({
-            "kind": "tool_select",
-            "selector_kind": "number",
-            "selector_value": "7",
-            "spindle_extension": 1,
-            "timing": "deferred_until_m6",
-            "raw": "T1=7"
-        })]
-    );
-    assert!(
-        ops(&deferred, "tool_change").is_empty(),
-        "T only preselects"
-    );
-
-    let direct = lower_with(
-        &profile("[tool_change]\ntool_change_mode = \"direct\"\n"),
-        "T7",
-    );
-    assert_eq!(ops(&direct, "tool_select")[0]["timing"], "immediate");
-    assert_eq!(
-        ops(&direct, "tool_change"),
-        [json!({"kind": "tool_change", "trigger": "t_word"})]
-    );
-}
-
-/// Tool-change matrix, integration: M6 goes through the M-code path (class
-/// `tool`) and triggers the change; the cutting edge follows the tool.
-#[test]
-fn tool_change_m6_goes_through_the_m_code_path() {
-    let l = lower_with(&profile(""), "T5 M6 D1");
-    let kinds = kinds(&l);
-    assert_eq!(
-        kinds,
-        [
-            "tool_select",
-            "cutting_edge",
-            "m_function",
-            "tool_change",
-            "end"
-        ]
-    );
-    assert_eq!(ops(&l, "m_function")[0]["class"], "tool");
-    assert_eq!(ops(&l, "tool_change")[0]["trigger"], "m6");
-    // A machine that changes with another M code.
-    let l = lower_with(&profile("[tool_change]\nchange_m_code = 206\n"), "T5 M206");
-    assert_eq!(ops(&l, "m_function")[0]["class"], "tool");
-    assert_eq!(ops(&l, "tool_change").len(), 1);
 }
 
 /// Unknown tools follow `on_unresolved_tool` once the profile has a table.

@@ -21,6 +21,7 @@ use crate::event::{
 };
 use crate::loader::LoadRequest;
 use crate::program::{Program, written_label};
+use crate::tool_resolution::PendingTool;
 use crate::value::{RtValue, RunError};
 use crate::vars::Scope;
 
@@ -44,6 +45,9 @@ pub(super) struct ActiveCall {
     own_level: bool,
     /// Where the call is written: every pass's `call` event points there.
     origin: EventSource,
+    /// The caller's pending tool selection, put aside while the call runs
+    /// (`pending_selection_scope = "program_level"`).
+    caller_pending: Option<PendingTool>,
 }
 
 impl ActiveCall {
@@ -264,6 +268,7 @@ impl Channel<'_> {
             arguments,
             own_level,
             origin: self.source(program, instruction),
+            caller_pending: None,
         };
         self.enter(pc + 1, callee, active)
     }
@@ -450,6 +455,7 @@ impl Channel<'_> {
             arguments: modal.arguments,
             own_level: true,
             origin: self.source(program, &instruction),
+            caller_pending: None,
         };
         match self.enter(pc, callee, active) {
             Ok(flow) => flow,
@@ -462,7 +468,7 @@ impl Channel<'_> {
         &mut self,
         resume: usize,
         callee: Arc<Program>,
-        active: ActiveCall,
+        mut active: ActiveCall,
     ) -> Result<Flow, RunError> {
         let what = if active.own_level {
             format!("calling `{}`", active.target)
@@ -481,6 +487,7 @@ impl Channel<'_> {
         if active.own_level {
             self.vars.push_level();
             self.bind(&active.bindings)?;
+            active.caller_pending = self.enter_pending_scope();
         }
         self.stack.push(Level {
             program: callee,
@@ -835,6 +842,10 @@ impl Channel<'_> {
             if let Err(error) = written {
                 return Flow::End(self.alarm(program, &instruction, error));
             }
+            if let Some(LevelKind::Call(call)) = self.stack.last_mut().map(|l| &mut l.kind) {
+                let caller = call.caller_pending.take();
+                self.leave_pending_scope(caller);
+            }
         }
         self.emit_at(
             program,
@@ -858,6 +869,9 @@ impl Channel<'_> {
             source: call.origin.clone(),
         };
         call.bindings = bindings.clone();
+        if own_level {
+            call.caller_pending = self.enter_pending_scope();
+        }
         self.emit(&event);
         self.stack.push(level);
         if own_level {

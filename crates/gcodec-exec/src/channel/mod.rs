@@ -17,7 +17,8 @@
 //! `approach` (`G74`/`G75`), `settings` (the group 3 commands whose axis
 //! words set values: `G25`/`G26`, the pole, `G58`/`G59`), `calls`
 //! (subprograms, parameters, sections), `functions` (M and H functions,
-//! tool selection and change, spindle, dwell), `interrupts` (the
+//! spindle, dwell, named addresses, programmable frames), `tools` (tool
+//! selection and change, cutting edges), `interrupts` (the
 //! routines assigned to inputs), `summary` (the figures after the run).
 
 mod approach;
@@ -32,6 +33,7 @@ mod settings;
 pub mod state;
 mod summary;
 mod tool_data;
+mod tools;
 
 use std::borrow::Cow;
 use std::io;
@@ -57,6 +59,7 @@ use crate::geometry::CircleTolerance;
 use crate::loader::ProgramLoader;
 use crate::machine::{Machine, MachineEvents, SimulatedMachine};
 use crate::program::Program;
+use crate::tool_resolution::{TableResolver, ToolResolver};
 use crate::value::RunError;
 use crate::vars::{Global, Scope, Variables};
 
@@ -196,6 +199,9 @@ struct BlockState {
     /// The auxiliary-function groups (bit `group − 1`) whose M function
     /// the block has output.
     m_groups: u64,
+    /// The `D` the block programmed: a change later in the block (`T1 M6
+    /// D2` lowers the `D` first) takes it instead of the default edge.
+    edge: Option<u32>,
     /// Where the block came from (for the CSV row).
     file: Option<Arc<str>>,
     level: u32,
@@ -224,6 +230,9 @@ pub struct Channel<'r> {
     /// instruction run before (see `run_levels`).
     paused_previous_line: Option<Option<u32>>,
     observer: Option<&'r mut dyn BlockObserver>,
+    /// What a `T` selection names ([`TableResolver`] unless an
+    /// application supplies its own).
+    tool_resolver: Box<dyn ToolResolver + 'r>,
     stack: Vec<Level>,
     summary: RunSummary,
     block: BlockState,
@@ -269,6 +278,7 @@ impl<'r> Channel<'r> {
             pending: None,
             paused_previous_line: None,
             observer: None,
+            tool_resolver: Box::new(TableResolver),
             stack: Vec::new(),
             summary: RunSummary::default(),
             block: BlockState::default(),
@@ -293,6 +303,13 @@ impl<'r> Channel<'r> {
     /// Also hands the state after each block to `observer`.
     pub fn with_observer(mut self, observer: &'r mut dyn BlockObserver) -> Self {
         self.observer = Some(observer);
+        self
+    }
+
+    /// Resolves tool selections with `resolver` instead of the profile's
+    /// tool table.
+    pub fn with_tool_resolver(mut self, resolver: Box<dyn ToolResolver + 'r>) -> Self {
+        self.tool_resolver = resolver;
         self
     }
 
@@ -562,6 +579,7 @@ impl<'r> Channel<'r> {
             line: instruction.source.line,
             had_motion: false,
             m_groups: 0,
+            edge: None,
             file: self.observer.is_some().then(|| program.file.clone()),
             level,
             number: None,

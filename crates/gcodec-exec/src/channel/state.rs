@@ -25,6 +25,7 @@ use super::tool_data::ToolData;
 use crate::event::{AxisName, Plane, SpindleState};
 use crate::frames::{Frame, FrameAxes, chain_values, frame_function};
 use crate::geometry::Point3;
+use crate::tool_resolution::{PendingTool, ToolRef};
 use crate::value::{FrameValue, RtValue, RunError};
 
 /// One channel axis.
@@ -52,15 +53,6 @@ pub struct Spindle {
     pub gear: u32,
     /// `G25 S…`/`G26 S…`: the lower and upper speed limits.
     pub speed_limits: [Option<f64>; 2],
-}
-
-/// The active tool: its identity as events name it, and its number.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ToolRef {
-    /// `T7`, or the tool's name with tool management.
-    pub label: String,
-    /// The T number (0 when unknown: a name not in the tool table).
-    pub number: u32,
 }
 
 /// The machine state of the channel.
@@ -146,15 +138,6 @@ pub struct Polar {
 pub struct WorkingArea {
     pub lower: Vec<Option<f64>>,
     pub upper: Vec<Option<f64>>,
-}
-
-/// A tool selection waiting for the change.
-#[derive(Clone, Debug)]
-pub struct PendingTool {
-    /// `None`: `T0`, a selection of no tool.
-    pub tool: Option<ToolRef>,
-    /// Whether it is a substitute (a sister tool).
-    pub substituted: bool,
 }
 
 impl MachineState {

@@ -32,6 +32,11 @@ impl ToolData {
         }
     }
 
+    /// The run's tool table.
+    pub fn tools(&self) -> &[Tool] {
+        &self.tools
+    }
+
     /// The tool numbered `number` in the run's tool table.
     pub fn tool(&self, number: u32) -> Option<&Tool> {
         self.tools.iter().find(|t| *t.number.get_ref() == number)

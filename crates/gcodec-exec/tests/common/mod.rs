@@ -7,3 +7,4 @@
 pub mod golden;
 pub mod runs;
 pub mod setup;
+pub mod tools;

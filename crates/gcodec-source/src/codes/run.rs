@@ -20,6 +20,8 @@ super::codes! {
     MACHINE_ACTION_UNANSWERED = machine_action_unanswered, Error, "a machine action left pending in a run nothing can resume";
     NOT_SIMULATED = not_simulated, Advice, "a construct the simulation does not model";
     UNRESOLVED_TOOL = unresolved_tool, Error, "a tool not in the machine's tool table";
+    AMBIGUOUS_TOOL = ambiguous_tool, Error, "a tool selection that several tools fit, with no rule to choose";
+    EDGE_WITHOUT_TOOL = edge_without_tool, Error, "a cutting edge selected with no tool in the spindle";
     M6_WITHOUT_PENDING = m6_without_pending, Warning, "a tool change without a selected tool";
     UNKNOWN_M_FUNCTION = unknown_m_function, Warning, "a computed M function the machine does not know";
     UNKNOWN_EDGE = unknown_edge, Warning, "a cutting edge the active tool does not have";

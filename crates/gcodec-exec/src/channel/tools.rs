@@ -1,0 +1,306 @@
+//! Tool selection (`T`), the tool change (`M6` or the `T` word itself) and
+//! cutting edges (`D`): resolving a selection against the tool table, the
+//! pending selection, and the active edge's length offset.
+
+use std::sync::Arc;
+
+use gcodec_ail::{Instruction, SelectorKind, ToolChangeTrigger, ToolSelect, Value};
+use gcodec_profile::{EdgeWithoutTool, PendingSelectionScope, Policy, UnresolvedToolPolicy};
+use gcodec_source::{Severity, codes};
+
+use super::Channel;
+use crate::eval;
+use crate::event::{EventKind, SelectionSource, ToolChangeEvent, ToolSelectEvent};
+use crate::program::Program;
+use crate::tool_resolution::{
+    PendingTool, ResolutionContext, ToolRef, ToolResolution, ToolSelector,
+};
+use crate::value::{RtValue, RunError};
+
+impl Channel<'_> {
+    pub(super) fn tool_select(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        select: &ToolSelect,
+    ) -> Result<(), RunError> {
+        let (kind, value) = match &select.selector_expr {
+            Some(expr) => {
+                let v = eval::eval(&self.env(), expr)?;
+                let management = self.state.profile.tool_change.tool_management_enabled;
+                match v {
+                    RtValue::String(s) => (SelectorKind::Name, s.to_string()),
+                    other => {
+                        let n = other.to_int()?;
+                        let kind = if management {
+                            SelectorKind::Location
+                        } else {
+                            SelectorKind::Number
+                        };
+                        (kind, n.to_string())
+                    }
+                }
+            }
+            None => (select.selector_kind, select.selector_value.clone()),
+        };
+        let selector = ToolSelector { kind, value };
+        // `T0` selects no tool: there is nothing to resolve.
+        let resolved = if selector.value == "0" && kind != SelectorKind::Name {
+            None
+        } else {
+            Some(self.resolve_tool(program, instruction, &selector)?)
+        };
+        let event = EventKind::ToolSelect(ToolSelectEvent {
+            selector_kind: selector.kind,
+            selector_value: selector.value,
+            selected_tool: resolved.as_ref().map(|(t, _)| t.label.clone()),
+            spindle_extension: select.spindle_extension,
+            timing: select.timing,
+        });
+        self.emit_at(program, instruction, event);
+        self.state.pending = Some(PendingTool {
+            substituted: resolved.as_ref().is_some_and(|(_, s)| *s),
+            tool: resolved.map(|(t, _)| t),
+        });
+        Ok(())
+    }
+
+    /// Asks the channel's resolver what `selector` names, with whether a
+    /// replacement tool was chosen; an unresolved or ambiguous selection
+    /// follows `on_unresolved_tool`.
+    fn resolve_tool(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        selector: &ToolSelector,
+    ) -> Result<(ToolRef, bool), RunError> {
+        let profile = Arc::clone(&self.state.profile);
+        let context = ResolutionContext {
+            active_tool: self.state.active_tool.as_ref(),
+            tools: self.state.tool_data.tools(),
+            tool_management: profile.tool_change.tool_management_enabled,
+        };
+        let resolution = self
+            .tool_resolver
+            .resolve_selection(selector, &profile, &context);
+        let (code, why, fallback) = match resolution {
+            ToolResolution::Resolved { tool, substituted }
+                if !substituted || profile.tool_change.allow_substitution =>
+            {
+                return Ok((tool, substituted));
+            }
+            ToolResolution::Resolved { tool, .. } => (
+                codes::run::UNRESOLVED_TOOL,
+                format!(
+                    "the tool resolver replaces `{}` by {}, and the profile allows no substitution",
+                    selector.value, tool.label
+                ),
+                None,
+            ),
+            ToolResolution::Unresolved { why } => (codes::run::UNRESOLVED_TOOL, why, None),
+            ToolResolution::Ambiguous { mut candidates } => {
+                // The resolver's order is no rule: the message and the
+                // fallback do not depend on it.
+                candidates.sort_by(|a, b| (a.number, &a.label).cmp(&(b.number, &b.label)));
+                candidates.dedup();
+                match candidates.len() {
+                    0 => (
+                        codes::run::UNRESOLVED_TOOL,
+                        format!(
+                            "no tool `{}` among the resolver's candidates",
+                            selector.value
+                        ),
+                        None,
+                    ),
+                    1 => return Ok((candidates.swap_remove(0), false)),
+                    _ => {
+                        let names: Vec<&str> =
+                            candidates.iter().map(|t| t.label.as_str()).collect();
+                        (
+                            codes::run::AMBIGUOUS_TOOL,
+                            format!(
+                                "the tool `{}` is ambiguous: {} fit, and the tool resolver has no rule to choose",
+                                selector.value,
+                                names.join(", ")
+                            ),
+                            candidates.into_iter().next(),
+                        )
+                    }
+                }
+            }
+        };
+        match profile.tool_change.on_unresolved_tool {
+            UnresolvedToolPolicy::Error => Err(RunError::new(code, why)),
+            UnresolvedToolPolicy::Warning => {
+                self.diagnostic_at(program, instruction, code, Severity::Warning, why, None);
+                Ok((selector.literal(), false))
+            }
+            UnresolvedToolPolicy::Fallback => {
+                Ok((fallback.unwrap_or_else(|| selector.literal()), false))
+            }
+        }
+    }
+
+    /// A program level opens: with `pending_selection_scope =
+    /// "program_level"` it starts with no pending selection, and the
+    /// caller's is put aside (returned) until the level closes.
+    pub(super) fn enter_pending_scope(&mut self) -> Option<PendingTool> {
+        match self.state.profile.tool_change.pending_selection_scope {
+            PendingSelectionScope::Channel => None,
+            PendingSelectionScope::ProgramLevel => self.state.pending.take(),
+        }
+    }
+
+    /// A program level closes: with `"program_level"` its own selection is
+    /// dropped and the caller's (`caller`) comes back.
+    pub(super) fn leave_pending_scope(&mut self, caller: Option<PendingTool>) {
+        if self.state.profile.tool_change.pending_selection_scope
+            == PendingSelectionScope::ProgramLevel
+        {
+            self.state.pending = caller;
+        }
+    }
+
+    pub(super) fn tool_change(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        trigger: ToolChangeTrigger,
+    ) -> Result<(), RunError> {
+        let previous = self.state.active_tool.as_ref().map(|t| t.label.clone());
+        let (new, source, substituted) = if let Some(pending) = self.state.pending.take() {
+            let source = match trigger {
+                ToolChangeTrigger::M6 => SelectionSource::PendingThenM6,
+                ToolChangeTrigger::TWord => SelectionSource::DirectTWord,
+            };
+            (pending.tool, source, pending.substituted)
+        } else {
+            match self.state.profile.tool_change.m6_without_pending_policy {
+                Policy::Error => {
+                    return Err(RunError::new(
+                        codes::run::M6_WITHOUT_PENDING,
+                        "the tool change has no tool selected before it (T…)",
+                    ));
+                }
+                Policy::Warning => self.diagnostic_at(
+                    program,
+                    instruction,
+                    codes::run::M6_WITHOUT_PENDING,
+                    Severity::Warning,
+                    "the tool change has no tool selected before it (T…); the tool stays".into(),
+                    Some("select the tool with T before the change"),
+                ),
+                Policy::Ignore => {}
+            }
+            (
+                self.state.active_tool.clone(),
+                SelectionSource::M6WithoutPending,
+                false,
+            )
+        };
+        let event = EventKind::ToolChange(ToolChangeEvent {
+            previous_tool: previous,
+            new_tool: new.as_ref().map(|t| t.label.clone()),
+            selection_source: source,
+            substituted,
+            trigger,
+        });
+        self.state.active_tool = new;
+        self.figures_slot = None;
+        self.emit_at(program, instruction, event);
+        self.edge_after_change(program, instruction)
+    }
+
+    /// The edge after a change: the `D` of its block, else MD20270
+    /// (`cutting_edge_default`); `D0` without a tool, whatever the default.
+    fn edge_after_change(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+    ) -> Result<(), RunError> {
+        if self.state.active_tool.is_none() {
+            return self.set_edge(program, instruction, 0, false);
+        }
+        if let Some(d) = self.block.edge {
+            return self.set_edge(program, instruction, d, true);
+        }
+        match *self
+            .state
+            .profile
+            .tool_change
+            .cutting_edge_default
+            .get_ref()
+        {
+            // −2: the old tool's offset stays until a `D` is programmed.
+            -2 => Ok(()),
+            // −1: the old edge number, of the new tool.
+            -1 => self.set_edge(program, instruction, self.state.edge, false),
+            // Validation keeps the default within −2…32000.
+            n => self.set_edge(program, instruction, u32::try_from(n).unwrap_or(0), false),
+        }
+    }
+
+    pub(super) fn cutting_edge(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        edge: &Value,
+    ) -> Result<(), RunError> {
+        let d = eval::eval_value(&self.env(), edge)?.to_int()?;
+        let d = u32::try_from(d).map_err(|_| {
+            RunError::new(
+                codes::run::OVERFLOW,
+                format!("`D{d}`: an edge is 0 or more"),
+            )
+        })?;
+        self.block.edge = Some(d);
+        self.set_edge(program, instruction, d, true)
+    }
+
+    /// Activates edge `d` of the active tool and its length offset
+    /// (`programmed`: a `D` of the program, not a change's default).
+    fn set_edge(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        d: u32,
+        programmed: bool,
+    ) -> Result<(), RunError> {
+        self.state.edge = d;
+        self.state.tool_length = 0.0;
+        if d == 0 {
+            return Ok(());
+        }
+        let Some(tool) = &self.state.active_tool else {
+            return match self.state.profile.tool_change.edge_without_tool {
+                EdgeWithoutTool::NoOffset => Ok(()),
+                EdgeWithoutTool::Alarm => Err(RunError::new(
+                    codes::run::EDGE_WITHOUT_TOOL,
+                    format!("`D{d}` with no tool in the spindle"),
+                )),
+            };
+        };
+        let Some(entry) = self.state.tool_data.tool(tool.number) else {
+            return Ok(());
+        };
+        match entry.edge(d).map(|e| e.length) {
+            Some(length) => self.state.tool_length = length,
+            None if programmed => {
+                let message = format!(
+                    "tool {} has no cutting edge D{d} in the tool table; no length offset",
+                    tool.label
+                );
+                self.diagnostic_at(
+                    program,
+                    instruction,
+                    codes::run::UNKNOWN_EDGE,
+                    Severity::Warning,
+                    message,
+                    None,
+                );
+            }
+            None => {}
+        }
+        Ok(())
+    }
+}
