@@ -338,15 +338,6 @@ impl Tool {
         }
     }
 
-    /// The tool as the run's `tool_change` event names it: its name with
-    /// tool management, else `T<number>`.
-    pub fn label(&self, tool_management: bool) -> String {
-        match (&self.name, tool_management) {
-            (Some(name), true) => name.get_ref().clone(),
-            _ => format!("T{}", self.number.get_ref()),
-        }
-    }
-
     /// The cutting edge `D<d>`, made with no length and radius if the
     /// tool lacks it.
     pub fn edge_or_new(&mut self, d: u32) -> &mut Edge {

@@ -7,6 +7,7 @@
 use gcodec_profile::Profile;
 
 use super::ChangerTool;
+use crate::tool_resolution::table_tool;
 
 /// A tool of the table and where it is.
 #[derive(Clone, Debug)]
@@ -45,7 +46,7 @@ impl Pockets {
             let tool = profile.tool(slot.number)?;
             Some(ChangerTool {
                 number: slot.number,
-                label: tool.label(management),
+                label: table_tool(tool, management).label,
             })
         };
         let spindle = if random { in_pocket_zero() } else { None };

@@ -10,6 +10,7 @@ use super::protocol::{ChangerState, Protocol};
 use super::reason::{AbortReason, FaultReason};
 use super::{Answer, ChangerTool, Prepared, Status, Toolchanger};
 use super::{ToolchangerEdge, ToolchangerEvent};
+use crate::tool_resolution::table_tool;
 
 /// The default toolchanger: acknowledges as the scenario says (every
 /// handshake after one cycle, no faults, by default).
@@ -45,7 +46,7 @@ impl SimulatedChanger {
                 match profile.tool(n) {
                     Some(tool) => Some(ChangerTool {
                         number: n,
-                        label: tool.label(management),
+                        label: table_tool(tool, management).label,
                     }),
                     None if profile.tools.is_empty() => Some(ChangerTool {
                         number: n,
