@@ -130,6 +130,8 @@ fn every_kind() -> Vec<Event> {
                 selection_source: SelectionSource::PendingThenM6,
                 substituted: false,
                 trigger: ToolChangeTrigger::M6,
+                committed: true,
+                fault_reason: None,
             }),
         ),
         event(
@@ -298,7 +300,7 @@ fn every_kind_round_trips_and_names_itself() {
 }
 
 #[test]
-fn tool_change_has_the_seed_000_fields() {
+fn tool_change_has_the_tool_change_design_fields() {
     let value = round_trip(&every_kind()[3]);
     assert_eq!(
         value,
@@ -309,6 +311,7 @@ fn tool_change_has_the_seed_000_fields() {
             "selection_source": "pending_then_m6",
             "substituted": false,
             "trigger": "m6",
+            "committed": true,
             "source": {"file": "part.mpf", "line": 5, "col": 1, "level": 0}
         })
     );

@@ -370,3 +370,92 @@ fn an_event_queue_hands_events_over_block_by_block_and_loses_none() {
     let stepped: Vec<Event> = batches.into_iter().flatten().collect();
     assert_eq!(stepped, whole.events);
 }
+
+/// A machine whose tool changes take a while.
+#[derive(Default)]
+struct SlowChanger {
+    prepares: Vec<Option<String>>,
+    changes: Vec<(Option<String>, Option<String>)>,
+}
+
+impl Machine for SlowChanger {
+    fn prepare_tool(
+        &mut self,
+        request: &gcodec_exec::machine::ToolRequest<'_>,
+        _: &mut MachineEvents,
+    ) -> Answer<()> {
+        self.prepares.push(request.tool.map(str::to_owned));
+        Answer::Ready(())
+    }
+
+    fn change_tool(
+        &mut self,
+        request: &gcodec_exec::machine::ToolRequest<'_>,
+        _: &mut MachineEvents,
+    ) -> Answer<gcodec_exec::machine::ChangeResult> {
+        self.changes.push((
+            request.previous.map(str::to_owned),
+            request.tool.map(str::to_owned),
+        ));
+        Answer::Pending(PendingToken(self.changes.len() as u64))
+    }
+}
+
+fn tool_changes(events: &[Event]) -> Vec<(Option<String>, bool, Option<i32>)> {
+    events
+        .iter()
+        .filter_map(|e| match &e.kind {
+            EventKind::ToolChange(c) => Some((c.new_tool.clone(), c.committed, c.fault_reason)),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_tool_change_answered_late_takes_effect_as_the_machine_says() {
+    let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
+    let text = "T1\nM6\nMSG(\"T=\"<<$P_TOOLNO)\nT2\nM6\nMSG(\"T=\"<<$P_TOOLNO)\nM30\n";
+    let main = main_program(&profile, text);
+    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
+    let mut sink = VecSink::new();
+    let mut machine = SlowChanger::default();
+    let options = RunOptions::for_profile(&profile);
+    let channel = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
+        .with_machine(&mut machine);
+    let mut session = Session::new(channel, main);
+    let mut answers = vec![
+        gcodec_exec::machine::ChangeResult::COMMITTED,
+        // A soft fault: the change is skipped, the program goes on.
+        gcodec_exec::machine::ChangeResult {
+            committed: false,
+            fault_reason: Some(7),
+        },
+    ]
+    .into_iter();
+    let actions = step_through(&mut session, |_| {
+        Outcome::ToolChanged(answers.next().expect("two changes"))
+    });
+    drop(session);
+    assert_eq!(
+        actions,
+        vec![
+            MachineAction::ChangeTool {
+                tool: Some("T1".into()),
+                previous: None
+            },
+            MachineAction::ChangeTool {
+                tool: Some("T2".into()),
+                previous: Some("T1".into())
+            },
+        ]
+    );
+    assert_eq!(machine.prepares, vec![Some("T1".into()), Some("T2".into())]);
+    assert_eq!(
+        tool_changes(&sink.events),
+        vec![
+            (Some("T1".into()), true, None),
+            (Some("T2".into()), false, Some(7))
+        ]
+    );
+    assert_eq!(messages(&sink.events), vec!["T=1", "T=1"]);
+}

@@ -46,6 +46,8 @@ pub(crate) enum Continuation {
     },
     /// The instruction runs again with the value read.
     Reread { key: String },
+    /// The tool change is reported and takes effect as the machine says.
+    ToolChange(Box<super::tools::ChangeInProgress>),
 }
 
 /// A read of a system variable that neither the channel nor the profile
@@ -253,6 +255,16 @@ impl Channel<'_> {
             (Continuation::Reread { key }, Outcome::Value(Some(value))) => {
                 self.state.machine_reads.answer(key, value);
                 Flow::Jump(pc)
+            }
+            (Continuation::ToolChange(change), outcome) => {
+                // `is_answered_by` let only a change's outcome through.
+                let Outcome::ToolChanged(result) = outcome else {
+                    return Err(SessionError::NothingPending);
+                };
+                match self.finish_change(&program, &instruction, *change, result) {
+                    Ok(()) => Flow::Next,
+                    Err(error) => Flow::End(self.alarm(&program, &instruction, error)),
+                }
             }
             (Continuation::Reread { .. }, _) => {
                 let error = RunError::new(

@@ -786,12 +786,8 @@ impl<'r> Channel<'r> {
                 .map(|()| Flow::Next),
             Op::HFunction(h) => self.h_function(program, pc, instruction, h),
             Op::MFunction(m) => self.m_function(program, pc, instruction, m),
-            Op::ToolSelect(select) => self
-                .tool_select(program, instruction, select)
-                .map(|()| Flow::Next),
-            Op::ToolChange { trigger } => self
-                .tool_change(program, instruction, *trigger)
-                .map(|()| Flow::Next),
+            Op::ToolSelect(select) => self.tool_select(program, pc, instruction, select),
+            Op::ToolChange { trigger } => self.tool_change(program, pc, instruction, *trigger),
             Op::CuttingEdge { edge } => self
                 .cutting_edge(program, instruction, edge)
                 .map(|()| Flow::Next),

@@ -8,22 +8,35 @@ use gcodec_ail::{Instruction, SelectorKind, ToolChangeTrigger, ToolSelect, Value
 use gcodec_profile::{EdgeWithoutTool, PendingSelectionScope, Policy, UnresolvedToolPolicy};
 use gcodec_source::{Severity, codes};
 
-use super::Channel;
+use super::machine_calls::Continuation;
+use super::{Channel, Flow};
 use crate::eval;
 use crate::event::{EventKind, SelectionSource, ToolChangeEvent, ToolSelectEvent};
+use crate::machine::{Answer, ChangeResult, MachineAction, ToolRequest};
 use crate::program::Program;
 use crate::tool_resolution::{
     PendingTool, ResolutionContext, ToolRef, ToolResolution, ToolSelector,
 };
 use crate::value::{RtValue, RunError};
 
+/// A tool change the machine is asked to make.
+#[derive(Clone, Debug)]
+pub(crate) struct ChangeInProgress {
+    previous: Option<String>,
+    new: Option<ToolRef>,
+    source: SelectionSource,
+    substituted: bool,
+    trigger: ToolChangeTrigger,
+}
+
 impl Channel<'_> {
     pub(super) fn tool_select(
         &mut self,
         program: &Arc<Program>,
+        pc: usize,
         instruction: &Instruction,
         select: &ToolSelect,
-    ) -> Result<(), RunError> {
+    ) -> Result<Flow, RunError> {
         let (kind, value) = match &select.selector_expr {
             Some(expr) => {
                 let v = eval::eval(&self.env(), expr)?;
@@ -58,11 +71,31 @@ impl Channel<'_> {
             timing: select.timing,
         });
         self.emit_at(program, instruction, event);
-        self.state.pending = Some(PendingTool {
+        let pending = PendingTool {
             substituted: resolved.as_ref().is_some_and(|(_, s)| *s),
             tool: resolved.map(|(t, _)| t),
-        });
-        Ok(())
+        };
+        // The machine brings the tool to the change position (in direct
+        // mode the change follows at once).
+        let previous = self.state.active_tool.as_ref().map(|t| t.label.clone());
+        let request = ToolRequest {
+            tool: pending.tool.as_ref().map(|t| t.label.as_str()),
+            number: pending.tool.as_ref().map_or(0, |t| t.number),
+            previous: previous.as_deref(),
+        };
+        let answer = self
+            .machine
+            .prepare_tool(&request, &mut self.machine_events);
+        let tool = request.tool.map(str::to_owned);
+        self.state.pending = Some(pending);
+        let action = || MachineAction::PrepareTool { tool };
+        let ready =
+            self.machine_answer(program, pc, instruction, answer, action, Continuation::Next)?;
+        Ok(if ready.is_some() {
+            Flow::Next
+        } else {
+            Flow::Pending
+        })
     }
 
     /// Asks the channel's resolver what `selector` names, with whether a
@@ -164,16 +197,24 @@ impl Channel<'_> {
     pub(super) fn tool_change(
         &mut self,
         program: &Arc<Program>,
+        pc: usize,
         instruction: &Instruction,
         trigger: ToolChangeTrigger,
-    ) -> Result<(), RunError> {
+    ) -> Result<Flow, RunError> {
         let previous = self.state.active_tool.as_ref().map(|t| t.label.clone());
         let (new, source, substituted) = if let Some(pending) = self.state.pending.take() {
             let source = match trigger {
                 ToolChangeTrigger::M6 => SelectionSource::PendingThenM6,
                 ToolChangeTrigger::TWord => SelectionSource::DirectTWord,
             };
-            (pending.tool, source, pending.substituted)
+            let change = ChangeInProgress {
+                previous,
+                new: pending.tool,
+                source,
+                substituted: pending.substituted,
+                trigger,
+            };
+            return self.change_on_machine(program, pc, instruction, change);
         } else {
             match self.state.profile.tool_change.m6_without_pending_policy {
                 Policy::Error => {
@@ -198,17 +239,98 @@ impl Channel<'_> {
                 false,
             )
         };
-        let event = EventKind::ToolChange(ToolChangeEvent {
-            previous_tool: previous,
-            new_tool: new.as_ref().map(|t| t.label.clone()),
-            selection_source: source,
+        // Nothing to change: the tool stays, the machine is not asked.
+        let change = ChangeInProgress {
+            previous,
+            new,
+            source,
             substituted,
             trigger,
-        });
+        };
+        self.finish_change(program, instruction, change, ChangeResult::COMMITTED)
+            .map(|()| Flow::Next)
+    }
+
+    /// Hands the change to the machine; its answer finishes it now or
+    /// when the application resumes the run.
+    fn change_on_machine(
+        &mut self,
+        program: &Arc<Program>,
+        pc: usize,
+        instruction: &Instruction,
+        change: ChangeInProgress,
+    ) -> Result<Flow, RunError> {
+        let request = ToolRequest {
+            tool: change.new.as_ref().map(|t| t.label.as_str()),
+            number: change.new.as_ref().map_or(0, |t| t.number),
+            previous: change.previous.as_deref(),
+        };
+        let answer = self.machine.change_tool(&request, &mut self.machine_events);
+        let action = || MachineAction::ChangeTool {
+            tool: change.new.as_ref().map(|t| t.label.clone()),
+            previous: change.previous.clone(),
+        };
+        if matches!(answer, Answer::Error(_)) {
+            // The change is reported as not made before the alarm: the
+            // events say which tool is in the spindle.
+            let failed = change.clone();
+            let answered =
+                self.machine_answer(program, pc, instruction, answer, action, Continuation::Next);
+            self.report_change(program, instruction, failed, false, None);
+            return answered.map(|_| Flow::Next);
+        }
+        let continuation = Continuation::ToolChange(Box::new(change.clone()));
+        match self.machine_answer(program, pc, instruction, answer, action, continuation)? {
+            Some(result) => self
+                .finish_change(program, instruction, change, result)
+                .map(|()| Flow::Next),
+            None => Ok(Flow::Pending),
+        }
+    }
+
+    /// The change as the machine made it (or did not): its event, the
+    /// spindle's tool, the edge after it.
+    pub(super) fn finish_change(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        change: ChangeInProgress,
+        result: ChangeResult,
+    ) -> Result<(), RunError> {
+        let new = change.new.clone();
+        self.report_change(
+            program,
+            instruction,
+            change,
+            result.committed,
+            result.fault_reason,
+        );
+        if !result.committed {
+            return Ok(());
+        }
         self.state.active_tool = new;
         self.figures_slot = None;
-        self.emit_at(program, instruction, event);
         self.edge_after_change(program, instruction)
+    }
+
+    fn report_change(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        change: ChangeInProgress,
+        committed: bool,
+        fault_reason: Option<i32>,
+    ) {
+        let event = EventKind::ToolChange(ToolChangeEvent {
+            previous_tool: change.previous,
+            new_tool: change.new.map(|t| t.label),
+            selection_source: change.source,
+            substituted: change.substituted,
+            trigger: change.trigger,
+            committed,
+            fault_reason,
+        });
+        self.emit_at(program, instruction, event);
     }
 
     /// The edge after a change: the `D` of its block, else MD20270

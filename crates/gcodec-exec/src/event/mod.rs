@@ -355,6 +355,15 @@ pub struct ToolChangeEvent {
     pub substituted: bool,
     /// What triggered it: the change M (`m6`) or the `T` word (`t_word`).
     pub trigger: ToolChangeTrigger,
+    /// Whether `new_tool` is in the spindle after it. `false`: the machine
+    /// did not make the change (a soft toolchanger fault skipped it, the
+    /// program goes on; or a hard fault aborted it, and an alarm follows):
+    /// `previous_tool` stays in the spindle.
+    pub committed: bool,
+    /// The toolchanger's fault reason when a fault kept the change from
+    /// being made.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fault_reason: Option<i32>,
 }
 
 /// How a tool change came about (the tool-change design).

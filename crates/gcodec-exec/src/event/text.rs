@@ -150,6 +150,17 @@ pub fn write_trace_line(out: &mut impl fmt::Write, event: &Event) -> fmt::Result
             if change.substituted {
                 write!(out, " substituted")?;
             }
+            if !change.committed {
+                write!(out, " NOT MADE")?;
+                if let Some(reason) = change.fault_reason {
+                    write!(out, " (toolchanger fault {reason})")?;
+                }
+                write!(
+                    out,
+                    ": {} stays in the spindle",
+                    change.previous_tool.as_deref().unwrap_or("no tool")
+                )?;
+            }
         }
         EventKind::Spindle(spindle) => {
             write!(
