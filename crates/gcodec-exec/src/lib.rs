@@ -9,7 +9,8 @@
 //! ([`event`]), values, expressions and variables ([`value`], [`eval`],
 //! [`vars`]), the budgets of work and memory a run draws on
 //! ([`budget`]), circle geometry ([`geometry`]), programmable frames
-//! ([`frames`]).
+//! ([`frames`]), and the toolchanger protocol with its simulated changer
+//! ([`toolchanger`]).
 
 pub mod budget;
 pub mod channel;
@@ -21,6 +22,7 @@ pub mod loader;
 pub mod machine;
 pub mod program;
 pub mod tool_resolution;
+pub mod toolchanger;
 pub mod value;
 pub mod vars;
 

@@ -227,7 +227,6 @@ fn every_kind() -> Vec<Event> {
                 blocks: 14,
             }),
         ),
-        // The newest kind, last: the tests above pick the others by place.
         event(
             3,
             EventKind::Interrupt(InterruptEvent {
@@ -238,6 +237,41 @@ fn every_kind() -> Vec<Event> {
                 lift_fast: false,
                 block_sync: false,
                 enabled: true,
+            }),
+        ),
+        // The newest kinds, last: the tests above pick the others by place.
+        event(
+            5,
+            EventKind::Toolchanger(ToolchangerEvent {
+                tool: Some("T7".into()),
+                pocket: Some(7),
+                ..ToolchangerEvent::new(
+                    ToolchangerEdge::ChangeCommitted,
+                    gcodec_exec::toolchanger::ChangerState::Idle,
+                    12,
+                )
+            }),
+        ),
+        event(
+            5,
+            EventKind::Toolchanger(ToolchangerEvent {
+                fault_reason: Some(-5),
+                ..ToolchangerEvent::new(
+                    ToolchangerEdge::FaultLatched,
+                    gcodec_exec::toolchanger::ChangerState::Preparing,
+                    13,
+                )
+            }),
+        ),
+        event(
+            5,
+            EventKind::Toolchanger(ToolchangerEvent {
+                abort_reason: Some(gcodec_exec::toolchanger::AbortReason::MOTION_OR_IO_ERROR),
+                ..ToolchangerEvent::new(
+                    ToolchangerEdge::AbortRaised,
+                    gcodec_exec::toolchanger::ChangerState::WaitingForAbortAck,
+                    15,
+                )
             }),
         ),
     ]
@@ -280,6 +314,50 @@ fn tool_change_has_the_tool_change_design_fields() {
             "committed": true,
             "source": {"file": "part.mpf", "line": 5, "col": 1, "level": 0}
         })
+    );
+}
+
+#[test]
+fn toolchanger_has_the_edge_fields_and_leaves_out_what_does_not_apply() {
+    let events = every_kind();
+    let n = events.len();
+    assert_eq!(
+        round_trip(&events[n - 3]),
+        json!({
+            "event": "toolchanger",
+            "edge": "change_committed",
+            "state": "idle",
+            "cycle": 12,
+            "tool": "T7",
+            "pocket": 7,
+            "source": {"file": "part.mpf", "line": 5, "col": 1, "level": 0}
+        })
+    );
+    let fault = round_trip(&events[n - 2]);
+    assert_eq!(fault["fault_reason"], -5);
+    assert_eq!(fault["state"], "preparing");
+    assert!(fault.get("tool").is_none() && fault.get("abort_reason").is_none());
+    let abort = round_trip(&events[n - 1]);
+    assert_eq!(abort["abort_reason"], 3);
+    assert_eq!(abort["state"], "waiting_for_abort_ack");
+}
+
+#[test]
+fn the_text_trace_names_toolchanger_reasons_in_words() {
+    let events = every_kind();
+    let n = events.len();
+    let line = |event: &Event| {
+        let mut text = String::new();
+        write_trace_line(&mut text, event).expect("writes");
+        text
+    };
+    assert_eq!(
+        line(&events[n - 2]),
+        "5:1 [0] toolchanger: fault latched (reason -5, hard): the next change aborts [preparing, cycle 13]\n"
+    );
+    assert_eq!(
+        line(&events[n - 1]),
+        "5:1 [0] toolchanger: abort raised (reason 3: motion or toolchanger reported an error) [waiting_for_abort_ack, cycle 15]\n"
     );
 }
 

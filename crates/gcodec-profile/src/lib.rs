@@ -5,7 +5,9 @@
 //! [`load`] parses and checks a profile; every problem is a
 //! [`Diagnostic`] pointing into the TOML, and all of them are reported in
 //! one pass. [`builtin`] is `profiles/default.toml`, compiled in so that
-//! gcodec works with no profile given.
+//! gcodec works with no profile given. [`load_scenario`] reads a
+//! toolchanger scenario (the simulated changer's behaviour and the faults
+//! to inject) the same way.
 //!
 //! The checks that need the G-group registry (`modal_defaults` codes and
 //! groups, `[g_codes] unsupported` names, `legacy_aliases` keys) are
@@ -16,6 +18,7 @@
 mod group8;
 mod m_classes;
 mod reset;
+mod scenario;
 mod schema;
 pub mod system_variables;
 mod validate;
@@ -23,6 +26,7 @@ mod validate;
 pub use group8::{group8_index, group8_range};
 pub use m_classes::m_class;
 pub use reset::reset_defaults;
+pub use scenario::{InjectAction, InjectAt, Injection, Scenario, load_scenario};
 pub use schema::*;
 
 use gcodec_source::{Code, Diagnostic, Span, codes};

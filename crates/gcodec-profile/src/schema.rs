@@ -43,6 +43,60 @@ pub struct Profile {
     /// [`crate::system_variables`].
     #[serde(default)]
     pub system_variables: BTreeMap<Spanned<String>, SystemValue>,
+    /// The machine's toolchanger as the toolchanger protocol drives it;
+    /// without the table (and without a scenario) a tool change is
+    /// instant and cannot fail.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub toolchanger: Option<ToolchangerSettings>,
+}
+
+/// `[toolchanger]`: the changer's side of the toolchanger protocol.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ToolchangerSettings {
+    /// The changer takes the start-change handshake at the very start of
+    /// a change (iov2's `-support-start-change`).
+    #[serde(default)]
+    pub support_start_change: bool,
+    /// A random-pocket changer: the tool leaving the spindle takes the
+    /// pocket of the tool that comes in (iov2's `RANDOM_TOOLCHANGER`).
+    #[serde(default)]
+    pub random: bool,
+    /// Seconds per protocol cycle (iov2's `CYCLE_TIME`), counted in the
+    /// run's time estimate.
+    #[serde(default = "default_cycle_time")]
+    pub cycle_time: Spanned<f64>,
+    /// Cycles an acknowledgement may take before the operation is aborted
+    /// (reason 102).
+    #[serde(default = "default_timeout_cycles")]
+    pub timeout_cycles: Spanned<u32>,
+}
+
+impl Default for ToolchangerSettings {
+    fn default() -> Self {
+        Self {
+            support_start_change: false,
+            random: false,
+            cycle_time: default_cycle_time(),
+            timeout_cycles: default_timeout_cycles(),
+        }
+    }
+}
+
+/// `[toolchanger] cycle_time` when not given: iov2's `CYCLE_TIME`.
+pub const DEFAULT_CYCLE_TIME: f64 = 0.1;
+
+/// `[toolchanger] timeout_cycles` when not given: 10 s at the default
+/// cycle time, over thirty times the slowest handshake of the recorded
+/// traces (0.3 s).
+pub const DEFAULT_TIMEOUT_CYCLES: u32 = 100;
+
+fn default_cycle_time() -> Spanned<f64> {
+    spanned(DEFAULT_CYCLE_TIME)
+}
+
+fn default_timeout_cycles() -> Spanned<u32> {
+    spanned(DEFAULT_TIMEOUT_CYCLES)
 }
 
 /// A value of `[system_variables]`.

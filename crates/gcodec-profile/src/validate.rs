@@ -24,6 +24,9 @@ pub(crate) fn check(profile: &Profile) -> Vec<Diagnostic> {
     check_work_offsets(profile, &mut out);
     check_program(&profile.program, &mut out);
     check_g_codes(&profile.g_codes, &mut out);
+    if let Some(toolchanger) = &profile.toolchanger {
+        check_toolchanger(toolchanger, &profile.tools, &mut out);
+    }
     crate::system_variables::check(profile, &mut out);
     out
 }
@@ -74,7 +77,7 @@ fn check_g_codes(g: &GCodes, out: &mut Vec<Diagnostic>) {
     }
 }
 
-fn error<T>(
+pub(crate) fn error<T>(
     code: &'static Code,
     at: &Spanned<T>,
     message: String,
@@ -540,6 +543,52 @@ fn check_program(p: &ProgramSettings, out: &mut Vec<Diagnostic>) {
     }
 }
 
+/// A cycle time and a timeout that a changer can run with; on a random
+/// changer, one tool per pocket (iov2 warns "Attempt to assign multiple
+/// toolno.s to pocket" and the swap would lose a tool).
+fn check_toolchanger(t: &ToolchangerSettings, tools: &[Tool], out: &mut Vec<Diagnostic>) {
+    if !(t.cycle_time.get_ref().is_finite() && *t.cycle_time.get_ref() > 0.0) {
+        out.push(error(
+            codes::profile::OUT_OF_RANGE,
+            &t.cycle_time,
+            "a cycle time is a number of seconds above 0".into(),
+            "here",
+        ));
+    }
+    if *t.timeout_cycles.get_ref() == 0 {
+        out.push(
+            error(
+                codes::profile::OUT_OF_RANGE,
+                &t.timeout_cycles,
+                "a timeout is at least one cycle".into(),
+                "here",
+            )
+            .with_help("every acknowledgement takes a cycle at least; the default is 100"),
+        );
+    }
+    if !t.random {
+        return;
+    }
+    let mut pockets: BTreeMap<u32, &Spanned<u32>> = BTreeMap::new();
+    for tool in tools {
+        let Some(pocket) = tool.location else {
+            continue;
+        };
+        if let Some(first) = pockets.insert(pocket, &tool.number) {
+            out.push(
+                error(
+                    codes::profile::DUPLICATE,
+                    &tool.number,
+                    format!("pocket {pocket} holds two tools of a random changer"),
+                    "this tool",
+                )
+                .with_label(span(first.span()), "and this one")
+                .with_help("a random changer swaps a tool into the pocket of the one it takes out: one tool a pocket (pocket 0 is the spindle)"),
+            );
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     fn codes(sections: &str) -> Vec<&'static str> {
@@ -574,6 +623,38 @@ mod tests {
             ["gcodec::profile::out_of_range"]
         );
         assert!(codes("[program]\ncircle_error_const = 0.05\nstop_at_m0 = false\n").is_empty());
+    }
+
+    #[test]
+    fn the_toolchanger_table_has_defaults_and_is_checked() {
+        let profile = crate::load("[machine]\nname = \"t\"\ncontrol = \"828d\"\n[toolchanger]\n")
+            .expect("loads");
+        let t = profile.toolchanger.expect("the table is there");
+        assert!(!t.support_start_change && !t.random);
+        assert_eq!(*t.cycle_time.get_ref(), 0.1);
+        assert_eq!(*t.timeout_cycles.get_ref(), 100);
+        assert!(crate::builtin().expect("loads").toolchanger.is_none());
+        assert_eq!(
+            codes("[toolchanger]\ncycle_time = 0.0\ntimeout_cycles = 0\n"),
+            [
+                "gcodec::profile::out_of_range",
+                "gcodec::profile::out_of_range"
+            ]
+        );
+        assert_eq!(
+            codes("[toolchanger]\ncycle_time = nan\n"),
+            ["gcodec::profile::out_of_range"]
+        );
+        assert_eq!(
+            codes("[toolchanger]\nrandom_pockets = true\n"),
+            ["gcodec::profile::schema"]
+        );
+        let tools = "[[tools]]\nnumber = 5\nlocation = 3\n[[tools]]\nnumber = 10\nlocation = 3\n";
+        assert!(codes(&format!("[toolchanger]\n{tools}")).is_empty());
+        assert_eq!(
+            codes(&format!("[toolchanger]\nrandom = true\n{tools}")),
+            ["gcodec::profile::duplicate"]
+        );
     }
 
     #[test]

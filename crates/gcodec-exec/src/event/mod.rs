@@ -25,7 +25,8 @@
 //! [`CsvWriter`].
 //!
 //! This file holds the event model and [`EventSink`]; the work-offset
-//! context of a motion is in `work_offset.rs`, axis names and
+//! context of a motion is in `work_offset.rs` (the toolchanger's edges
+//! are the toolchanger's, `crate::toolchanger`), axis names and
 //! [`AxisMap`] in `axis_map.rs`, the sinks in `jsonl.rs`, `text.rs` and
 //! `sinks.rs`, the CSV rows in `csv.rs`, and the number texts the writers
 //! share in `numbers.rs`. Everything public is re-exported here.
@@ -51,6 +52,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 pub use crate::geometry::Plane;
+pub use crate::toolchanger::{ToolchangerEdge, ToolchangerEvent};
 pub use axis_map::{AxisMap, AxisName, axis_name, axis_names};
 pub use csv::{BlockRow, CsvWriter, MAIN_MODAL_GROUPS, ModalColumn};
 pub use jsonl::JsonlSink;
@@ -90,7 +92,7 @@ pub struct EventSource {
 }
 
 /// The names of the event kinds, in the order of [`EventKind`].
-pub const EVENT_KINDS: [&str; 15] = [
+pub const EVENT_KINDS: [&str; 16] = [
     "motion",
     "modal_change",
     "m_function",
@@ -106,6 +108,7 @@ pub const EVENT_KINDS: [&str; 15] = [
     "program_end",
     "diagnostic",
     "interrupt",
+    "toolchanger",
 ];
 
 /// What happened.
@@ -144,6 +147,9 @@ pub enum EventKind {
     /// An input's interrupt assignment changed (`SETINT`, `ENABLE`,
     /// `DISABLE`, `CLRINT`).
     Interrupt(InterruptEvent),
+    /// An edge of the toolchanger protocol (SPEC §12): a request, an
+    /// acknowledgement, a committed change, a fault, an abort.
+    Toolchanger(ToolchangerEvent),
 }
 
 impl EventKind {
@@ -165,6 +171,7 @@ impl EventKind {
             Self::ProgramEnd(_) => 12,
             Self::Diagnostic(_) => 13,
             Self::Interrupt(_) => 14,
+            Self::Toolchanger(_) => 15,
         }
     }
 }

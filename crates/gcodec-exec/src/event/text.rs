@@ -8,7 +8,8 @@ use std::io::{self, BufWriter, Write};
 use serde::Serialize;
 
 use super::numbers::fraction_digits;
-use super::{AxisMap, Event, EventKind, EventSink, motion_name};
+use super::{AxisMap, Event, EventKind, EventSink, ToolchangerEdge, ToolchangerEvent, motion_name};
+use crate::toolchanger::FaultReason;
 
 /// `--format text`: a readable trace, one line an event:
 /// `12:1 [0] motion linear X10 Y5 Z0 F200 G94 G17 g54 machine X110 …`.
@@ -231,6 +232,7 @@ pub fn write_trace_line(out: &mut impl fmt::Write, event: &Event) -> fmt::Result
                 write!(out, " disabled")?;
             }
         }
+        EventKind::Toolchanger(toolchanger) => write_toolchanger(out, toolchanger)?,
         EventKind::Stop(stop) => {
             write!(out, " {}", snake_name(&stop.reason))?;
             if let Some(detail) = &stop.detail {
@@ -249,6 +251,37 @@ pub fn write_trace_line(out: &mut impl fmt::Write, event: &Event) -> fmt::Result
         }
     }
     out.write_char('\n')
+}
+
+/// `: fault latched (reason -5, hard): the next change aborts [idle, cycle 4]`.
+fn write_toolchanger(out: &mut impl fmt::Write, event: &ToolchangerEvent) -> fmt::Result {
+    write!(out, ": {}", event.edge.words())?;
+    let unload = matches!(
+        event.edge,
+        ToolchangerEdge::PrepareRequested | ToolchangerEdge::ChangeCommitted
+    );
+    match &event.tool {
+        Some(tool) => write!(out, " {tool}")?,
+        None if unload => write!(out, " no tool")?,
+        None => {}
+    }
+    if let Some(pocket) = event.pocket {
+        write!(out, " pocket {pocket}")?;
+    }
+    if let Some(reason) = event.fault_reason {
+        let reason = FaultReason(reason);
+        write!(
+            out,
+            " (reason {}, {}): {}",
+            reason.0,
+            reason.severity(),
+            reason.consequence()
+        )?;
+    }
+    if let Some(reason) = event.abort_reason {
+        write!(out, " (reason {reason})")?;
+    }
+    write!(out, " [{}, cycle {}]", event.state.name(), event.cycle)
 }
 
 fn write_axes(out: &mut impl fmt::Write, axes: &AxisMap) -> fmt::Result {

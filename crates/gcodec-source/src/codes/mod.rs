@@ -18,6 +18,7 @@ pub mod lower;
 pub mod parse;
 pub mod profile;
 pub mod run;
+pub mod scenario;
 
 use std::fmt;
 use std::sync::LazyLock;
@@ -149,6 +150,7 @@ pub fn areas() -> &'static [Area] {
         parse::AREA,
         definitions::AREA,
         profile::AREA,
+        scenario::AREA,
         lower::AREA,
         run::AREA,
         io::AREA,
