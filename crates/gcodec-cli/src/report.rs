@@ -113,6 +113,26 @@ pub fn load_profile(
     }
 }
 
+/// Reads a toolchanger scenario and makes the toolchanger that plays it
+/// on `profile` ([`gcodec_driver::load_toolchanger`]), reporting its
+/// diagnostics against the scenario's text; a bad or unreadable scenario
+/// is exit code 2.
+pub fn load_toolchanger(
+    path: &Path,
+    profile: &gcodec_profile::Profile,
+    options: DiagnosticOptions,
+) -> Result<gcodec_driver::toolchanger::SimulatedChanger, u8> {
+    let file = read(
+        path,
+        Reading::builtin(EncodingOption { encoding: None }),
+        options,
+    )?;
+    gcodec_driver::load_toolchanger(&file, profile).map_err(|error| {
+        report(&error.diagnostics.into(), Some(&file), options);
+        EXIT_USAGE
+    })
+}
+
 /// Renders `diagnostics` on stderr, against `file` where they have spans.
 pub fn report(diagnostics: &Diagnostics, file: Option<&SourceFile>, options: DiagnosticOptions) {
     if diagnostics.is_empty() {

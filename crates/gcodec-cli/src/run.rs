@@ -16,7 +16,8 @@ use gcodec_source::escape_controls;
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS};
 use crate::output::{Stdout, after_output, to_stderr};
 use crate::report::{
-    DiagnosticOptions, EncodingOption, Reading, load_definitions, load_profile, read, report,
+    DiagnosticOptions, EncodingOption, Reading, load_definitions, load_profile, load_toolchanger,
+    read, report,
 };
 
 /// How events are written.
@@ -71,6 +72,10 @@ pub struct RunArgs {
     /// The operator's optional-stop switch: `M1` stops like `M0`.
     #[arg(long)]
     pub optional_stop: bool,
+    /// Run tool changes through the simulated toolchanger, behaving (and
+    /// faulting) as this scenario says (`docs/toolchanger.md`).
+    #[arg(long, value_name = "SCENARIO.toml")]
+    pub toolchanger: Option<PathBuf>,
     #[command(flatten)]
     pub diagnostics: DiagnosticOptions,
 }
@@ -157,11 +162,19 @@ pub fn run(args: RunArgs) -> u8 {
         Ok(d) => Arc::new(d),
         Err(code) => return code,
     };
+    let toolchanger = match &args.toolchanger {
+        Some(path) => match load_toolchanger(path, &profile, options) {
+            Ok(changer) => Some(changer),
+            Err(code) => return code,
+        },
+        None => None,
+    };
     let file = match read(&args.file, reading, options) {
         Ok(f) => f,
         Err(code) => return code,
     };
     let mut setup = RunSetup::new(profile);
+    setup.toolchanger = toolchanger;
     setup.encoding = reading.encoding;
     setup.profile_file = profile_path.map(PathBuf::from);
     setup.definitions = definitions;

@@ -386,3 +386,50 @@ fn every_example_runs_clean_on_the_profile_its_first_comment_names() {
     }
     assert!(ran >= 2, "{ran} examples");
 }
+
+#[test]
+fn toolchanger_scenario_faults_show_in_the_text_trace() {
+    let out = gcodec([
+        "run".as_ref(),
+        example("toolchanger/tool_changes.mpf").as_os_str(),
+        "--profile".as_ref(),
+        example("toolchanger/profile/iov2.toml").as_os_str(),
+        "--toolchanger".as_ref(),
+        example("toolchanger/soft_fault.toml").as_os_str(),
+        "--format".as_ref(),
+        "text".as_ref(),
+    ]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(
+        text.contains("NOT MADE (toolchanger fault 7): the spindle stays empty"),
+        "{text}"
+    );
+    assert!(text.contains("toolchanger: fault cleared"), "{text}");
+    assert!(
+        text.contains("tool changes"),
+        "the summary counts the cycles: {text}"
+    );
+}
+
+#[test]
+fn a_bad_toolchanger_scenario_is_a_diagnostic_into_its_toml_and_exit_2() {
+    let scenario = temp_file(
+        "bad_scenario",
+        "bad.toml",
+        "ack_cycles = 0\n[[inject]]\nat = \"change\"\n",
+    );
+    let out = gcodec([
+        "run".as_ref(),
+        example("toolchanger/tool_changes.mpf").as_os_str(),
+        "--profile".as_ref(),
+        example("toolchanger/profile/iov2.toml").as_os_str(),
+        "--toolchanger".as_ref(),
+        scenario.as_os_str(),
+    ]);
+    assert_eq!(code(&out), EXIT_USAGE);
+    let err = stderr(&out);
+    assert!(err.contains("gcodec::scenario::"), "{err}");
+    assert!(err.contains("bad.toml:2:1"), "{err}");
+    assert!(stdout(&out).is_empty(), "no run: {}", stdout(&out));
+}

@@ -7,6 +7,8 @@ use std::sync::Arc;
 
 use gcodec_exec::channel::{BlockObserver, Channel, RunOptions, RunOutcome};
 use gcodec_exec::event::EventSink;
+use gcodec_exec::machine::SimulatedMachine;
+use gcodec_exec::toolchanger::SimulatedChanger;
 use gcodec_exec::vars::Global;
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, ProgramKind};
@@ -39,6 +41,10 @@ pub struct RunSetup {
     /// definition files are decoded when they are read
     /// ([`crate::read_source`]).
     pub encoding: TextEncoding,
+    /// The simulated toolchanger the run starts with
+    /// ([`crate::load_toolchanger`], `--toolchanger`); `None`: the
+    /// profile's, if it has a `[toolchanger]` table.
+    pub toolchanger: Option<SimulatedChanger>,
 }
 
 impl RunSetup {
@@ -55,6 +61,7 @@ impl RunSetup {
             search_dirs: Vec::new(),
             stream: StreamOptions::default(),
             loaded_files: LoadedFiles::new(),
+            toolchanger: None,
         }
     }
 }
@@ -108,6 +115,10 @@ pub fn run_main(
                 sink,
             )
             .with_globals(&globals);
+            if let Some(changer) = &setup.toolchanger {
+                let changer = Box::new(changer.clone());
+                channel = channel.with_machine(SimulatedMachine::with_changer(Some(changer)));
+            }
             if let Some(observer) = observer {
                 channel = channel.with_observer(observer);
             }

@@ -3,8 +3,9 @@
 
 use std::path::Path;
 
+use gcodec_exec::toolchanger::SimulatedChanger;
 use gcodec_profile::Profile;
-use gcodec_source::{Diagnostic, SourceFile, TextEncoding, codes};
+use gcodec_source::{Code, Diagnostic, SourceFile, TextEncoding, codes};
 
 /// Reads a file named on the command line, at most `max_len` bytes (the
 /// profile's `[program] max_file_size`), decoded as `encoding` says; one
@@ -35,21 +36,39 @@ pub struct ProfileError {
     pub diagnostics: Vec<Diagnostic>,
 }
 
+/// The text of a TOML file; one that is not UTF-8 is `code`.
+fn toml_text<'a>(file: &'a SourceFile, code: &'static Code) -> Result<&'a str, ProfileError> {
+    std::str::from_utf8(file.bytes()).map_err(|_| {
+        let d = Diagnostic::new(code, format!("`{}` is not UTF-8 text", file.name()))
+            .with_help("TOML files are UTF-8");
+        ProfileError {
+            diagnostics: vec![d],
+        }
+    })
+}
+
+/// Reads the toolchanger scenario in `file` (`gcodec run --toolchanger`)
+/// and makes the simulated toolchanger of `profile` that plays it: every
+/// problem (TOML, keys, ranges, an `initial_tool` the tool table lacks) is
+/// a diagnostic into the scenario's text.
+pub fn load_toolchanger(
+    file: &SourceFile,
+    profile: &Profile,
+) -> Result<SimulatedChanger, ProfileError> {
+    let text = toml_text(file, codes::scenario::SYNTAX)?;
+    let scenario =
+        gcodec_profile::load_scenario(text).map_err(|diagnostics| ProfileError { diagnostics })?;
+    SimulatedChanger::new(profile, &scenario).map_err(|d| ProfileError {
+        diagnostics: vec![d],
+    })
+}
+
 /// Checks the profile in `file` in full: its form (TOML, keys, ranges,
 /// references; [`gcodec_profile::load`]) and then its G codes against the
 /// G-group table ([`gcodec_sema::check_profile`]). The profile and the
 /// warnings of the second check, or every problem found.
 pub fn load_profile(file: &SourceFile) -> Result<(Profile, Vec<Diagnostic>), ProfileError> {
-    let Ok(text) = std::str::from_utf8(file.bytes()) else {
-        let d = Diagnostic::new(
-            codes::profile::SYNTAX,
-            format!("`{}` is not UTF-8 text", file.name()),
-        )
-        .with_help("TOML files are UTF-8");
-        return Err(ProfileError {
-            diagnostics: vec![d],
-        });
-    };
+    let text = toml_text(file, codes::profile::SYNTAX)?;
     let profile = gcodec_profile::load(text).map_err(|diagnostics| ProfileError { diagnostics })?;
     let diagnostics = gcodec_sema::check_profile(&profile);
     if diagnostics.iter().any(Diagnostic::is_error) {

@@ -667,7 +667,7 @@ fn the_example_scenarios_do_what_they_say() {
             fault_reason: FaultReason(7)
         }
     );
-    c.block(40, &mut events);
+    c.block(10, &mut events);
     assert_eq!(c.fault(), None);
 
     let mut c = example("fault_while_changing.toml", &iov2());
@@ -681,7 +681,7 @@ fn the_example_scenarios_do_what_they_say() {
         }
     ));
     assert_eq!(changed.spindle, None);
-    c.block(90, &mut events);
+    c.block(15, &mut events);
     assert_eq!(c.fault(), None);
 
     let mut c = example("operator_abort.toml", &iov2());

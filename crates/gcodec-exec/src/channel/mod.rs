@@ -262,7 +262,7 @@ impl<'r> Channel<'r> {
         // The profile has no key for MD28050 (the number of R parameters).
         let max_memory = *profile.program.max_variable_memory.get_ref();
         let vars = Variables::default().with_budgets(options.max_work, max_memory);
-        let machine = Box::new(SimulatedMachine::new(Arc::clone(&profile)));
+        let machine = Box::new(SimulatedMachine::new(&profile));
         let state = MachineState::new(profile);
         let motion = motion::MotionScratch::new(&state);
         Self {
@@ -356,6 +356,12 @@ impl<'r> Channel<'r> {
     /// parameters. `Some`: the run ends before its first block.
     pub(crate) fn begin(&mut self, main: Arc<Program>) -> Option<ProgramEndReason> {
         self.machine_watches_blocks = self.machine.watches_blocks();
+        if let Some(tool) = self.machine.initial_tool() {
+            self.state.active_tool = Some(crate::tool_resolution::ToolRef {
+                label: tool.label,
+                number: tool.number,
+            });
+        }
         self.sink_may_yield = self.sink.may_yield();
         self.stack.push(Level {
             program: Arc::clone(&main),

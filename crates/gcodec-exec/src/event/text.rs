@@ -155,11 +155,10 @@ pub fn write_trace_line(out: &mut impl fmt::Write, event: &Event) -> fmt::Result
                 if let Some(reason) = change.fault_reason {
                     write!(out, " (toolchanger fault {reason})")?;
                 }
-                write!(
-                    out,
-                    ": {} stays in the spindle",
-                    change.previous_tool.as_deref().unwrap_or("no tool")
-                )?;
+                match change.previous_tool.as_deref() {
+                    Some(tool) => write!(out, ": {tool} stays in the spindle")?,
+                    None => write!(out, ": the spindle stays empty")?,
+                }
             }
         }
         EventKind::Spindle(spindle) => {

@@ -64,6 +64,14 @@ pub struct ToolRequest<'a> {
     pub previous: Option<&'a str>,
 }
 
+/// A tool as the machine names it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MachineTool {
+    /// As `tool_change` events name it (`T3`, or its name).
+    pub label: String,
+    pub number: u32,
+}
+
 /// What a tool change did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ChangeResult {
@@ -179,6 +187,12 @@ pub trait Machine {
     fn take_elapsed(&mut self) -> f64 {
         0.0
     }
+
+    /// The tool in the spindle when the run starts (`None`: none, as the
+    /// channel assumes).
+    fn initial_tool(&self) -> Option<MachineTool> {
+        None
+    }
 }
 
 /// What a pending machine action is, for the application that answers it.
@@ -279,5 +293,9 @@ impl<M: Machine + ?Sized> Machine for &mut M {
 
     fn take_elapsed(&mut self) -> f64 {
         (**self).take_elapsed()
+    }
+
+    fn initial_tool(&self) -> Option<MachineTool> {
+        (**self).initial_tool()
     }
 }

@@ -1,0 +1,193 @@
+//! Programs run with the simulated toolchanger (SPEC §11.10, §12): the
+//! example scenarios as golden text traces, the interpreter-side errors
+//! iov2 aborts with reason 10, and runs without a toolchanger unchanged.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use gcodec_driver::{RunSetup, run_main};
+use gcodec_exec::event::{Event, EventKind, ProgramEndReason, TextSink, VecSink};
+use gcodec_profile::Profile;
+use gcodec_source::SourceFile;
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn example_profile(name: &str) -> Profile {
+    let path = repo().join("examples/toolchanger/profile").join(name);
+    let text = std::fs::read_to_string(&path).expect("the example profile");
+    gcodec_profile::load(&text).expect("a valid profile")
+}
+
+/// The run set up as `gcodec run --profile … --toolchanger SCENARIO`.
+fn setup(profile: Profile, scenario: Option<&str>) -> RunSetup {
+    let mut setup = RunSetup::new(profile);
+    if let Some(name) = scenario {
+        let path = repo().join("examples/toolchanger").join(name);
+        let file = SourceFile::new(name, std::fs::read(&path).expect("the scenario"));
+        let changer = gcodec_driver::load_toolchanger(&file, &setup.profile)
+            .unwrap_or_else(|e| panic!("{name}: {:?}", e.diagnostics));
+        setup.toolchanger = Some(changer);
+    }
+    setup
+}
+
+fn example_program(name: &str) -> Arc<SourceFile> {
+    let path = repo().join("examples/toolchanger").join(name);
+    let bytes = std::fs::read(&path).expect("the example program");
+    Arc::new(SourceFile::new(
+        format!("examples/toolchanger/{name}"),
+        bytes,
+    ))
+}
+
+/// The text trace of `program` run as `setup` says.
+fn text_trace(program: Arc<SourceFile>, setup: &RunSetup) -> String {
+    let mut out = Vec::new();
+    {
+        let mut sink = TextSink::new(&mut out);
+        let report = run_main(program, setup, &mut sink, None);
+        assert!(report.diagnostics.is_empty(), "{:?}", report.diagnostics);
+    }
+    String::from_utf8(out).expect("text")
+}
+
+fn events(program: &str, setup: &RunSetup) -> Vec<Event> {
+    common::runs::events_of_text_with(setup, "CHANGER.MPF", program)
+}
+
+fn codes(events: &[Event]) -> Vec<String> {
+    events
+        .iter()
+        .filter_map(|e| match &e.kind {
+            EventKind::Diagnostic(d) => Some(d.code.to_string()),
+            _ => None,
+        })
+        .collect()
+}
+
+fn toolchanger_edges(events: &[Event]) -> usize {
+    events
+        .iter()
+        .filter(|e| matches!(e.kind, EventKind::Toolchanger(_)))
+        .count()
+}
+
+#[test]
+fn every_example_scenario_runs_as_its_golden_trace() {
+    let mut scenarios: Vec<String> = std::fs::read_dir(repo().join("examples/toolchanger"))
+        .expect("the examples")
+        .filter_map(|entry| {
+            let name = entry.ok()?.file_name().into_string().ok()?;
+            name.ends_with(".toml").then_some(name)
+        })
+        .collect();
+    scenarios.sort();
+    assert!(scenarios.len() >= 7, "{scenarios:?}");
+    for scenario in &scenarios {
+        let (profile, program) = if scenario.starts_with("random") {
+            ("random.toml", "random_changes.mpf")
+        } else {
+            ("iov2.toml", "tool_changes.mpf")
+        };
+        let setup = setup(example_profile(profile), Some(scenario));
+        let trace = text_trace(example_program(program), &setup);
+        let name = scenario.trim_end_matches(".toml");
+        insta::assert_snapshot!(format!("scenario_{name}"), trace);
+    }
+}
+
+#[test]
+fn the_profile_s_toolchanger_runs_without_a_scenario() {
+    let setup = setup(example_profile("random.toml"), None);
+    let trace = text_trace(example_program("random_changes.mpf"), &setup);
+    insta::assert_snapshot!("random_changer_without_a_scenario", trace);
+}
+
+/// iov2 lets the interpreter catch a change M with nothing selected and
+/// an unknown tool, and aborts with reason 10; gcodec's policies decide,
+/// and the toolchanger is not involved (SPEC §12).
+#[test]
+fn a_bare_change_m_and_an_unknown_tool_are_policies_not_abort_reason_10() {
+    let mut profile = example_profile("iov2.toml");
+    profile.tool_change.m6_without_pending_policy = gcodec_profile::Policy::Error;
+    profile.tool_change.on_unresolved_tool = gcodec_profile::UnresolvedToolPolicy::Error;
+    let setup = setup(profile, None);
+    let bare = events("N10 M6\nN20 M30\n", &setup);
+    assert_eq!(codes(&bare), vec!["gcodec::run::m6_without_pending"]);
+    assert_eq!(toolchanger_edges(&bare), 0);
+    // A constant `T99` is lowering's `unresolved_tool` already; a computed
+    // one is found when the run selects it.
+    let unknown = events("N10 R1=99\nN20 T=R1\nN30 M6\nN40 M30\n", &setup);
+    assert_eq!(codes(&unknown), vec!["gcodec::run::unresolved_tool"]);
+    assert_eq!(toolchanger_edges(&unknown), 0);
+    // After a completed change a second bare M6 has nothing pending
+    // either (iov2 resets its prepared pocket after every change).
+    let again = events("N10 T1 M6\nN20 M6\nN30 M30\n", &setup);
+    assert_eq!(codes(&again), vec!["gcodec::run::m6_without_pending"]);
+}
+
+#[test]
+fn a_hard_fault_ends_the_run_with_the_old_tool_in_the_spindle() {
+    let setup = setup(
+        example_profile("iov2.toml"),
+        Some("fault_while_changing.toml"),
+    );
+    let events = events("N10 T1 M6\nN20 G0 X1\nN30 M30\n", &setup);
+    let changes: Vec<(Option<String>, Option<String>, bool)> = events
+        .iter()
+        .filter_map(|e| match &e.kind {
+            EventKind::ToolChange(c) => {
+                Some((c.previous_tool.clone(), c.new_tool.clone(), c.committed))
+            }
+            _ => None,
+        })
+        .collect();
+    assert_eq!(changes, vec![(None, Some("T1".into()), false)]);
+    assert_eq!(codes(&events), vec!["gcodec::run::machine_error"]);
+    let end = events.last().expect("program_end");
+    assert!(matches!(&end.kind, EventKind::ProgramEnd(e) if e.reason == ProgramEndReason::Alarm));
+}
+
+/// Without a `[toolchanger]` table and without a scenario, a run and its
+/// events are those of a channel with no machine behind it.
+#[test]
+fn without_a_toolchanger_a_run_has_no_toolchanger_events_or_time() {
+    let profile = gcodec_profile::builtin().expect("the built-in profile");
+    assert!(profile.toolchanger.is_none());
+    let setup = setup(profile, None);
+    let file = Arc::new(SourceFile::new("PLAIN.MPF", "T1 M6\nG0 X10\nT2 M6\nM30\n"));
+    let mut sink = VecSink::new();
+    let report = run_main(file, &setup, &mut sink, None);
+    let outcome = report.outcome.expect("events written");
+    assert_eq!(toolchanger_edges(&sink.events), 0);
+    assert!(
+        outcome
+            .summary
+            .tools()
+            .iter()
+            .all(|t| t.machine_time == 0.0)
+    );
+    let json = serde_json::to_string(&outcome.summary).expect("json");
+    assert!(!json.contains("machine_time"), "{json}");
+}
+
+#[test]
+fn toolchanger_cycles_count_in_the_run_s_time() {
+    let setup = setup(example_profile("iov2.toml"), Some("normal.toml"));
+    let file = Arc::new(SourceFile::new("TIMED.MPF", "T1 M6\nM30\n"));
+    let mut sink = VecSink::new();
+    let outcome = run_main(file, &setup, &mut sink, None)
+        .outcome
+        .expect("events written");
+    let total = outcome.summary.total();
+    // Prepare 3 cycles, start-change 3, change 3: 0.9 s at 0.1 s a cycle.
+    assert!(
+        (total.machine_time - 0.9).abs() < 1e-9,
+        "{}",
+        total.machine_time
+    );
+}
