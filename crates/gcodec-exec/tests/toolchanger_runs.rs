@@ -191,3 +191,122 @@ fn toolchanger_cycles_count_in_the_run_s_time() {
         total.machine_time
     );
 }
+
+/// A machine that starts a change on its simulated changer and leaves it
+/// pending, as an application stepping the changer itself does.
+struct StartedChange {
+    changer: gcodec_exec::toolchanger::SimulatedChanger,
+    edges: Vec<gcodec_exec::toolchanger::ToolchangerEvent>,
+}
+
+impl gcodec_exec::machine::Machine for StartedChange {
+    fn change_tool(
+        &mut self,
+        request: &gcodec_exec::machine::ToolRequest<'_>,
+        events: &mut gcodec_exec::machine::MachineEvents,
+    ) -> gcodec_exec::machine::Answer<gcodec_exec::machine::ChangeResult> {
+        use gcodec_exec::toolchanger::{ChangerTool, Toolchanger};
+        let tool = request.tool.map(|label| ChangerTool {
+            number: request.number,
+            label: label.to_owned(),
+        });
+        gcodec_exec::toolchanger::prepare(&mut self.changer, tool, &mut self.edges);
+        self.changer.request_change(&mut self.edges);
+        self.changer.cycle(&mut self.edges);
+        events.extend(self.edges.drain(..).map(EventKind::Toolchanger));
+        gcodec_exec::machine::Answer::Pending(gcodec_exec::machine::PendingToken(1))
+    }
+
+    fn abort(
+        &mut self,
+        cause: gcodec_exec::machine::AbortCause,
+        events: &mut gcodec_exec::machine::MachineEvents,
+    ) {
+        use gcodec_exec::toolchanger::AbortReason;
+        let reason = match cause {
+            gcodec_exec::machine::AbortCause::Cancelled => AbortReason::USER_ABORT,
+            gcodec_exec::machine::AbortCause::Alarm => AbortReason::TASK_EXEC_ERROR,
+        };
+        gcodec_exec::toolchanger::abort(&mut self.changer, reason, &mut self.edges);
+        events.extend(self.edges.drain(..).map(EventKind::Toolchanger));
+    }
+}
+
+/// The abort reasons of the run's toolchanger events, and the state the
+/// last one leaves.
+fn abort_reasons(events: &[Event]) -> (Vec<i32>, Option<String>) {
+    let toolchanger: Vec<_> = events
+        .iter()
+        .filter_map(|e| match &e.kind {
+            EventKind::Toolchanger(t) => Some(t),
+            _ => None,
+        })
+        .collect();
+    let reasons = toolchanger
+        .iter()
+        .filter_map(|t| t.abort_reason.map(|r| r.0))
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
+    let last = toolchanger.last().map(|t| t.state.name().to_owned());
+    (reasons, last)
+}
+
+/// Runs `T1 M6 …` against a change left pending, then `finish` decides.
+fn pending_change(
+    finish: impl FnOnce(&mut gcodec_exec::session::Session<'_>, gcodec_exec::machine::PendingToken),
+) -> Vec<Event> {
+    use gcodec_exec::session::{Session, Step};
+    let profile = Arc::new(example_profile("iov2.toml"));
+    let scenario = gcodec_profile::load_scenario("ack_cycles = 5").expect("scenario");
+    let machine = StartedChange {
+        changer: gcodec_exec::toolchanger::SimulatedChanger::new(&profile, &scenario)
+            .expect("changer"),
+        edges: Vec::new(),
+    };
+    let file = Arc::new(SourceFile::new(
+        "LATE.MPF",
+        "N10 T1 M6\nN20 G0 X1\nN30 M30\n",
+    ));
+    let main = common::runs::compile_main(&file, &profile, &gcodec_driver::Definitions::new());
+    let mut loader =
+        gcodec_driver::MemoryLoader::new(Arc::clone(&profile), gcodec_driver::Definitions::new());
+    let mut sink = VecSink::new();
+    let options = gcodec_exec::channel::RunOptions::for_profile(&profile);
+    let channel =
+        gcodec_exec::channel::Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
+            .with_machine(machine);
+    let mut session = Session::new(channel, main.program);
+    let Step::Pending(pending) = session.step() else {
+        panic!("the change is pending");
+    };
+    finish(&mut session, pending.token);
+    assert!(matches!(session.step(), Step::Ended(Ok(_))));
+    drop(session);
+    sink.events
+}
+
+#[test]
+fn a_run_cancelled_in_the_middle_of_a_change_aborts_it_with_reason_8() {
+    let events = pending_change(|session, _| session.cancel());
+    assert_eq!(abort_reasons(&events), (vec![8], Some("idle".into())));
+    assert_eq!(codes(&events), vec!["gcodec::run::cancelled"]);
+    assert!(
+        !events
+            .iter()
+            .any(|e| matches!(e.kind, EventKind::ToolChange(_))),
+        "no change is reported made"
+    );
+}
+
+#[test]
+fn a_run_ending_in_an_alarm_during_a_change_aborts_it_with_reason_1() {
+    let events = pending_change(|session, token| {
+        let failed = gcodec_exec::machine::Outcome::Failed(
+            gcodec_exec::machine::MachineError::new("the spindle did not stop"),
+        );
+        session.resume(token, failed).expect("an answer");
+    });
+    assert_eq!(abort_reasons(&events), (vec![1], Some("idle".into())));
+    assert_eq!(codes(&events), vec!["gcodec::run::machine_error"]);
+}

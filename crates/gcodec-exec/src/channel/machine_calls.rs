@@ -148,10 +148,7 @@ impl Channel<'_> {
         continuation: Continuation,
     ) -> Result<Option<T>, RunError> {
         self.emit_machine_events(program, instruction);
-        let elapsed = self.machine.take_elapsed();
-        if elapsed > 0.0 {
-            self.figures().machine_time += elapsed;
-        }
+        self.book_machine_time();
         match answer {
             Answer::Ready(result) => Ok(Some(result)),
             Answer::Pending(token) => {
@@ -170,6 +167,14 @@ impl Channel<'_> {
                 codes::run::MACHINE_ERROR,
                 format!("the machine reports: {}", error.message),
             )),
+        }
+    }
+
+    /// The seconds the machine's own work took, to the active tool.
+    fn book_machine_time(&mut self) {
+        let elapsed = self.machine.take_elapsed();
+        if elapsed > 0.0 {
+            self.figures().machine_time += elapsed;
         }
     }
 
@@ -256,7 +261,9 @@ impl Channel<'_> {
             instruction,
             ..
         } = pending;
+        self.machine.resumed(token, &mut self.machine_events);
         self.emit_machine_events(&program, &instruction);
+        self.book_machine_time();
         let flow = match (continuation, outcome) {
             (_, Outcome::Failed(error)) => {
                 let error = RunError::new(

@@ -171,6 +171,12 @@ pub trait Machine {
     /// reason).
     fn abort(&mut self, _cause: AbortCause, _events: &mut MachineEvents) {}
 
+    /// The application answered the pending action `token`: the machine
+    /// reports the events of its work meanwhile (a toolchanger's edges),
+    /// which the run emits at the instruction that asked, before it goes
+    /// on.
+    fn resumed(&mut self, _token: PendingToken, _events: &mut MachineEvents) {}
+
     /// Whether [`Machine::block_started`] is wanted: asked once, when the
     /// run starts, so that a machine that does not watch blocks costs
     /// nothing per block.
@@ -281,6 +287,10 @@ impl<M: Machine + ?Sized> Machine for &mut M {
 
     fn abort(&mut self, cause: AbortCause, events: &mut MachineEvents) {
         (**self).abort(cause, events);
+    }
+
+    fn resumed(&mut self, token: PendingToken, events: &mut MachineEvents) {
+        (**self).resumed(token, events);
     }
 
     fn watches_blocks(&self) -> bool {
