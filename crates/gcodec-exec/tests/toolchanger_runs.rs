@@ -310,3 +310,30 @@ fn a_run_ending_in_an_alarm_during_a_change_aborts_it_with_reason_1() {
     assert_eq!(abort_reasons(&events), (vec![1], Some("idle".into())));
     assert_eq!(codes(&events), vec!["gcodec::run::machine_error"]);
 }
+
+/// The application reads the latched fault through the session's
+/// machine; the program cannot.
+#[test]
+fn the_latched_fault_is_read_through_the_session_not_the_program() {
+    use gcodec_exec::session::{Session, Step};
+    let profile = Arc::new(example_profile("iov2.toml"));
+    let scenario =
+        gcodec_profile::load_scenario("initial_fault = true\ninitial_fault_reason = 7\n")
+            .expect("scenario");
+    let machine = gcodec_exec::machine::SimulatedMachine::with_scenario(&profile, &scenario)
+        .expect("machine");
+    let file = Arc::new(SourceFile::new("FAULT.MPF", "N10 T1 M6\nN20 M30\n"));
+    let main = common::runs::compile_main(&file, &profile, &gcodec_driver::Definitions::new());
+    let mut loader =
+        gcodec_driver::MemoryLoader::new(Arc::clone(&profile), gcodec_driver::Definitions::new());
+    let mut sink = VecSink::new();
+    let options = gcodec_exec::channel::RunOptions::for_profile(&profile);
+    let channel =
+        gcodec_exec::channel::Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
+            .with_machine(machine);
+    let mut session = Session::new(channel, main.program);
+    assert!(matches!(session.step(), Step::Ended(Ok(_))));
+    let changer = session.machine().toolchanger().expect("a toolchanger");
+    assert_eq!(changer.fault().map(|f| f.0), Some(7));
+    assert_eq!(changer.state().name(), "idle");
+}

@@ -19,6 +19,7 @@ mod simulated;
 pub use simulated::SimulatedMachine;
 
 use crate::event::EventKind;
+use crate::toolchanger::Toolchanger;
 use crate::value::RtValue;
 
 /// Names one pending machine action of a run: the application answers it
@@ -199,6 +200,13 @@ pub trait Machine {
     fn initial_tool(&self) -> Option<MachineTool> {
         None
     }
+
+    /// The machine's toolchanger, for the application to read its state
+    /// and its latched fault and reason between steps (a program cannot
+    /// read them, SPEC §12).
+    fn toolchanger(&self) -> Option<&dyn Toolchanger> {
+        None
+    }
 }
 
 /// What a pending machine action is, for the application that answers it.
@@ -307,5 +315,9 @@ impl<M: Machine + ?Sized> Machine for &mut M {
 
     fn initial_tool(&self) -> Option<MachineTool> {
         (**self).initial_tool()
+    }
+
+    fn toolchanger(&self) -> Option<&dyn Toolchanger> {
+        (**self).toolchanger()
     }
 }

@@ -58,12 +58,6 @@ impl SimulatedMachine {
         }
     }
 
-    /// The toolchanger, if the machine has one: its state, its latched
-    /// fault and reason (a program cannot read them, SPEC §12).
-    pub fn toolchanger(&self) -> Option<&dyn Toolchanger> {
-        self.changer.as_deref()
-    }
-
     /// Hands the changer's edges over as events, and counts its cycles.
     fn report(&mut self, cycles: u64, cycle_time: f64, events: &mut MachineEvents) {
         self.elapsed += cycles as f64 * cycle_time;
@@ -185,6 +179,10 @@ impl Machine for SimulatedMachine {
 
     fn take_elapsed(&mut self) -> f64 {
         std::mem::take(&mut self.elapsed)
+    }
+
+    fn toolchanger(&self) -> Option<&dyn Toolchanger> {
+        self.changer.as_deref()
     }
 
     fn initial_tool(&self) -> Option<MachineTool> {
