@@ -4,6 +4,8 @@
 
 mod common;
 
+use common::runs::diagnostic_codes;
+
 use std::sync::Arc;
 
 use gcodec_driver::{Definitions, MemoryLoader};
@@ -81,16 +83,6 @@ fn messages(events: &[Event]) -> Vec<String> {
         .iter()
         .filter_map(|e| match &e.kind {
             EventKind::Message(m) => Some(m.text.clone()),
-            _ => None,
-        })
-        .collect()
-}
-
-fn codes(events: &[Event]) -> Vec<String> {
-    events
-        .iter()
-        .filter_map(|e| match &e.kind {
-            EventKind::Diagnostic(d) => Some(d.code.to_string()),
             _ => None,
         })
         .collect()
@@ -209,7 +201,10 @@ fn a_read_no_one_answers_is_the_alarm_it_always_was() {
         .run(main)
         .expect("events written");
     assert_eq!(outcome.reason, ProgramEndReason::Alarm);
-    assert_eq!(codes(&sink.events), vec!["gcodec::run::system_variable"]);
+    assert_eq!(
+        diagnostic_codes(&sink.events),
+        vec!["gcodec::run::system_variable"]
+    );
 }
 
 #[test]
@@ -313,7 +308,10 @@ fn a_failed_action_is_an_alarm_and_the_machine_is_told_the_run_aborts() {
         .run(main)
         .expect("events written");
     assert_eq!(outcome.reason, ProgramEndReason::Alarm);
-    assert_eq!(codes(&sink.events), vec!["gcodec::run::machine_error"]);
+    assert_eq!(
+        diagnostic_codes(&sink.events),
+        vec!["gcodec::run::machine_error"]
+    );
     assert_eq!(machine.aborts, vec![AbortCause::Alarm]);
 }
 
@@ -330,7 +328,7 @@ fn a_run_that_cannot_wait_ends_with_an_alarm_at_the_pending_action() {
         .expect("events written");
     assert_eq!(outcome.reason, ProgramEndReason::Alarm);
     assert_eq!(
-        codes(&sink.events),
+        diagnostic_codes(&sink.events),
         vec!["gcodec::run::machine_action_unanswered"]
     );
 }

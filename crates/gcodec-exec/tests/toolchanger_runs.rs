@@ -4,6 +4,8 @@
 
 mod common;
 
+use common::runs::diagnostic_codes;
+
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -59,16 +61,6 @@ fn events(program: &str, setup: &RunSetup) -> Vec<Event> {
     common::runs::events_of_text_with(setup, "CHANGER.MPF", program)
 }
 
-fn codes(events: &[Event]) -> Vec<String> {
-    events
-        .iter()
-        .filter_map(|e| match &e.kind {
-            EventKind::Diagnostic(d) => Some(d.code.to_string()),
-            _ => None,
-        })
-        .collect()
-}
-
 fn toolchanger_edges(events: &[Event]) -> usize {
     events
         .iter()
@@ -117,17 +109,26 @@ fn a_bare_change_m_and_an_unknown_tool_are_policies_not_abort_reason_10() {
     profile.tool_change.on_unresolved_tool = gcodec_profile::UnresolvedToolPolicy::Error;
     let setup = setup(profile, None);
     let bare = events("N10 M6\nN20 M30\n", &setup);
-    assert_eq!(codes(&bare), vec!["gcodec::run::m6_without_pending"]);
+    assert_eq!(
+        diagnostic_codes(&bare),
+        vec!["gcodec::run::m6_without_pending"]
+    );
     assert_eq!(toolchanger_edges(&bare), 0);
     // A constant `T99` is lowering's `unresolved_tool` already; a computed
     // one is found when the run selects it.
     let unknown = events("N10 R1=99\nN20 T=R1\nN30 M6\nN40 M30\n", &setup);
-    assert_eq!(codes(&unknown), vec!["gcodec::run::unresolved_tool"]);
+    assert_eq!(
+        diagnostic_codes(&unknown),
+        vec!["gcodec::run::unresolved_tool"]
+    );
     assert_eq!(toolchanger_edges(&unknown), 0);
     // After a completed change a second bare M6 has nothing pending
     // either (iov2 resets its prepared pocket after every change).
     let again = events("N10 T1 M6\nN20 M6\nN30 M30\n", &setup);
-    assert_eq!(codes(&again), vec!["gcodec::run::m6_without_pending"]);
+    assert_eq!(
+        diagnostic_codes(&again),
+        vec!["gcodec::run::m6_without_pending"]
+    );
 }
 
 #[test]
@@ -147,7 +148,10 @@ fn a_hard_fault_ends_the_run_with_the_old_tool_in_the_spindle() {
         })
         .collect();
     assert_eq!(changes, vec![(None, Some("T1".into()), false)]);
-    assert_eq!(codes(&events), vec!["gcodec::run::machine_error"]);
+    assert_eq!(
+        diagnostic_codes(&events),
+        vec!["gcodec::run::machine_error"]
+    );
     let end = events.last().expect("program_end");
     assert!(matches!(&end.kind, EventKind::ProgramEnd(e) if e.reason == ProgramEndReason::Alarm));
 }
@@ -290,7 +294,7 @@ fn pending_change(
 fn a_run_cancelled_in_the_middle_of_a_change_aborts_it_with_reason_8() {
     let events = pending_change(|session, _| session.cancel());
     assert_eq!(abort_reasons(&events), (vec![8], Some("idle".into())));
-    assert_eq!(codes(&events), vec!["gcodec::run::cancelled"]);
+    assert_eq!(diagnostic_codes(&events), vec!["gcodec::run::cancelled"]);
     assert!(
         !events
             .iter()
@@ -308,7 +312,10 @@ fn a_run_ending_in_an_alarm_during_a_change_aborts_it_with_reason_1() {
         session.resume(token, failed).expect("an answer");
     });
     assert_eq!(abort_reasons(&events), (vec![1], Some("idle".into())));
-    assert_eq!(codes(&events), vec!["gcodec::run::machine_error"]);
+    assert_eq!(
+        diagnostic_codes(&events),
+        vec!["gcodec::run::machine_error"]
+    );
 }
 
 /// The application reads the latched fault through the session's

@@ -316,13 +316,7 @@ impl Channel<'_> {
         };
         let answer = self.machine.wait(&wait, &mut self.machine_events);
         let action = || MachineAction::Wait(wait);
-        let ready =
-            self.machine_answer(program, pc, instruction, answer, action, Continuation::Next)?;
-        Ok(if ready.is_some() {
-            Flow::Next
-        } else {
-            Flow::Pending
-        })
+        self.machine_done(program, pc, instruction, answer, action)
     }
 
     pub(super) fn h_function(
@@ -351,13 +345,7 @@ impl Channel<'_> {
             .machine
             .auxiliary_function(&function, &mut self.machine_events);
         let action = || MachineAction::AuxiliaryFunction(function);
-        let ready =
-            self.machine_answer(program, pc, instruction, answer, action, Continuation::Next)?;
-        Ok(if ready.is_some() {
-            Flow::Next
-        } else {
-            Flow::Pending
-        })
+        self.machine_done(program, pc, instruction, answer, action)
     }
 
     /// `SPOS`/`SPOSA` position a spindle; the other named addresses do not

@@ -178,6 +178,25 @@ impl Channel<'_> {
         }
     }
 
+    /// Takes the machine's answer to an action with no result and nothing
+    /// left to do after it: the next instruction, or a pause.
+    pub(super) fn machine_done(
+        &mut self,
+        program: &Arc<Program>,
+        pc: usize,
+        instruction: &Instruction,
+        answer: Answer<()>,
+        action: impl FnOnce() -> MachineAction,
+    ) -> Result<Flow, RunError> {
+        let ready =
+            self.machine_answer(program, pc, instruction, answer, action, Continuation::Next)?;
+        Ok(if ready.is_some() {
+            Flow::Next
+        } else {
+            Flow::Pending
+        })
+    }
+
     /// The events the machine reported, at `instruction`.
     fn emit_machine_events(&mut self, program: &Program, instruction: &Instruction) {
         if self.machine_events.is_empty() {

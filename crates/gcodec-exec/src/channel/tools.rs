@@ -79,13 +79,7 @@ impl Channel<'_> {
         let tool = request.tool.map(str::to_owned);
         self.state.pending = Some(pending);
         let action = || MachineAction::PrepareTool { tool };
-        let ready =
-            self.machine_answer(program, pc, instruction, answer, action, Continuation::Next)?;
-        Ok(if ready.is_some() {
-            Flow::Next
-        } else {
-            Flow::Pending
-        })
+        self.machine_done(program, pc, instruction, answer, action)
     }
 
     /// Asks the channel's resolver what `selector` names, with whether a

@@ -83,3 +83,14 @@ pub fn run_main(
     }
     .expect("events go to memory")
 }
+
+/// The codes of the diagnostic events, in order.
+pub fn diagnostic_codes(events: &[Event]) -> Vec<String> {
+    events
+        .iter()
+        .filter_map(|e| match &e.kind {
+            gcodec_exec::event::EventKind::Diagnostic(d) => Some(d.code.to_string()),
+            _ => None,
+        })
+        .collect()
+}
