@@ -122,6 +122,31 @@ impl Diagnostics {
         self.kept.sort_by_key(|d| d.span().map_or(0, |s| s.start));
     }
 
+    /// The same diagnostics, each at the level `level` gives it from its
+    /// code and level, or left out where it gives none: kept ones and
+    /// counted ones alike, so that the counts stay true.
+    pub fn releveled(self, level: impl Fn(&'static Code, Severity) -> Option<Severity>) -> Self {
+        let mut omitted = Omitted::default();
+        for &(code, severity, n) in self.omitted.by_code() {
+            if let Some(severity) = level(code, severity) {
+                omitted.count(code, severity, n);
+            }
+        }
+        let kept = self
+            .kept
+            .into_iter()
+            .filter_map(|d| {
+                let severity = level(d.code, d.severity)?;
+                Some(d.with_severity(severity))
+            })
+            .collect();
+        Self {
+            kept,
+            block_start: None,
+            omitted,
+        }
+    }
+
     /// Forgets every one, kept or counted.
     pub fn clear(&mut self) {
         *self = Self::default();
@@ -221,6 +246,28 @@ mod tests {
             )]
         );
         assert!(all.has_errors());
+    }
+
+    /// Releveling reaches the counted ones too: dropped ones leave the
+    /// count, raised ones count as errors.
+    #[test]
+    fn releveling_changes_kept_and_counted_alike() {
+        let mut all = Diagnostics::new();
+        all.begin_block();
+        all.extend(repeated(MAX_KEPT_PER_BLOCK + 4));
+        all.push(Diagnostic::new(codes::lower::NOT_LOWERED, "kept"));
+        let warned = all.clone().releveled(|code, severity| {
+            (code == codes::lower::REPEATED_AXIS)
+                .then_some(Severity::Warning)
+                .or(Some(severity))
+        });
+        assert!(!warned.has_errors());
+        assert_eq!(warned.total(), all.total());
+        assert!(warned.iter().all(|d| d.severity == Severity::Warning));
+        let dropped = all
+            .releveled(|code, severity| (code != codes::lower::REPEATED_AXIS).then_some(severity));
+        assert_eq!(dropped.total(), 1);
+        assert!(!dropped.has_errors());
     }
 
     /// Parts gathered into a file keep its first diagnostics, with the

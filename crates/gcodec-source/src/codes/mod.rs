@@ -12,6 +12,7 @@
 
 mod text;
 
+pub mod config;
 pub mod definitions;
 pub mod io;
 pub mod lower;
@@ -151,6 +152,7 @@ pub fn areas() -> &'static [Area] {
         definitions::AREA,
         profile::AREA,
         scenario::AREA,
+        config::AREA,
         lower::AREA,
         run::AREA,
         io::AREA,
