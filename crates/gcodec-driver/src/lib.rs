@@ -2,6 +2,8 @@
 //! runs a program goes through here, so that the stages are wired in one
 //! place.
 //!
+//! - [`check`]: `gcodec check`, a tree of programs and definition files
+//!   checked as its `gcodec.toml` says, the diagnostics as data.
 //! - [`compile()`]: parse and lower one program, as a main program or a
 //!   subprogram ([`ProgramKind`]), against a profile and definitions.
 //! - [`load_profile`]: a machine profile checked in full (its form and
@@ -17,6 +19,7 @@
 //! re-exported: the syntax tree as text and the AIL listing, the run's
 //! options, events and sinks.
 
+pub mod check;
 pub mod compile;
 mod diagnostics;
 mod loaded_files;
