@@ -60,6 +60,10 @@ enum Command {
         #[command(flatten)]
         diagnostics: DiagnosticOptions,
     },
+    /// Check part programs and definition files, as CI does before they
+    /// reach a machine: each parsed and lowered against the profile and
+    /// definition files `gcodec.toml` assigns it.
+    Check(crate::check::CheckArgs),
     /// Run a program on the machine a profile describes and stream its
     /// events: motions, modal changes, M functions, tool changes, calls…
     Run(crate::run::RunArgs),
@@ -155,6 +159,7 @@ pub fn run(cli: Cli) -> u8 {
             diagnostics,
         ),
         Command::Run(args) => crate::run::run(args),
+        Command::Check(args) => crate::check::check(args),
         Command::Explain { code, list } => explain(code.as_deref(), list),
         Command::Profile(ProfileCommand::Check { file, diagnostics }) => {
             match load_profile(Some(&file), diagnostics) {

@@ -21,8 +21,14 @@ pub struct DiagnosticOptions {
 
 impl DiagnosticOptions {
     fn render_options(self) -> RenderOptions {
+        self.render_options_for(std::io::stderr().is_terminal())
+    }
+
+    /// The options for rendering to a stream, coloured where it is a
+    /// terminal (`terminal`) and `NO_COLOR` is not set.
+    pub fn render_options_for(self, terminal: bool) -> RenderOptions {
         RenderOptions {
-            color: std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
+            color: terminal && std::env::var_os("NO_COLOR").is_none(),
             limit: (self.max_diagnostics > 0).then_some(self.max_diagnostics),
         }
     }

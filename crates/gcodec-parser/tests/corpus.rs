@@ -9,6 +9,7 @@ use std::path::Path;
 
 use gcodec_parser::parse;
 use gcodec_source::{RenderOptions, SourceFile, render_diagnostics};
+use gcodec_testkit::corpus::EXPECTED_PARSE_ERRORS as EXPECTED_ERRORS;
 
 /// The conformance list annotates deliberate syntax errors; it is checked
 /// line by line in `syntax_check.rs` instead.
@@ -16,16 +17,6 @@ fn is_syntax_check(path: &Path) -> bool {
     path.file_name()
         .is_some_and(|n| n.eq_ignore_ascii_case("SYNTAX_CHECK.SPF"))
 }
-
-/// Errors the control raises too, in programs written for more lenient
-/// interpreters: `(file, line, code)`.
-///
-/// - `r_param.mpf:1` (a test of the CEAD interpreter) declares
-///   `DEF REAL R0`: `R0` is the R parameter's address and number, not a
-///   name, whose first two characters are letters or `_` (Fundamentals
-///   10/2004, p. 60).
-const EXPECTED_ERRORS: &[(&str, u32, &str)] =
-    &[("peer-cead/r_param.mpf", 1, "gcodec::parse::invalid_name")];
 
 #[test]
 fn every_corpus_program_parses_without_errors() {

@@ -5,7 +5,8 @@
 //! `SYNTAX_CHECK.SPF` is excluded: its machine-dependent lines are errors
 //! by design (`syntax_check.rs`). Lines written for interpreters more
 //! lenient than the control are errors on the control too
-//! ([`EXPECTED_ERRORS`]): the test requires exactly those.
+//! (`EXPECTED_LOWERING_ERRORS` of the test kit): the test requires
+//! exactly those.
 
 use std::collections::HashSet;
 use std::path::PathBuf;
@@ -16,7 +17,9 @@ mod common;
 use gcodec_lang::functions::Function;
 use gcodec_lang::identifiers::invalid_name;
 use gcodec_lang::procedures::Procedure;
-use gcodec_testkit::corpus::{ASSUMED_NAMES, definitions, machine_profile};
+use gcodec_testkit::corpus::{
+    ASSUMED_NAMES, EXPECTED_LOWERING_ERRORS as EXPECTED_ERRORS, definitions, machine_profile,
+};
 
 /// The words of the control's catalogue (addresses, keywords, commands,
 /// procedures, functions), upper case; empty where the shared reference
@@ -64,78 +67,6 @@ fn language_word(name: &str) -> Option<&'static str> {
 fn quoted(message: &str) -> Option<&str> {
     message.split('`').nth(1)
 }
-
-/// Errors the control raises too, in programs written for more lenient
-/// interpreters: `(file, line, code)`.
-///
-/// - `edge_cases.mpf:40` declares `DEPTH` after motion blocks; the control
-///   accepts `DEF` only before the first executable statement (alarm
-///   14500).
-/// - `proc1_test.mpf:18` writes `_X=500` for an AXIS variable `_X`; on the
-///   control that assigns a number to the variable, which has no such
-///   conversion (alarm 14096); moving the axis it names is `AX[_X]=500`,
-///   as the Siemens cycles in the same corpus write it.
-/// - `simple.mpf:2,3` (a parser test of the CEAD interpreter) programs
-///   `G2`/`G3` end points without centre or radius (the control cannot
-///   build the circle) and `X` twice in one block (alarm 12010).
-/// - `multiple_m_codes.mpf:4` (a test of the CEAD interpreter's M codes)
-///   writes `M3 M4 M5` in one block, three functions of the master
-///   spindle's auxiliary-function group (alarm 14760).
-/// - `arrays.mpf:9…12` counts with `FOR m=…` and `FOR o=…`: the CEAD
-///   interpreter creates a variable on its first assignment; on the
-///   control a one-letter name is an address, never a variable.
-/// - `axis_index_assignment.mpf:4,6` reads `ACC[E]` of the printer the
-///   CEAD examples were written for: `E` is its extruder axis, and on the
-///   control a one-letter name other than a machine axis is an address.
-/// - `edge_cases.mpf:18` moves `ELX`, another axis of that printer, which
-///   no shipped profile has (alarm 12550 "name not defined").
-const EXPECTED_ERRORS: &[(&str, u32, &str)] = &[
-    ("peer-cead/arrays.mpf", 9, "gcodec::lower::not_a_variable"),
-    ("peer-cead/arrays.mpf", 10, "gcodec::lower::not_a_variable"),
-    ("peer-cead/arrays.mpf", 11, "gcodec::lower::not_a_variable"),
-    ("peer-cead/arrays.mpf", 12, "gcodec::lower::not_a_variable"),
-    (
-        "peer-cead/axis_index_assignment.mpf",
-        4,
-        "gcodec::lower::not_a_variable",
-    ),
-    (
-        "peer-cead/axis_index_assignment.mpf",
-        6,
-        "gcodec::lower::not_a_variable",
-    ),
-    (
-        "peer-cead/edge_cases.mpf",
-        18,
-        "gcodec::lower::undefined_variable",
-    ),
-    (
-        "peer-cead/simple.mpf",
-        2,
-        "gcodec::lower::missing_circle_data",
-    ),
-    ("peer-cead/simple.mpf", 3, "gcodec::lower::repeated_axis"),
-    (
-        "peer-cead/simple.mpf",
-        3,
-        "gcodec::lower::missing_circle_data",
-    ),
-    (
-        "peer-cead/multiple_m_codes.mpf",
-        4,
-        "gcodec::lower::m_group_conflict",
-    ),
-    (
-        "peer-cead/edge_cases.mpf",
-        40,
-        "gcodec::lower::misplaced_definition",
-    ),
-    (
-        "SinumerikLanguage/test/proc1_test.mpf",
-        18,
-        "gcodec::lower::type_mismatch",
-    ),
-];
 
 #[test]
 fn the_corpus_lowers_without_errors() {

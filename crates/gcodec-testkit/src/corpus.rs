@@ -1,7 +1,9 @@
 //! The machines and definitions the programs of the shared corpus were
 //! written for, shared by the corpus tests of lowering
 //! (`gcodec-sema/tests/corpus.rs`) and running
-//! (`gcodec-exec/tests/corpus.rs`).
+//! (`gcodec-exec/tests/corpus.rs`), and the errors they expect, which
+//! the corpus check of `gcodec check` expects too
+//! (`gcodec-cli/tests/check.rs`, `tests/corpus-check/gcodec.toml`).
 
 /// The machine a part of the corpus was written for; the default profile
 /// for everything else. `tool.mpf` selects tools by name, so its machine
@@ -114,6 +116,88 @@ pub const ASSUMED_NAMES: &[(&str, &[&str])] = &[
         ],
     ),
     ("peer-cead/", &["aa", "bb", "nn", "E_MULTIPLIER", "F_MULTI"]),
+];
+
+/// Errors the control raises too, in programs written for more lenient
+/// interpreters, found by parsing: `(file, line, code)`.
+///
+/// - `r_param.mpf:1` (a test of the CEAD interpreter) declares
+///   `DEF REAL R0`: `R0` is the R parameter's address and number, not a
+///   name, whose first two characters are letters or `_` (Fundamentals
+///   10/2004, p. 60).
+pub const EXPECTED_PARSE_ERRORS: &[(&str, u32, &str)] =
+    &[("peer-cead/r_param.mpf", 1, "gcodec::parse::invalid_name")];
+
+/// Errors the control raises too, in programs written for more lenient
+/// interpreters, found by lowering: `(file, line, code)`.
+///
+/// - `edge_cases.mpf:40` declares `DEPTH` after motion blocks; the control
+///   accepts `DEF` only before the first executable statement (alarm
+///   14500).
+/// - `proc1_test.mpf:18` writes `_X=500` for an AXIS variable `_X`; on the
+///   control that assigns a number to the variable, which has no such
+///   conversion (alarm 14096); moving the axis it names is `AX[_X]=500`,
+///   as the Siemens cycles in the same corpus write it.
+/// - `simple.mpf:2,3` (a parser test of the CEAD interpreter) programs
+///   `G2`/`G3` end points without centre or radius (the control cannot
+///   build the circle) and `X` twice in one block (alarm 12010).
+/// - `multiple_m_codes.mpf:4` (a test of the CEAD interpreter's M codes)
+///   writes `M3 M4 M5` in one block, three functions of the master
+///   spindle's auxiliary-function group (alarm 14760).
+/// - `arrays.mpf:9…12` counts with `FOR m=…` and `FOR o=…`: the CEAD
+///   interpreter creates a variable on its first assignment; on the
+///   control a one-letter name is an address, never a variable.
+/// - `axis_index_assignment.mpf:4,6` reads `ACC[E]` of the printer the
+///   CEAD examples were written for: `E` is its extruder axis, and on the
+///   control a one-letter name other than a machine axis is an address.
+/// - `edge_cases.mpf:18` moves `ELX`, another axis of that printer, which
+///   no shipped profile has (alarm 12550 "name not defined").
+pub const EXPECTED_LOWERING_ERRORS: &[(&str, u32, &str)] = &[
+    ("peer-cead/arrays.mpf", 9, "gcodec::lower::not_a_variable"),
+    ("peer-cead/arrays.mpf", 10, "gcodec::lower::not_a_variable"),
+    ("peer-cead/arrays.mpf", 11, "gcodec::lower::not_a_variable"),
+    ("peer-cead/arrays.mpf", 12, "gcodec::lower::not_a_variable"),
+    (
+        "peer-cead/axis_index_assignment.mpf",
+        4,
+        "gcodec::lower::not_a_variable",
+    ),
+    (
+        "peer-cead/axis_index_assignment.mpf",
+        6,
+        "gcodec::lower::not_a_variable",
+    ),
+    (
+        "peer-cead/edge_cases.mpf",
+        18,
+        "gcodec::lower::undefined_variable",
+    ),
+    (
+        "peer-cead/simple.mpf",
+        2,
+        "gcodec::lower::missing_circle_data",
+    ),
+    ("peer-cead/simple.mpf", 3, "gcodec::lower::repeated_axis"),
+    (
+        "peer-cead/simple.mpf",
+        3,
+        "gcodec::lower::missing_circle_data",
+    ),
+    (
+        "peer-cead/multiple_m_codes.mpf",
+        4,
+        "gcodec::lower::m_group_conflict",
+    ),
+    (
+        "peer-cead/edge_cases.mpf",
+        40,
+        "gcodec::lower::misplaced_definition",
+    ),
+    (
+        "SinumerikLanguage/test/proc1_test.mpf",
+        18,
+        "gcodec::lower::type_mismatch",
+    ),
 ];
 
 /// The definitions a program of the corpus is lowered with.

@@ -1,0 +1,302 @@
+//! `gcodec check`: a tree of part programs and definition files checked
+//! as its `gcodec.toml` says ([`gcodec_driver::check`]), the diagnostics
+//! written to stdout in one of three formats.
+
+use std::io::{IsTerminal, Read, Write};
+use std::path::{Path, PathBuf};
+
+use clap::ValueEnum;
+use gcodec_driver::check::{
+    CheckConfig, CheckReport, DiagnosticRecord, FileReport, Input, Selection, Selector, find_config,
+};
+use gcodec_source::{SourceFile, codes, escape_controls, render_diagnostics, render_kept};
+
+use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE};
+use crate::output::{Stdout, after_output, to_stderr};
+use crate::report::DiagnosticOptions;
+
+/// How the diagnostics are written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum CheckFormat {
+    /// Each diagnostic with the lines it points at, grouped per file,
+    /// then a one-line summary.
+    Full,
+    /// One line per diagnostic: `file:line:col: level[code] message`.
+    Concise,
+    /// A JSON array of objects (`docs/schema/check.schema.json`).
+    Json,
+}
+
+/// What `--deny` makes fail.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Denied {
+    /// Warnings are errors.
+    Warnings,
+}
+
+/// The options of `gcodec check`.
+#[derive(Debug, clap::Args)]
+#[command(
+    after_help = "Every code in the output is explained by `gcodec explain CODE`; \
+                        `gcodec explain --list` lists them all."
+)]
+pub struct CheckArgs {
+    /// Files and folders to check (folders walked for `.mpf`, `.spf` and
+    /// `.def` files); `-` reads standard input. Default: the current
+    /// folder.
+    pub paths: Vec<PathBuf>,
+    /// The configuration; without it, the nearest `gcodec.toml` in the
+    /// first path's folder or a folder above it.
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Report only these codes or areas (`gcodec::lower::*`), comma
+    /// separated or repeated.
+    #[arg(long, value_name = "CODES", value_delimiter = ',', value_parser = Selector::parse)]
+    pub select: Vec<Selector>,
+    /// Do not report these codes or areas, comma separated or repeated.
+    #[arg(long, value_name = "CODES", value_delimiter = ',', value_parser = Selector::parse)]
+    pub ignore: Vec<Selector>,
+    /// `--deny warnings`: warnings fail the check as errors do.
+    #[arg(long, value_enum, value_name = "WHAT")]
+    pub deny: Option<Denied>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = CheckFormat::Full)]
+    pub output_format: CheckFormat,
+    /// Instead of the diagnostics, how many there are of each code.
+    #[arg(long)]
+    pub statistics: bool,
+    /// The name of the program read from standard input (`-`): it is
+    /// shown, and the configuration's globs and the file kind go by it.
+    #[arg(long, value_name = "NAME")]
+    pub stdin_filename: Option<String>,
+    #[command(flatten)]
+    pub diagnostics: DiagnosticOptions,
+}
+
+/// `gcodec check`: exit 0 when nothing is at error level, 1 when
+/// something is, 2 on a usage, IO or configuration error.
+pub fn check(args: CheckArgs) -> u8 {
+    let paths = if args.paths.is_empty() {
+        vec![PathBuf::from(".")]
+    } else {
+        args.paths.clone()
+    };
+    let stdin_name = args
+        .stdin_filename
+        .clone()
+        .unwrap_or_else(|| "-".to_owned());
+    let config = match configuration(&args, &paths, &stdin_name) {
+        Ok(config) => config,
+        Err(code) => return code,
+    };
+    let inputs = match inputs(&paths, &stdin_name) {
+        Ok(inputs) => inputs,
+        Err(code) => return code,
+    };
+    let selection = Selection {
+        select: args.select.clone(),
+        ignore: args.ignore.clone(),
+        deny_warnings: args.deny == Some(Denied::Warnings),
+    };
+    let report = match gcodec_driver::check::check(&config, inputs, &selection) {
+        Ok(report) => report,
+        Err(error) => {
+            for problem in &error.reports {
+                report_to_stderr(problem, args.diagnostics);
+            }
+            return EXIT_USAGE;
+        }
+    };
+    let exit = if report.has_errors() {
+        EXIT_DIAGNOSTICS
+    } else {
+        EXIT_CLEAN
+    };
+    let (mut out, written) = if args.statistics {
+        let mut out = Stdout::text();
+        let written = write_statistics(&report, &mut out);
+        (out, written)
+    } else {
+        match args.output_format {
+            CheckFormat::Full => {
+                let mut out = Stdout::data();
+                let written = write_full(&report, args.diagnostics, &mut out);
+                (out, written)
+            }
+            CheckFormat::Concise => {
+                let mut out = Stdout::text();
+                let written = write_concise(&report, &mut out);
+                (out, written)
+            }
+            CheckFormat::Json => {
+                let mut out = Stdout::data();
+                let written = write_json(&report, &mut out);
+                (out, written)
+            }
+        }
+    };
+    after_output(exit, written.and_then(|()| out.flush()))
+}
+
+/// The configuration `--config` names, or the one found upward from the
+/// first path (from the standard input's name for `-`), or the default.
+fn configuration(args: &CheckArgs, paths: &[PathBuf], stdin_name: &str) -> Result<CheckConfig, u8> {
+    let found = match &args.config {
+        Some(path) => Some(path.clone()),
+        None => {
+            let first = &paths[0];
+            let start = if first.as_os_str() == "-" {
+                Path::new(stdin_name).parent().unwrap_or(Path::new("."))
+            } else {
+                first.as_path()
+            };
+            find_config(start)
+        }
+    };
+    let Some(path) = found else {
+        let here = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
+        return Ok(CheckConfig::default_in(here));
+    };
+    let file = SourceFile::read(&path).map_err(|e| {
+        let d = gcodec_source::Diagnostic::new(
+            e.code(),
+            format!("cannot read `{}`: {e}", path.display()),
+        )
+        .with_help(e.help());
+        to_stderr(&render_diagnostics(
+            &[d],
+            None,
+            args.diagnostics
+                .render_options_for(std::io::stderr().is_terminal()),
+        ));
+        EXIT_USAGE
+    })?;
+    let shown = file.clone();
+    CheckConfig::load(file).map_err(|problems| {
+        to_stderr(&render_diagnostics(
+            &problems,
+            Some(&shown),
+            args.diagnostics
+                .render_options_for(std::io::stderr().is_terminal()),
+        ));
+        EXIT_USAGE
+    })
+}
+
+/// The paths as the check's inputs, standard input read for `-`.
+fn inputs(paths: &[PathBuf], stdin_name: &str) -> Result<Vec<Input>, u8> {
+    let mut inputs = Vec::with_capacity(paths.len());
+    let mut stdin_read = false;
+    for path in paths {
+        if path.as_os_str() != "-" {
+            inputs.push(Input::Path(path.clone()));
+            continue;
+        }
+        if std::mem::replace(&mut stdin_read, true) {
+            continue;
+        }
+        let mut bytes = Vec::new();
+        if let Err(e) = std::io::stdin().lock().read_to_end(&mut bytes) {
+            let d = gcodec_source::Diagnostic::new(
+                codes::io::READ,
+                format!("cannot read standard input: {e}"),
+            );
+            to_stderr(&render_diagnostics(&[d], None, Default::default()));
+            return Err(EXIT_USAGE);
+        }
+        inputs.push(Input::Stdin {
+            name: stdin_name.to_owned(),
+            bytes,
+        });
+    }
+    Ok(inputs)
+}
+
+fn report_to_stderr(problem: &FileReport, options: DiagnosticOptions) {
+    let terminal = std::io::stderr().is_terminal();
+    to_stderr(&render_kept(
+        &problem.diagnostics,
+        problem.file.as_deref(),
+        options.render_options_for(terminal),
+    ));
+}
+
+/// miette's reports, file by file, then the summary.
+fn write_full(
+    report: &CheckReport,
+    options: DiagnosticOptions,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
+    let render = options.render_options_for(std::io::stdout().is_terminal());
+    for file in report.files.iter().filter(|f| f.diagnostics.total() > 0) {
+        let text = render_kept(&file.diagnostics, file.file.as_deref(), render);
+        // A file that could not be read has no text to name it.
+        if file.file.is_none() {
+            writeln!(out, "{}:", escape_controls(&file.name))?;
+        }
+        out.write_all(text.as_bytes())?;
+    }
+    writeln!(out, "{}", summary(report))
+}
+
+/// `checked 3 files: 1 error, 2 warnings, 0 advice (in 2 files)`.
+fn summary(report: &CheckReport) -> String {
+    let counts = report.counts();
+    let plural = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+    format!(
+        "checked {}: {}, {}, {} advice (in {})",
+        plural(counts.files as u64, "file", "files"),
+        plural(counts.errors, "error", "errors"),
+        plural(counts.warnings, "warning", "warnings"),
+        counts.advice,
+        plural(counts.files_with_findings as u64, "file", "files"),
+    )
+}
+
+/// One line per diagnostic shown; a file's diagnostics beyond those kept
+/// are counted on one line.
+fn write_concise(report: &CheckReport, out: &mut impl Write) -> std::io::Result<()> {
+    for file in &report.files {
+        for d in file.diagnostics.iter() {
+            let record = DiagnosticRecord::of(d, &file.name, file.file.as_deref());
+            let place = match (record.position.line, record.position.column) {
+                (Some(line), Some(column)) => format!("{}:{line}:{column}", record.file),
+                _ => record.file.clone(),
+            };
+            writeln!(
+                out,
+                "{place}: {}[{}] {}",
+                record.level.name(),
+                record.code,
+                record.message
+            )?;
+        }
+        let omitted = file.diagnostics.omitted().total();
+        if omitted > 0 {
+            writeln!(out, "{}: {omitted} more diagnostics not kept", file.name)?;
+        }
+    }
+    Ok(())
+}
+
+fn write_json(report: &CheckReport, out: &mut impl Write) -> std::io::Result<()> {
+    let records: Vec<DiagnosticRecord> = report
+        .files
+        .iter()
+        .flat_map(|file| {
+            file.diagnostics
+                .iter()
+                .map(|d| DiagnosticRecord::of(d, &file.name, file.file.as_deref()))
+        })
+        .collect();
+    serde_json::to_writer_pretty(&mut *out, &records)?;
+    writeln!(out)
+}
+
+/// How many of each code and level, the most frequent first.
+fn write_statistics(report: &CheckReport, out: &mut impl Write) -> std::io::Result<()> {
+    for (code, severity, n) in report.by_code() {
+        writeln!(out, "{n:>8}  {:<7}  {code}", severity.name())?;
+    }
+    writeln!(out, "{}", summary(report))
+}

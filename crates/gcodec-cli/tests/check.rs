@@ -1,0 +1,489 @@
+//! `gcodec check`: the fixture tree `tests/fixtures/check/` (a clean
+//! program, one with a lowering error, one with a warning, a definition
+//! file, a folder its `gcodec.toml` assigns the lathe profile, and files
+//! that are never checked) in each output format; exit codes; unreadable
+//! files; bad configurations; rule levels and the command line's choice
+//! of codes; the corpus checked with the configuration kept for it.
+
+mod common;
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::Stdio;
+
+use common::{
+    EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, code, command, gcodec, gcodec_in, stderr, stdout,
+};
+use serde_json::Value as Json;
+
+fn fixtures() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/fixtures/check")
+}
+
+/// A folder of this test run holding `files` (`(name, contents)`).
+fn tree(test: &str, files: &[(&str, &str)]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("gcodec-check-{test}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    for (name, contents) in files {
+        let path = dir.join(name);
+        std::fs::create_dir_all(path.parent().expect("a folder")).expect("temp dir");
+        std::fs::write(path, contents).expect("write");
+    }
+    dir
+}
+
+const CLEAN: &str = "N10 G90\nN20 G0 X10\nN30 M30\n";
+const ERROR: &str = "N10 R1 = UNDEFINED_NAME\nN20 M30\n";
+const WARNING: &str = "N10 M77\nN20 M30\n";
+
+#[test]
+fn full_output_groups_the_reports_per_file_then_sums_up() {
+    let out = gcodec_in(&fixtures(), ["check"]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS, "{}", stderr(&out));
+    assert_eq!(stderr(&out), "");
+    insta::assert_snapshot!("check_full", stdout(&out));
+}
+
+#[test]
+fn concise_output_is_one_line_per_diagnostic() {
+    let out = gcodec_in(&fixtures(), ["check", "--output-format", "concise"]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    insta::assert_snapshot!("check_concise", stdout(&out));
+}
+
+#[test]
+fn json_output_is_an_array_of_diagnostics_as_data() {
+    let out = gcodec_in(&fixtures(), ["check", "--output-format", "json"]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    let records: Json = serde_json::from_str(&stdout(&out)).expect("JSON");
+    let first = &records[0];
+    assert_eq!(first["file"], "lowering_error.mpf");
+    assert_eq!(
+        (first["line"].clone(), first["column"].clone()),
+        (3.into(), 10.into())
+    );
+    insta::assert_snapshot!("check_json", stdout(&out));
+}
+
+#[test]
+fn statistics_count_by_code() {
+    let out = gcodec_in(&fixtures(), ["check", "--statistics"]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    insta::assert_snapshot!("check_statistics", stdout(&out));
+}
+
+#[test]
+fn hidden_excluded_and_other_files_are_not_checked() {
+    let out = gcodec_in(&fixtures(), ["check", "--output-format", "json"]);
+    let text = stdout(&out);
+    assert!(
+        !text.contains("skipped.mpf") && !text.contains("notes.txt"),
+        "{text}"
+    );
+    let full = gcodec_in(&fixtures(), ["check"]);
+    assert!(
+        stdout(&full).contains("checked 5 files:"),
+        "{}",
+        stdout(&full)
+    );
+}
+
+#[test]
+fn a_clean_file_exits_0() {
+    let out = gcodec_in(&fixtures(), ["check", "clean.mpf", "MGUD.DEF"]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stdout(&out));
+    assert_eq!(
+        stdout(&out),
+        "checked 2 files: 0 errors, 0 warnings, 0 advice (in 0 files)\n"
+    );
+}
+
+#[test]
+fn the_configuration_assigns_a_folder_its_profile_and_definitions() {
+    let assigned = gcodec_in(&fixtures(), ["check", "lathe", "clean.mpf"]);
+    assert_eq!(code(&assigned), EXIT_CLEAN, "{}", stdout(&assigned));
+    // With a configuration that assigns nothing, the lathe program is
+    // checked on the built-in profile and SAFE_Z is not defined.
+    let empty = tree("no_assignment", &[("gcodec.toml", "")]);
+    let config = empty.join("gcodec.toml");
+    let out = gcodec_in(
+        &fixtures(),
+        [
+            "check".as_ref(),
+            "--config".as_ref(),
+            config.as_os_str(),
+            "lathe".as_ref(),
+            "clean.mpf".as_ref(),
+            "--output-format".as_ref(),
+            "concise".as_ref(),
+        ],
+    );
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    let text = stdout(&out);
+    assert!(
+        text.contains("lathe/shaft.mpf:3:17: error[gcodec::lower::no_transverse_axis]"),
+        "{text}"
+    );
+    assert!(
+        text.contains("clean.mpf:5:16: error[gcodec::lower::undefined_variable]"),
+        "{text}"
+    );
+}
+
+#[test]
+fn the_configuration_is_found_upward_from_the_path_checked() {
+    let out = gcodec_in(&fixtures().join("lathe"), ["check", "shaft.mpf"]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stdout(&out));
+    let out = gcodec_in(&fixtures().join("lathe"), ["check"]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stdout(&out));
+}
+
+#[test]
+fn an_unreadable_file_is_a_diagnostic_and_the_check_goes_on() {
+    let dir = tree("unreadable", &[("a.mpf", CLEAN), ("c.mpf", ERROR)]);
+    std::os::unix::fs::symlink(dir.join("nowhere"), dir.join("b.mpf")).expect("symlink");
+    let out = gcodec_in(&dir, ["check", "--output-format", "concise"]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    let text = stdout(&out);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 2, "{text}");
+    assert!(
+        lines[0].starts_with("b.mpf: error[gcodec::io::read] cannot read `b.mpf`: "),
+        "{text}"
+    );
+    assert!(
+        lines[1].starts_with("c.mpf:1:10: error[gcodec::lower::undefined_variable]"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_path_that_does_not_exist_is_exit_2() {
+    let out = gcodec_in(&fixtures(), ["check", "no_such_folder"]);
+    assert_eq!(code(&out), EXIT_USAGE);
+    assert!(
+        stderr(&out).contains("gcodec::io::read"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn a_bad_configuration_is_a_diagnostic_into_it_and_exit_2() {
+    let cases = [
+        (
+            "[rulez]\n",
+            "gcodec::config::schema",
+            "unknown field `rulez`",
+        ),
+        (
+            "include = [\n",
+            "gcodec::config::syntax",
+            "invalid check configuration",
+        ),
+        (
+            "[rules]\n\"gcodec::lower::unknown_m_functon\" = \"deny\"\n",
+            "gcodec::config::unknown_code",
+            "did you mean `gcodec::lower::unknown_m_function`?",
+        ),
+        (
+            "[rules]\n\"gcodec::lower::*\" = \"loud\"\n",
+            "gcodec::config::schema",
+            "unknown variant `loud`",
+        ),
+        (
+            "exclude = [\"a/[b\"]\n",
+            "gcodec::config::bad_glob",
+            "is not a glob",
+        ),
+        (
+            "[[files]]\nglob = \"*.mpf\"\nprofile = \"missing.toml\"\n",
+            "gcodec::config::unusable_file",
+            "missing.toml` cannot be read",
+        ),
+    ];
+    for (i, (config, expected_code, message)) in cases.iter().enumerate() {
+        let dir = tree(
+            &format!("bad_config_{i}"),
+            &[("gcodec.toml", config), ("a.mpf", CLEAN)],
+        );
+        let out = gcodec_in(&dir, ["check"]);
+        let text = stderr(&out);
+        assert_eq!(code(&out), EXIT_USAGE, "{config}: {text}");
+        assert!(
+            text.contains(expected_code) && text.contains(message),
+            "{config}: {text}"
+        );
+        assert!(
+            text.contains("gcodec.toml"),
+            "{config}: the report names the file: {text}"
+        );
+        assert_eq!(stdout(&out), "", "{config}");
+    }
+}
+
+#[test]
+fn a_profile_with_errors_is_reported_against_itself_and_the_configuration() {
+    let dir = tree(
+        "bad_profile",
+        &[
+            (
+                "gcodec.toml",
+                "[[files]]\nglob = \"*.mpf\"\nprofile = \"bad.toml\"\n",
+            ),
+            ("bad.toml", "[machine]\nnmae = \"x\"\n"),
+            ("a.mpf", CLEAN),
+        ],
+    );
+    let out = gcodec_in(&dir, ["check"]);
+    assert_eq!(code(&out), EXIT_USAGE);
+    let text = stderr(&out);
+    assert!(text.contains("gcodec::config::unusable_file"), "{text}");
+    assert!(
+        text.contains("gcodec::profile::schema") && text.contains("bad.toml"),
+        "{text}"
+    );
+}
+
+#[test]
+fn rule_levels_and_per_file_ignores_of_the_configuration_apply() {
+    let config = "[rules]\n\"gcodec::lower::unknown_m_function\" = \"deny\"\n\
+                  \"gcodec::lower::*\" = \"allow\"\n\n\
+                  [[files]]\nglob = \"legacy/**\"\nignore = [\"lower::unknown_m_function\"]\n";
+    let dir = tree(
+        "rules",
+        &[
+            ("gcodec.toml", config),
+            ("error.mpf", ERROR),
+            ("warning.mpf", WARNING),
+            ("legacy/warning.mpf", WARNING),
+        ],
+    );
+    let out = gcodec_in(&dir, ["check", "--output-format", "concise"]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    assert_eq!(
+        stdout(&out),
+        "warning.mpf:1:5: error[gcodec::lower::unknown_m_function] M77 is not a predefined M function\n"
+    );
+}
+
+#[test]
+fn select_ignore_and_deny_warnings_choose_the_diagnostics() {
+    let concise = |args: &[&str]| {
+        let mut all = vec!["check", "--output-format", "concise"];
+        all.extend_from_slice(args);
+        let out = gcodec_in(&fixtures(), all);
+        (code(&out), stdout(&out))
+    };
+    let (exit, text) = concise(&["--select", "lower::unknown_m_function"]);
+    assert_eq!(exit, EXIT_CLEAN);
+    assert_eq!(text.lines().count(), 1, "{text}");
+    assert!(text.starts_with("warning.mpf:3:5: warning["), "{text}");
+    let (exit, text) = concise(&["--ignore", "gcodec::lower::*"]);
+    assert_eq!((exit, text.as_str()), (EXIT_CLEAN, ""));
+    let (exit, text) = concise(&["warning.mpf", "--deny", "warnings"]);
+    assert_eq!(exit, EXIT_DIAGNOSTICS);
+    assert!(
+        text.starts_with("warning.mpf:3:5: error[gcodec::lower::unknown_m_function]"),
+        "{text}"
+    );
+    let (exit, text) = concise(&[
+        "--select",
+        "gcodec::lower::undefined_variable,gcodec::lower::unknown_m_function",
+        "--ignore",
+        "lower::undefined_variable",
+    ]);
+    assert_eq!(exit, EXIT_CLEAN);
+    assert_eq!(text.lines().count(), 1, "{text}");
+}
+
+#[test]
+fn a_code_the_registry_lacks_is_a_usage_error_with_the_code_meant() {
+    let out = gcodec_in(
+        &fixtures(),
+        ["check", "--select", "lower::unknown_m_functon"],
+    );
+    assert_eq!(code(&out), EXIT_USAGE);
+    let text = stderr(&out);
+    assert!(
+        text.contains("did you mean `gcodec::lower::unknown_m_function`?"),
+        "{text}"
+    );
+}
+
+#[test]
+fn standard_input_is_checked_under_its_stdin_filename() {
+    let shaft = std::fs::read(fixtures().join("lathe/shaft.mpf")).expect("fixture");
+    let run = |name: &str| {
+        let mut child = command([
+            "check",
+            "-",
+            "--stdin-filename",
+            name,
+            "--output-format",
+            "concise",
+        ])
+        .current_dir(fixtures())
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("gcodec runs");
+        child
+            .stdin
+            .take()
+            .expect("stdin")
+            .write_all(&shaft)
+            .expect("write");
+        child.wait_with_output().expect("gcodec ends")
+    };
+    let assigned = run("lathe/piped.mpf");
+    assert_eq!(code(&assigned), EXIT_CLEAN, "{}", stdout(&assigned));
+    let elsewhere = run("piped.mpf");
+    assert_eq!(code(&elsewhere), EXIT_DIAGNOSTICS);
+    assert!(
+        stdout(&elsewhere).starts_with("piped.mpf:3:17: error[gcodec::lower::no_transverse_axis]")
+    );
+}
+
+#[test]
+fn check_help_says_explain_explains_every_code() {
+    let out = gcodec(["check", "--help"]);
+    assert_eq!(code(&out), EXIT_CLEAN);
+    assert!(
+        stdout(&out).contains("`gcodec explain CODE`"),
+        "{}",
+        stdout(&out)
+    );
+}
+
+const SCHEMA_PATH: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../docs/schema/check.schema.json"
+);
+
+/// Fails when `docs/schema/check.schema.json` is stale. To regenerate:
+/// `GCODEC_UPDATE_SCHEMA=1 cargo test -p gcodec-cli --test check`.
+#[test]
+fn the_checked_in_schema_is_current() {
+    let generated = gcodec_driver::check::check_json_schema();
+    if std::env::var_os("GCODEC_UPDATE_SCHEMA").is_some() {
+        std::fs::write(SCHEMA_PATH, &generated).expect("write the schema");
+    }
+    let checked_in = std::fs::read_to_string(SCHEMA_PATH).unwrap_or_default();
+    assert!(
+        checked_in == generated,
+        "docs/schema/check.schema.json is stale: run \
+         `GCODEC_UPDATE_SCHEMA=1 cargo test -p gcodec-cli --test check` and commit it"
+    );
+}
+
+/// The JSON output has the fields the schema requires, of its types.
+#[test]
+fn the_json_output_fits_the_schema() {
+    let schema: Json =
+        serde_json::from_str(&gcodec_driver::check::check_json_schema()).expect("JSON");
+    let definition = &schema["$defs"]["DiagnosticRecord"];
+    let required = definition["required"].as_array().expect("required fields");
+    let out = gcodec_in(&fixtures(), ["check", "--output-format", "json"]);
+    let records: Json = serde_json::from_str(&stdout(&out)).expect("JSON");
+    for record in records.as_array().expect("an array") {
+        for field in required {
+            let field = field.as_str().expect("a name");
+            assert!(record.get(field).is_some(), "{field} missing in {record}");
+        }
+        let object = record.as_object().expect("an object");
+        for key in object.keys() {
+            assert!(
+                definition["properties"].get(key).is_some(),
+                "{key} is not in the schema"
+            );
+        }
+    }
+}
+
+/// The acceptance of `gcodec check`: the shared corpus checked with the
+/// configuration kept for it (`tests/corpus-check/gcodec.toml`, which
+/// assigns each folder its machine's profile and definition files as the
+/// corpus tests do) reports no error but the corpus's expected ones, and
+/// each of those.
+#[test]
+fn the_corpus_checks_with_only_its_expected_errors() {
+    let Some(corpus) = gcodec_testkit::corpus_dir() else {
+        return;
+    };
+    let corpus = std::path::absolute(corpus).expect("a path");
+    let repo = std::path::absolute(gcodec_testkit::repo()).expect("a path");
+    // The configuration is written for the corpus beside the checkout
+    // (`../shared/corpus`, as CI has it); that layout is made of links in
+    // a folder of this run, for a checkout that is elsewhere.
+    let layout = tree("corpus_layout", &[]);
+    let checkout = layout.join("gcodec");
+    let kept = checkout.join("tests/corpus-check");
+    std::fs::create_dir_all(layout.join("shared")).expect("temp dir");
+    std::fs::create_dir_all(&kept).expect("temp dir");
+    let link = |from: &Path, to: &Path| std::os::unix::fs::symlink(from, to).expect("symlink");
+    link(&corpus, &layout.join("shared/corpus"));
+    link(&repo.join("profiles"), &checkout.join("profiles"));
+    for entry in std::fs::read_dir(repo.join("tests/corpus-check")).expect("kept folder") {
+        let entry = entry.expect("an entry");
+        link(&entry.path(), &kept.join(entry.file_name()));
+    }
+    let out = gcodec_in(
+        &checkout,
+        [
+            "check",
+            "--config",
+            "tests/corpus-check/gcodec.toml",
+            "../shared/corpus",
+            "--output-format",
+            "json",
+        ],
+    );
+    assert!(
+        [EXIT_CLEAN, EXIT_DIAGNOSTICS].contains(&code(&out)),
+        "{}",
+        stderr(&out)
+    );
+    assert_eq!(
+        stderr(&out),
+        "",
+        "no panic, no problem with the configuration"
+    );
+    let records: Json = serde_json::from_str(&stdout(&out)).expect("JSON");
+    let expected: Vec<&(&str, u32, &str)> = gcodec_testkit::corpus::EXPECTED_PARSE_ERRORS
+        .iter()
+        .chain(gcodec_testkit::corpus::EXPECTED_LOWERING_ERRORS)
+        .collect();
+    let mut seen = vec![false; expected.len()];
+    let mut unexpected = Vec::new();
+    let records = records.as_array().expect("an array");
+    assert!(
+        records.len() >= expected.len(),
+        "the corpus was checked: {records:?}"
+    );
+    for record in records {
+        if record["level"] != "error" {
+            continue;
+        }
+        let (file, line, code) = (
+            record["file"].as_str().unwrap_or(""),
+            record["line"].as_u64().unwrap_or(0),
+            record["code"].as_str().unwrap_or(""),
+        );
+        match expected
+            .iter()
+            .position(|(part, l, c)| file.contains(part) && u64::from(*l) == line && *c == code)
+        {
+            Some(i) => seen[i] = true,
+            None => unexpected.push(format!("{file}:{line}: {code} {}", record["message"])),
+        }
+    }
+    for (seen, (file, line, code)) in seen.iter().zip(&expected) {
+        if !seen {
+            unexpected.push(format!("{file}:{line}: expected {code}, not reported"));
+        }
+    }
+    assert!(unexpected.is_empty(), "{}", unexpected.join("\n"));
+}
