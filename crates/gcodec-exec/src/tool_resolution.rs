@@ -31,6 +31,15 @@ pub struct PendingTool {
     pub substituted: bool,
 }
 
+/// A caller's tool selection, put aside while a called program runs with
+/// `pending_selection_scope = "program_level"`.
+#[derive(Clone, Debug)]
+pub struct CallerSelection {
+    pub pending: Option<PendingTool>,
+    /// The number of the last tool the caller programmed (`$P_TOOLP`).
+    pub programmed: u32,
+}
+
 /// A tool selection as the `tool_select` event names it: the kind of
 /// selector and its value (a T number, a magazine location or a name; a
 /// computed selection already evaluated).

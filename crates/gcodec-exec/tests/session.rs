@@ -457,3 +457,185 @@ fn a_tool_change_answered_late_takes_effect_as_the_machine_says() {
     );
     assert_eq!(messages(&sink.events), vec!["T=1", "T=1"]);
 }
+
+/// A machine that answers each call as a script says: at once, later, or
+/// with an error.
+struct ScriptedMachine {
+    answers: Vec<u8>,
+    at: usize,
+    tokens: u64,
+}
+
+impl ScriptedMachine {
+    /// 0: ready, 1: pending, 2: error; cycling through the script.
+    fn next<T>(&mut self, ready: T) -> Answer<T> {
+        let answer = self
+            .answers
+            .get(self.at % self.answers.len().max(1))
+            .copied();
+        self.at += 1;
+        match answer.unwrap_or(0) {
+            1 => {
+                self.tokens += 1;
+                Answer::Pending(PendingToken(self.tokens))
+            }
+            2 => Answer::Error(MachineError::new("scripted")),
+            _ => Answer::Ready(ready),
+        }
+    }
+}
+
+impl Machine for ScriptedMachine {
+    fn prepare_tool(
+        &mut self,
+        _: &gcodec_exec::machine::ToolRequest<'_>,
+        _: &mut MachineEvents,
+    ) -> Answer<()> {
+        self.next(())
+    }
+
+    fn change_tool(
+        &mut self,
+        _: &gcodec_exec::machine::ToolRequest<'_>,
+        _: &mut MachineEvents,
+    ) -> Answer<gcodec_exec::machine::ChangeResult> {
+        self.next(gcodec_exec::machine::ChangeResult::COMMITTED)
+    }
+
+    fn auxiliary_function(&mut self, _: &AuxiliaryFunction, _: &mut MachineEvents) -> Answer<()> {
+        self.next(())
+    }
+
+    fn wait(&mut self, _: &Wait, _: &mut MachineEvents) -> Answer<()> {
+        self.next(())
+    }
+
+    fn system_variable(&mut self, _: &str, _: &[RtValue]) -> Answer<Option<RtValue>> {
+        self.next(Some(RtValue::Int(3)))
+    }
+}
+
+/// What the application does at a pending action.
+#[derive(Clone, Copy, Debug)]
+enum Reply {
+    Answer,
+    Fail,
+    WrongToken,
+    WrongOutcome,
+    Cancel,
+}
+
+mod stepped {
+    use super::*;
+    use proptest::prelude::*;
+
+    const BLOCKS: &[&str] = &[
+        "T1",
+        "M6",
+        "T2 M6",
+        "M3 S100",
+        "G4 F0.5",
+        "H2",
+        "R1=$A_DBB[1]+R1",
+        "G0 X1",
+        "M100",
+        "D1",
+        "MSG(\"x\")",
+    ];
+
+    fn reply() -> impl Strategy<Value = Reply> {
+        prop_oneof![
+            6 => Just(Reply::Answer),
+            1 => Just(Reply::Fail),
+            1 => Just(Reply::WrongToken),
+            1 => Just(Reply::WrongOutcome),
+            1 => Just(Reply::Cancel),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+        /// Whatever the machine answers and the application replies, a
+        /// stepped run never panics, ends within its steps with exactly
+        /// one `program_end` as its last event, and stays ended.
+        #[test]
+        fn a_stepped_run_always_ends_once(
+            blocks in prop::collection::vec(0..BLOCKS.len(), 1..12),
+            answers in prop::collection::vec(0u8..3, 1..6),
+            replies in prop::collection::vec(reply(), 1..8),
+        ) {
+            let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
+            let mut text: String = blocks.iter().map(|b| format!("{}\n", BLOCKS[*b])).collect();
+            text.push_str("M30\n");
+            let main = main_program(&profile, &text);
+            let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
+            let mut sink = VecSink::new();
+            let machine = ScriptedMachine { answers, at: 0, tokens: 0 };
+            let options = RunOptions::for_profile(&profile);
+            let channel = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
+                .with_machine(machine);
+            let mut session = Session::new(channel, main);
+            let mut replies = replies.into_iter().cycle();
+            let mut ended = false;
+            for _ in 0..200 {
+                match session.step() {
+                    Step::Events => {}
+                    Step::Pending(pending) => {
+                        let outcome = match pending.action {
+                            MachineAction::ChangeTool { .. } => Outcome::ToolChanged(
+                                gcodec_exec::machine::ChangeResult::COMMITTED,
+                            ),
+                            MachineAction::SystemVariable { .. } => {
+                                Outcome::Value(Some(RtValue::Int(1)))
+                            }
+                            _ => Outcome::Done,
+                        };
+                        match replies.next().unwrap_or(Reply::Answer) {
+                            Reply::Answer => session.resume(pending.token, outcome).expect("fits"),
+                            Reply::Fail => session
+                                .resume(pending.token, Outcome::Failed(MachineError::new("no")))
+                                .expect("fits"),
+                            // A refused answer leaves the action pending:
+                            // the right one still goes through.
+                            Reply::WrongToken => {
+                                let refused = session.resume(PendingToken(u64::MAX), outcome.clone());
+                                prop_assert!(refused.is_err());
+                                session.resume(pending.token, outcome).expect("fits");
+                            }
+                            Reply::WrongOutcome => {
+                                let wrong = match pending.action {
+                                    MachineAction::SystemVariable { .. } => Outcome::Done,
+                                    _ => Outcome::Value(None),
+                                };
+                                prop_assert!(session.resume(pending.token, wrong).is_err());
+                                session.resume(pending.token, outcome).expect("fits");
+                            }
+                            Reply::Cancel => session.cancel(),
+                        }
+                    }
+                    Step::Ended(outcome) => {
+                        prop_assert!(outcome.is_ok());
+                        ended = true;
+                        break;
+                    }
+                }
+            }
+            prop_assert!(ended, "the run ended");
+            prop_assert!(matches!(session.step(), Step::Ended(Ok(_))));
+            session.cancel();
+            prop_assert!(matches!(session.step(), Step::Ended(Ok(_))));
+            drop(session);
+            let ends = sink
+                .events
+                .iter()
+                .filter(|e| matches!(e.kind, EventKind::ProgramEnd(_)))
+                .count();
+            prop_assert_eq!(ends, 1);
+            prop_assert!(matches!(
+                sink.events.last().map(|e| &e.kind),
+                Some(EventKind::ProgramEnd(_))
+            ));
+        }
+    }
+}

@@ -22,13 +22,13 @@ fn machine(tool_change: &str) -> Profile {
 }
 
 /// Executor: direct-change flow. `T` changes at once (`direct_t_word`),
-/// nothing stays pending.
+/// nothing stays pending; `$P_TOOLP` is the last programmed T.
 #[test]
 fn executor_direct_change_flow() {
     let program = format!(
         "T1\n{}{}T2\n{}M30\n",
         expect("$P_TOOLNO", 1.0),
-        expect("$P_TOOLP", 0.0),
+        expect("$P_TOOLP", 1.0),
         expect("$P_TOOLNO", 2.0)
     );
     let events = run_tools(
@@ -66,7 +66,8 @@ fn executor_direct_change_flow() {
 }
 
 /// Executor: preselect + M6 flow. `T` waits (`$P_TOOLP`), the change M
-/// makes it active (`pending_then_m6`).
+/// makes it active (`pending_then_m6`); `$P_TOOLP` stays the last
+/// programmed T.
 #[test]
 fn executor_preselect_then_m6_flow() {
     let program = format!(
@@ -74,7 +75,7 @@ fn executor_preselect_then_m6_flow() {
         expect("$P_TOOLP", 1.0),
         expect("$P_TOOLNO", 0.0),
         expect("$P_TOOLNO", 1.0),
-        expect("$P_TOOLP", 0.0)
+        expect("$P_TOOLP", 1.0)
     );
     let events = run_tools(&machine(""), &program, &[], None);
     assert_clean(&events, "deferred");

@@ -202,11 +202,11 @@ fn run_with_sub(scope: &str, main: &str, sub: &str) -> Vec<gcodec_exec::event::E
 /// A selection before a call and the change in the subprogram: with the
 /// channel scope the subprogram changes to it; per program level the
 /// subprogram has none (its change keeps the tool) and the caller's comes
-/// back at the return.
+/// back at the return. `$P_TOOLP` is the last programmed T either way.
 #[test]
 fn a_selection_before_a_call_is_changed_in_it_per_scope() {
     for (scope, sub_tool, pending_after, new_tools) in [
-        ("channel", 1.0, 0.0, vec![Some("T1"), Some("T1")]),
+        ("channel", 1.0, 1.0, vec![Some("T1"), Some("T1")]),
         ("program_level", 0.0, 1.0, vec![None, Some("T1")]),
     ] {
         let main = format!("T1\nSUB\n{}M6\nM30\n", expect("$P_TOOLP", pending_after));

@@ -21,7 +21,7 @@ use crate::event::{
 };
 use crate::loader::LoadRequest;
 use crate::program::{Program, written_label};
-use crate::tool_resolution::PendingTool;
+use crate::tool_resolution::CallerSelection;
 use crate::value::{RtValue, RunError};
 use crate::vars::Scope;
 
@@ -47,7 +47,7 @@ pub(super) struct ActiveCall {
     origin: EventSource,
     /// The caller's pending tool selection, put aside while the call runs
     /// (`pending_selection_scope = "program_level"`).
-    caller_pending: Option<PendingTool>,
+    caller_pending: Option<CallerSelection>,
 }
 
 impl ActiveCall {

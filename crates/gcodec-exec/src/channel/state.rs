@@ -78,6 +78,9 @@ pub struct MachineState {
     pub active_tool: Option<ToolRef>,
     /// A `T` selection waiting for the change (the tool-change design).
     pub pending: Option<PendingTool>,
+    /// The number of the last tool programmed (`$P_TOOLP`; 0 for none or
+    /// `T0`): it stays after the change.
+    pub programmed_tool: u32,
     /// The active cutting edge (D); 0: none.
     pub edge: u32,
     /// The active edge's length, mm.
@@ -186,6 +189,7 @@ impl MachineState {
             suppression: None,
             active_tool: None,
             pending: None,
+            programmed_tool: 0,
             edge: 0,
             tool_length: 0.0,
             tool_data: ToolData::new(&profile),
@@ -463,12 +467,7 @@ impl MachineState {
                     .as_ref()
                     .map_or(0.0, |t| f64::from(t.number)),
             )),
-            (SysVarId::P_TOOLP, []) => Ok(crate::eval::number(
-                self.pending
-                    .as_ref()
-                    .and_then(|p| p.tool.as_ref())
-                    .map_or(0.0, |t| f64::from(t.number)),
-            )),
+            (SysVarId::P_TOOLP, []) => Ok(crate::eval::number(f64::from(self.programmed_tool))),
             (SysVarId::P_TOOL, []) => Ok(crate::eval::number(f64::from(self.edge))),
             (SysVarId::P_F, []) => Ok(RtValue::Real(self.feed)),
             (SysVarId::P_MC, []) => Ok(RtValue::Bool(self.modal_call.is_some())),

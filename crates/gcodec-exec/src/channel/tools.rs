@@ -15,7 +15,7 @@ use crate::event::{EventKind, SelectionSource, ToolChangeEvent, ToolSelectEvent}
 use crate::machine::{Answer, ChangeResult, MachineAction, ToolRequest};
 use crate::program::Program;
 use crate::tool_resolution::{
-    PendingTool, ResolutionContext, ToolRef, ToolResolution, ToolSelector,
+    CallerSelection, PendingTool, ResolutionContext, ToolRef, ToolResolution, ToolSelector,
 };
 use crate::value::{RtValue, RunError};
 
@@ -77,6 +77,7 @@ impl Channel<'_> {
             .machine
             .prepare_tool(&request, &mut self.machine_events);
         let tool = request.tool.map(str::to_owned);
+        self.state.programmed_tool = request.number;
         self.state.pending = Some(pending);
         let action = || MachineAction::PrepareTool { tool };
         self.machine_done(program, pc, instruction, answer, action)
@@ -159,22 +160,25 @@ impl Channel<'_> {
     }
 
     /// A program level opens: with `pending_selection_scope =
-    /// "program_level"` it starts with no pending selection, and the
-    /// caller's is put aside (returned) until the level closes.
-    pub(super) fn enter_pending_scope(&mut self) -> Option<PendingTool> {
+    /// "program_level"` it starts with no pending selection and no
+    /// programmed tool, and the caller's are put aside (returned) until
+    /// the level closes.
+    pub(super) fn enter_pending_scope(&mut self) -> Option<CallerSelection> {
         match self.state.profile.tool_change.pending_selection_scope {
             PendingSelectionScope::Channel => None,
-            PendingSelectionScope::ProgramLevel => self.state.pending.take(),
+            PendingSelectionScope::ProgramLevel => Some(CallerSelection {
+                pending: self.state.pending.take(),
+                programmed: std::mem::take(&mut self.state.programmed_tool),
+            }),
         }
     }
 
     /// A program level closes: with `"program_level"` its own selection is
     /// dropped and the caller's (`caller`) comes back.
-    pub(super) fn leave_pending_scope(&mut self, caller: Option<PendingTool>) {
-        if self.state.profile.tool_change.pending_selection_scope
-            == PendingSelectionScope::ProgramLevel
-        {
-            self.state.pending = caller;
+    pub(super) fn leave_pending_scope(&mut self, caller: Option<CallerSelection>) {
+        if let Some(caller) = caller {
+            self.state.pending = caller.pending;
+            self.state.programmed_tool = caller.programmed;
         }
     }
 
