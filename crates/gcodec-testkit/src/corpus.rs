@@ -5,6 +5,8 @@
 //! the corpus check of `gcodec check` expects too
 //! (`gcodec-cli/tests/check.rs`, `tests/corpus-check/gcodec.toml`).
 
+use gcodec_source::{Code, codes};
+
 /// The machine a part of the corpus was written for; the default profile
 /// for everything else. `tool.mpf` selects tools by name, so its machine
 /// has tool management; its tool table is unknown, so the shipped table is
@@ -125,8 +127,8 @@ pub const ASSUMED_NAMES: &[(&str, &[&str])] = &[
 ///   `DEF REAL R0`: `R0` is the R parameter's address and number, not a
 ///   name, whose first two characters are letters or `_` (Fundamentals
 ///   10/2004, p. 60).
-pub const EXPECTED_PARSE_ERRORS: &[(&str, u32, &str)] =
-    &[("peer-cead/r_param.mpf", 1, "gcodec::parse::invalid_name")];
+pub const EXPECTED_PARSE_ERRORS: &[(&str, u32, &Code)] =
+    &[("peer-cead/r_param.mpf", 1, codes::parse::INVALID_NAME)];
 
 /// Errors the control raises too, in programs written for more lenient
 /// interpreters, found by lowering: `(file, line, code)`.
@@ -152,51 +154,43 @@ pub const EXPECTED_PARSE_ERRORS: &[(&str, u32, &str)] =
 ///   control a one-letter name other than a machine axis is an address.
 /// - `edge_cases.mpf:18` moves `ELX`, another axis of that printer, which
 ///   no shipped profile has (alarm 12550 "name not defined").
-pub const EXPECTED_LOWERING_ERRORS: &[(&str, u32, &str)] = &[
-    ("peer-cead/arrays.mpf", 9, "gcodec::lower::not_a_variable"),
-    ("peer-cead/arrays.mpf", 10, "gcodec::lower::not_a_variable"),
-    ("peer-cead/arrays.mpf", 11, "gcodec::lower::not_a_variable"),
-    ("peer-cead/arrays.mpf", 12, "gcodec::lower::not_a_variable"),
+pub const EXPECTED_LOWERING_ERRORS: &[(&str, u32, &Code)] = &[
+    ("peer-cead/arrays.mpf", 9, codes::lower::NOT_A_VARIABLE),
+    ("peer-cead/arrays.mpf", 10, codes::lower::NOT_A_VARIABLE),
+    ("peer-cead/arrays.mpf", 11, codes::lower::NOT_A_VARIABLE),
+    ("peer-cead/arrays.mpf", 12, codes::lower::NOT_A_VARIABLE),
     (
         "peer-cead/axis_index_assignment.mpf",
         4,
-        "gcodec::lower::not_a_variable",
+        codes::lower::NOT_A_VARIABLE,
     ),
     (
         "peer-cead/axis_index_assignment.mpf",
         6,
-        "gcodec::lower::not_a_variable",
+        codes::lower::NOT_A_VARIABLE,
     ),
     (
         "peer-cead/edge_cases.mpf",
         18,
-        "gcodec::lower::undefined_variable",
+        codes::lower::UNDEFINED_VARIABLE,
     ),
-    (
-        "peer-cead/simple.mpf",
-        2,
-        "gcodec::lower::missing_circle_data",
-    ),
-    ("peer-cead/simple.mpf", 3, "gcodec::lower::repeated_axis"),
-    (
-        "peer-cead/simple.mpf",
-        3,
-        "gcodec::lower::missing_circle_data",
-    ),
+    ("peer-cead/simple.mpf", 2, codes::lower::MISSING_CIRCLE_DATA),
+    ("peer-cead/simple.mpf", 3, codes::lower::REPEATED_AXIS),
+    ("peer-cead/simple.mpf", 3, codes::lower::MISSING_CIRCLE_DATA),
     (
         "peer-cead/multiple_m_codes.mpf",
         4,
-        "gcodec::lower::m_group_conflict",
+        codes::lower::M_GROUP_CONFLICT,
     ),
     (
         "peer-cead/edge_cases.mpf",
         40,
-        "gcodec::lower::misplaced_definition",
+        codes::lower::MISPLACED_DEFINITION,
     ),
     (
         "SinumerikLanguage/test/proc1_test.mpf",
         18,
-        "gcodec::lower::type_mismatch",
+        codes::lower::TYPE_MISMATCH,
     ),
 ];
 

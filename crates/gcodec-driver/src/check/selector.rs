@@ -16,8 +16,12 @@ impl Selector {
     /// with the code or area meant where one is close.
     pub fn parse(text: &str) -> Result<Self, String> {
         let trimmed = text.trim().to_ascii_lowercase();
-        if let Some(area) = trimmed.strip_suffix("::*") {
-            let area = area.strip_prefix("gcodec::").unwrap_or(area);
+        if let Some(written) = trimmed.strip_suffix("::*") {
+            let parts: Vec<&str> = written.split("::").collect();
+            let area = match parts[..] {
+                [area] | ["gcodec", area] => area,
+                _ => written,
+            };
             let names = codes::areas().iter().map(|a| a.name);
             if let Some(found) = codes::areas().iter().find(|a| a.name == area) {
                 return Ok(Self::Area(found.name));
@@ -82,13 +86,14 @@ mod tests {
             Ok(Selector::Area("lower"))
         );
         assert_eq!(Selector::parse("Lower::*"), Ok(Selector::Area("lower")));
+        assert!(Selector::parse("x::lower::*").is_err());
         assert!(Selector::Area("lower").matches(code));
         assert!(!Selector::Area("parse").matches(code));
     }
 
     #[test]
     fn a_name_of_nothing_says_what_was_meant() {
-        let error = Selector::parse("gcodec::lower::not_lowerd").expect_err("no such code");
+        let error = Selector::parse("lower::not_lowerd").expect_err("no such code");
         assert!(
             error.contains("did you mean `gcodec::lower::not_lowered`"),
             "{error}"
