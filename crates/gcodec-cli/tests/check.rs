@@ -358,24 +358,13 @@ fn check_help_says_explain_explains_every_code() {
     );
 }
 
-const SCHEMA_PATH: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../docs/schema/check.schema.json"
-);
-
-/// Fails when `docs/schema/check.schema.json` is stale. To regenerate:
-/// `GCODEC_UPDATE_SCHEMA=1 cargo test -p gcodec-cli --test check`.
+/// Fails when `docs/schema/check.schema.json` is stale.
 #[test]
 fn the_checked_in_schema_is_current() {
-    let generated = gcodec_driver::check::check_json_schema();
-    if std::env::var_os("GCODEC_UPDATE_SCHEMA").is_some() {
-        std::fs::write(SCHEMA_PATH, &generated).expect("write the schema");
-    }
-    let checked_in = std::fs::read_to_string(SCHEMA_PATH).unwrap_or_default();
-    assert!(
-        checked_in == generated,
-        "docs/schema/check.schema.json is stale: run \
-         `GCODEC_UPDATE_SCHEMA=1 cargo test -p gcodec-cli --test check` and commit it"
+    gcodec_testkit::assert_schema_current(
+        "check.schema.json",
+        &gcodec_driver::check::check_json_schema(),
+        "cargo test -p gcodec-cli --test check",
     );
 }
 

@@ -11,24 +11,13 @@ use gcodec_lang::WorkOffsetCode;
 use gcodec_source::{Severity, codes};
 use serde_json::{Value as Json, json};
 
-const SCHEMA_PATH: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../docs/schema/events.schema.json"
-);
-
-/// Fails when `docs/schema/events.schema.json` is stale. To regenerate:
-/// `GCODEC_UPDATE_SCHEMA=1 cargo test -p gcodec-exec --test events`.
+/// Fails when `docs/schema/events.schema.json` is stale.
 #[test]
 fn the_checked_in_schema_is_current() {
-    let generated = events_json_schema();
-    if std::env::var_os("GCODEC_UPDATE_SCHEMA").is_some() {
-        std::fs::write(SCHEMA_PATH, &generated).expect("write the schema");
-    }
-    let checked_in = std::fs::read_to_string(SCHEMA_PATH).unwrap_or_default();
-    assert!(
-        checked_in == generated,
-        "docs/schema/events.schema.json is stale: run \
-         `GCODEC_UPDATE_SCHEMA=1 cargo test -p gcodec-exec --test events` and commit it"
+    gcodec_testkit::assert_schema_current(
+        "events.schema.json",
+        &events_json_schema(),
+        "cargo test -p gcodec-exec --test events",
     );
 }
 

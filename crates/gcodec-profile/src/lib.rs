@@ -21,6 +21,7 @@ mod reset;
 mod scenario;
 mod schema;
 pub mod system_variables;
+mod toml_file;
 mod validate;
 
 pub use group8::{group8_index, group8_range};
@@ -28,8 +29,9 @@ pub use m_classes::m_class;
 pub use reset::reset_defaults;
 pub use scenario::{InjectAction, InjectAt, Injection, Scenario, load_scenario};
 pub use schema::*;
+pub use toml_file::{TomlKind, read_toml};
 
-use gcodec_source::{Code, Diagnostic, Span, codes};
+use gcodec_source::{Diagnostic, Span, codes};
 
 /// The text of the built-in profile.
 pub const BUILTIN_TOML: &str = include_str!("../../../profiles/default.toml");
@@ -40,12 +42,7 @@ pub const BUILTIN_NAME: &str = "<built-in profiles/default.toml>";
 /// Parses and checks a profile. On error, every diagnostic found, with
 /// spans into `text`.
 pub fn load(text: &str) -> Result<Profile, Vec<Diagnostic>> {
-    // Syntax first: a TOML syntax error makes schema errors meaningless.
-    if let Err(e) = text.parse::<toml::Table>() {
-        return Err(vec![toml_diagnostic(codes::profile::SYNTAX, &e)]);
-    }
-    let profile: Profile =
-        toml::from_str(text).map_err(|e| vec![toml_diagnostic(codes::profile::SCHEMA, &e)])?;
+    let profile: Profile = read_toml(text, PROFILE_TOML).map_err(|d| vec![d])?;
     let mut problems = validate::check(&profile);
     problems.sort_by_key(|d| d.span().map_or(0, |s| s.start));
     if problems.iter().any(Diagnostic::is_error) {
@@ -60,16 +57,12 @@ pub fn builtin() -> Result<Profile, Vec<Diagnostic>> {
     load(BUILTIN_TOML)
 }
 
-fn toml_diagnostic(code: &'static Code, error: &toml::de::Error) -> Diagnostic {
-    let message = error.message().trim().to_owned();
-    let diagnostic = Diagnostic::new(code, format!("invalid profile: {message}"));
-    match error.span() {
-        Some(range) => diagnostic
-            .with_label(span(range), "here")
-            .with_help("see profiles/README.md for the profile schema"),
-        None => diagnostic.with_help("see profiles/README.md for the profile schema"),
-    }
-}
+const PROFILE_TOML: TomlKind = TomlKind {
+    syntax: codes::profile::SYNTAX,
+    schema: codes::profile::SCHEMA,
+    what: "profile",
+    help: "see profiles/README.md for the profile schema",
+};
 
 /// A byte range of the TOML as a span.
 pub(crate) fn span(range: std::ops::Range<usize>) -> Span {

@@ -8,11 +8,11 @@
 //! sense: an injection's place and action are enums that carry exactly
 //! the values they use.
 
-use gcodec_source::{Code, Diagnostic, codes};
+use gcodec_source::{Diagnostic, codes};
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::span;
+use crate::toml_file::{TomlKind, read_toml};
 use crate::validate::error;
 
 /// A scenario: the changer's behaviour and the faults to inject.
@@ -89,11 +89,7 @@ pub enum InjectAction {
 /// Reads and checks a scenario. On error, every diagnostic found, with
 /// spans into `text`.
 pub fn load_scenario(text: &str) -> Result<Scenario, Vec<Diagnostic>> {
-    if let Err(e) = text.parse::<toml::Table>() {
-        return Err(vec![toml_diagnostic(codes::scenario::SYNTAX, &e)]);
-    }
-    let raw: RawScenario =
-        toml::from_str(text).map_err(|e| vec![toml_diagnostic(codes::scenario::SCHEMA, &e)])?;
+    let raw: RawScenario = read_toml(text, SCENARIO_TOML).map_err(|d| vec![d])?;
     let mut problems = Vec::new();
     let scenario = check(raw, &mut problems);
     problems.sort_by_key(|d| d.span().map_or(0, |s| s.start));
@@ -323,12 +319,9 @@ fn not_applicable<T>(at: &Spanned<T>, message: &str) -> Diagnostic {
     .with_help("remove the key, or change the entry it belongs to")
 }
 
-fn toml_diagnostic(code: &'static Code, error: &toml::de::Error) -> Diagnostic {
-    let message = error.message().trim().to_owned();
-    let diagnostic = Diagnostic::new(code, format!("invalid toolchanger scenario: {message}"))
-        .with_help("see docs/toolchanger.md for the scenario format");
-    match error.span() {
-        Some(range) => diagnostic.with_label(span(range), "here"),
-        None => diagnostic,
-    }
-}
+const SCENARIO_TOML: TomlKind = TomlKind {
+    syntax: codes::scenario::SYNTAX,
+    schema: codes::scenario::SCHEMA,
+    what: "toolchanger scenario",
+    help: "see docs/toolchanger.md for the scenario format",
+};

@@ -7,6 +7,7 @@
 //!   and its snapshot (the scheme is in `tests/fixtures/README.md`).
 //! - [`profiles`]: the shipped profiles and small test machines.
 //! - [`corpus`]: the machines and definitions the corpus was written for.
+//! - [`schema`]: the checked-in JSON Schemas are current.
 //! - [`compile`]: the compile set-up a test repeats (parse a program that
 //!   must parse cleanly, lower it for a profile). It stays thin so that
 //!   the pipeline's facade can take its place.
@@ -16,8 +17,10 @@ pub mod corpus;
 pub mod fixtures;
 pub mod paths;
 pub mod profiles;
+pub mod schema;
 
 pub use compile::lower_clean;
 pub use fixtures::{Fixture, Header};
 pub use paths::{all_programs, corpus_dir, each_program, programs, reference_dir, repo, shown};
 pub use profiles::{machine, profile};
+pub use schema::assert_schema_current;

@@ -7,7 +7,8 @@ use std::sync::Arc;
 
 use std::collections::BTreeMap;
 
-use gcodec_source::{Code, Diagnostic, SourceFile, Span, codes};
+use gcodec_profile::{TomlKind, read_toml};
+use gcodec_source::{Diagnostic, SourceFile, Span, codes};
 use globset::{GlobBuilder, GlobSet, GlobSetBuilder};
 use serde::Deserialize;
 use toml::Spanned;
@@ -108,11 +109,7 @@ impl CheckConfig {
                 .with_help("TOML files are UTF-8"),
             ]
         })?;
-        if let Err(e) = text.parse::<toml::Table>() {
-            return Err(vec![toml_diagnostic(codes::config::SYNTAX, &e)]);
-        }
-        let raw: RawConfig =
-            toml::from_str(text).map_err(|e| vec![toml_diagnostic(codes::config::SCHEMA, &e)])?;
+        let raw: RawConfig = read_toml(text, CONFIG_TOML).map_err(|d| vec![d])?;
         let root = file
             .path()
             .and_then(Path::parent)
@@ -303,17 +300,12 @@ pub(super) fn unusable(span: Span, message: String) -> Diagnostic {
         .with_help("relative paths are relative to the folder of the configuration")
 }
 
-fn toml_diagnostic(code: &'static Code, error: &toml::de::Error) -> Diagnostic {
-    let message = error.message().trim().to_owned();
-    let diagnostic = Diagnostic::new(code, format!("invalid check configuration: {message}"))
-        .with_help("docs/linting.md lists the keys of `gcodec.toml`");
-    match error.span() {
-        Some(range) => {
-            diagnostic.with_label(Span::new(range.start as u32, range.end as u32), "here")
-        }
-        None => diagnostic,
-    }
-}
+const CONFIG_TOML: TomlKind = TomlKind {
+    syntax: codes::config::SYNTAX,
+    schema: codes::config::SCHEMA,
+    what: "check configuration",
+    help: "docs/linting.md lists the keys of `gcodec.toml`",
+};
 
 fn span<T>(value: &Spanned<T>) -> Span {
     let range = value.span();
