@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::runs::diagnostic_codes;
+use common::runs::{diagnostic_codes, in_session, run_against};
 
 use std::sync::Arc;
 
@@ -123,18 +123,14 @@ fn step_through(
 fn pending_actions_pause_the_run_and_resume_without_being_asked_again() {
     let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
     let main = main_program(&profile, PROGRAM);
-    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
-    let mut sink = VecSink::new();
     let mut machine = LateMachine::default();
-    let options = RunOptions::for_profile(&profile);
-    let channel = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
-        .with_machine(&mut machine);
-    let mut session = Session::new(channel, main);
-    let actions = step_through(&mut session, |action| match action {
-        MachineAction::SystemVariable { .. } => Outcome::Value(Some(RtValue::Int(41))),
-        _ => Outcome::Done,
+    let mut actions = Vec::new();
+    let events = in_session(&profile, main, &mut machine, |session| {
+        actions = step_through(session, |action| match action {
+            MachineAction::SystemVariable { .. } => Outcome::Value(Some(RtValue::Int(41))),
+            _ => Outcome::Done,
+        });
     });
-    drop(session);
     assert_eq!(
         actions,
         vec![
@@ -159,14 +155,13 @@ fn pending_actions_pause_the_run_and_resume_without_being_asked_again() {
             "M { value: 30, extension: None }",
         ]
     );
-    assert_eq!(messages(&sink.events), vec!["R1=42"]);
-    let m_events = sink
-        .events
+    assert_eq!(messages(&events), vec!["R1=42"]);
+    let m_events = events
         .iter()
         .filter(|e| matches!(e.kind, EventKind::MFunction(_)))
         .count();
     assert_eq!(m_events, 2, "M100 and M30, each reported once");
-    assert_eq!(end_reason(&sink.events), Some(ProgramEndReason::M30));
+    assert_eq!(end_reason(&events), Some(ProgramEndReason::M30));
     assert!(machine.aborts.is_empty());
 }
 
@@ -174,19 +169,13 @@ fn pending_actions_pause_the_run_and_resume_without_being_asked_again() {
 fn a_machine_answering_at_once_runs_the_read_again_with_its_value() {
     let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
     let main = main_program(&profile, "R1=$A_DBB[3]*2\nMSG(\"R1=\"<<R1)\nM30\n");
-    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
-    let mut sink = VecSink::new();
     let mut machine = LateMachine {
         ready_read: Some(RtValue::Real(2.5)),
         ..LateMachine::default()
     };
-    let options = RunOptions::for_profile(&profile);
-    let outcome = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
-        .with_machine(&mut machine)
-        .run(main)
-        .expect("events written");
+    let (outcome, events) = run_against(&profile, main, &mut machine);
     assert_eq!(outcome.errors, 0);
-    assert_eq!(messages(&sink.events), vec!["R1=5"]);
+    assert_eq!(messages(&events), vec!["R1=5"]);
     assert_eq!(machine.calls[0], "$A_DBB");
 }
 
@@ -194,15 +183,11 @@ fn a_machine_answering_at_once_runs_the_read_again_with_its_value() {
 fn a_read_no_one_answers_is_the_alarm_it_always_was() {
     let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
     let main = main_program(&profile, "R1=$A_DBB[0]\nM30\n");
-    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
-    let mut sink = VecSink::new();
-    let options = RunOptions::for_profile(&profile);
-    let outcome = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
-        .run(main)
-        .expect("events written");
+    let machine = gcodec_exec::machine::SimulatedMachine::new(&profile);
+    let (outcome, events) = run_against(&profile, main, machine);
     assert_eq!(outcome.reason, ProgramEndReason::Alarm);
     assert_eq!(
-        diagnostic_codes(&sink.events),
+        diagnostic_codes(&events),
         vec!["gcodec::run::system_variable"]
     );
 }
@@ -211,12 +196,12 @@ fn a_read_no_one_answers_is_the_alarm_it_always_was() {
 fn resume_refuses_a_wrong_token_or_outcome_and_keeps_the_action_pending() {
     let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
     let main = main_program(&profile, PROGRAM);
-    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
-    let mut sink = VecSink::new();
-    let options = RunOptions::for_profile(&profile);
-    let channel = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
-        .with_machine(LateMachine::default());
-    let mut session = Session::new(channel, main);
+    in_session(&profile, main, LateMachine::default(), |session| {
+        refuses_wrong_answers(session);
+    });
+}
+
+fn refuses_wrong_answers(session: &mut Session<'_>) {
     assert_eq!(
         session.resume(PendingToken(1), Outcome::Done),
         Err(SessionError::NothingPending)
@@ -248,13 +233,19 @@ fn resume_refuses_a_wrong_token_or_outcome_and_keeps_the_action_pending() {
 fn cancel_abandons_the_pending_action_and_ends_the_run_there() {
     let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
     let main = main_program(&profile, PROGRAM);
-    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
-    let mut sink = VecSink::new();
     let mut machine = LateMachine::default();
-    let options = RunOptions::for_profile(&profile);
-    let channel = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
-        .with_machine(&mut machine);
-    let mut session = Session::new(channel, main);
+    let events = in_session(&profile, main, &mut machine, cancel_at_the_dwell);
+    assert_eq!(machine.aborts, vec![AbortCause::Cancelled]);
+    let cancelled = events
+        .iter()
+        .find(|e| matches!(&e.kind, EventKind::Diagnostic(d) if d.code == gcodec_source::codes::run::CANCELLED))
+        .expect("the cancel is reported");
+    assert_eq!(cancelled.source.line, 2, "at the dwell that was pending");
+    assert_eq!(end_reason(&events), Some(ProgramEndReason::Cancelled));
+    assert!(messages(&events).is_empty(), "nothing after the dwell ran");
+}
+
+fn cancel_at_the_dwell(session: &mut Session<'_>) {
     let Step::Pending(pending) = session.step() else {
         panic!("M100 is pending");
     };
@@ -277,39 +268,20 @@ fn cancel_abandons_the_pending_action_and_ends_the_run_there() {
         session.resume(dwell.token, Outcome::Done),
         Err(SessionError::NothingPending)
     );
-    drop(session);
-    assert_eq!(machine.aborts, vec![AbortCause::Cancelled]);
-    let cancelled = sink
-        .events
-        .iter()
-        .find(|e| matches!(&e.kind, EventKind::Diagnostic(d) if d.code == gcodec_source::codes::run::CANCELLED))
-        .expect("the cancel is reported");
-    assert_eq!(cancelled.source.line, 2, "at the dwell that was pending");
-    assert_eq!(end_reason(&sink.events), Some(ProgramEndReason::Cancelled));
-    assert!(
-        messages(&sink.events).is_empty(),
-        "nothing after the dwell ran"
-    );
 }
 
 #[test]
 fn a_failed_action_is_an_alarm_and_the_machine_is_told_the_run_aborts() {
     let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
     let main = main_program(&profile, PROGRAM);
-    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
-    let mut sink = VecSink::new();
     let mut machine = LateMachine {
         fail_m: true,
         ..LateMachine::default()
     };
-    let options = RunOptions::for_profile(&profile);
-    let outcome = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
-        .with_machine(&mut machine)
-        .run(main)
-        .expect("events written");
+    let (outcome, events) = run_against(&profile, main, &mut machine);
     assert_eq!(outcome.reason, ProgramEndReason::Alarm);
     assert_eq!(
-        diagnostic_codes(&sink.events),
+        diagnostic_codes(&events),
         vec!["gcodec::run::machine_error"]
     );
     assert_eq!(machine.aborts, vec![AbortCause::Alarm]);
@@ -319,16 +291,10 @@ fn a_failed_action_is_an_alarm_and_the_machine_is_told_the_run_aborts() {
 fn a_run_that_cannot_wait_ends_with_an_alarm_at_the_pending_action() {
     let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
     let main = main_program(&profile, PROGRAM);
-    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
-    let mut sink = VecSink::new();
-    let options = RunOptions::for_profile(&profile);
-    let outcome = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
-        .with_machine(LateMachine::default())
-        .run(main)
-        .expect("events written");
+    let (outcome, events) = run_against(&profile, main, LateMachine::default());
     assert_eq!(outcome.reason, ProgramEndReason::Alarm);
     assert_eq!(
-        diagnostic_codes(&sink.events),
+        diagnostic_codes(&events),
         vec!["gcodec::run::machine_action_unanswered"]
     );
 }
@@ -414,13 +380,7 @@ fn a_tool_change_answered_late_takes_effect_as_the_machine_says() {
     let profile = Arc::new(gcodec_profile::builtin().expect("the built-in profile"));
     let text = "T1\nM6\nMSG(\"T=\"<<$P_TOOLNO)\nT2\nM6\nMSG(\"T=\"<<$P_TOOLNO)\nM30\n";
     let main = main_program(&profile, text);
-    let mut loader = MemoryLoader::new(Arc::clone(&profile), Definitions::new());
-    let mut sink = VecSink::new();
     let mut machine = SlowChanger::default();
-    let options = RunOptions::for_profile(&profile);
-    let channel = Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
-        .with_machine(&mut machine);
-    let mut session = Session::new(channel, main);
     let mut answers = vec![
         gcodec_exec::machine::ChangeResult::COMMITTED,
         // A soft fault: the change is skipped, the program goes on.
@@ -430,10 +390,12 @@ fn a_tool_change_answered_late_takes_effect_as_the_machine_says() {
         },
     ]
     .into_iter();
-    let actions = step_through(&mut session, |_| {
-        Outcome::ToolChanged(answers.next().expect("two changes"))
+    let mut actions = Vec::new();
+    let events = in_session(&profile, main, &mut machine, |session| {
+        actions = step_through(session, |_| {
+            Outcome::ToolChanged(answers.next().expect("two changes"))
+        });
     });
-    drop(session);
     assert_eq!(
         actions,
         vec![
@@ -449,13 +411,13 @@ fn a_tool_change_answered_late_takes_effect_as_the_machine_says() {
     );
     assert_eq!(machine.prepares, vec![Some("T1".into()), Some("T2".into())]);
     assert_eq!(
-        tool_changes(&sink.events),
+        tool_changes(&events),
         vec![
             (Some("T1".into()), true, None),
             (Some("T2".into()), false, Some(7))
         ]
     );
-    assert_eq!(messages(&sink.events), vec!["T=1", "T=1"]);
+    assert_eq!(messages(&events), vec!["T=1", "T=1"]);
 }
 
 /// A machine that answers each call as a script says: at once, later, or

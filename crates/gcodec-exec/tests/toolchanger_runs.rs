@@ -260,7 +260,7 @@ fn abort_reasons(events: &[Event]) -> (Vec<i32>, Option<String>) {
 fn pending_change(
     finish: impl FnOnce(&mut gcodec_exec::session::Session<'_>, gcodec_exec::machine::PendingToken),
 ) -> Vec<Event> {
-    use gcodec_exec::session::{Session, Step};
+    use gcodec_exec::session::Step;
     let profile = Arc::new(example_profile("iov2.toml"));
     let scenario = gcodec_profile::load_scenario("ack_cycles = 5").expect("scenario");
     let machine = StartedChange {
@@ -273,21 +273,13 @@ fn pending_change(
         "N10 T1 M6\nN20 G0 X1\nN30 M30\n",
     ));
     let main = common::runs::compile_main(&file, &profile, &gcodec_driver::Definitions::new());
-    let mut loader =
-        gcodec_driver::MemoryLoader::new(Arc::clone(&profile), gcodec_driver::Definitions::new());
-    let mut sink = VecSink::new();
-    let options = gcodec_exec::channel::RunOptions::for_profile(&profile);
-    let channel =
-        gcodec_exec::channel::Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
-            .with_machine(machine);
-    let mut session = Session::new(channel, main.program);
-    let Step::Pending(pending) = session.step() else {
-        panic!("the change is pending");
-    };
-    finish(&mut session, pending.token);
-    assert!(matches!(session.step(), Step::Ended(Ok(_))));
-    drop(session);
-    sink.events
+    common::runs::in_session(&profile, main.program, machine, |session| {
+        let Step::Pending(pending) = session.step() else {
+            panic!("the change is pending");
+        };
+        finish(session, pending.token);
+        assert!(matches!(session.step(), Step::Ended(Ok(_))));
+    })
 }
 
 #[test]
@@ -322,7 +314,7 @@ fn a_run_ending_in_an_alarm_during_a_change_aborts_it_with_reason_1() {
 /// machine; the program cannot.
 #[test]
 fn the_latched_fault_is_read_through_the_session_not_the_program() {
-    use gcodec_exec::session::{Session, Step};
+    use gcodec_exec::session::Step;
     let profile = Arc::new(example_profile("iov2.toml"));
     let scenario =
         gcodec_profile::load_scenario("initial_fault = true\ninitial_fault_reason = 7\n")
@@ -331,16 +323,10 @@ fn the_latched_fault_is_read_through_the_session_not_the_program() {
         .expect("machine");
     let file = Arc::new(SourceFile::new("FAULT.MPF", "N10 T1 M6\nN20 M30\n"));
     let main = common::runs::compile_main(&file, &profile, &gcodec_driver::Definitions::new());
-    let mut loader =
-        gcodec_driver::MemoryLoader::new(Arc::clone(&profile), gcodec_driver::Definitions::new());
-    let mut sink = VecSink::new();
-    let options = gcodec_exec::channel::RunOptions::for_profile(&profile);
-    let channel =
-        gcodec_exec::channel::Channel::new(Arc::clone(&profile), options, &mut loader, &mut sink)
-            .with_machine(machine);
-    let mut session = Session::new(channel, main.program);
-    assert!(matches!(session.step(), Step::Ended(Ok(_))));
-    let changer = session.machine().toolchanger().expect("a toolchanger");
-    assert_eq!(changer.fault().map(|f| f.0), Some(7));
-    assert_eq!(changer.state().name(), "idle");
+    common::runs::in_session(&profile, main.program, machine, |session| {
+        assert!(matches!(session.step(), Step::Ended(Ok(_))));
+        let changer = session.machine().toolchanger().expect("a toolchanger");
+        assert_eq!(changer.fault().map(|f| f.0), Some(7));
+        assert_eq!(changer.state().name(), "idle");
+    });
 }

@@ -94,3 +94,39 @@ pub fn diagnostic_codes(events: &[Event]) -> Vec<String> {
         })
         .collect()
 }
+
+/// Runs `main` on `profile` against `machine` in a session that `drive`
+/// steps (programs it calls come from nowhere); the run's events.
+pub fn in_session<M: gcodec_exec::machine::Machine>(
+    profile: &Arc<Profile>,
+    main: Arc<Program>,
+    machine: M,
+    drive: impl FnOnce(&mut gcodec_exec::session::Session<'_>),
+) -> Vec<Event> {
+    let mut loader = gcodec_driver::MemoryLoader::new(Arc::clone(profile), Definitions::new());
+    let mut sink = VecSink::new();
+    let options = RunOptions::for_profile(profile);
+    let channel =
+        Channel::new(Arc::clone(profile), options, &mut loader, &mut sink).with_machine(machine);
+    let mut session = gcodec_exec::session::Session::new(channel, main);
+    drive(&mut session);
+    drop(session);
+    sink.events
+}
+
+/// Runs `main` on `profile` against `machine` to its end (`Channel::run`:
+/// nothing answers a pending action); the outcome and the events.
+pub fn run_against<M: gcodec_exec::machine::Machine>(
+    profile: &Arc<Profile>,
+    main: Arc<Program>,
+    machine: M,
+) -> (RunOutcome, Vec<Event>) {
+    let mut loader = gcodec_driver::MemoryLoader::new(Arc::clone(profile), Definitions::new());
+    let mut sink = VecSink::new();
+    let options = RunOptions::for_profile(profile);
+    let outcome = Channel::new(Arc::clone(profile), options, &mut loader, &mut sink)
+        .with_machine(machine)
+        .run(main)
+        .expect("events written");
+    (outcome, sink.events)
+}
