@@ -9,7 +9,9 @@ use clap::ValueEnum;
 use gcodec_driver::check::{
     CheckConfig, CheckReport, DiagnosticRecord, FileReport, Input, Selection, Selector, find_config,
 };
-use gcodec_source::{SourceFile, codes, escape_controls, render_diagnostics, render_kept};
+use gcodec_source::{
+    Severity, SourceFile, codes, escape_controls, render_diagnostics, render_kept,
+};
 
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE};
 use crate::output::{Stdout, after_output, to_stderr};
@@ -25,6 +27,9 @@ pub enum CheckFormat {
     Concise,
     /// A JSON array of objects (`docs/schema/check.schema.json`).
     Json,
+    /// GitHub Actions workflow commands (`::error file=…,line=…::…`): the
+    /// diagnostics become annotations of the pull request.
+    Github,
 }
 
 /// What `--deny` makes fail.
@@ -131,6 +136,11 @@ pub fn check(args: CheckArgs) -> u8 {
             CheckFormat::Json => {
                 let mut out = Stdout::data();
                 let written = write_json(&report, &mut out);
+                (out, written)
+            }
+            CheckFormat::Github => {
+                let mut out = Stdout::data();
+                let written = write_github(&report, &mut out);
                 (out, written)
             }
         }
@@ -291,6 +301,59 @@ fn write_json(report: &CheckReport, out: &mut impl Write) -> std::io::Result<()>
         .collect();
     serde_json::to_writer_pretty(&mut *out, &records)?;
     writeln!(out)
+}
+
+/// One workflow command per diagnostic: `error`, `warning` or `notice`
+/// (advice), its place and its code as the annotation's title.
+fn write_github(report: &CheckReport, out: &mut impl Write) -> std::io::Result<()> {
+    for file in &report.files {
+        for d in file.diagnostics.iter() {
+            let record = DiagnosticRecord::of(d, &file.name, file.file.as_deref());
+            let command = match record.level {
+                Severity::Error => "error",
+                Severity::Warning => "warning",
+                Severity::Advice => "notice",
+            };
+            write!(out, "::{command} file={}", github_property(&record.file))?;
+            let p = record.position;
+            let places = [
+                ("line", p.line),
+                ("col", p.column),
+                ("endLine", p.end_line),
+                ("endColumn", p.end_column),
+            ];
+            for (key, value) in places {
+                if let Some(value) = value {
+                    write!(out, ",{key}={value}")?;
+                }
+            }
+            let mut message = record.message;
+            if let Some(help) = &record.help {
+                message.push_str("\nhelp: ");
+                message.push_str(help);
+            }
+            writeln!(
+                out,
+                ",title={}::{}",
+                github_property(&record.code),
+                github_data(&message)
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// A workflow command's message: `%`, CR and LF escaped as GitHub reads
+/// them back.
+fn github_data(text: &str) -> String {
+    text.replace('%', "%25")
+        .replace('\r', "%0D")
+        .replace('\n', "%0A")
+}
+
+/// A workflow command's property value: also `:` and `,`, which end it.
+fn github_property(text: &str) -> String {
+    github_data(text).replace(':', "%3A").replace(',', "%2C")
 }
 
 /// How many of each code and level, the most frequent first.

@@ -475,3 +475,22 @@ fn the_corpus_checks_with_only_its_expected_errors() {
     }
     assert!(unexpected.is_empty(), "{}", unexpected.join("\n"));
 }
+
+#[test]
+fn github_output_is_one_workflow_command_per_diagnostic() {
+    let out = gcodec_in(&fixtures(), ["check", "--output-format", "github"]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS);
+    let text = stdout(&out);
+    assert!(
+        text.lines()
+            .all(|l| l.starts_with("::error file=") || l.starts_with("::warning file=")),
+        "{text}"
+    );
+    assert!(
+        text.contains("::error file=lowering_error.mpf,line=3,col=10,"),
+        "{text}"
+    );
+    // The code is the title; its `:` are escaped, as GitHub reads them.
+    assert!(text.contains(",title=gcodec%3A%3Alower%3A%3A"), "{text}");
+    insta::assert_snapshot!("check_github", text);
+}
