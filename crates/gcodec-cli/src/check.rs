@@ -86,6 +86,13 @@ pub fn check(args: CheckArgs) -> u8 {
     } else {
         args.paths.clone()
     };
+    if args.stdin_filename.is_some() && !paths.iter().any(|p| p.as_os_str() == "-") {
+        to_stderr(
+            "error: `--stdin-filename` names the program read from standard input, \
+             which is read only for the path `-`\n",
+        );
+        return EXIT_USAGE;
+    }
     let stdin_name = args
         .stdin_filename
         .clone()

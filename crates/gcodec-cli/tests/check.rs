@@ -494,3 +494,17 @@ fn github_output_is_one_workflow_command_per_diagnostic() {
     assert!(text.contains(",title=gcodec%3A%3Alower%3A%3A"), "{text}");
     insta::assert_snapshot!("check_github", text);
 }
+
+#[test]
+fn a_stdin_filename_without_the_path_dash_is_a_usage_error() {
+    let out = gcodec_in(
+        &fixtures(),
+        ["check", "--stdin-filename", "A.MPF", "clean.mpf"],
+    );
+    assert_eq!(code(&out), EXIT_USAGE);
+    assert!(
+        stderr(&out).contains("`--stdin-filename`"),
+        "{}",
+        stderr(&out)
+    );
+}
