@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 
 use clap::ValueEnum;
 use gcodec_driver::check::{
-    CheckConfig, CheckReport, DiagnosticRecord, FileReport, Input, Selection, Selector, find_config,
+    CheckConfig, CheckReport, DiagnosticRecord, FileReport, Input, Progress, Selection, Selector,
+    find_config,
 };
 use gcodec_source::{
     Severity, SourceFile, codes, escape_controls, render_diagnostics, render_kept,
@@ -110,7 +111,10 @@ pub fn check(args: CheckArgs) -> u8 {
         ignore: args.ignore.clone(),
         deny_warnings: args.deny == Some(Denied::Warnings),
     };
-    let report = match gcodec_driver::check::check(&config, inputs, &selection) {
+    let progress = ProgressBar::for_stderr();
+    let checked = gcodec_driver::check::check_with_progress(&config, inputs, &selection, &progress);
+    progress.finish();
+    let report = match checked {
         Ok(report) => report,
         Err(error) => {
             for problem in &error.reports {
@@ -198,6 +202,50 @@ fn configuration(args: &CheckArgs, paths: &[PathBuf], stdin_name: &str) -> Resul
         ));
         EXIT_USAGE
     })
+}
+
+/// A progress bar on stderr while a long check runs: only when stderr is
+/// a terminal and there are at least [`ProgressBar::FROM_FILES`] files;
+/// it is cleared when the check ends, before the diagnostics are written.
+struct ProgressBar {
+    terminal: bool,
+    bar: std::sync::OnceLock<indicatif::ProgressBar>,
+}
+
+impl ProgressBar {
+    /// Fewer files are checked in about a second: no bar for them.
+    const FROM_FILES: usize = 200;
+
+    fn for_stderr() -> Self {
+        Self {
+            terminal: std::io::stderr().is_terminal(),
+            bar: std::sync::OnceLock::new(),
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = self.bar.get() {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+impl Progress for ProgressBar {
+    fn files_found(&self, files: usize) {
+        if self.terminal && files >= Self::FROM_FILES {
+            let bar = indicatif::ProgressBar::with_draw_target(
+                Some(files as u64),
+                indicatif::ProgressDrawTarget::stderr(),
+            );
+            let _ = self.bar.set(bar);
+        }
+    }
+
+    fn file_checked(&self) {
+        if let Some(bar) = self.bar.get() {
+            bar.inc(1);
+        }
+    }
 }
 
 /// The paths as the check's inputs, standard input read for `-`.

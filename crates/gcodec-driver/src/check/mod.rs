@@ -46,12 +46,37 @@ pub struct SetupError {
     pub reports: Vec<FileReport>,
 }
 
+/// What a long check tells as it goes (a progress bar): called from the
+/// threads that check the files.
+pub trait Progress: Sync {
+    /// The files are found: this many will be checked.
+    fn files_found(&self, _files: usize) {}
+
+    /// One more file is checked.
+    fn file_checked(&self) {}
+}
+
+/// A check that tells nothing as it goes.
+pub struct Quiet;
+
+impl Progress for Quiet {}
+
 /// Checks the files of `inputs` as `config` says, at the levels of its
 /// rules and `selection`.
 pub fn check(
     config: &CheckConfig,
     inputs: Vec<Input>,
     selection: &Selection,
+) -> Result<CheckReport, SetupError> {
+    check_with_progress(config, inputs, selection, &Quiet)
+}
+
+/// [`check`], telling `progress` as files are found and checked.
+pub fn check_with_progress(
+    config: &CheckConfig,
+    inputs: Vec<Input>,
+    selection: &Selection,
+    progress: &dyn Progress,
 ) -> Result<CheckReport, SetupError> {
     let found = walk::files(config, inputs).map_err(|d| SetupError {
         reports: vec![FileReport::new(String::new(), None, vec![d])],
@@ -79,6 +104,7 @@ pub fn check(
             });
         }
     };
+    progress.files_found(found.len());
     let mut files: Vec<FileReport> = found
         .into_par_iter()
         .zip(machine_of)
@@ -89,7 +115,9 @@ pub fn check(
                 file_ignores: &file_ignores,
                 selection,
             };
-            check_file(found, machines.machine(machine), &levels)
+            let report = check_file(found, machines.machine(machine), &levels);
+            progress.file_checked();
+            report
         })
         .collect();
     files.extend(std::mem::take(&mut machines.problems));
