@@ -344,16 +344,17 @@ fn write_concise(report: &CheckReport, out: &mut impl Write) -> std::io::Result<
     Ok(())
 }
 
+/// Every diagnostic shown, as data, file by file.
+fn records(report: &CheckReport) -> impl Iterator<Item = DiagnosticRecord> + '_ {
+    report.files.iter().flat_map(|file| {
+        file.diagnostics
+            .iter()
+            .map(|d| DiagnosticRecord::of(d, &file.name, file.file.as_deref()))
+    })
+}
+
 fn write_json(report: &CheckReport, out: &mut impl Write) -> std::io::Result<()> {
-    let records: Vec<DiagnosticRecord> = report
-        .files
-        .iter()
-        .flat_map(|file| {
-            file.diagnostics
-                .iter()
-                .map(|d| DiagnosticRecord::of(d, &file.name, file.file.as_deref()))
-        })
-        .collect();
+    let records: Vec<DiagnosticRecord> = records(report).collect();
     serde_json::to_writer_pretty(&mut *out, &records)?;
     writeln!(out)
 }
@@ -361,39 +362,36 @@ fn write_json(report: &CheckReport, out: &mut impl Write) -> std::io::Result<()>
 /// One workflow command per diagnostic: `error`, `warning` or `notice`
 /// (advice), its place and its code as the annotation's title.
 fn write_github(report: &CheckReport, out: &mut impl Write) -> std::io::Result<()> {
-    for file in &report.files {
-        for d in file.diagnostics.iter() {
-            let record = DiagnosticRecord::of(d, &file.name, file.file.as_deref());
-            let command = match record.level {
-                Severity::Error => "error",
-                Severity::Warning => "warning",
-                Severity::Advice => "notice",
-            };
-            write!(out, "::{command} file={}", github_property(&record.file))?;
-            let p = record.position;
-            let places = [
-                ("line", p.line),
-                ("col", p.column),
-                ("endLine", p.end_line),
-                ("endColumn", p.end_column),
-            ];
-            for (key, value) in places {
-                if let Some(value) = value {
-                    write!(out, ",{key}={value}")?;
-                }
+    for record in records(report) {
+        let command = match record.level {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+            Severity::Advice => "notice",
+        };
+        write!(out, "::{command} file={}", github_property(&record.file))?;
+        let p = record.position;
+        let places = [
+            ("line", p.line),
+            ("col", p.column),
+            ("endLine", p.end_line),
+            ("endColumn", p.end_column),
+        ];
+        for (key, value) in places {
+            if let Some(value) = value {
+                write!(out, ",{key}={value}")?;
             }
-            let mut message = record.message;
-            if let Some(help) = &record.help {
-                message.push_str("\nhelp: ");
-                message.push_str(help);
-            }
-            writeln!(
-                out,
-                ",title={}::{}",
-                github_property(&record.code),
-                github_data(&message)
-            )?;
         }
+        let mut message = record.message;
+        if let Some(help) = &record.help {
+            message.push_str("\nhelp: ");
+            message.push_str(help);
+        }
+        writeln!(
+            out,
+            ",title={}::{}",
+            github_property(&record.code),
+            github_data(&message)
+        )?;
     }
     Ok(())
 }

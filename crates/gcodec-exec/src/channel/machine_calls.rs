@@ -20,7 +20,8 @@ use gcodec_ail::ToolChangeTrigger;
 
 use crate::event::{Event, EventKind, EventSource, MAction, ProgramEndReason, SelectionSource};
 use crate::machine::{
-    AbortCause, Answer, AuxiliaryFunction, Machine, MachineAction, Outcome, PendingToken, Wait,
+    AbortCause, Answer, AuxiliaryFunction, Machine, MachineAction, MachineError, Outcome,
+    PendingToken, Wait,
 };
 use crate::program::Program;
 use crate::tool_resolution::ToolRef;
@@ -48,7 +49,7 @@ pub(crate) enum Continuation {
         extension: Option<u32>,
     },
     /// The instruction runs again with the value read.
-    Reread { key: String },
+    Reread(UnansweredRead),
     /// The tool change is reported and takes effect as the machine says.
     ToolChange(Box<ChangeInProgress>),
 }
@@ -65,28 +66,23 @@ pub(crate) struct ChangeInProgress {
 
 /// A read of a system variable that neither the channel nor the profile
 /// answered, kept for the machine.
+#[derive(Clone, Debug)]
 pub(crate) struct UnansweredRead {
     pub name: String,
     pub indices: Vec<RtValue>,
 }
 
 impl UnansweredRead {
-    /// The key its answer is kept under.
-    pub fn key(&self) -> String {
-        read_key(&self.name, &self.indices)
+    fn is(&self, name: &str, indices: &[RtValue]) -> bool {
+        self.name == name && self.indices == indices
     }
-}
-
-/// The key of a read of `name` at `indices`.
-fn read_key(name: &str, indices: &[RtValue]) -> String {
-    format!("{name}{indices:?}")
 }
 
 /// The machine's answers to the reads of the instruction running (it
 /// runs again with each), and the read none answered yet.
 #[derive(Default)]
 pub(crate) struct MachineReads {
-    answered: RefCell<Vec<(String, RtValue)>>,
+    answered: RefCell<Vec<(UnansweredRead, RtValue)>>,
     unanswered: RefCell<Option<UnansweredRead>>,
     /// Whether `answered` or `unanswered` holds anything: checked after every
     /// instruction, so that a run the machine answers nothing for pays
@@ -99,11 +95,10 @@ impl MachineReads {
         if !self.any.get() {
             return None;
         }
-        let key = read_key(name, indices);
         let answered = self.answered.borrow();
         answered
             .iter()
-            .find(|(k, _)| *k == key)
+            .find(|(read, _)| read.is(name, indices))
             .map(|(_, v)| v.clone())
     }
 
@@ -119,8 +114,8 @@ impl MachineReads {
         self.unanswered.borrow_mut().take()
     }
 
-    pub fn answer(&self, key: String, value: RtValue) {
-        self.answered.borrow_mut().push((key, value));
+    pub fn answer(&self, read: UnansweredRead, value: RtValue) {
+        self.answered.borrow_mut().push((read, value));
         self.any.set(true);
     }
 
@@ -163,10 +158,7 @@ impl Channel<'_> {
                 });
                 Ok(None)
             }
-            Answer::Error(error) => Err(RunError::new(
-                codes::run::MACHINE_ERROR,
-                format!("the machine reports: {}", error.message),
-            )),
+            Answer::Error(error) => Err(machine_error(error)),
         }
     }
 
@@ -231,15 +223,14 @@ impl Channel<'_> {
         unanswered: RunError,
     ) -> Flow {
         let answer = self.machine.system_variable(&read.name, &read.indices);
-        let key = read.key();
         let action = || MachineAction::SystemVariable {
             name: read.name.clone(),
             indices: read.indices.clone(),
         };
-        let continuation = Continuation::Reread { key: key.clone() };
+        let continuation = Continuation::Reread(read.clone());
         match self.machine_answer(program, pc, instruction, answer, action, continuation) {
             Ok(Some(Some(value))) => {
-                self.state.machine_reads.answer(key, value);
+                self.state.machine_reads.answer(read, value);
                 self.execute(program, pc, instruction)
             }
             Ok(Some(None)) => Flow::End(self.alarm(program, instruction, unanswered)),
@@ -255,9 +246,7 @@ impl Channel<'_> {
         token: PendingToken,
         outcome: Outcome,
     ) -> Result<Option<ProgramEndReason>, SessionError> {
-        let Some(pending) = self.pending.as_ref() else {
-            return Err(SessionError::NothingPending);
-        };
+        let pending = self.pending.as_ref().ok_or(SessionError::NothingPending)?;
         if pending.token != token {
             return Err(SessionError::WrongToken {
                 pending: pending.token,
@@ -270,9 +259,7 @@ impl Channel<'_> {
                 outcome,
             });
         }
-        let Some(pending) = self.pending.take() else {
-            return Err(SessionError::NothingPending);
-        };
+        let pending = self.pending.take().ok_or(SessionError::NothingPending)?;
         let PendingAction {
             continuation,
             program,
@@ -285,15 +272,13 @@ impl Channel<'_> {
         self.book_machine_time();
         let flow = match (continuation, outcome) {
             (_, Outcome::Failed(error)) => {
-                let error = RunError::new(
-                    codes::run::MACHINE_ERROR,
-                    format!("the machine reports: {}", error.message),
-                );
-                Flow::End(self.alarm(&program, &instruction, error))
+                Flow::End(self.alarm(&program, &instruction, machine_error(error)))
             }
-            (Continuation::Reread { key }, Outcome::Value(Some(value))) => {
-                self.state.machine_reads.answer(key, value);
-                Flow::Jump(pc)
+            // The instruction runs again, in its block, with the answer:
+            // the program counter stays at it.
+            (Continuation::Reread(read), Outcome::Value(Some(value))) => {
+                self.state.machine_reads.answer(read, value);
+                return Ok(None);
             }
             (Continuation::ToolChange(change), outcome) => {
                 // `is_answered_by` let only a change's outcome through.
@@ -305,7 +290,7 @@ impl Channel<'_> {
                     Err(error) => Flow::End(self.alarm(&program, &instruction, error)),
                 }
             }
-            (Continuation::Reread { .. }, _) => {
+            (Continuation::Reread(_), _) => {
                 let error = RunError::new(
                     codes::run::SYSTEM_VARIABLE,
                     "the machine has no value for the system variable either",
@@ -337,8 +322,6 @@ impl Channel<'_> {
                     top.pc = pc + 1;
                 }
             }
-            // A re-read runs the same instruction again, in its block.
-            Flow::Jump(target) if target == pc => {}
             Flow::Jump(target) => {
                 if let Some(top) = self.stack.last_mut() {
                     top.pc = target;
@@ -419,6 +402,14 @@ impl Channel<'_> {
     pub(crate) fn pending(&self) -> Option<&PendingAction> {
         self.pending.as_ref()
     }
+}
+
+/// The alarm of a machine action that failed.
+fn machine_error(error: MachineError) -> RunError {
+    RunError::new(
+        codes::run::MACHINE_ERROR,
+        format!("the machine reports: {}", error.message),
+    )
 }
 
 /// The action in words, for messages.

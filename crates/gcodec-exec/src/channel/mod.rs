@@ -227,7 +227,7 @@ pub struct Channel<'r> {
     /// The machine action the run waits for, and how to go on.
     pending: Option<machine_calls::PendingAction>,
     /// Where the run loop left off at a pause: the line of the
-    /// instruction run before (see `run_levels`).
+    /// instruction run before (see `advance`).
     paused_previous_line: Option<Option<u32>>,
     observer: Option<&'r mut dyn BlockObserver>,
     /// What a `T` selection names ([`TableResolver`] unless an
@@ -381,12 +381,6 @@ impl<'r> Channel<'r> {
         }
     }
 
-    /// Runs on until the end, a pending machine action or a pause for
-    /// the sink.
-    pub(crate) fn advance(&mut self) -> Halt {
-        self.run_levels()
-    }
-
     /// Ends the run: the machine abandons what it was doing if the run
     /// ends in an alarm, the `program_end` event, the outcome.
     pub(crate) fn finish(&mut self, reason: ProgramEndReason) -> io::Result<RunOutcome> {
@@ -425,7 +419,9 @@ impl<'r> Channel<'r> {
         ProgramEndReason::Alarm
     }
 
-    fn run_levels(&mut self) -> Halt {
+    /// Runs on until the end, a pending machine action or a pause for
+    /// the sink; called again, goes on from where it stopped.
+    pub(crate) fn advance(&mut self) -> Halt {
         loop {
             let Some(top) = self.stack.last() else {
                 return Halt::End(ProgramEndReason::EndOfText);

@@ -128,16 +128,13 @@ impl<'r> Session<'r> {
                 Phase::Running => match self.channel.advance() {
                     Halt::End(reason) => self.phase = Phase::Ending(reason),
                     Halt::Yield => return Step::Events,
-                    Halt::Pending => {
-                        self.phase = Phase::Waiting;
-                        if let Some(pending) = self.pending() {
-                            return Step::Pending(pending);
-                        }
-                    }
+                    Halt::Pending => self.phase = Phase::Waiting,
                 },
+                // Waiting with nothing pending cannot happen; were it to,
+                // the run would go on rather than wait for ever.
                 Phase::Waiting => {
-                    self.phase = Phase::Waiting;
                     if let Some(pending) = self.pending() {
+                        self.phase = Phase::Waiting;
                         return Step::Pending(pending);
                     }
                 }

@@ -12,7 +12,7 @@ use super::machine_calls::{ChangeInProgress, Continuation};
 use super::{Channel, Flow};
 use crate::eval;
 use crate::event::{EventKind, SelectionSource, ToolChangeEvent, ToolSelectEvent};
-use crate::machine::{Answer, ChangeResult, MachineAction, ToolRequest};
+use crate::machine::{ChangeResult, MachineAction, ToolRequest};
 use crate::program::Program;
 use crate::tool_resolution::{
     CallerSelection, PendingTool, ResolutionContext, ToolRef, ToolResolution, ToolSelector,
@@ -258,21 +258,18 @@ impl Channel<'_> {
             tool: change.new.as_ref().map(|t| t.label.clone()),
             previous: change.previous.clone(),
         };
-        if matches!(answer, Answer::Error(_)) {
-            // The change is reported as not made before the alarm: the
-            // events say which tool is in the spindle.
-            let failed = change.clone();
-            let answered =
-                self.machine_answer(program, pc, instruction, answer, action, Continuation::Next);
-            self.report_change(program, instruction, failed, false, None);
-            return answered.map(|_| Flow::Next);
-        }
         let continuation = Continuation::ToolChange(Box::new(change.clone()));
-        match self.machine_answer(program, pc, instruction, answer, action, continuation)? {
-            Some(result) => self
+        match self.machine_answer(program, pc, instruction, answer, action, continuation) {
+            Ok(Some(result)) => self
                 .finish_change(program, instruction, change, result)
                 .map(|()| Flow::Next),
-            None => Ok(Flow::Pending),
+            Ok(None) => Ok(Flow::Pending),
+            // The change is reported as not made before the alarm: the
+            // events say which tool is in the spindle.
+            Err(error) => {
+                self.report_change(program, instruction, change, false, None);
+                Err(error)
+            }
         }
     }
 

@@ -61,6 +61,10 @@ impl SimulatedMachine {
     /// Hands the changer's edges over as events, and counts its cycles.
     fn report(&mut self, cycles: u64, cycle_time: f64, events: &mut MachineEvents) {
         self.elapsed += cycles as f64 * cycle_time;
+        self.hand_over(events);
+    }
+
+    fn hand_over(&mut self, events: &mut MachineEvents) {
         events.extend(self.edges.drain(..).map(EventKind::Toolchanger));
     }
 }
@@ -173,7 +177,7 @@ impl Machine for SimulatedMachine {
         }
         if let Some(changer) = self.changer.as_deref_mut() {
             changer.block(line, &mut self.edges);
-            events.extend(self.edges.drain(..).map(EventKind::Toolchanger));
+            self.hand_over(events);
         }
     }
 
