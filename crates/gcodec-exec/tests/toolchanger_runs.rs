@@ -330,3 +330,35 @@ fn the_latched_fault_is_read_through_the_session_not_the_program() {
         assert_eq!(changer.state().name(), "idle");
     });
 }
+
+/// A hard fault below 0 shows the operator a message before the alarm;
+/// one of 0 aborts without (LinuxCNC's `[TASK]IO_ERROR` rule).
+#[test]
+fn a_hard_fault_below_zero_shows_an_operator_message_and_zero_does_not() {
+    for (reason, message) in [(-5, Some("toolchanger error -5")), (0, None)] {
+        let mut setup = setup(example_profile("iov2.toml"), None);
+        let text = format!(
+            "[[inject]]\nat = \"prepare\"\nn = 1\nafter_cycles = 1\naction = \"fault\"\nfault_reason = {reason}\n"
+        );
+        let file = SourceFile::new("FAULT.TOML", text);
+        setup.toolchanger =
+            Some(gcodec_driver::load_toolchanger(&file, &setup.profile).expect("a scenario"));
+        let events = events("N10 T1 M6\nN20 M30\n", &setup);
+        let messages: Vec<&str> = events
+            .iter()
+            .filter_map(|e| match &e.kind {
+                EventKind::Message(m) => Some(m.text.as_str()),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(
+            messages,
+            message.into_iter().collect::<Vec<_>>(),
+            "{reason}"
+        );
+        assert_eq!(
+            diagnostic_codes(&events),
+            vec!["gcodec::run::machine_error"]
+        );
+    }
+}

@@ -7,7 +7,7 @@ use super::{
     AbortCause, Answer, ChangeResult, Machine, MachineError, MachineEvents, MachineTool,
     ToolRequest,
 };
-use crate::event::EventKind;
+use crate::event::{EventKind, MessageEvent};
 use crate::toolchanger::{
     self, AbortReason, ChangeOutcome, ChangerState, ChangerTool, FaultReason, PrepareOutcome,
     SimulatedChanger, Toolchanger, ToolchangerEvent,
@@ -88,6 +88,17 @@ fn aborted(
     ))
 }
 
+/// A hard fault with a reason below 0 shows the operator a message before
+/// the alarm, as LinuxCNC's `[TASK]IO_ERROR` (`toolchanger error %d`)
+/// does; a reason of 0 aborts without one.
+fn operator_message(fault: Option<FaultReason>, events: &mut MachineEvents) {
+    if let Some(FaultReason(reason)) = fault.filter(|f| f.0 < 0) {
+        events.push(EventKind::Message(MessageEvent {
+            text: format!("toolchanger error {reason}"),
+        }));
+    }
+}
+
 fn changer_tool(request: &ToolRequest<'_>) -> Option<ChangerTool> {
     request.tool.map(|label| ChangerTool {
         number: request.number,
@@ -112,7 +123,10 @@ impl Machine for SimulatedMachine {
             PrepareOutcome::Aborted {
                 abort_reason,
                 fault_reason,
-            } => Answer::Error(aborted("prepare", request.tool, abort_reason, fault_reason)),
+            } => {
+                operator_message(fault_reason, events);
+                Answer::Error(aborted("prepare", request.tool, abort_reason, fault_reason))
+            }
         }
     }
 
@@ -143,7 +157,10 @@ impl Machine for SimulatedMachine {
             ChangeOutcome::Aborted {
                 abort_reason,
                 fault_reason,
-            } => Answer::Error(aborted("change", request.tool, abort_reason, fault_reason)),
+            } => {
+                operator_message(fault_reason, events);
+                Answer::Error(aborted("change", request.tool, abort_reason, fault_reason))
+            }
         }
     }
 
