@@ -217,6 +217,24 @@ fn example_file(info: &str, text: String) -> Result<ExampleFile, String> {
     })
 }
 
+/// The `gcodec.toml` that gives an example's main program its profile and
+/// definition files.
+fn check_config(files: &[&ExampleFile]) -> String {
+    let mut section = String::from("[[files]]\nglob = \"*\"\n");
+    if let Some(profile) = files.iter().find(|f| f.lang == "toml") {
+        section.push_str(&format!("profile = \"{}\"\n", profile.name));
+    }
+    let definitions: Vec<String> = files
+        .iter()
+        .filter(|f| f.lang == "def")
+        .map(|f| format!("\"{}\"", f.name))
+        .collect();
+    if !definitions.is_empty() {
+        section.push_str(&format!("definitions = [{}]\n", definitions.join(", ")));
+    }
+    section
+}
+
 /// Writes the files of `role` (and those both use) to a folder of their
 /// own, runs gcodec on them as the explanation says, and returns stdout
 /// and stderr together.
@@ -245,6 +263,7 @@ fn run_example(code: &Code, files: &[ExampleFile], role: Role) -> String {
             "parse" => "parse",
             "run" => "run",
             "profile" => "profile-check",
+            "lint" => "check",
             _ => "lower",
         });
     let path = |name: &str| dir.join(name).display().to_string();
@@ -252,6 +271,12 @@ fn run_example(code: &Code, files: &[ExampleFile], role: Role) -> String {
         "profile-check" => vec!["profile".into(), "check".into(), path("PROFILE.TOML")],
         other => vec![other.to_owned(), path("MAIN.MPF")],
     };
+    if command == "check" {
+        // `check` takes its machine from a configuration, as a repository
+        // of programs would.
+        let config = check_config(&files);
+        std::fs::write(dir.join("gcodec.toml"), config).expect("write gcodec.toml");
+    }
     if matches!(command, "parse" | "lower" | "run") {
         for file in &files {
             match file.lang.as_str() {

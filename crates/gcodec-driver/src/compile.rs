@@ -73,8 +73,32 @@ pub fn compile(
     profile: &Profile,
     definitions: &Definitions,
 ) -> Compiled {
+    compile_then_lint(file, kind, profile, definitions, false)
+}
+
+/// [`compile`], with the findings of the lint rules
+/// ([`gcodec_sema::lint`]) among the diagnostics: what `gcodec check`
+/// reports of a program.
+pub fn compile_linted(
+    file: Arc<SourceFile>,
+    kind: ProgramKind,
+    profile: &Profile,
+    definitions: &Definitions,
+) -> Compiled {
+    compile_then_lint(file, kind, profile, definitions, true)
+}
+
+fn compile_then_lint(
+    file: Arc<SourceFile>,
+    kind: ProgramKind,
+    profile: &Profile,
+    definitions: &Definitions,
+    lint: bool,
+) -> Compiled {
     let parsed = parse_with(&file, definitions);
     let lowered = gcodec_sema::lower_program(&parsed.program, kind, profile, definitions);
+    let linted =
+        lint.then(|| gcodec_sema::lint::lint(&parsed.program, &lowered.document, kind, profile));
     let tree = parsed.program;
     if tree.blocks.len() > FREE_APART {
         std::thread::spawn(move || drop(tree));
@@ -87,6 +111,9 @@ pub fn compile(
         .label_expansions(file.bytes(), &mut lowering_diagnostics);
     let mut diagnostics = parsed.diagnostics;
     diagnostics.append(lowering_diagnostics);
+    if let Some(linted) = linted {
+        diagnostics.append(linted);
+    }
     diagnostics.sort_by_start();
     Compiled {
         file,

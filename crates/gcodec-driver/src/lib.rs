@@ -29,7 +29,7 @@ pub mod run;
 mod setup;
 pub mod stream;
 
-pub use compile::{Compiled, compile, compile_text, parse_with};
+pub use compile::{Compiled, compile, compile_linted, compile_text, parse_with};
 pub use diagnostics::runtime_diagnostic;
 pub use gcodec_ail::{Document, write_listing};
 pub use gcodec_exec::budget::DEFAULT_MAX_WORK;

@@ -50,6 +50,19 @@ pub(crate) struct Flow {
     sections: HashMap<usize, Result<Section, String>>,
     /// Where control can go back: see [`Flow::returns`].
     returns: Option<Vec<(usize, usize)>>,
+    /// Every resolved jump and `REPEAT` section, as blocks: see
+    /// [`Flow::edges`].
+    edges: Vec<Edge>,
+}
+
+/// A place a block sends control to by name: a jump's target, or the first
+/// or last block of the section a `REPEAT` runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Edge {
+    pub(crate) from: usize,
+    pub(crate) to: usize,
+    /// True for a `GOTO…` (a `CASE` arm's too), false for a `REPEAT`.
+    pub(crate) is_jump: bool,
 }
 
 /// What control flow says about one block.
@@ -237,6 +250,7 @@ impl FlowBuilder {
             numbers,
             sections: HashMap::new(),
             returns: None,
+            edges: Vec::new(),
         };
         let mut returns: Vec<(usize, usize)> = structures
             .iter()
@@ -247,6 +261,11 @@ impl FlowBuilder {
         // Every jump's target block carries its label.
         for (i, kind, target) in &jumps {
             if let Some(to) = flow.search(*i, *kind, target) {
+                flow.edges.push(Edge {
+                    from: *i,
+                    to,
+                    is_jump: true,
+                });
                 blocks.0.push((to, Mark::Target(label_name(target, to))));
                 if to <= *i {
                     returns.push((to, *i));
@@ -259,6 +278,13 @@ impl FlowBuilder {
                 // The section's passes go back to its start, and back to
                 // the `REPEAT` after them.
                 returns.push(((*start).min(*i), (*end).max(*i)));
+                for to in [*start, *end] {
+                    flow.edges.push(Edge {
+                        from: *i,
+                        to,
+                        is_jump: false,
+                    });
+                }
                 let start_label = label_name(&repeat.start, *start);
                 blocks.0.push((*start, Mark::Target(start_label)));
                 blocks
@@ -367,6 +393,17 @@ impl Flow {
     /// the program itself).
     pub(crate) fn returns(&self) -> Option<&[(usize, usize)]> {
         self.returns.as_deref()
+    }
+
+    /// Every jump whose target is found and every `REPEAT` section's
+    /// first and last block, in the order of the program.
+    pub(crate) fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+
+    /// The blocks with a label, by label (upper case).
+    pub(crate) fn labels(&self) -> &HashMap<String, Vec<usize>> {
+        &self.labels
     }
 
     /// The span of the label of block `index`.

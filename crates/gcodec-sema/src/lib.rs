@@ -29,6 +29,7 @@
 
 pub mod definitions;
 mod flow;
+pub mod lint;
 mod lower;
 mod mfunc;
 pub mod modal;

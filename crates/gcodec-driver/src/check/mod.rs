@@ -161,7 +161,7 @@ fn findings(file: &Arc<SourceFile>, machine: &Machine) -> Diagnostics {
         return Definitions::new().load(file);
     }
     let kind = ProgramKind::of_file(file.name());
-    crate::compile(
+    crate::compile_linted(
         Arc::clone(file),
         kind,
         &machine.profile,

@@ -15,6 +15,7 @@ mod text;
 pub mod config;
 pub mod definitions;
 pub mod io;
+pub mod lint;
 pub mod lower;
 pub mod parse;
 pub mod profile;
@@ -38,6 +39,34 @@ pub struct Code {
     summary: &'static str,
     explanation: &'static str,
     alarm: Option<u32>,
+    scope: Option<Scope>,
+}
+
+/// What a code's check looks at: what `gcodec explain` says of a rule so
+/// that a user knows which findings a check without `--run` can make.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Scope {
+    /// The text of the file, block by block and as a whole (parsing,
+    /// lowering, a profile, a configuration).
+    Text,
+    /// Every path through the program, followed without running it
+    /// (the `lint` rules of `gcodec check` that follow the program's
+    /// jumps and structures).
+    Paths,
+    /// Only the path a run takes (`gcodec run`, `gcodec check --run`):
+    /// values known when the block runs.
+    Run,
+}
+
+impl Scope {
+    /// How `gcodec explain` says it.
+    pub const fn description(self) -> &'static str {
+        match self {
+            Scope::Text => "looks at the text of the file",
+            Scope::Paths => "looks at every path through the program",
+            Scope::Run => "looks only at the path a run takes (`gcodec run`, `gcodec check --run`)",
+        }
+    }
 }
 
 impl Code {
@@ -85,6 +114,17 @@ impl Code {
     /// is one.
     pub const fn alarm(&self) -> Option<u32> {
         self.alarm
+    }
+
+    /// What the check behind the code looks at: a code's own where it
+    /// names one, else its area's (the run's codes look at the path a run
+    /// takes, the others at the text).
+    pub fn scope(&self) -> Scope {
+        self.scope.unwrap_or(if self.area() == "run" {
+            Scope::Run
+        } else {
+            Scope::Text
+        })
     }
 }
 
@@ -154,6 +194,7 @@ pub fn areas() -> &'static [Area] {
         scenario::AREA,
         config::AREA,
         lower::AREA,
+        lint::AREA,
         run::AREA,
         io::AREA,
     ];
@@ -218,15 +259,17 @@ pub fn suggest(name: &str) -> Option<&'static Code> {
 ///     "parse", "the syntax of a part program";
 ///     UNCLOSED_STRUCTURE = unclosed_structure, Error, "…";
 ///     JUMP_TARGET_NOT_FOUND = jump_target_not_found, Error, alarm 14080, "…";
+///     UNREACHABLE_CODE = unreachable_code, Warning, scope Paths, "…";
 /// }
 /// ```
 macro_rules! codes {
     (
         $area:literal, $title:literal;
-        $( $constant:ident = $name:ident, $level:ident $(, alarm $alarm:literal)?, $summary:literal; )+
+        $( $constant:ident = $name:ident, $level:ident $(, alarm $alarm:literal)? $(, scope $scope:ident)?, $summary:literal; )+
     ) => {
         use $crate::Severity;
-        use super::{Area, Code};
+        #[allow(unused_imports)]
+        use super::{Area, Code, Scope};
 
         $(
             #[doc = $summary]
@@ -237,6 +280,7 @@ macro_rules! codes {
                 explanation: include_str!(concat!($area, "/", stringify!($name), ".md")),
                 // The alarm if one is given, else `None`.
                 alarm: [$(Some($alarm),)? None][0],
+                scope: [$(Some(Scope::$scope),)? None][0],
             };
         )+
 

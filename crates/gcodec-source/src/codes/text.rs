@@ -9,7 +9,13 @@ use super::{Code, all, areas};
 /// summary, then the explanation as written (markdown reads as plain
 /// text).
 pub fn explain(code: &Code) -> String {
-    let mut out = format!("{}\n{}: {}\n\n", code.name(), facts(code), code.summary());
+    let mut out = format!(
+        "{}\n{}: {}\nThe check {}.\n\n",
+        code.name(),
+        facts(code),
+        code.summary(),
+        code.scope().description()
+    );
     out.push_str(code.explanation());
     if !out.ends_with('\n') {
         out.push('\n');
@@ -53,10 +59,11 @@ pub fn reference() -> String {
         for code in area.codes {
             let _ = write!(
                 out,
-                "\n### `{}`\n\n{}: {}.\n\n{}",
+                "\n### `{}`\n\n{}: {}. The check {}.\n\n{}",
                 code.name(),
                 facts(code),
                 code.summary(),
+                code.scope().description(),
                 demote_headings(code.explanation())
             );
         }

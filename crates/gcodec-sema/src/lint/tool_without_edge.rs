@@ -1,0 +1,33 @@
+//! `lint::tool_without_edge`: a feed motion after a tool change with no
+//! cutting edge `D` selected since, on a machine whose MD20270
+//! (`cutting_edge_default`) gives a changed-in tool no edge: the tool cuts
+//! with no length or radius offset. Reported once, at the first such
+//! motion.
+
+use gcodec_ail::Op;
+use gcodec_source::{Diagnostic, codes};
+
+use super::Context;
+use super::facts::Set;
+use super::motion_without_feed::is_feed_motion;
+
+pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
+    let first = cx.document.instructions.iter().enumerate().find(|(at, i)| {
+        matches!(&i.op, Op::Motion { motion, .. } if is_feed_motion(*motion))
+            && cx.graph.is_reached(*at)
+            && cx.facts.may_hold(*at, Set::NO_EDGE)
+    });
+    if let Some((at, _)) = first {
+        out.push(
+            Diagnostic::new(
+                codes::lint::TOOL_WITHOUT_EDGE,
+                "a feed motion with the changed tool and no cutting edge selected",
+            )
+            .with_label(cx.span_of(at), "this motion has no tool offset")
+            .with_help(
+                "select the cutting edge with `D1` (or the edge meant) after the change; \
+                 this machine's `cutting_edge_default` (MD20270) is 0",
+            ),
+        );
+    }
+}
