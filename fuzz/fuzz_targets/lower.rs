@@ -2,7 +2,8 @@
 //! machine profile and checks what every lowering must satisfy: no panic,
 //! a document that ends with `end`, every instruction's source span inside
 //! the input with `start <= end` and on the line it names, every
-//! diagnostic labelled in bounds, and JSON that serialises.
+//! diagnostic labelled in bounds (the lint rules' too), and JSON that
+//! serialises.
 
 #![no_main]
 
@@ -51,5 +52,12 @@ fuzz_target!(|data: &[u8]| {
             }
         }
         serde_json::to_vec(&lowered.document).expect("the document serialises");
+        // The lint rules of `gcodec check` on the same document.
+        let kind = gcodec_sema::ProgramKind::Main;
+        for diagnostic in &gcodec_sema::lint::lint(program, &lowered.document, kind, profile) {
+            for label in &diagnostic.labels {
+                assert!(label.span.start <= label.span.end && label.span.end <= len);
+            }
+        }
     }
 });
