@@ -32,16 +32,24 @@ pub(super) fn is_feed_motion(motion: MotionKind) -> bool {
     )
 }
 
+/// The first feed motion some path reaches with `fact` holding.
+pub(super) fn first_feed_motion_where(cx: &Context<'_>, fact: Set) -> Option<usize> {
+    cx.document
+        .instructions
+        .iter()
+        .enumerate()
+        .position(|(at, i)| {
+            matches!(&i.op, Op::Motion { motion, .. } if is_feed_motion(*motion))
+                && cx.graph.is_reached(at)
+                && cx.facts.may_hold(at, fact)
+        })
+}
+
 pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
     if cx.kind != ProgramKind::Main {
         return;
     }
-    let first = cx.document.instructions.iter().enumerate().find(|(at, i)| {
-        matches!(&i.op, Op::Motion { motion, .. } if is_feed_motion(*motion))
-            && cx.graph.is_reached(*at)
-            && cx.facts.may_hold(*at, Set::FEED_UNSET)
-    });
-    if let Some((at, _)) = first {
+    if let Some(at) = first_feed_motion_where(cx, Set::FEED_UNSET) {
         out.push(
             Diagnostic::new(
                 codes::lint::MOTION_WITHOUT_FEED,

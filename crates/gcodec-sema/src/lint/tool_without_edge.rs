@@ -4,20 +4,14 @@
 //! with no length or radius offset. Reported once, at the first such
 //! motion.
 
-use gcodec_ail::Op;
 use gcodec_source::{Diagnostic, codes};
 
 use super::Context;
 use super::facts::Set;
-use super::motion_without_feed::is_feed_motion;
+use super::motion_without_feed::first_feed_motion_where;
 
 pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
-    let first = cx.document.instructions.iter().enumerate().find(|(at, i)| {
-        matches!(&i.op, Op::Motion { motion, .. } if is_feed_motion(*motion))
-            && cx.graph.is_reached(*at)
-            && cx.facts.may_hold(*at, Set::NO_EDGE)
-    });
-    if let Some((at, _)) = first {
+    if let Some(at) = first_feed_motion_where(cx, Set::NO_EDGE) {
         out.push(
             Diagnostic::new(
                 codes::lint::TOOL_WITHOUT_EDGE,
