@@ -154,7 +154,7 @@ fn effect(op: &Op, master: u32, edge_after_change: bool) -> Effect {
             },
         },
         Op::CuttingEdge { .. } => ends(Set::NO_EDGE),
-        Op::ModalChange { code, .. } => match code.name() {
+        Op::ModalChange { group: 7, code } => match code.name() {
             "G41" | "G42" => Effect {
                 ends: Set::default(),
                 starts: Set::COMPENSATION,

@@ -6,9 +6,8 @@
 //! from its end every time, a jump to a missing target goes on (the run
 //! stops there with an alarm lowering already reports). Calls come back.
 
-use std::collections::HashMap;
-
 use gcodec_ail::{Document, Op};
+use rustc_hash::FxHashMap;
 
 /// Successors of every instruction: the next one where control can fall
 /// through, plus the named targets.
@@ -16,6 +15,9 @@ pub(crate) struct Graph {
     falls_through: Vec<bool>,
     /// (from, to) for every edge that is not a fall-through, sorted.
     edges: Vec<(u32, u32)>,
+    /// Per instruction, whether it has an edge in `edges` (most have
+    /// none: no search for them).
+    has_edges: Vec<bool>,
     /// Instructions the start of the program reaches.
     reached: Vec<bool>,
 }
@@ -35,21 +37,21 @@ pub(crate) fn ends_program(op: &Op) -> bool {
 
 impl Graph {
     pub(crate) fn of(document: &Document) -> Self {
-        let ops: Vec<&Op> = document.instructions.iter().map(|i| &i.op).collect();
-        let labels: HashMap<&str, u32> = ops
+        let labels: FxHashMap<&str, u32> = document
+            .instructions
             .iter()
             .enumerate()
-            .filter_map(|(at, op)| match op {
+            .filter_map(|(at, i)| match &i.op {
                 Op::Label { name } => Some((name.as_str(), at as u32)),
                 _ => None,
             })
             .collect();
-        let count = ops.len();
+        let count = document.instructions.len();
         let mut falls_through = vec![true; count];
         let mut edges = Vec::new();
         let mut computed = Vec::new();
         let mut section_ends = Vec::new();
-        for (at, op) in ops.iter().enumerate() {
+        for (at, op) in document.instructions.iter().map(|i| &i.op).enumerate() {
             let from = at as u32;
             let mut to = |name: &str| match labels.get(name) {
                 Some(&target) => {
@@ -87,9 +89,14 @@ impl Graph {
         edges.extend(section_ends);
         edges.sort_unstable();
         edges.dedup();
+        let mut has_edges = vec![false; count];
+        for &(from, _) in &edges {
+            has_edges[from as usize] = true;
+        }
         let mut graph = Graph {
             falls_through,
             edges,
+            has_edges,
             reached: vec![false; count],
         };
         graph.reach();
@@ -105,7 +112,11 @@ impl Graph {
     pub(crate) fn successors(&self, at: usize) -> impl Iterator<Item = usize> + '_ {
         let next = (self.falls_through[at] && at + 1 < self.len()).then_some(at + 1);
         let from = at as u32;
-        let first = self.edges.partition_point(|&(f, _)| f < from);
+        let first = if self.has_edges[at] {
+            self.edges.partition_point(|&(f, _)| f < from)
+        } else {
+            self.edges.len()
+        };
         let named = self.edges[first..]
             .iter()
             .take_while(move |&&(f, _)| f == from)
