@@ -147,6 +147,21 @@ impl Diagnostics {
         }
     }
 
+    /// Keeps only the kept ones `keep` says (a suppression, a baseline);
+    /// those counted are left as they are: they have no place to judge.
+    pub fn retain(&mut self, keep: impl FnMut(&Diagnostic) -> bool) {
+        self.kept.retain(keep);
+        self.block_start = None;
+    }
+
+    /// Forgets the counted ones whose code `forget` says (a suppression
+    /// of a whole file); returns how many were forgotten.
+    pub fn forget_omitted(&mut self, forget: impl Fn(&'static Code) -> bool) -> u64 {
+        let before = self.omitted.total();
+        self.omitted.0.retain(|(code, _, _)| !forget(code));
+        before - self.omitted.total()
+    }
+
     /// Forgets every one, kept or counted.
     pub fn clear(&mut self) {
         *self = Self::default();
@@ -294,5 +309,26 @@ mod tests {
             file.omitted().errors(),
             file.total() - MAX_KEPT_PER_FILE as u64
         );
+    }
+
+    /// Retaining judges the kept ones; forgetting the counted ones goes
+    /// by code and says how many.
+    #[test]
+    fn retain_and_forget_omitted_take_diagnostics_out() {
+        let mut all = Diagnostics::new();
+        all.begin_block();
+        all.extend(repeated(MAX_KEPT_PER_BLOCK + 3));
+        all.push(Diagnostic::new(codes::lower::NOT_LOWERED, "counted"));
+        all.begin_block();
+        all.push(Diagnostic::new(codes::lower::NOT_LOWERED, "kept"));
+        all.retain(|d| d.code != codes::lower::REPEATED_AXIS);
+        assert_eq!(all.len(), 1);
+        assert_eq!(all.total(), 5);
+        assert_eq!(
+            all.forget_omitted(|code| code == codes::lower::REPEATED_AXIS),
+            3
+        );
+        assert_eq!(all.total(), 2);
+        assert_eq!(all.forget_omitted(|_| false), 0);
     }
 }

@@ -18,6 +18,7 @@ mod machines;
 mod record;
 mod report;
 mod selector;
+mod suppress;
 mod walk;
 
 use std::path::Path;
@@ -148,10 +149,17 @@ fn check_file(found: Found, machine: &Machine, levels: &Levels<'_>) -> FileRepor
             (None, diagnostics)
         }
     };
+    let relevel = |code, severity| levels.level(code, severity);
+    let mut diagnostics = diagnostics.releveled(relevel);
+    if let Some(file) = &file {
+        let own = suppress::apply(file, &mut diagnostics);
+        diagnostics.append(Diagnostics::from(own).releveled(relevel));
+        diagnostics.sort_by_start();
+    }
     FileReport {
         name,
         file,
-        diagnostics: diagnostics.releveled(|code, severity| levels.level(code, severity)),
+        diagnostics,
     }
 }
 

@@ -12,6 +12,7 @@
 
 mod text;
 
+pub mod check;
 pub mod config;
 pub mod definitions;
 pub mod io;
@@ -193,6 +194,7 @@ pub fn areas() -> &'static [Area] {
         profile::AREA,
         scenario::AREA,
         config::AREA,
+        check::AREA,
         lower::AREA,
         lint::AREA,
         run::AREA,

@@ -1,0 +1,99 @@
+//! `gcodec check` as a gate over legacy programs: suppression comments
+//! in the programs (`tests/fixtures/check-suppress/`), the baseline
+//! file, and `--run` (`tests/fixtures/check-run/`).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{EXIT_CLEAN, EXIT_DIAGNOSTICS, code, gcodec_in, stderr, stdout};
+
+fn fixtures(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/fixtures")
+        .join(name)
+}
+
+/// A folder of this test run holding `files` (`(name, contents)`).
+fn tree(test: &str, files: &[(&str, &str)]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("gcodec-gate-{test}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    for (name, contents) in files {
+        let path = dir.join(name);
+        std::fs::create_dir_all(path.parent().expect("a folder")).expect("temp dir");
+        std::fs::write(path, contents).expect("write");
+    }
+    dir
+}
+
+fn concise_in(dir: &Path, args: &[&str]) -> (i32, String) {
+    let mut all = vec!["check", "--output-format", "concise"];
+    all.extend_from_slice(args);
+    let out = gcodec_in(dir, all);
+    assert_eq!(stderr(&out), "", "{}", stdout(&out));
+    (code(&out), stdout(&out))
+}
+
+#[test]
+fn suppressions_drop_their_codes_on_their_block_or_in_the_file() {
+    let (exit, text) = concise_in(&fixtures("check-suppress"), &[]);
+    assert_eq!(exit, EXIT_CLEAN);
+    insta::assert_snapshot!("check_suppressions_concise", text);
+    let out = gcodec_in(&fixtures("check-suppress"), ["check", "blocks.mpf"]);
+    insta::assert_snapshot!("check_suppressions_full", stdout(&out));
+}
+
+#[test]
+fn the_suppressions_own_codes_follow_the_rule_levels() {
+    let dir = fixtures("check-suppress");
+    let (exit, text) = concise_in(&dir, &["--ignore", "gcodec::check::*"]);
+    assert_eq!(exit, EXIT_CLEAN);
+    assert!(!text.contains("gcodec::check::"), "{text}");
+    let (exit, text) = concise_in(&dir, &["--deny", "warnings"]);
+    assert_eq!(exit, EXIT_DIAGNOSTICS);
+    let unused: Vec<&str> = text
+        .lines()
+        .filter(|l| l.contains("[gcodec::check::unused_suppression]"))
+        .collect();
+    assert_eq!(unused.len(), 2, "{text}");
+    assert!(unused.iter().all(|l| l.contains(": error[")), "{text}");
+    // `--select` keeps every other code out before the suppressions
+    // apply, so these suppress nothing (as ruff's `RUF100` says of
+    // suppressions of codes not enabled).
+    let (_, text) = concise_in(&dir, &["--select", "check::unused_suppression"]);
+    assert_eq!(text.lines().count(), 5, "{text}");
+}
+
+#[test]
+fn a_suppression_of_a_code_the_levels_drop_is_unused() {
+    let dir = tree(
+        "allowed",
+        &[
+            (
+                "gcodec.toml",
+                "[rules]\n\"lower::unknown_m_function\" = \"allow\"\n",
+            ),
+            (
+                "a.mpf",
+                "N10 M77 ; gcodec: allow(lower::unknown_m_function)\nN20 M30\n",
+            ),
+        ],
+    );
+    let (exit, text) = concise_in(&dir, &[]);
+    assert_eq!(exit, EXIT_CLEAN);
+    assert_eq!(
+        text,
+        "a.mpf:1:25: warning[gcodec::check::unused_suppression] the suppression of \
+         `gcodec::lower::unknown_m_function` suppressed nothing on this block\n"
+    );
+}
+
+#[test]
+fn a_suppressed_error_no_longer_fails_the_check() {
+    let program = "; gcodec: allow(lower::undefined_variable)\nN10 R1 = UNDEFINED_NAME\nN20 M30\n";
+    let dir = tree("error", &[("a.mpf", program)]);
+    assert_eq!(concise_in(&dir, &[]), (EXIT_CLEAN, String::new()));
+    let dir = tree("error-kept", &[("a.mpf", &program[43..])]);
+    assert_eq!(concise_in(&dir, &[]).0, EXIT_DIAGNOSTICS);
+}
