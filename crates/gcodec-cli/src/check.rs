@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 
 use clap::ValueEnum;
 use gcodec_driver::check::{
-    CheckConfig, CheckReport, DiagnosticRecord, FileReport, Input, Progress, Selection, Selector,
-    find_config,
+    CheckConfig, CheckOptions, CheckReport, DiagnosticRecord, FileReport, Input, Progress,
+    RunChecks, Selection, Selector, find_config,
 };
 use gcodec_source::{
     Severity, SourceFile, codes, escape_controls, render_diagnostics, render_kept,
@@ -75,6 +75,16 @@ pub struct CheckArgs {
     /// shown, and the configuration's globs and the file kind go by it.
     #[arg(long, value_name = "NAME")]
     pub stdin_filename: Option<String>,
+    /// Also run each main program (not `.spf`, not `.def`) that lowers
+    /// without errors, so that run-time errors are found; its calls are
+    /// found in its folder, the profile's `subprogram_paths` and the
+    /// configuration's `search_paths`.
+    #[arg(long)]
+    pub run: bool,
+    /// With `--run`: stop a run after this many blocks
+    /// (`gcodec::run::step_limit`).
+    #[arg(long, value_name = "N", default_value_t = RunChecks::default().max_steps, requires = "run")]
+    pub max_steps: u64,
     #[command(flatten)]
     pub diagnostics: DiagnosticOptions,
 }
@@ -112,7 +122,13 @@ pub fn check(args: CheckArgs) -> u8 {
         deny_warnings: args.deny == Some(Denied::Warnings),
     };
     let progress = ProgressBar::for_stderr();
-    let checked = gcodec_driver::check::check_with_progress(&config, inputs, &selection, &progress);
+    let options = CheckOptions {
+        run: args.run.then_some(RunChecks {
+            max_steps: args.max_steps,
+        }),
+    };
+    let checked =
+        gcodec_driver::check::check_with(&config, inputs, &selection, &options, &progress);
     progress.finish();
     let report = match checked {
         Ok(report) => report,

@@ -97,3 +97,71 @@ fn a_suppressed_error_no_longer_fails_the_check() {
     let dir = tree("error-kept", &[("a.mpf", &program[43..])]);
     assert_eq!(concise_in(&dir, &[]).0, EXIT_DIAGNOSTICS);
 }
+
+#[test]
+fn without_run_the_run_time_errors_are_not_found() {
+    assert_eq!(
+        concise_in(&fixtures("check-run"), &[]),
+        (EXIT_CLEAN, String::new())
+    );
+}
+
+#[test]
+fn run_finds_run_time_errors_in_main_programs_and_their_calls() {
+    let dir = fixtures("check-run");
+    let (exit, text) = concise_in(&dir, &["--run", "--max-steps", "1000"]);
+    assert_eq!(exit, EXIT_DIAGNOSTICS);
+    let library = dir.join("library").canonicalize().expect("the fixtures");
+    let text = text.replace(&library.display().to_string(), "[LIBRARY]");
+    insta::assert_snapshot!("check_run_concise", text);
+}
+
+#[test]
+fn max_steps_needs_run() {
+    let out = gcodec_in(&fixtures("check-run"), ["check", "--max-steps", "5"]);
+    assert_eq!(code(&out), common::EXIT_USAGE);
+    assert!(stderr(&out).contains("--run"), "{}", stderr(&out));
+}
+
+/// A subprogram two programs call, which the check reads too: its
+/// lowering warning is reported once, and so is its run-time error.
+#[test]
+fn a_called_programs_findings_are_reported_once_against_its_file() {
+    let sub = "N10 M77\nN20 R3 = 5 / R1\nN30 M17\n";
+    let main = "N10 R1 = 0\nN20 SUB\nN30 M30\n";
+    let dir = tree(
+        "called",
+        &[("a.mpf", main), ("b.mpf", main), ("SUB.SPF", sub)],
+    );
+    let (exit, text) = concise_in(&dir, &["--run"]);
+    assert_eq!(exit, EXIT_DIAGNOSTICS);
+    assert_eq!(
+        text,
+        "SUB.SPF:1:5: warning[gcodec::lower::unknown_m_function] M77 is not a predefined M function\n\
+         SUB.SPF:2:5: error[gcodec::run::division_by_zero] `/` by zero\n"
+    );
+}
+
+#[test]
+fn run_findings_follow_suppressions_and_a_program_with_errors_is_not_run() {
+    let dir = tree(
+        "run-suppressed",
+        &[
+            (
+                "a.mpf",
+                "N10 R1 = 0\nN20 R2 = 1 / R1 ; gcodec: allow(run::division_by_zero)\nN30 M30\n",
+            ),
+            // A lowering error: the run's division is never reached.
+            (
+                "b.mpf",
+                "N10 R1 = 0\nN20 R2 = 1 / R1\nN30 R3 = UNDEFINED_NAME\nN40 M30\n",
+            ),
+        ],
+    );
+    let (exit, text) = concise_in(&dir, &["--run"]);
+    assert_eq!(exit, EXIT_DIAGNOSTICS);
+    assert_eq!(
+        text,
+        "b.mpf:3:10: error[gcodec::lower::undefined_variable] `UNDEFINED_NAME` is not defined\n"
+    );
+}

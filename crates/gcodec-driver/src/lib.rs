@@ -40,6 +40,6 @@ pub use gcodec_parser::{Parse, parse, write_tree};
 pub use gcodec_sema::{Definitions, ProgramKind};
 pub use loaded_files::LoadedFiles;
 pub use loader::{FileLoader, MemoryLoader, SearchPath, program_name};
-pub use run::{RunReport, RunSetup, globals, run_main};
+pub use run::{RunReport, RunSetup, globals, run_main, run_program};
 pub use setup::{ProfileError, builtin_profile_file, load_profile, load_toolchanger, read_source};
 pub use stream::{StreamOptions, run_streamed};

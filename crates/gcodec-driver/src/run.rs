@@ -8,6 +8,7 @@ use std::sync::Arc;
 use gcodec_exec::channel::{BlockObserver, Channel, RunOptions, RunOutcome};
 use gcodec_exec::event::EventSink;
 use gcodec_exec::machine::SimulatedMachine;
+use gcodec_exec::program::Program;
 use gcodec_exec::toolchanger::SimulatedChanger;
 use gcodec_exec::vars::Global;
 use gcodec_profile::Profile;
@@ -86,6 +87,34 @@ pub fn run_main(
     sink: &mut dyn EventSink,
     observer: Option<&mut dyn BlockObserver>,
 ) -> RunReport {
+    setup.loaded_files.insert(Arc::clone(&file));
+    let name = program_name(Path::new(file.name()));
+    let kind = ProgramKind::of_file(file.name());
+    let (outcome, diagnostics) = run_streamed(
+        &file,
+        name,
+        kind,
+        &setup.profile,
+        &setup.definitions,
+        setup.stream,
+        |main| run_program(main, setup, sink, observer),
+    );
+    RunReport {
+        outcome,
+        diagnostics,
+    }
+}
+
+/// Runs `main` (lowered already, or streamed by [`run_main`]) on the
+/// machine `setup` describes, its calls found on the search path: events
+/// go to `sink`, the state after each block to `observer`. The main
+/// program's file is recorded in `setup.loaded_files` by the caller.
+pub fn run_program(
+    main: Arc<Program>,
+    setup: &RunSetup,
+    sink: &mut dyn EventSink,
+    observer: Option<&mut dyn BlockObserver>,
+) -> io::Result<RunOutcome> {
     let search = SearchPath::new()
         .with_profile(&setup.profile, setup.profile_file.as_deref())
         .with_dirs(setup.search_dirs.iter().cloned());
@@ -96,39 +125,22 @@ pub fn run_main(
     )
     .with_loaded_files(setup.loaded_files.clone())
     .with_encoding(setup.encoding);
-    setup.loaded_files.insert(Arc::clone(&file));
-    let name = program_name(Path::new(file.name()));
-    let kind = ProgramKind::of_file(file.name());
     let globals = globals(&setup.definitions);
-    let (outcome, diagnostics) = run_streamed(
-        &file,
-        name,
-        kind,
-        &setup.profile,
-        &setup.definitions,
-        setup.stream,
-        |main| {
-            let mut channel = Channel::new(
-                Arc::clone(&setup.profile),
-                setup.options.clone(),
-                &mut loader,
-                sink,
-            )
-            .with_globals(&globals);
-            if let Some(changer) = &setup.toolchanger {
-                let changer = Box::new(changer.clone());
-                channel = channel.with_machine(SimulatedMachine::with_changer(Some(changer)));
-            }
-            if let Some(observer) = observer {
-                channel = channel.with_observer(observer);
-            }
-            channel.run(main)
-        },
-    );
-    RunReport {
-        outcome,
-        diagnostics,
+    let mut channel = Channel::new(
+        Arc::clone(&setup.profile),
+        setup.options.clone(),
+        &mut loader,
+        sink,
+    )
+    .with_globals(&globals);
+    if let Some(changer) = &setup.toolchanger {
+        let changer = Box::new(changer.clone());
+        channel = channel.with_machine(SimulatedMachine::with_changer(Some(changer)));
     }
+    if let Some(observer) = observer {
+        channel = channel.with_observer(observer);
+    }
+    channel.run(main)
 }
 
 /// The global user data of `definitions` as the channel declares it, in

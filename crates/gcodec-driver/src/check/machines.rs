@@ -4,6 +4,7 @@
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use gcodec_profile::Profile;
 use gcodec_sema::Definitions;
@@ -15,20 +16,27 @@ use super::report::FileReport;
 /// What the files of one set of sections are checked with.
 #[derive(Debug)]
 pub(super) struct Machine {
-    pub profile: Profile,
-    pub definitions: Definitions,
+    pub profile: Arc<Profile>,
+    /// The profile's file (`None`: the built-in profile): a run takes
+    /// its relative `subprogram_paths` against its folder.
+    pub profile_file: Option<PathBuf>,
+    pub definitions: Arc<Definitions>,
 }
 
 impl Machine {
     /// How the machine's files are read: at most the profile's
     /// `[program] max_file_size`, in its code page where not UTF-8.
     pub fn read(&self, path: &Path) -> Result<SourceFile, Diagnostic> {
-        crate::read_source(
-            path,
-            *self.profile.program.max_file_size.get_ref(),
-            self.profile.program.text_encoding(),
-        )
+        read(&self.profile, path)
     }
+}
+
+fn read(profile: &Profile, path: &Path) -> Result<SourceFile, Diagnostic> {
+    crate::read_source(
+        path,
+        *profile.program.max_file_size.get_ref(),
+        profile.program.text_encoding(),
+    )
 }
 
 /// The machines of every set of sections some file matches, loaded once
@@ -85,25 +93,26 @@ impl<'c> Machines<'c> {
             .iter()
             .rev()
             .find_map(|&i| config.sections[i].profile.as_ref());
-        let profile = match named {
-            Some((path, span)) => self.profile(path, *span)?,
-            None => self.builtin.clone(),
+        let (profile, profile_file) = match named {
+            Some((path, span)) => (self.profile(path, *span)?, Some(path.clone())),
+            None => (self.builtin.clone(), None),
         };
-        let mut machine = Machine {
-            profile,
-            definitions: Definitions::new(),
-        };
+        let mut definitions = Definitions::new();
         let mut usable = true;
         for &i in sections {
             let section = &config.sections[i];
             for (path, span) in &section.definitions {
-                usable &= self.definitions(&mut machine, path, *span);
+                usable &= self.definitions(&profile, &mut definitions, path, *span);
             }
             for name in &section.assume_defined {
-                machine.definitions.assume_defined(name);
+                definitions.assume_defined(name);
             }
         }
-        usable.then_some(machine)
+        usable.then(|| Machine {
+            profile: Arc::new(profile),
+            profile_file,
+            definitions: Arc::new(definitions),
+        })
     }
 
     fn profile(&mut self, path: &Path, span: Span) -> Option<Profile> {
@@ -148,17 +157,23 @@ impl<'c> Machines<'c> {
         }
     }
 
-    /// Loads one definition file into `machine`; false where it cannot
-    /// be read or has errors.
-    fn definitions(&mut self, machine: &mut Machine, path: &Path, span: Span) -> bool {
-        let file = match machine.read(path) {
+    /// Loads one definition file, read as `profile` says, into
+    /// `definitions`; false where it cannot be read or has errors.
+    fn definitions(
+        &mut self,
+        profile: &Profile,
+        definitions: &mut Definitions,
+        path: &Path,
+        span: Span,
+    ) -> bool {
+        let file = match read(profile, path) {
             Ok(file) => file,
             Err(d) => {
                 self.unusable(path, span, "cannot be read", vec![d], None);
                 return false;
             }
         };
-        let diagnostics = machine.definitions.load(&file);
+        let diagnostics = definitions.load(&file);
         if diagnostics.has_errors() {
             let found = diagnostics.to_vec();
             self.unusable(

@@ -13,10 +13,12 @@
 //!   json`, `docs/schema/check.schema.json`).
 
 mod config;
+mod gather;
 mod levels;
 mod machines;
 mod record;
 mod report;
+mod run;
 mod selector;
 mod suppress;
 mod walk;
@@ -32,11 +34,14 @@ pub use config::{CONFIG_NAME, CheckConfig, find_config};
 pub use levels::{RuleLevel, Selection};
 pub use record::{DiagnosticRecord, LabelRecord, check_json_schema};
 pub use report::{CheckReport, Counts, FileReport};
+pub use run::RunChecks;
 pub use selector::Selector;
 pub use walk::Input;
 
+use gather::Checked;
 use levels::Levels;
 use machines::{Machine, Machines};
+use run::RunFinding;
 use walk::{Found, Source};
 
 /// A check that could not start: a path named that does not exist, a
@@ -62,6 +67,13 @@ pub struct Quiet;
 
 impl Progress for Quiet {}
 
+/// What a check does besides parsing and lowering every file.
+#[derive(Clone, Debug, Default)]
+pub struct CheckOptions {
+    /// Main programs that lower without errors are also run (`--run`).
+    pub run: Option<RunChecks>,
+}
+
 /// Checks the files of `inputs` as `config` says, at the levels of its
 /// rules and `selection`.
 pub fn check(
@@ -77,6 +89,23 @@ pub fn check_with_progress(
     config: &CheckConfig,
     inputs: Vec<Input>,
     selection: &Selection,
+    progress: &dyn Progress,
+) -> Result<CheckReport, SetupError> {
+    check_with(
+        config,
+        inputs,
+        selection,
+        &CheckOptions::default(),
+        progress,
+    )
+}
+
+/// [`check_with_progress`], doing what `options` says besides.
+pub fn check_with(
+    config: &CheckConfig,
+    inputs: Vec<Input>,
+    selection: &Selection,
+    options: &CheckOptions,
     progress: &dyn Progress,
 ) -> Result<CheckReport, SetupError> {
     let found = walk::files(config, inputs).map_err(|d| SetupError {
@@ -106,19 +135,26 @@ pub fn check_with_progress(
         }
     };
     progress.files_found(found.len());
-    let mut files: Vec<FileReport> = found
+    let (mut checked, run_findings): (Vec<Checked>, Vec<Vec<RunFinding>>) = found
         .into_par_iter()
         .zip(machine_of)
         .map(|(found, machine)| {
-            let file_ignores = config.ignores_of(&found.relative);
+            let checked = check_file(found, machines.machine(machine), config, options);
+            progress.file_checked();
+            checked
+        })
+        .unzip();
+    gather::run_findings(config, &mut checked, run_findings);
+    let mut files: Vec<FileReport> = checked
+        .into_par_iter()
+        .map(|checked| {
+            let file_ignores = config.ignores_of(&checked.relative);
             let levels = Levels {
                 rules: &config.rules,
                 file_ignores: &file_ignores,
                 selection,
             };
-            let report = check_file(found, machines.machine(machine), &levels);
-            progress.file_checked();
-            report
+            at_levels(checked, &levels)
         })
         .collect();
     files.extend(std::mem::take(&mut machines.problems));
@@ -127,9 +163,16 @@ pub fn check_with_progress(
 }
 
 /// One file read and checked: a definition file loaded as one, a program
-/// parsed and lowered.
-fn check_file(found: Found, machine: &Machine, levels: &Levels<'_>) -> FileReport {
+/// parsed and lowered, and, for `--run`, a main program without errors
+/// run. Its findings, and those of the run in other files.
+fn check_file(
+    found: Found,
+    machine: &Machine,
+    config: &CheckConfig,
+    options: &CheckOptions,
+) -> (Checked, Vec<RunFinding>) {
     let name = found.name();
+    let relative = found.relative.clone();
     let file = match found.source {
         Source::File(path) => machine.read(&path),
         Source::Stdin { name, bytes } => {
@@ -137,45 +180,56 @@ fn check_file(found: Found, machine: &Machine, levels: &Levels<'_>) -> FileRepor
         }
         Source::Unreadable { problem, .. } => Err(problem),
     };
-    let (file, diagnostics) = match file {
-        Ok(file) => {
-            let file = Arc::new(file);
-            let diagnostics = findings(&file, machine);
-            (Some(file), diagnostics)
-        }
+    let file = match file {
+        Ok(file) => Arc::new(file),
         Err(problem) => {
-            let mut diagnostics = Diagnostics::new();
-            diagnostics.push(problem);
-            (None, diagnostics)
+            let diagnostics = Diagnostics::from(vec![problem]);
+            let checked = Checked::new(name, relative, None, diagnostics);
+            return (checked, Vec::new());
         }
     };
+    if is_definition_file(file.name()) {
+        let diagnostics = Definitions::new().load(&file);
+        return (
+            Checked::new(name, relative, Some(file), diagnostics),
+            Vec::new(),
+        );
+    }
+    let kind = ProgramKind::of_file(file.name());
+    let compiled = crate::compile_linted(
+        Arc::clone(&file),
+        kind,
+        &machine.profile,
+        &machine.definitions,
+    );
+    let run_findings = match options.run {
+        Some(checks) if kind == ProgramKind::Main && !compiled.has_errors() => run::run(
+            &file,
+            compiled.document,
+            machine,
+            &config.search_paths,
+            checks,
+        ),
+        _ => Vec::new(),
+    };
+    let checked = Checked::new(name, relative, Some(file), compiled.diagnostics);
+    (checked, run_findings)
+}
+
+/// A file's findings at the levels in force, its suppressions applied.
+fn at_levels(checked: Checked, levels: &Levels<'_>) -> FileReport {
     let relevel = |code, severity| levels.level(code, severity);
-    let mut diagnostics = diagnostics.releveled(relevel);
-    if let Some(file) = &file {
+    let mut diagnostics = checked.diagnostics.releveled(relevel);
+    if let Some(file) = &checked.file {
         let own = suppress::apply(file, &mut diagnostics);
         diagnostics.append(Diagnostics::from(own).releveled(relevel));
         diagnostics.sort_by_start();
     }
     FileReport {
-        name,
-        file,
+        name: checked.name,
+        file: checked.file,
         diagnostics,
     }
-}
-
-/// What checking `file` finds on `machine`.
-fn findings(file: &Arc<SourceFile>, machine: &Machine) -> Diagnostics {
-    if is_definition_file(file.name()) {
-        return Definitions::new().load(file);
-    }
-    let kind = ProgramKind::of_file(file.name());
-    crate::compile_linted(
-        Arc::clone(file),
-        kind,
-        &machine.profile,
-        &machine.definitions,
-    )
-    .diagnostics
 }
 
 fn is_definition_file(name: &str) -> bool {
