@@ -85,6 +85,14 @@ pub struct CheckArgs {
     /// (`gcodec::run::step_limit`).
     #[arg(long, value_name = "N", default_value_t = RunChecks::default().max_steps, requires = "run")]
     pub max_steps: u64,
+    /// Do not report the findings this baseline lists (as many of each
+    /// as it counts): only new findings are reported and fail.
+    #[arg(long, value_name = "FILE", conflicts_with = "write_baseline")]
+    pub baseline: Option<PathBuf>,
+    /// Write every finding to this baseline file instead of reporting
+    /// them, and exit 0.
+    #[arg(long, value_name = "FILE")]
+    pub write_baseline: Option<PathBuf>,
     #[command(flatten)]
     pub diagnostics: DiagnosticOptions,
 }
@@ -116,6 +124,13 @@ pub fn check(args: CheckArgs) -> u8 {
         Ok(inputs) => inputs,
         Err(code) => return code,
     };
+    let baseline = match &args.baseline {
+        Some(path) => match crate::baseline::read(path, args.diagnostics) {
+            Ok(baseline) => Some((baseline, path)),
+            Err(code) => return code,
+        },
+        None => None,
+    };
     let selection = Selection {
         select: args.select.clone(),
         ignore: args.ignore.clone(),
@@ -130,7 +145,7 @@ pub fn check(args: CheckArgs) -> u8 {
     let checked =
         gcodec_driver::check::check_with(&config, inputs, &selection, &options, &progress);
     progress.finish();
-    let report = match checked {
+    let mut report = match checked {
         Ok(report) => report,
         Err(error) => {
             for problem in &error.reports {
@@ -139,6 +154,13 @@ pub fn check(args: CheckArgs) -> u8 {
             return EXIT_USAGE;
         }
     };
+    if let Some(path) = &args.write_baseline {
+        return crate::baseline::write(&report, path);
+    }
+    if let Some((baseline, path)) = &baseline {
+        let applied = baseline.apply(&mut report, crate::baseline::folder(path));
+        crate::baseline::tell(applied);
+    }
     let exit = if report.has_errors() {
         EXIT_DIAGNOSTICS
     } else {

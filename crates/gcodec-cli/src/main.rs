@@ -1,6 +1,7 @@
 //! The `gcodec` command. Thin over the library crates: it reads files,
 //! calls a stage, prints the result and renders diagnostics.
 
+mod baseline;
 mod check;
 mod commands;
 mod exit;

@@ -165,3 +165,123 @@ fn run_findings_follow_suppressions_and_a_program_with_errors_is_not_run() {
         "b.mpf:3:10: error[gcodec::lower::undefined_variable] `UNDEFINED_NAME` is not defined\n"
     );
 }
+
+/// The files of the baseline fixtures, as `(name, contents)`.
+fn baseline_fixtures() -> Vec<(&'static str, String)> {
+    let dir = fixtures("check-baseline");
+    ["gcodec.toml", "legacy/clamp.mpf", "legacy/gud.mpf"]
+        .into_iter()
+        .map(|name| {
+            let text = std::fs::read_to_string(dir.join(name)).expect("a fixture");
+            (name, text)
+        })
+        .collect()
+}
+
+#[test]
+fn write_baseline_writes_every_finding_sorted_and_exits_0() {
+    let files = baseline_fixtures();
+    let files: Vec<(&str, &str)> = files.iter().map(|(n, t)| (*n, t.as_str())).collect();
+    let dir = tree("write-baseline", &files);
+    let out = gcodec_in(&dir, ["check", "--write-baseline", "baseline.json"]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    assert_eq!(stdout(&out), "");
+    assert_eq!(
+        stderr(&out),
+        "wrote 4 findings in 3 entries to baseline.json\n"
+    );
+    let written = std::fs::read_to_string(dir.join("baseline.json")).expect("written");
+    let checked_in = std::fs::read_to_string(fixtures("check-baseline").join("baseline.json"))
+        .expect("the fixture");
+    assert_eq!(written, checked_in);
+}
+
+#[test]
+fn a_baseline_drops_the_findings_it_lists() {
+    let out = gcodec_in(
+        &fixtures("check-baseline"),
+        ["check", "--baseline", "baseline.json"],
+    );
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stdout(&out));
+    assert_eq!(
+        stdout(&out),
+        "checked 2 files: 0 errors, 0 warnings, 0 advice (in 0 files)\n"
+    );
+    assert_eq!(
+        stderr(&out),
+        "4 findings matched the baseline and are not reported\n"
+    );
+}
+
+/// Lines added above a known finding leave it matched; one more copy
+/// of it and a new finding are reported; a fixed one is told of.
+#[test]
+fn only_new_findings_fail_and_fixed_entries_are_told() {
+    let baseline = std::fs::read_to_string(fixtures("check-baseline").join("baseline.json"))
+        .expect("the fixture");
+    let clamp = "; Two clamp M functions on one line, and one more below.\n\
+                 ; (a comment added)\nN10 G90\nN20 M77 M77\nN30 G0 X10\nN40 M77\nN45 M77\nN50 M30\n";
+    let dir = tree(
+        "new-findings",
+        &[
+            ("gcodec.toml", ""),
+            ("baseline.json", &baseline),
+            ("legacy/clamp.mpf", clamp),
+            ("legacy/gud.mpf", "N10 R1 = 1\nN20 M30\n"),
+            ("new.mpf", "N10 M78\nN20 M30\n"),
+        ],
+    );
+    let (exit, text) = {
+        let out = gcodec_in(
+            &dir,
+            [
+                "check",
+                "--baseline",
+                "baseline.json",
+                "--output-format",
+                "concise",
+                "--deny",
+                "warnings",
+            ],
+        );
+        assert_eq!(
+            stderr(&out),
+            "3 findings matched the baseline and are not reported\n\
+             1 baseline entry is fixed; rewrite with --write-baseline\n"
+        );
+        (code(&out), stdout(&out))
+    };
+    assert_eq!(exit, EXIT_DIAGNOSTICS);
+    assert_eq!(
+        text,
+        "legacy/clamp.mpf:7:5: error[gcodec::lower::unknown_m_function] M77 is not a predefined M function\n\
+         new.mpf:1:5: error[gcodec::lower::unknown_m_function] M78 is not a predefined M function\n"
+    );
+}
+
+#[test]
+fn a_baseline_that_is_none_is_exit_2_with_a_diagnostic() {
+    let dir = fixtures("check-baseline");
+    let out = gcodec_in(&dir, ["check", "--baseline", "bad_baseline.json"]);
+    assert_eq!(code(&out), common::EXIT_USAGE);
+    assert_eq!(stdout(&out), "");
+    insta::assert_snapshot!("check_bad_baseline", stderr(&out));
+    let out = gcodec_in(&dir, ["check", "--baseline", "missing.json"]);
+    assert_eq!(code(&out), common::EXIT_USAGE);
+    assert!(
+        stderr(&out).contains("gcodec::io::read"),
+        "{}",
+        stderr(&out)
+    );
+    let out = gcodec_in(
+        &dir,
+        [
+            "check",
+            "--baseline",
+            "baseline.json",
+            "--write-baseline",
+            "b.json",
+        ],
+    );
+    assert_eq!(code(&out), common::EXIT_USAGE);
+}

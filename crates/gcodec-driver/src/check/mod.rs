@@ -12,6 +12,7 @@
 //! - [`DiagnosticRecord`]: one diagnostic as data (`--output-format
 //!   json`, `docs/schema/check.schema.json`).
 
+pub mod baseline;
 mod config;
 mod gather;
 mod levels;
