@@ -11,6 +11,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 
+use common::temp_tree as tree;
 use common::{
     EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, code, command, gcodec, gcodec_in, stderr, stdout,
 };
@@ -18,19 +19,6 @@ use serde_json::Value as Json;
 
 fn fixtures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/fixtures/check")
-}
-
-/// A folder of this test run holding `files` (`(name, contents)`).
-fn tree(test: &str, files: &[(&str, &str)]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("gcodec-check-{test}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    for (name, contents) in files {
-        let path = dir.join(name);
-        std::fs::create_dir_all(path.parent().expect("a folder")).expect("temp dir");
-        std::fs::write(path, contents).expect("write");
-    }
-    dir
 }
 
 const CLEAN: &str = "N10 G90\nN20 G0 X10\nN30 M30\n";

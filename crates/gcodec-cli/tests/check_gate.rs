@@ -6,25 +6,13 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
+use common::temp_tree as tree;
 use common::{EXIT_CLEAN, EXIT_DIAGNOSTICS, code, gcodec_in, stderr, stdout};
 
 fn fixtures(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../tests/fixtures")
         .join(name)
-}
-
-/// A folder of this test run holding `files` (`(name, contents)`).
-fn tree(test: &str, files: &[(&str, &str)]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("gcodec-gate-{test}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    for (name, contents) in files {
-        let path = dir.join(name);
-        std::fs::create_dir_all(path.parent().expect("a folder")).expect("temp dir");
-        std::fs::write(path, contents).expect("write");
-    }
-    dir
 }
 
 fn concise_in(dir: &Path, args: &[&str]) -> (i32, String) {

@@ -20,6 +20,20 @@ pub fn temp_file(test: &str, name: &str, contents: &str) -> PathBuf {
     path
 }
 
+/// A fresh temporary folder of this test run holding `files` (`(name,
+/// contents)`, names may have folders), one per `test`.
+pub fn temp_tree(test: &str, files: &[(&str, &str)]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("gcodec-tree-{test}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    for (name, contents) in files {
+        let path = dir.join(name);
+        std::fs::create_dir_all(path.parent().expect("a folder")).expect("temp dir");
+        std::fs::write(path, contents).expect("write");
+    }
+    dir
+}
+
 /// Runs `gcodec` with `args`, as a pipe (not a terminal), with a backtrace
 /// requested so that any panic would show.
 pub fn gcodec<I, S>(args: I) -> Output
