@@ -11,6 +11,11 @@
 //!   [`FileReport`]s sorted by name.
 //! - [`DiagnosticRecord`]: one diagnostic as data (`--output-format
 //!   json`, `docs/schema/check.schema.json`).
+//! - [`check_with`] and [`CheckOptions`]: main programs also run
+//!   ([`RunChecks`], `--run`), their findings in the files they are in.
+//! - A program's `; gcodec: allow(CODE)` comments are applied after the
+//!   levels; [`baseline`]: the findings a repository accepts, written
+//!   and applied to a [`CheckReport`].
 
 pub mod baseline;
 mod config;

@@ -2,8 +2,8 @@
 //! end of a block suppresses those codes on its line; on a line of its
 //! own above the first block (only comments, blank lines and the `%`
 //! header above it) in the whole file. The comments are found with the
-//! lexer, so a `;` inside a string is no comment; a file that does not
-//! contain `gcodec:` at all is not lexed.
+//! lexer, so a `;` inside a string is no comment; a file with no `;`
+//! followed by `gcodec:` is not lexed.
 //!
 //! A name that is no code or area, or a comment that starts with
 //! `gcodec:` but is no `allow(…)`, is `gcodec::check::bad_suppression`;
@@ -128,10 +128,7 @@ fn unused_diagnostic(named: &Named) -> Diagnostic {
 fn suppressions(file: &SourceFile) -> Suppressions {
     let mut found = Suppressions::default();
     let bytes = file.bytes();
-    if !bytes
-        .windows(MARK.len())
-        .any(|w| w.eq_ignore_ascii_case(MARK))
-    {
+    if !memchr::memchr_iter(b';', bytes).any(|at| starts_with_mark(&bytes[at + 1..])) {
         return found;
     }
     let mut line = 1u32;
@@ -166,14 +163,10 @@ fn suppressions(file: &SourceFile) -> Suppressions {
 fn read_comment(bytes: &[u8], start: u32, end: u32, scope: Scope, found: &mut Suppressions) {
     let comment = &bytes[start as usize..end as usize];
     let body = comment.get(1..).unwrap_or_default();
-    let blanks = body.iter().take_while(|b| b.is_ascii_whitespace()).count();
-    let body = &body[blanks..];
-    if !body
-        .get(..MARK.len())
-        .is_some_and(|m| m.eq_ignore_ascii_case(MARK))
-    {
+    if !starts_with_mark(body) {
         return;
     }
+    let blanks = body.iter().take_while(|b| b.is_ascii_whitespace()).count();
     let comment_span = Span::new(start, end);
     // Offsets below are from the comment's start.
     let after_mark = 1 + blanks + MARK.len();
@@ -236,6 +229,14 @@ fn read_comment(bytes: &[u8], start: u32, end: u32, scope: Scope, found: &mut Su
             .with_help("name the codes to suppress: `; gcodec: allow(CODE)`"),
         );
     }
+}
+
+/// Whether `text` (what follows a `;`) is blanks, then [`MARK`] in any
+/// case.
+fn starts_with_mark(text: &[u8]) -> bool {
+    let blanks = text.iter().take_while(|b| b.is_ascii_whitespace()).count();
+    text.get(blanks..blanks + MARK.len())
+        .is_some_and(|m| m.eq_ignore_ascii_case(MARK))
 }
 
 /// The offsets of the list inside `allow(…)` in `comment`, the word
