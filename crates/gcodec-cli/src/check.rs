@@ -1,37 +1,21 @@
 //! `gcodec check`: a tree of part programs and definition files checked
 //! as its `gcodec.toml` says ([`gcodec_driver::check`]), the diagnostics
-//! written to stdout in one of three formats.
+//! written to stdout in one of the formats of [`crate::diagnostic_formats`].
 
 use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 
 use clap::ValueEnum;
 use gcodec_driver::check::{
-    CheckConfig, CheckOptions, CheckReport, DiagnosticRecord, FileReport, Input, Progress,
-    RunChecks, Selection, Selector, find_config,
+    CheckConfig, CheckOptions, CheckReport, FileReport, Input, Progress, RunChecks, Selection,
+    Selector, find_config,
 };
-use gcodec_source::{
-    Severity, SourceFile, codes, escape_controls, render_diagnostics, render_kept,
-};
+use gcodec_source::{SourceFile, codes, render_diagnostics, render_kept};
 
+use crate::diagnostic_formats::{DiagnosticFormat, write_diagnostics};
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE};
 use crate::output::{Stdout, after_output, to_stderr};
 use crate::report::DiagnosticOptions;
-
-/// How the diagnostics are written.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum CheckFormat {
-    /// Each diagnostic with the lines it points at, grouped per file,
-    /// then a one-line summary.
-    Full,
-    /// One line per diagnostic: `file:line:col: level[code] message`.
-    Concise,
-    /// A JSON array of objects (`docs/schema/check.schema.json`).
-    Json,
-    /// GitHub Actions workflow commands (`::error file=…,line=…::…`): the
-    /// diagnostics become annotations of the pull request.
-    Github,
-}
 
 /// What `--deny` makes fail.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -66,8 +50,8 @@ pub struct CheckArgs {
     #[arg(long, value_enum, value_name = "WHAT")]
     pub deny: Option<Denied>,
     /// Output format.
-    #[arg(long, value_enum, default_value_t = CheckFormat::Full)]
-    pub output_format: CheckFormat,
+    #[arg(long, value_enum, default_value_t = DiagnosticFormat::Full)]
+    pub output_format: DiagnosticFormat,
     /// Instead of the diagnostics, how many there are of each code.
     #[arg(long)]
     pub statistics: bool,
@@ -171,28 +155,20 @@ pub fn check(args: CheckArgs) -> u8 {
         let written = write_statistics(&report, &mut out);
         (out, written)
     } else {
-        match args.output_format {
-            CheckFormat::Full => {
-                let mut out = Stdout::data();
-                let written = write_full(&report, args.diagnostics, &mut out);
-                (out, written)
-            }
-            CheckFormat::Concise => {
-                let mut out = Stdout::text();
-                let written = write_concise(&report, &mut out);
-                (out, written)
-            }
-            CheckFormat::Json => {
-                let mut out = Stdout::data();
-                let written = write_json(&report, &mut out);
-                (out, written)
-            }
-            CheckFormat::Github => {
-                let mut out = Stdout::data();
-                let written = write_github(&report, &mut out);
-                (out, written)
-            }
+        let format = args.output_format;
+        let mut out = if format.is_plain_text() {
+            Stdout::text()
+        } else {
+            Stdout::data()
+        };
+        let render = args
+            .diagnostics
+            .render_options_for(std::io::stdout().is_terminal());
+        let mut written = write_diagnostics(format, &report.files, render, &mut out);
+        if format == DiagnosticFormat::Full {
+            written = written.and_then(|()| writeln!(out, "{}", summary(&report)));
         }
+        (out, written)
     };
     after_output(exit, written.and_then(|()| out.flush()))
 }
@@ -324,24 +300,6 @@ fn report_to_stderr(problem: &FileReport, options: DiagnosticOptions) {
     ));
 }
 
-/// miette's reports, file by file, then the summary.
-fn write_full(
-    report: &CheckReport,
-    options: DiagnosticOptions,
-    out: &mut impl Write,
-) -> std::io::Result<()> {
-    let render = options.render_options_for(std::io::stdout().is_terminal());
-    for file in report.files.iter().filter(|f| f.diagnostics.total() > 0) {
-        let text = render_kept(&file.diagnostics, file.file.as_deref(), render);
-        // A file that could not be read has no text to name it.
-        if file.file.is_none() {
-            writeln!(out, "{}:", escape_controls(&file.name))?;
-        }
-        out.write_all(text.as_bytes())?;
-    }
-    writeln!(out, "{}", summary(report))
-}
-
 /// `checked 3 files: 1 error, 2 warnings, 0 advice (in 2 files)`.
 fn summary(report: &CheckReport) -> String {
     let counts = report.counts();
@@ -354,97 +312,6 @@ fn summary(report: &CheckReport) -> String {
         counts.advice,
         plural(counts.files_with_findings as u64, "file", "files"),
     )
-}
-
-/// One line per diagnostic shown; a file's diagnostics beyond those kept
-/// are counted on one line.
-fn write_concise(report: &CheckReport, out: &mut impl Write) -> std::io::Result<()> {
-    for file in &report.files {
-        for d in file.diagnostics.iter() {
-            let record = DiagnosticRecord::of(d, &file.name, file.file.as_deref());
-            let place = match (record.position.line, record.position.column) {
-                (Some(line), Some(column)) => format!("{}:{line}:{column}", record.file),
-                _ => record.file.clone(),
-            };
-            writeln!(
-                out,
-                "{place}: {}[{}] {}",
-                record.level.name(),
-                record.code,
-                record.message
-            )?;
-        }
-        let omitted = file.diagnostics.omitted().total();
-        if omitted > 0 {
-            writeln!(out, "{}: {omitted} more diagnostics not kept", file.name)?;
-        }
-    }
-    Ok(())
-}
-
-/// Every diagnostic shown, as data, file by file.
-fn records(report: &CheckReport) -> impl Iterator<Item = DiagnosticRecord> + '_ {
-    report.files.iter().flat_map(|file| {
-        file.diagnostics
-            .iter()
-            .map(|d| DiagnosticRecord::of(d, &file.name, file.file.as_deref()))
-    })
-}
-
-fn write_json(report: &CheckReport, out: &mut impl Write) -> std::io::Result<()> {
-    let records: Vec<DiagnosticRecord> = records(report).collect();
-    serde_json::to_writer_pretty(&mut *out, &records)?;
-    writeln!(out)
-}
-
-/// One workflow command per diagnostic: `error`, `warning` or `notice`
-/// (advice), its place and its code as the annotation's title.
-fn write_github(report: &CheckReport, out: &mut impl Write) -> std::io::Result<()> {
-    for record in records(report) {
-        let command = match record.level {
-            Severity::Error => "error",
-            Severity::Warning => "warning",
-            Severity::Advice => "notice",
-        };
-        write!(out, "::{command} file={}", github_property(&record.file))?;
-        let p = record.position;
-        let places = [
-            ("line", p.line),
-            ("col", p.column),
-            ("endLine", p.end_line),
-            ("endColumn", p.end_column),
-        ];
-        for (key, value) in places {
-            if let Some(value) = value {
-                write!(out, ",{key}={value}")?;
-            }
-        }
-        let mut message = record.message;
-        if let Some(help) = &record.help {
-            message.push_str("\nhelp: ");
-            message.push_str(help);
-        }
-        writeln!(
-            out,
-            ",title={}::{}",
-            github_property(&record.code),
-            github_data(&message)
-        )?;
-    }
-    Ok(())
-}
-
-/// A workflow command's message: `%`, CR and LF escaped as GitHub reads
-/// them back.
-fn github_data(text: &str) -> String {
-    text.replace('%', "%25")
-        .replace('\r', "%0D")
-        .replace('\n', "%0A")
-}
-
-/// A workflow command's property value: also `:` and `,`, which end it.
-fn github_property(text: &str) -> String {
-    github_data(text).replace(':', "%3A").replace(',', "%2C")
 }
 
 /// How many of each code and level, the most frequent first.

@@ -4,10 +4,12 @@
 mod baseline;
 mod check;
 mod commands;
+mod diagnostic_formats;
 mod exit;
 mod output;
 mod report;
 mod run;
+mod sarif;
 
 use std::process::ExitCode;
 

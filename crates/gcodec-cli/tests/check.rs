@@ -13,7 +13,8 @@ use std::process::Stdio;
 
 use common::temp_tree as tree;
 use common::{
-    EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, code, command, gcodec, gcodec_in, stderr, stdout,
+    EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE, assert_fits_schema, checked_in_schema, code, command,
+    gcodec, gcodec_in, sarif_schema, stderr, stdout,
 };
 use serde_json::Value as Json;
 
@@ -356,28 +357,83 @@ fn the_checked_in_schema_is_current() {
     );
 }
 
-/// The JSON output has the fields the schema requires, of its types.
+/// The JSON output is valid against its checked-in schema.
 #[test]
 fn the_json_output_fits_the_schema() {
-    let schema: Json =
-        serde_json::from_str(&gcodec_driver::check::check_json_schema()).expect("JSON");
-    let definition = &schema["$defs"]["DiagnosticRecord"];
-    let required = definition["required"].as_array().expect("required fields");
     let out = gcodec_in(&fixtures(), ["check", "--output-format", "json"]);
     let records: Json = serde_json::from_str(&stdout(&out)).expect("JSON");
-    for record in records.as_array().expect("an array") {
-        for field in required {
-            let field = field.as_str().expect("a name");
-            assert!(record.get(field).is_some(), "{field} missing in {record}");
-        }
-        let object = record.as_object().expect("an object");
-        for key in object.keys() {
-            assert!(
-                definition["properties"].get(key).is_some(),
-                "{key} is not in the schema"
-            );
-        }
+    assert!(!records.as_array().expect("an array").is_empty());
+    assert_fits_schema(&checked_in_schema("check.schema.json"), &records);
+}
+
+/// The SARIF output is one SARIF 2.1.0 log, valid against the standard's
+/// schema: the codes that occur as rules with their help, a result per
+/// diagnostic with its place, secondary labels as related locations.
+#[test]
+fn sarif_output_is_a_sarif_log_valid_against_its_schema() {
+    let out = gcodec_in(&fixtures(), ["check", "--output-format", "sarif"]);
+    assert_eq!(code(&out), EXIT_DIAGNOSTICS, "{}", stderr(&out));
+    let log: Json = serde_json::from_str(&stdout(&out)).expect("JSON");
+    assert_fits_schema(&sarif_schema(), &log);
+    let run = &log["runs"][0];
+    assert_eq!(run["columnKind"], "unicodeCodePoints");
+    let rules = run["tool"]["driver"]["rules"].as_array().expect("rules");
+    let results = run["results"].as_array().expect("results");
+    let json = gcodec_in(&fixtures(), ["check", "--output-format", "json"]);
+    let records: Json = serde_json::from_str(&stdout(&json)).expect("JSON");
+    assert_eq!(results.len(), records.as_array().expect("array").len());
+    for (result, record) in results.iter().zip(records.as_array().expect("array")) {
+        let index = result["ruleIndex"].as_u64().expect("an index") as usize;
+        assert_eq!(rules[index]["id"], result["ruleId"]);
+        assert_eq!(result["ruleId"], record["code"]);
+        let place = &result["locations"][0]["physicalLocation"];
+        assert_eq!(place["artifactLocation"]["uri"], record["file"]);
+        assert_eq!(place["region"]["startLine"], record["line"]);
+        assert_eq!(place["region"]["startColumn"], record["column"]);
+        assert_eq!(place["region"]["endColumn"], record["end_column"]);
     }
+    assert!(rules.iter().all(|rule| {
+        rule["help"]["markdown"].as_str().is_some_and(|h| !h.is_empty())
+            && rule["defaultConfiguration"]["level"].is_string()
+    }));
+    let text = stdout(&out).replace(env!("CARGO_PKG_VERSION"), "[VERSION]");
+    insta::assert_snapshot!("check_sarif", text);
+}
+
+/// A diagnostic with a second label (a duplicate block number points at
+/// the first block) gives the result a related location; a file that
+/// cannot be read gives one without a region. Still a valid log.
+#[test]
+fn sarif_results_carry_related_locations_and_places_without_regions() {
+    let dir = tree(
+        "sarif-related",
+        &[
+            ("twice.mpf", "N10 G0 X1 F100\nN10 G1 X2\nM30\n"),
+            ("sub dir/ä.mpf", WARNING),
+        ],
+    );
+    std::os::unix::fs::symlink(dir.join("nowhere.mpf"), dir.join("dangling.mpf")).expect("link");
+    let out = gcodec_in(&dir, ["check", "--output-format", "sarif"]);
+    let log: Json = serde_json::from_str(&stdout(&out)).expect("JSON");
+    assert_fits_schema(&sarif_schema(), &log);
+    let results = log["runs"][0]["results"].as_array().expect("results");
+    let unreadable = results
+        .iter()
+        .find(|r| r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] == "dangling.mpf")
+        .expect("the dangling link's result");
+    assert!(unreadable["locations"][0]["physicalLocation"]["region"].is_null());
+    let duplicate = results
+        .iter()
+        .find(|r| r["ruleId"] == "gcodec::lint::duplicate_block_number")
+        .expect("a duplicate block number");
+    let related = &duplicate["relatedLocations"][0];
+    assert_eq!(related["physicalLocation"]["region"]["startLine"], 1);
+    assert_eq!(related["id"], 1);
+    assert!(
+        stdout(&out).contains("\"uri\": \"sub%20dir/%C3%A4.mpf\""),
+        "{}",
+        stdout(&out)
+    );
 }
 
 /// The acceptance of `gcodec check`: the shared corpus checked with the

@@ -4,6 +4,9 @@
 //!
 //! - [`check`]: `gcodec check`, a tree of programs and definition files
 //!   checked as its `gcodec.toml` says, the diagnostics as data.
+//! - [`diagnostics`]: the diagnostics of a file as every command hands
+//!   them on ([`diagnostics::FileReport`]) and as data
+//!   ([`diagnostics::DiagnosticRecord`]).
 //! - [`compile()`]: parse and lower one program, as a main program or a
 //!   subprogram ([`ProgramKind`]), against a profile and definitions.
 //! - [`load_profile`]: a machine profile checked in full (its form and
@@ -21,7 +24,7 @@
 
 pub mod check;
 pub mod compile;
-mod diagnostics;
+pub mod diagnostics;
 mod loaded_files;
 pub mod loader;
 mod meant_command;

@@ -85,3 +85,38 @@ pub fn code(out: &Output) -> i32 {
         .code()
         .expect("gcodec exited normally, not by a signal")
 }
+
+/// The JSON Schema checked in as `docs/schema/SCHEMA_FILE`.
+pub fn checked_in_schema(schema_file: &str) -> serde_json::Value {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../docs/schema")
+        .join(schema_file);
+    let text = std::fs::read_to_string(&path).expect("the schema");
+    serde_json::from_str(&text).expect("the schema is JSON")
+}
+
+/// The SARIF 2.1.0 schema checked in (`docs/schema/sarif-2.1.0.json`, the
+/// copy serde-sarif ships), its erratum corrected: the pattern of a
+/// language tag, `^[a-zA-Z]{2}|^[a-zA-Z]{2}-[a-zA-Z]{2}]?$`, has a stray
+/// `]` that makes it no regular expression a validator compiles; it means
+/// `en` or `en-US`.
+pub fn sarif_schema() -> serde_json::Value {
+    let text = checked_in_schema("sarif-2.1.0.json")
+        .to_string()
+        .replace(
+            "^[a-zA-Z]{2}|^[a-zA-Z]{2}-[a-zA-Z]{2}]?$",
+            "^[a-zA-Z]{2}(-[a-zA-Z]{2})?$",
+        );
+    serde_json::from_str(&text).expect("still JSON")
+}
+
+/// Fails unless `instance` is valid against `schema`, listing every
+/// error.
+pub fn assert_fits_schema(schema: &serde_json::Value, instance: &serde_json::Value) {
+    let validator = jsonschema::validator_for(schema).expect("a usable schema");
+    let errors: Vec<String> = validator
+        .iter_errors(instance)
+        .map(|e| format!("{} at {}", e, e.instance_path()))
+        .collect();
+    assert!(errors.is_empty(), "not valid:\n{}", errors.join("\n"));
+}

@@ -11,7 +11,7 @@ use gcodec_sema::Definitions;
 use gcodec_source::{Diagnostic, SourceFile, Span};
 
 use super::config::{CheckConfig, unusable};
-use super::report::FileReport;
+use crate::diagnostics::FileReport;
 
 /// What the files of one set of sections are checked with.
 #[derive(Debug)]

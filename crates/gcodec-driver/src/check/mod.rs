@@ -10,7 +10,8 @@
 //! - [`check`]: the files of [`Input`]s checked; a [`CheckReport`] of
 //!   [`FileReport`]s sorted by name.
 //! - [`DiagnosticRecord`]: one diagnostic as data (`--output-format
-//!   json`, `docs/schema/check.schema.json`).
+//!   json`, `docs/schema/check.schema.json`), from
+//!   [`crate::diagnostics`].
 //! - [`check_with`] and [`CheckOptions`]: main programs also run
 //!   ([`RunChecks`], `--run`), their findings in the files they are in.
 //! - A program's `; gcodec: allow(CODE)` comments are applied after the
@@ -22,7 +23,6 @@ mod config;
 mod gather;
 mod levels;
 mod machines;
-mod record;
 mod report;
 mod run;
 mod selector;
@@ -38,8 +38,10 @@ use rayon::prelude::*;
 
 pub use config::{CONFIG_NAME, CheckConfig, find_config};
 pub use levels::{RuleLevel, Selection};
-pub use record::{DiagnosticRecord, LabelRecord, check_json_schema};
-pub use report::{CheckReport, Counts, FileReport};
+// The records and file reports are every command's; named here too, where
+// `check` first had them.
+pub use crate::diagnostics::{DiagnosticRecord, FileReport, LabelRecord, check_json_schema};
+pub use report::{CheckReport, Counts};
 pub use run::RunChecks;
 pub use selector::Selector;
 pub use walk::Input;

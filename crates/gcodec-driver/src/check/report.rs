@@ -1,36 +1,9 @@
 //! What a check found: per file, its text and its diagnostics at the
 //! levels in force, in a stable order; and counts.
 
-use std::sync::Arc;
+use gcodec_source::{Code, Severity};
 
-use gcodec_source::{Code, Diagnostic, Diagnostics, Severity, SourceFile};
-
-/// One file's findings.
-#[derive(Debug)]
-pub struct FileReport {
-    /// The file's name as shown: its path as walked or given.
-    pub name: String,
-    /// Its text, where it could be read.
-    pub file: Option<Arc<SourceFile>>,
-    /// Its diagnostics, in source order, at the levels in force.
-    pub diagnostics: Diagnostics,
-}
-
-impl FileReport {
-    pub(super) fn new(
-        name: String,
-        file: Option<SourceFile>,
-        diagnostics: Vec<Diagnostic>,
-    ) -> Self {
-        let mut kept = Diagnostics::new();
-        kept.extend(diagnostics);
-        Self {
-            name,
-            file: file.map(Arc::new),
-            diagnostics: kept,
-        }
-    }
-}
+use crate::diagnostics::FileReport;
 
 /// Every file checked, sorted by name.
 #[derive(Debug, Default)]

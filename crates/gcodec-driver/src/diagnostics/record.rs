@@ -1,5 +1,6 @@
-//! A diagnostic as data: the objects of `gcodec check --output-format
-//! json`, whose JSON Schema is `docs/schema/check.schema.json`.
+//! A diagnostic as data: the objects of `--output-format json` (of
+//! `check`, `lower` and `run`), whose JSON Schema is
+//! `docs/schema/check.schema.json`.
 
 use gcodec_source::{Diagnostic, Severity, SourceFile, Span};
 use schemars::JsonSchema;
