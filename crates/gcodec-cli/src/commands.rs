@@ -7,8 +7,9 @@ use gcodec_source::{codes, escape_controls};
 
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE};
 use crate::output::{Stdout, after_output, to_stderr};
+use crate::diagnostic_formats::DiagnosticFormat;
 use crate::report::{
-    DiagnosticOptions, EncodingOption, Reading, load_definitions, load_profile, read, report,
+    DiagnosticOptions, EncodingOption, Reading, Reporter, load_definitions, load_profile, read,
 };
 
 /// Compile and simulate SINUMERIK 840D sl / 828D part programs.
@@ -55,6 +56,11 @@ enum Command {
         /// as JSON.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
+        /// How the diagnostics are written on stderr: `full` renders each
+        /// as it comes; the others write one document of them all at the
+        /// end, alone on stderr.
+        #[arg(long, value_enum, default_value_t = DiagnosticFormat::Full)]
+        output_format: DiagnosticFormat,
         #[command(flatten)]
         encoding: EncodingOption,
         #[command(flatten)]
@@ -141,28 +147,34 @@ pub fn run(cli: Cli) -> u8 {
             &definitions,
             format,
             Reading::builtin(encoding),
-            diagnostics,
+            &Reporter::full(diagnostics),
         ),
         Command::Lower {
             file,
             profile,
             definitions,
             format,
+            output_format,
             encoding,
             diagnostics,
-        } => lower(
-            &file,
-            profile.as_deref(),
-            &definitions,
-            encoding,
-            format,
-            diagnostics,
-        ),
+        } => {
+            let reporter = Reporter::new(diagnostics, output_format);
+            let exit = lower(
+                &file,
+                profile.as_deref(),
+                &definitions,
+                encoding,
+                format,
+                &reporter,
+            );
+            reporter.finish();
+            exit
+        }
         Command::Run(args) => crate::run::run(args),
         Command::Check(args) => crate::check::check(args),
         Command::Explain { code, list } => explain(code.as_deref(), list),
         Command::Profile(ProfileCommand::Check { file, diagnostics }) => {
-            match load_profile(Some(&file), diagnostics) {
+            match load_profile(Some(&file), &Reporter::full(diagnostics)) {
                 Ok(_) => EXIT_CLEAN,
                 Err(code) => code,
             }
@@ -171,7 +183,7 @@ pub fn run(cli: Cli) -> u8 {
             file,
             format,
             diagnostics,
-        }) => match load_profile(file.as_deref(), diagnostics) {
+        }) => match load_profile(file.as_deref(), &Reporter::full(diagnostics)) {
             Ok(profile) => show_profile(&profile, format),
             Err(code) => code,
         },
@@ -228,23 +240,23 @@ fn parse(
     definitions: &[PathBuf],
     format: Format,
     reading: Reading,
-    options: DiagnosticOptions,
+    reporter: &Reporter,
 ) -> u8 {
     let mut exit = EXIT_CLEAN;
     let mut json = Vec::new();
     let mut out = format.stdout();
     let mut written = Ok(());
-    let definitions = match load_definitions(definitions, reading, options) {
+    let definitions = match load_definitions(definitions, reading, reporter) {
         Ok(d) => d,
         Err(code) => return code,
     };
     for path in files {
-        let Ok(file) = read(path, reading, options) else {
+        let Ok(file) = read(path, reading, reporter) else {
             exit = EXIT_USAGE;
             continue;
         };
         let parsed = gcodec_driver::parse_with(&file, &definitions);
-        report(&parsed.diagnostics, Some(&file), options);
+        reporter.report(&parsed.diagnostics, Some(&file), file.name());
         if parsed.has_errors() && exit == EXIT_CLEAN {
             exit = EXIT_DIAGNOSTICS;
         }
@@ -279,24 +291,28 @@ fn lower(
     definitions: &[PathBuf],
     encoding: EncodingOption,
     format: Format,
-    options: DiagnosticOptions,
+    reporter: &Reporter,
 ) -> u8 {
-    let profile = match load_profile(profile, options) {
+    let profile = match load_profile(profile, reporter) {
         Ok(p) => p,
         Err(code) => return code,
     };
     let reading = Reading::new(&profile, encoding);
-    let definitions = match load_definitions(definitions, reading, options) {
+    let definitions = match load_definitions(definitions, reading, reporter) {
         Ok(d) => d,
         Err(code) => return code,
     };
-    let file = match read(path, reading, options) {
+    let file = match read(path, reading, reporter) {
         Ok(f) => f,
         Err(code) => return code,
     };
     let kind = gcodec_driver::ProgramKind::of_file(file.name());
     let compiled = gcodec_driver::compile(Arc::new(file), kind, &profile, &definitions);
-    report(&compiled.diagnostics, Some(&compiled.file), options);
+    reporter.report(
+        &compiled.diagnostics,
+        Some(&compiled.file),
+        compiled.file.name(),
+    );
     let exit = if compiled.has_errors() {
         EXIT_DIAGNOSTICS
     } else {

@@ -2,11 +2,15 @@
 //! reading the files a command is given (programs, profiles, definition
 //! files) and rendering what is wrong with them.
 
+use std::cell::RefCell;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
+use gcodec_driver::diagnostics::FileReport;
 use gcodec_source::{Diagnostics, Encoding, RenderOptions, SourceFile, TextEncoding, render_kept};
 
+use crate::diagnostic_formats::{DiagnosticFormat, diagnostics_text};
 use crate::exit::EXIT_USAGE;
 use crate::output::to_stderr;
 
@@ -30,6 +34,73 @@ impl DiagnosticOptions {
         RenderOptions {
             color: terminal && std::env::var_os("NO_COLOR").is_none(),
             limit: (self.max_diagnostics > 0).then_some(self.max_diagnostics),
+        }
+    }
+}
+
+/// Where a command's diagnostics go, in which format: `full` renders
+/// each batch on stderr as it comes; the other formats collect them, file
+/// by file, and write one document on stderr when the command ends
+/// ([`Reporter::finish`]), so that stderr holds that document alone.
+pub struct Reporter {
+    options: DiagnosticOptions,
+    format: DiagnosticFormat,
+    files: RefCell<Vec<FileReport>>,
+}
+
+impl Reporter {
+    pub fn new(options: DiagnosticOptions, format: DiagnosticFormat) -> Self {
+        Self {
+            options,
+            format,
+            files: RefCell::new(Vec::new()),
+        }
+    }
+
+    /// miette's reports on stderr (`parse`, `profile`).
+    pub fn full(options: DiagnosticOptions) -> Self {
+        Self::new(options, DiagnosticFormat::Full)
+    }
+
+    /// Whether the diagnostics are written as data at the end (not
+    /// rendered as they come).
+    pub fn collects(&self) -> bool {
+        self.format != DiagnosticFormat::Full
+    }
+
+    /// Reports `diagnostics` of the file named `name`, against its text
+    /// `file` where they have spans.
+    pub fn report(&self, diagnostics: &Diagnostics, file: Option<&SourceFile>, name: &str) {
+        if diagnostics.is_empty() {
+            return;
+        }
+        if !self.collects() {
+            to_stderr(&render_kept(diagnostics, file, self.options.render_options()));
+            return;
+        }
+        let mut files = self.files.borrow_mut();
+        match files.last_mut() {
+            // A run reports a file's diagnostics one at a time.
+            Some(last) if last.name == name && last.file.is_some() == file.is_some() => {
+                last.diagnostics.append(diagnostics.clone());
+            }
+            _ => files.push(FileReport {
+                name: name.to_owned(),
+                file: file.map(|f| Arc::new(f.clone())),
+                diagnostics: diagnostics.clone(),
+            }),
+        }
+    }
+
+    /// Writes what was collected, in the format chosen, on stderr.
+    pub fn finish(self) {
+        if !self.collects() {
+            return;
+        }
+        let files = self.files.into_inner();
+        match diagnostics_text(self.format, &files, self.options.render_options()) {
+            Ok(text) => to_stderr(&text),
+            Err(e) => to_stderr(&format!("gcodec: cannot write the diagnostics: {e}\n")),
         }
     }
 }
@@ -95,7 +166,7 @@ impl Reading {
 /// the profile's text; a bad or unreadable profile is exit code 2.
 pub fn load_profile(
     path: Option<&Path>,
-    options: DiagnosticOptions,
+    reporter: &Reporter,
 ) -> Result<gcodec_profile::Profile, u8> {
     let file = match path {
         // A profile is read before any profile says how large a file may
@@ -103,17 +174,17 @@ pub fn load_profile(
         Some(path) => read(
             path,
             Reading::builtin(EncodingOption { encoding: None }),
-            options,
+            reporter,
         )?,
         None => gcodec_driver::builtin_profile_file(),
     };
     match gcodec_driver::load_profile(&file) {
         Ok((profile, warnings)) => {
-            report(&warnings.into(), Some(&file), options);
+            reporter.report(&warnings.into(), Some(&file), file.name());
             Ok(profile)
         }
         Err(error) => {
-            report(&error.diagnostics.into(), Some(&file), options);
+            reporter.report(&error.diagnostics.into(), Some(&file), file.name());
             Err(EXIT_USAGE)
         }
     }
@@ -126,32 +197,24 @@ pub fn load_profile(
 pub fn load_toolchanger(
     path: &Path,
     profile: &gcodec_profile::Profile,
-    options: DiagnosticOptions,
+    reporter: &Reporter,
 ) -> Result<gcodec_driver::toolchanger::SimulatedChanger, u8> {
     let file = read(
         path,
         Reading::builtin(EncodingOption { encoding: None }),
-        options,
+        reporter,
     )?;
     gcodec_driver::load_toolchanger(&file, profile).map_err(|error| {
-        report(&error.diagnostics.into(), Some(&file), options);
+        reporter.report(&error.diagnostics.into(), Some(&file), file.name());
         EXIT_USAGE
     })
 }
 
-/// Renders `diagnostics` on stderr, against `file` where they have spans.
-pub fn report(diagnostics: &Diagnostics, file: Option<&SourceFile>, options: DiagnosticOptions) {
-    if diagnostics.is_empty() {
-        return;
-    }
-    to_stderr(&render_kept(diagnostics, file, options.render_options()));
-}
-
 /// Reads a file as `reading` says; an unreadable one is reported and is
 /// exit code 2.
-pub fn read(path: &Path, reading: Reading, options: DiagnosticOptions) -> Result<SourceFile, u8> {
+pub fn read(path: &Path, reading: Reading, reporter: &Reporter) -> Result<SourceFile, u8> {
     gcodec_driver::read_source(path, reading.max_len, reading.encoding).map_err(|d| {
-        report(&vec![d].into(), None, options);
+        reporter.report(&vec![d].into(), None, &path.display().to_string());
         EXIT_USAGE
     })
 }
@@ -161,14 +224,14 @@ pub fn read(path: &Path, reading: Reading, options: DiagnosticOptions) -> Result
 pub fn load_definitions(
     paths: &[PathBuf],
     reading: Reading,
-    options: DiagnosticOptions,
+    reporter: &Reporter,
 ) -> Result<gcodec_driver::Definitions, u8> {
     let mut definitions = gcodec_driver::Definitions::new();
     let mut bad = false;
     for path in paths {
-        let file = read(path, reading, options)?;
+        let file = read(path, reading, reporter)?;
         let diagnostics = definitions.load(&file);
-        report(&diagnostics, Some(&file), options);
+        reporter.report(&diagnostics, Some(&file), file.name());
         bad |= diagnostics.has_errors();
     }
     if bad {

@@ -15,9 +15,10 @@ use gcodec_source::escape_controls;
 
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS};
 use crate::output::{Stdout, after_output, to_stderr};
+use crate::diagnostic_formats::DiagnosticFormat;
 use crate::report::{
-    DiagnosticOptions, EncodingOption, Reading, load_definitions, load_profile, load_toolchanger,
-    read, report,
+    DiagnosticOptions, EncodingOption, Reading, Reporter, load_definitions, load_profile,
+    load_toolchanger, read,
 };
 
 /// How events are written.
@@ -46,6 +47,12 @@ pub struct RunArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = RunFormat::Jsonl)]
     pub format: RunFormat,
+    /// How the diagnostics are written on stderr: `full` renders each as
+    /// it comes (the run's as they happen, the program's after the run);
+    /// the others write one document of them all after the run, alone on
+    /// stderr (the figures of a `jsonl` or `csv` run are then left out).
+    #[arg(long, value_enum, default_value_t = DiagnosticFormat::Full)]
+    pub output_format: DiagnosticFormat,
     #[command(flatten)]
     pub encoding: EncodingOption,
     /// A directory searched for subprograms and cycles, after the calling
@@ -101,36 +108,36 @@ fn parse_skip_levels(text: &str) -> Result<SkipLevels, String> {
     Ok(SkipLevels(levels))
 }
 
-/// Writes runtime diagnostics to stderr as they happen (besides the
-/// event stream, so a CI job sees them whatever the format), rendered as
-/// static diagnostics are, and hands every event on.
-struct Diagnostics<S> {
+/// Reports runtime diagnostics as they happen (besides the event stream,
+/// so a CI job sees them whatever the format), each against the file of
+/// the program it happened in, and hands every event on.
+struct Diagnostics<'r, S> {
     inner: S,
-    options: DiagnosticOptions,
+    reporter: &'r Reporter,
     /// The files of the programs the run has loaded, which the
     /// diagnostics point into.
     files: LoadedFiles,
 }
 
-impl<S: EventSink> Diagnostics<S> {
-    fn new(inner: S, files: LoadedFiles, options: DiagnosticOptions) -> Self {
+impl<'r, S: EventSink> Diagnostics<'r, S> {
+    fn new(inner: S, files: LoadedFiles, reporter: &'r Reporter) -> Self {
         Self {
             inner,
-            options,
+            reporter,
             files,
         }
     }
 }
 
-impl<S: EventSink> EventSink for Diagnostics<S> {
+impl<S: EventSink> EventSink for Diagnostics<'_, S> {
     fn event(&mut self, event: &Event) -> io::Result<()> {
         if let EventKind::Diagnostic(d) = &event.kind {
             let file = self.files.get(&event.source.file);
             let file = file.as_deref();
-            report(
+            self.reporter.report(
                 &vec![gcodec_driver::runtime_diagnostic(d, &event.source, file)].into(),
                 file,
-                self.options,
+                &event.source.file,
             );
         }
         self.inner.event(event)
@@ -151,25 +158,31 @@ impl EventSink for Discard {
 }
 
 pub fn run(args: RunArgs) -> u8 {
-    let options = args.diagnostics;
+    let reporter = Reporter::new(args.diagnostics, args.output_format);
+    let exit = run_with(&args, &reporter);
+    reporter.finish();
+    exit
+}
+
+fn run_with(args: &RunArgs, reporter: &Reporter) -> u8 {
     let profile_path = args.profile.as_deref();
-    let profile = match load_profile(profile_path, options) {
+    let profile = match load_profile(profile_path, reporter) {
         Ok(p) => Arc::new(p),
         Err(code) => return code,
     };
     let reading = Reading::new(&profile, args.encoding);
-    let definitions = match load_definitions(&args.definitions, reading, options) {
+    let definitions = match load_definitions(&args.definitions, reading, reporter) {
         Ok(d) => Arc::new(d),
         Err(code) => return code,
     };
     let toolchanger = match &args.toolchanger {
-        Some(path) => match load_toolchanger(path, &profile, options) {
+        Some(path) => match load_toolchanger(path, &profile, reporter) {
             Ok(changer) => Some(changer),
             Err(code) => return code,
         },
         None => None,
     };
-    let file = match read(&args.file, reading, options) {
+    let file = match read(&args.file, reading, reporter) {
         Ok(f) => f,
         Err(code) => return code,
     };
@@ -214,7 +227,7 @@ pub fn run(args: RunArgs) -> u8 {
             Err(e) => return after_output(EXIT_CLEAN, Err(e)),
         },
     };
-    let mut sink = Diagnostics::new(events, setup.loaded_files.clone(), options);
+    let mut sink = Diagnostics::new(events, setup.loaded_files.clone(), reporter);
     let observer = rows.as_mut().map(|rows| rows as _);
     let RunReport {
         outcome,
@@ -229,7 +242,7 @@ pub fn run(args: RunArgs) -> u8 {
     drop(rows);
     // The program's own diagnostics, all of them, after the run that
     // went on while it was lowered.
-    report(&diagnostics, Some(&*file), options);
+    reporter.report(&diagnostics, Some(&*file), file.name());
     let has_errors = diagnostics.has_errors();
     let outcome = match outcome {
         Ok(outcome) => outcome,
@@ -246,6 +259,8 @@ pub fn run(args: RunArgs) -> u8 {
             let mut out = Stdout::text();
             writeln!(out, "\n{summary}").and_then(|()| out.flush())
         }
+        // stderr holds the diagnostics' document alone.
+        RunFormat::Jsonl | RunFormat::Csv if reporter.collects() => Ok(()),
         RunFormat::Jsonl | RunFormat::Csv => {
             to_stderr(&escape_controls(&summary));
             Ok(())

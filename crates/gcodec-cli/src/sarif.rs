@@ -235,6 +235,8 @@ fn chars(file: &SourceFile, span: Span) -> i64 {
 /// source root, or a `file://` URI for an absolute path.
 fn artifact(name: &str) -> sarif::ArtifactLocation {
     let slashed = name.replace('\\', "/");
+    // A program found on the search path `.` is named `./NAME`.
+    let slashed = slashed.strip_prefix("./").unwrap_or(&slashed).to_owned();
     let encoded = utf8_percent_encode(&slashed, URI_PATH).to_string();
     let absolute = slashed.starts_with('/') || slashed.as_bytes().get(1) == Some(&b':');
     if absolute {
@@ -262,6 +264,7 @@ mod tests {
         let absolute = artifact("/srv/nc/ä.mpf");
         assert_eq!(absolute.uri.as_deref(), Some("file:///srv/nc/%C3%A4.mpf"));
         assert_eq!(absolute.uri_base_id, None);
+        assert_eq!(artifact("./SUB.SPF").uri.as_deref(), Some("SUB.SPF"));
         let windows = artifact(r"C:\nc\a.mpf");
         assert_eq!(windows.uri.as_deref(), Some("file:///C:/nc/a.mpf"));
     }
@@ -274,7 +277,7 @@ mod tests {
             .with_label(Span::new(at, at + 1), "here");
         let record = DiagnosticRecord::of(&d, "a.mpf", Some(&file));
         let region = region(record.position, Span::new(at, at + 1), &file);
-        assert_eq!(region.char_offset, Some(8));
+        assert_eq!(region.char_offset, Some(9));
         assert_eq!(region.char_length, Some(1));
         assert_eq!(region.start_column, Some(5));
     }
