@@ -5,11 +5,12 @@ use std::sync::Arc;
 use clap::{Parser, Subcommand, ValueEnum};
 use gcodec_source::{codes, escape_controls};
 
+use crate::diagnostic_formats::DiagnosticFormat;
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE};
 use crate::output::{Stdout, after_output, to_stderr};
-use crate::diagnostic_formats::DiagnosticFormat;
 use crate::report::{
-    DiagnosticOptions, EncodingOption, Reading, Reporter, load_definitions, load_profile, read,
+    ConfigOption, DiagnosticOptions, EncodingOption, ProgramSetup, Reading, Reporter,
+    load_definitions, load_profile, read,
 };
 
 /// Compile and simulate SINUMERIK 840D sl / 828D part programs.
@@ -61,6 +62,8 @@ enum Command {
         /// end, alone on stderr.
         #[arg(long, value_enum, default_value_t = DiagnosticFormat::Full)]
         output_format: DiagnosticFormat,
+        #[command(flatten)]
+        config: ConfigOption,
         #[command(flatten)]
         encoding: EncodingOption,
         #[command(flatten)]
@@ -155,18 +158,17 @@ pub fn run(cli: Cli) -> u8 {
             definitions,
             format,
             output_format,
+            config,
             encoding,
             diagnostics,
         } => {
             let reporter = Reporter::new(diagnostics, output_format);
-            let exit = lower(
-                &file,
-                profile.as_deref(),
-                &definitions,
-                encoding,
-                format,
-                &reporter,
-            );
+            let exit =
+                match ProgramSetup::of(&config, &file, profile.as_deref(), &definitions, &reporter)
+                {
+                    Ok(setup) => lower(&file, &setup, encoding, format, &reporter),
+                    Err(code) => code,
+                };
             reporter.finish();
             exit
         }
@@ -287,33 +289,35 @@ fn parse(
 
 fn lower(
     path: &Path,
-    profile: Option<&Path>,
-    definitions: &[PathBuf],
+    setup: &ProgramSetup,
     encoding: EncodingOption,
     format: Format,
     reporter: &Reporter,
 ) -> u8 {
-    let profile = match load_profile(profile, reporter) {
+    let profile = match load_profile(setup.profile.as_deref(), reporter) {
         Ok(p) => p,
         Err(code) => return code,
     };
     let reading = Reading::new(&profile, encoding);
-    let definitions = match load_definitions(definitions, reading, reporter) {
+    let mut definitions = match load_definitions(&setup.definitions, reading, reporter) {
         Ok(d) => d,
         Err(code) => return code,
     };
+    for name in &setup.assume_defined {
+        definitions.assume_defined(name);
+    }
     let file = match read(path, reading, reporter) {
         Ok(f) => f,
         Err(code) => return code,
     };
     let kind = gcodec_driver::ProgramKind::of_file(file.name());
     let compiled = gcodec_driver::compile(Arc::new(file), kind, &profile, &definitions);
-    reporter.report(
+    let has_errors = reporter.report(
         &compiled.diagnostics,
         Some(&compiled.file),
         compiled.file.name(),
     );
-    let exit = if compiled.has_errors() {
+    let exit = if has_errors {
         EXIT_DIAGNOSTICS
     } else {
         EXIT_CLEAN

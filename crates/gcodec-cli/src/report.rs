@@ -2,11 +2,12 @@
 //! reading the files a command is given (programs, profiles, definition
 //! files) and rendering what is wrong with them.
 
-use std::cell::RefCell;
+use std::cell::{OnceCell, RefCell};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use gcodec_driver::check::{CheckConfig, find_config};
 use gcodec_driver::diagnostics::FileReport;
 use gcodec_source::{Diagnostics, Encoding, RenderOptions, SourceFile, TextEncoding, render_kept};
 
@@ -42,10 +43,14 @@ impl DiagnosticOptions {
 /// each batch on stderr as it comes; the other formats collect them, file
 /// by file, and write one document on stderr when the command ends
 /// ([`Reporter::finish`]), so that stderr holds that document alone.
+///
+/// With a configuration ([`Reporter::use_config`]) every diagnostic is
+/// reported at the level its `[rules]` and its file's `ignore` give it.
 pub struct Reporter {
     options: DiagnosticOptions,
     format: DiagnosticFormat,
     files: RefCell<Vec<FileReport>>,
+    config: OnceCell<Arc<CheckConfig>>,
 }
 
 impl Reporter {
@@ -54,7 +59,13 @@ impl Reporter {
             options,
             format,
             files: RefCell::new(Vec::new()),
+            config: OnceCell::new(),
         }
+    }
+
+    /// Reports every diagnostic from now on at the levels `config` sets.
+    pub fn use_config(&self, config: Arc<CheckConfig>) {
+        let _ = self.config.set(config);
     }
 
     /// miette's reports on stderr (`parse`, `profile`).
@@ -69,14 +80,27 @@ impl Reporter {
     }
 
     /// Reports `diagnostics` of the file named `name`, against its text
-    /// `file` where they have spans.
-    pub fn report(&self, diagnostics: &Diagnostics, file: Option<&SourceFile>, name: &str) {
+    /// `file` where they have spans; true if any is an error at the
+    /// levels in force.
+    pub fn report(&self, diagnostics: &Diagnostics, file: Option<&SourceFile>, name: &str) -> bool {
+        let releveled;
+        let diagnostics = match self.config.get() {
+            Some(config) => {
+                releveled = config.releveled(Path::new(name), diagnostics.clone());
+                &releveled
+            }
+            None => diagnostics,
+        };
         if diagnostics.is_empty() {
-            return;
+            return diagnostics.has_errors();
         }
         if !self.collects() {
-            to_stderr(&render_kept(diagnostics, file, self.options.render_options()));
-            return;
+            to_stderr(&render_kept(
+                diagnostics,
+                file,
+                self.options.render_options(),
+            ));
+            return diagnostics.has_errors();
         }
         let mut files = self.files.borrow_mut();
         match files.last_mut() {
@@ -90,6 +114,7 @@ impl Reporter {
                 diagnostics: diagnostics.clone(),
             }),
         }
+        diagnostics.has_errors()
     }
 
     /// Writes what was collected, in the format chosen, on stderr.
@@ -102,6 +127,76 @@ impl Reporter {
             Ok(text) => to_stderr(&text),
             Err(e) => to_stderr(&format!("gcodec: cannot write the diagnostics: {e}\n")),
         }
+    }
+}
+
+/// The configuration a command that lowers or runs one program reads.
+#[derive(Clone, Debug, clap::Args)]
+pub struct ConfigOption {
+    /// The configuration (`gcodec.toml`, as `gcodec check` reads it);
+    /// without it, the nearest `gcodec.toml` in the program's folder or a
+    /// folder above it.
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+}
+
+/// What a program is lowered or run with: the profile and definition
+/// files the command line names, else those `gcodec.toml` assigns it,
+/// the names it assumes defined and its search paths.
+#[derive(Debug, Default)]
+pub struct ProgramSetup {
+    pub profile: Option<PathBuf>,
+    pub definitions: Vec<PathBuf>,
+    pub assume_defined: Vec<String>,
+    pub search_paths: Vec<PathBuf>,
+}
+
+impl ProgramSetup {
+    /// The setup of the program at `program`: the configuration
+    /// `option` names or the one found upward from the program, whose
+    /// levels `reporter` then applies. A configuration that cannot be
+    /// read or has problems is reported and is exit code 2.
+    pub fn of(
+        option: &ConfigOption,
+        program: &Path,
+        profile: Option<&Path>,
+        definitions: &[PathBuf],
+        reporter: &Reporter,
+    ) -> Result<Self, u8> {
+        let mut setup = Self {
+            profile: profile.map(Path::to_path_buf),
+            definitions: definitions.to_vec(),
+            ..Self::default()
+        };
+        let Some(path) = option.config.clone().or_else(|| find_config(program)) else {
+            return Ok(setup);
+        };
+        let file = SourceFile::read(&path).map_err(|e| {
+            let d = gcodec_source::Diagnostic::new(
+                e.code(),
+                format!("cannot read `{}`: {e}", path.display()),
+            )
+            .with_help(e.help());
+            reporter.report(&vec![d].into(), None, &path.display().to_string());
+            EXIT_USAGE
+        })?;
+        let shown = file.clone();
+        let config = CheckConfig::load(file).map_err(|problems| {
+            reporter.report(&problems.into(), Some(&shown), shown.name());
+            EXIT_USAGE
+        })?;
+        let settings = config.program_settings(program);
+        // The command line wins over the configuration.
+        if setup.profile.is_none() {
+            setup.profile = settings.profile;
+        }
+        if setup.definitions.is_empty() {
+            setup.definitions = settings.definitions;
+        }
+        setup.assume_defined = settings.assume_defined;
+        setup.search_paths = config.search_paths.clone();
+        reporter.use_config(Arc::new(config));
+        Ok(setup)
     }
 }
 

@@ -13,12 +13,12 @@ use gcodec_driver::event::{
 use gcodec_driver::{LoadedFiles, RunReport, RunSetup, run_main};
 use gcodec_source::escape_controls;
 
+use crate::diagnostic_formats::DiagnosticFormat;
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS};
 use crate::output::{Stdout, after_output, to_stderr};
-use crate::diagnostic_formats::DiagnosticFormat;
 use crate::report::{
-    DiagnosticOptions, EncodingOption, Reading, Reporter, load_definitions, load_profile,
-    load_toolchanger, read,
+    ConfigOption, DiagnosticOptions, EncodingOption, ProgramSetup, Reading, Reporter,
+    load_definitions, load_profile, load_toolchanger, read,
 };
 
 /// How events are written.
@@ -53,6 +53,8 @@ pub struct RunArgs {
     /// stderr (the figures of a `jsonl` or `csv` run are then left out).
     #[arg(long, value_enum, default_value_t = DiagnosticFormat::Full)]
     pub output_format: DiagnosticFormat,
+    #[command(flatten)]
+    pub config: ConfigOption,
     #[command(flatten)]
     pub encoding: EncodingOption,
     /// A directory searched for subprograms and cycles, after the calling
@@ -165,14 +167,29 @@ pub fn run(args: RunArgs) -> u8 {
 }
 
 fn run_with(args: &RunArgs, reporter: &Reporter) -> u8 {
-    let profile_path = args.profile.as_deref();
+    let program = match ProgramSetup::of(
+        &args.config,
+        &args.file,
+        args.profile.as_deref(),
+        &args.definitions,
+        reporter,
+    ) {
+        Ok(program) => program,
+        Err(code) => return code,
+    };
+    let profile_path = program.profile.as_deref();
     let profile = match load_profile(profile_path, reporter) {
         Ok(p) => Arc::new(p),
         Err(code) => return code,
     };
     let reading = Reading::new(&profile, args.encoding);
-    let definitions = match load_definitions(&args.definitions, reading, reporter) {
-        Ok(d) => Arc::new(d),
+    let definitions = match load_definitions(&program.definitions, reading, reporter) {
+        Ok(mut d) => {
+            for name in &program.assume_defined {
+                d.assume_defined(name);
+            }
+            Arc::new(d)
+        }
         Err(code) => return code,
     };
     let toolchanger = match &args.toolchanger {
@@ -191,7 +208,11 @@ fn run_with(args: &RunArgs, reporter: &Reporter) -> u8 {
     setup.encoding = reading.encoding;
     setup.profile_file = profile_path.map(PathBuf::from);
     setup.definitions = definitions;
+    // The command line's folders first, then the configuration's.
     setup.search_dirs = args.subprogram_paths.clone();
+    setup
+        .search_dirs
+        .extend(program.search_paths.iter().cloned());
     let run_options = &mut setup.options;
     if let Some(SkipLevels(levels)) = args.skip_levels {
         run_options.skip_levels = levels;
@@ -242,8 +263,7 @@ fn run_with(args: &RunArgs, reporter: &Reporter) -> u8 {
     drop(rows);
     // The program's own diagnostics, all of them, after the run that
     // went on while it was lowered.
-    reporter.report(&diagnostics, Some(&*file), file.name());
-    let has_errors = diagnostics.has_errors();
+    let has_errors = reporter.report(&diagnostics, Some(&*file), file.name());
     let outcome = match outcome {
         Ok(outcome) => outcome,
         Err(e) => return after_output(EXIT_CLEAN, Err(e)),

@@ -393,7 +393,9 @@ fn sarif_output_is_a_sarif_log_valid_against_its_schema() {
         assert_eq!(place["region"]["endColumn"], record["end_column"]);
     }
     assert!(rules.iter().all(|rule| {
-        rule["help"]["markdown"].as_str().is_some_and(|h| !h.is_empty())
+        rule["help"]["markdown"]
+            .as_str()
+            .is_some_and(|h| !h.is_empty())
             && rule["defaultConfiguration"]["level"].is_string()
     }));
     let text = stdout(&out).replace(env!("CARGO_PKG_VERSION"), "[VERSION]");
@@ -419,7 +421,9 @@ fn sarif_results_carry_related_locations_and_places_without_regions() {
     let results = log["runs"][0]["results"].as_array().expect("results");
     let unreadable = results
         .iter()
-        .find(|r| r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] == "dangling.mpf")
+        .find(|r| {
+            r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] == "dangling.mpf"
+        })
         .expect("the dangling link's result");
     assert!(unreadable["locations"][0]["physicalLocation"]["region"].is_null());
     let duplicate = results

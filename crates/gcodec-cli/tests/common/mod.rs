@@ -101,12 +101,10 @@ pub fn checked_in_schema(schema_file: &str) -> serde_json::Value {
 /// `]` that makes it no regular expression a validator compiles; it means
 /// `en` or `en-US`.
 pub fn sarif_schema() -> serde_json::Value {
-    let text = checked_in_schema("sarif-2.1.0.json")
-        .to_string()
-        .replace(
-            "^[a-zA-Z]{2}|^[a-zA-Z]{2}-[a-zA-Z]{2}]?$",
-            "^[a-zA-Z]{2}(-[a-zA-Z]{2})?$",
-        );
+    let text = checked_in_schema("sarif-2.1.0.json").to_string().replace(
+        "^[a-zA-Z]{2}|^[a-zA-Z]{2}-[a-zA-Z]{2}]?$",
+        "^[a-zA-Z]{2}(-[a-zA-Z]{2})?$",
+    );
     serde_json::from_str(&text).expect("still JSON")
 }
 

@@ -8,12 +8,13 @@ use std::sync::Arc;
 use std::collections::BTreeMap;
 
 use gcodec_profile::{TomlKind, read_toml};
-use gcodec_source::{Diagnostic, SourceFile, Span, codes};
+use gcodec_source::{Diagnostic, Diagnostics, SourceFile, Span, codes};
 use globset::{GlobBuilder, GlobSet, GlobSetBuilder};
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::{RuleLevel, Selector};
+use super::levels::Levels;
+use super::{RuleLevel, Selection, Selector};
 
 /// The file name a configuration is found by.
 pub const CONFIG_NAME: &str = "gcodec.toml";
@@ -221,6 +222,53 @@ impl CheckConfig {
             .filter(|s| s.glob.is_match(relative))
             .flat_map(|s| s.ignore.iter().copied())
             .collect()
+    }
+}
+
+/// What the configuration assigns one program that `gcodec lower` or
+/// `gcodec run` is given: its `[[files]]` sections' profile, definition
+/// files and names assumed defined (as `check` would check it with).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ProgramSettings {
+    /// The last matching section's profile.
+    pub profile: Option<PathBuf>,
+    /// The definition files of every matching section, in order.
+    pub definitions: Vec<PathBuf>,
+    pub assume_defined: Vec<String>,
+}
+
+impl CheckConfig {
+    /// What the `[[files]]` sections that match the program at `path`
+    /// assign it.
+    pub fn program_settings(&self, path: &Path) -> ProgramSettings {
+        let relative = self.relative(path, Path::new(""));
+        let sections: Vec<&FileSection> = (self.sections.iter())
+            .filter(|s| s.glob.is_match(&relative))
+            .collect();
+        ProgramSettings {
+            profile: (sections.iter().rev())
+                .find_map(|s| s.profile.as_ref())
+                .map(|(path, _)| path.clone()),
+            definitions: (sections.iter())
+                .flat_map(|s| s.definitions.iter().map(|(path, _)| path.clone()))
+                .collect(),
+            assume_defined: (sections.iter())
+                .flat_map(|s| s.assume_defined.iter().cloned())
+                .collect(),
+        }
+    }
+
+    /// The diagnostics of the file at `path` at the levels the
+    /// configuration sets for it (`[rules]`, its sections' `ignore`), as
+    /// `check` reports them without options of its command line.
+    pub fn releveled(&self, path: &Path, diagnostics: Diagnostics) -> Diagnostics {
+        let file_ignores = self.ignores_of(&self.relative(path, Path::new("")));
+        let levels = Levels {
+            rules: &self.rules,
+            file_ignores: &file_ignores,
+            selection: &Selection::default(),
+        };
+        diagnostics.releveled(|code, severity| levels.level(code, severity))
     }
 }
 

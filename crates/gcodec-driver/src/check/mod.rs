@@ -4,7 +4,8 @@
 //! at the rule levels in force, as data.
 //!
 //! - [`CheckConfig`]: `gcodec.toml`, found upward from the paths checked
-//!   ([`find_config`]) or named.
+//!   ([`find_config`]) or named; what it assigns one program `lower` or
+//!   `run` is given ([`ProgramSettings`], [`CheckConfig::releveled`]).
 //! - [`Selector`], [`RuleLevel`], [`Selection`]: which diagnostics are
 //!   reported, at which level.
 //! - [`check`]: the files of [`Input`]s checked; a [`CheckReport`] of
@@ -36,7 +37,7 @@ use gcodec_sema::{Definitions, ProgramKind};
 use gcodec_source::{Diagnostics, SourceFile};
 use rayon::prelude::*;
 
-pub use config::{CONFIG_NAME, CheckConfig, find_config};
+pub use config::{CONFIG_NAME, CheckConfig, ProgramSettings, find_config};
 pub use levels::{RuleLevel, Selection};
 // The records and file reports are every command's; named here too, where
 // `check` first had them.

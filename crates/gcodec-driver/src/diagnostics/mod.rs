@@ -28,11 +28,7 @@ pub struct FileReport {
 }
 
 impl FileReport {
-    pub fn new(
-        name: String,
-        file: Option<SourceFile>,
-        diagnostics: Vec<Diagnostic>,
-    ) -> Self {
+    pub fn new(name: String, file: Option<SourceFile>, diagnostics: Vec<Diagnostic>) -> Self {
         let mut kept = Diagnostics::new();
         kept.extend(diagnostics);
         Self {
@@ -42,4 +38,3 @@ impl FileReport {
         }
     }
 }
-
