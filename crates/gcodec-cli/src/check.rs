@@ -10,12 +10,12 @@ use gcodec_driver::check::{
     CheckConfig, CheckOptions, CheckReport, FileReport, Input, Progress, RunChecks, Selection,
     Selector, find_config,
 };
-use gcodec_source::{SourceFile, codes, render_diagnostics, render_kept};
+use gcodec_source::{codes, render_diagnostics, render_kept};
 
 use crate::diagnostic_formats::{DiagnosticFormat, write_diagnostics};
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS, EXIT_USAGE};
 use crate::output::{Stdout, after_output, to_stderr};
-use crate::report::DiagnosticOptions;
+use crate::report::{DiagnosticOptions, Reporter, load_config};
 
 /// What `--deny` makes fail.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -192,30 +192,7 @@ fn configuration(args: &CheckArgs, paths: &[PathBuf], stdin_name: &str) -> Resul
         let here = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
         return Ok(CheckConfig::default_in(here));
     };
-    let file = SourceFile::read(&path).map_err(|e| {
-        let d = gcodec_source::Diagnostic::new(
-            e.code(),
-            format!("cannot read `{}`: {e}", path.display()),
-        )
-        .with_help(e.help());
-        to_stderr(&render_diagnostics(
-            &[d],
-            None,
-            args.diagnostics
-                .render_options_for(std::io::stderr().is_terminal()),
-        ));
-        EXIT_USAGE
-    })?;
-    let shown = file.clone();
-    CheckConfig::load(file).map_err(|problems| {
-        to_stderr(&render_diagnostics(
-            &problems,
-            Some(&shown),
-            args.diagnostics
-                .render_options_for(std::io::stderr().is_terminal()),
-        ));
-        EXIT_USAGE
-    })
+    load_config(&path, &Reporter::full(args.diagnostics))
 }
 
 /// A progress bar on stderr while a long check runs: only when stderr is

@@ -171,20 +171,7 @@ impl ProgramSetup {
         let Some(path) = option.config.clone().or_else(|| find_config(program)) else {
             return Ok(setup);
         };
-        let file = SourceFile::read(&path).map_err(|e| {
-            let d = gcodec_source::Diagnostic::new(
-                e.code(),
-                format!("cannot read `{}`: {e}", path.display()),
-            )
-            .with_help(e.help());
-            reporter.report(&vec![d].into(), None, &path.display().to_string());
-            EXIT_USAGE
-        })?;
-        let shown = file.clone();
-        let config = CheckConfig::load(file).map_err(|problems| {
-            reporter.report(&problems.into(), Some(&shown), shown.name());
-            EXIT_USAGE
-        })?;
+        let config = load_config(&path, reporter)?;
         let settings = config.program_settings(program);
         // The command line wins over the configuration.
         if setup.profile.is_none() {
@@ -198,6 +185,25 @@ impl ProgramSetup {
         reporter.use_config(Arc::new(config));
         Ok(setup)
     }
+}
+
+/// Reads and checks the configuration at `path`; one that cannot be read
+/// or has problems is reported and is exit code 2.
+pub fn load_config(path: &Path, reporter: &Reporter) -> Result<CheckConfig, u8> {
+    let file = SourceFile::read(path).map_err(|e| {
+        let d = gcodec_source::Diagnostic::new(
+            e.code(),
+            format!("cannot read `{}`: {e}", path.display()),
+        )
+        .with_help(e.help());
+        reporter.report(&vec![d].into(), None, &path.display().to_string());
+        EXIT_USAGE
+    })?;
+    let shown = file.clone();
+    CheckConfig::load(file).map_err(|problems| {
+        reporter.report(&problems.into(), Some(&shown), shown.name());
+        EXIT_USAGE
+    })
 }
 
 /// The encoding of the files a command reads, where one is named.
