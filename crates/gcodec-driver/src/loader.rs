@@ -874,7 +874,8 @@ fn not_found(
         help: Some(not_found_help(
             request.name,
             format!(
-                "pass the directory holding {} with --subprogram-path",
+                "pass the directory holding {} with --subprogram-path \
+                 (`gcodec check`: list it in gcodec.toml's `search_paths`)",
                 wanted.file_name()
             ),
         )),

@@ -241,7 +241,9 @@ fn an_spf_comes_before_an_mpf_of_the_same_name() {
     let error = load_err(&mut loader, "_N_ONLYMAIN_SPF", &caller());
     assert_eq!(
         error.help.as_deref(),
-        Some("pass the directory holding ONLYMAIN.SPF with --subprogram-path")
+        Some(
+            "pass the directory holding ONLYMAIN.SPF with --subprogram-path (`gcodec check`: list it in gcodec.toml's `search_paths`)"
+        )
     );
 }
 
@@ -343,7 +345,9 @@ fn not_found_names_every_directory_searched() {
     );
     assert_eq!(
         error.help.as_deref(),
-        Some("pass the directory holding CYCLE81.SPF with --subprogram-path")
+        Some(
+            "pass the directory holding CYCLE81.SPF with --subprogram-path (`gcodec check`: list it in gcodec.toml's `search_paths`)"
+        )
     );
     assert_eq!(error.to_string(), error.message);
     let diagnostic = error.to_diagnostic();
