@@ -32,3 +32,23 @@ fn the_rules_hold_on_every_program() {
         }
     });
 }
+
+/// A finding in nearly every block (block numbers that repeat) is kept
+/// up to what a file may keep and counted beyond, not held whole.
+#[test]
+fn findings_beyond_what_a_file_keeps_are_counted() {
+    let profile = gcodec_profile::builtin().expect("built-in profile");
+    let blocks = gcodec_source::MAX_KEPT_PER_FILE + 5;
+    let text = "N1 G0 X0\n".repeat(blocks) + "M30\n";
+    let parsed = gcodec_parser::parse_bytes("wrapped.mpf", text.as_bytes());
+    let kind = ProgramKind::Main;
+    let lowered = gcodec_sema::lower_program(
+        &parsed.program,
+        kind,
+        &profile,
+        &gcodec_sema::Definitions::new(),
+    );
+    let found = gcodec_sema::lint::lint(&parsed.program, &lowered.document, kind, &profile);
+    assert_eq!(found.total(), blocks as u64 - 1);
+    assert_eq!(found.iter().count(), gcodec_source::MAX_KEPT_PER_FILE);
+}

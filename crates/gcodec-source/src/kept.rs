@@ -86,6 +86,13 @@ impl Diagnostics {
         }
     }
 
+    /// Counts a diagnostic of `code` at `severity` as omitted without
+    /// keeping it: for a producer that already keeps as many as a file
+    /// may have.
+    pub fn count_omitted(&mut self, code: &'static Code, severity: Severity) {
+        self.omitted.count(code, severity, 1);
+    }
+
     /// Gathers `other` (a later part of the same file) into these: kept
     /// while fewer than [`MAX_KEPT_PER_FILE`] are, counted beyond.
     pub fn append(&mut self, other: Diagnostics) {

@@ -6,11 +6,11 @@
 use gcodec_ail::{Op, ToolChangeTrigger};
 use gcodec_source::{Diagnostic, codes};
 
-use super::Context;
 use super::facts::Set;
+use super::{Context, Findings};
 use crate::ProgramKind;
 
-pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
+pub(super) fn check(cx: &Context<'_>, out: &mut Findings) {
     // A subprogram changes the tool its caller selected.
     if cx.kind != ProgramKind::Main {
         return;

@@ -7,12 +7,12 @@
 use gcodec_ail::{Op, ToolChangeTrigger};
 use gcodec_source::{Diagnostic, codes};
 
-use super::Context;
 use super::facts::Set;
 use super::graph::ends_program;
+use super::{Context, Findings};
 use crate::ProgramKind;
 
-pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
+pub(super) fn check(cx: &Context<'_>, out: &mut Findings) {
     for (at, instruction) in cx.document.instructions.iter().enumerate() {
         let place = match &instruction.op {
             Op::ToolChange {

@@ -5,9 +5,9 @@
 
 use gcodec_source::{Diagnostic, codes};
 
-use super::Context;
+use super::{Context, Findings};
 
-pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
+pub(super) fn check(cx: &Context<'_>, out: &mut Findings) {
     // (main block, number, block): sorted, equal numbers side by side with
     // their first block first. Block numbers mostly rise through a
     // program, so the sort has little to do (a hash map cost the check a

@@ -7,9 +7,9 @@
 use gcodec_parser::ast::{ControlStructure, StructureKind};
 use gcodec_source::{Diagnostic, codes};
 
-use super::Context;
+use super::{Context, Findings};
 
-pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
+pub(super) fn check(cx: &Context<'_>, out: &mut Findings) {
     let structures: Vec<(&ControlStructure, usize)> = cx
         .program
         .structures

@@ -5,10 +5,10 @@
 use gcodec_ail::Op;
 use gcodec_source::{Diagnostic, codes};
 
-use super::Context;
+use super::{Context, Findings};
 use crate::ProgramKind;
 
-pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
+pub(super) fn check(cx: &Context<'_>, out: &mut Findings) {
     if cx.kind != ProgramKind::Main {
         return;
     }

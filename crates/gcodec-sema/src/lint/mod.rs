@@ -40,7 +40,7 @@ mod unused_label;
 use gcodec_ail::{ByteRange, Document};
 use gcodec_parser::ast::Program;
 use gcodec_profile::Profile;
-use gcodec_source::{Diagnostic, Diagnostics, Span};
+use gcodec_source::{Diagnostic, Diagnostics, MAX_KEPT_PER_FILE, Span};
 
 use crate::ProgramKind;
 use crate::flow::{Flow, FlowBuilder};
@@ -84,8 +84,8 @@ pub fn lint(
         graph,
         facts,
     };
-    let mut found = Vec::new();
-    let rules: [fn(&Context<'_>, &mut Vec<Diagnostic>); 10] = [
+    let mut found = Findings::default();
+    let rules: [fn(&Context<'_>, &mut Findings); 10] = [
         unused_label::check,
         jump_into_structure::check,
         duplicate_block_number::check,
@@ -100,12 +100,36 @@ pub fn lint(
     for rule in rules {
         rule(&cx, &mut found);
     }
-    let mut diagnostics = Diagnostics::new();
-    for d in found {
-        diagnostics.push(d);
+    let mut diagnostics = found.omitted;
+    let mut kept = Diagnostics::new();
+    for d in found.kept {
+        kept.push(d);
     }
+    kept.sort_by_start();
+    diagnostics.append(kept);
     diagnostics.sort_by_start();
     diagnostics
+}
+
+/// What the rules find: kept up to the number a file may keep
+/// ([`MAX_KEPT_PER_FILE`]), counted beyond, so that a program with a
+/// finding in every block (block numbers that wrap round in a
+/// million-block program) does not hold them all.
+#[derive(Default)]
+pub(crate) struct Findings {
+    kept: Vec<Diagnostic>,
+    omitted: Diagnostics,
+}
+
+impl Findings {
+    pub(crate) fn push(&mut self, diagnostic: Diagnostic) {
+        if self.kept.len() < MAX_KEPT_PER_FILE {
+            self.kept.push(diagnostic);
+        } else {
+            self.omitted
+                .count_omitted(diagnostic.code, diagnostic.severity);
+        }
+    }
 }
 
 /// The span of an instruction's source.

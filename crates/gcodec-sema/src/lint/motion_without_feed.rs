@@ -7,8 +7,8 @@ use gcodec_ail::Op;
 use gcodec_lang::MotionKind;
 use gcodec_source::{Diagnostic, codes};
 
-use super::Context;
 use super::facts::Set;
+use super::{Context, Findings};
 use crate::ProgramKind;
 
 /// A motion at the programmed feed `F`: not a rapid, not a thread or
@@ -45,7 +45,7 @@ pub(super) fn first_feed_motion_where(cx: &Context<'_>, fact: Set) -> Option<usi
         })
 }
 
-pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
+pub(super) fn check(cx: &Context<'_>, out: &mut Findings) {
     if cx.kind != ProgramKind::Main {
         return;
     }

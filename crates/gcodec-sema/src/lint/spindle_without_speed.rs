@@ -7,11 +7,11 @@ use gcodec_ail::Op;
 use gcodec_lang::MClass;
 use gcodec_source::{Diagnostic, codes};
 
-use super::Context;
 use super::facts::Set;
+use super::{Context, Findings};
 use crate::ProgramKind;
 
-pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
+pub(super) fn check(cx: &Context<'_>, out: &mut Findings) {
     if cx.kind != ProgramKind::Main {
         return;
     }

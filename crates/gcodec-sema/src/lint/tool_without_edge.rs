@@ -6,11 +6,11 @@
 
 use gcodec_source::{Diagnostic, codes};
 
-use super::Context;
 use super::facts::Set;
 use super::motion_without_feed::first_feed_motion_where;
+use super::{Context, Findings};
 
-pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
+pub(super) fn check(cx: &Context<'_>, out: &mut Findings) {
     if let Some(at) = first_feed_motion_where(cx, Set::NO_EDGE) {
         out.push(
             Diagnostic::new(

@@ -6,9 +6,9 @@ use gcodec_ail::Op;
 use gcodec_parser::ast::StatementKind;
 use gcodec_source::{Diagnostic, codes};
 
-use super::Context;
+use super::{Context, Findings};
 
-pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
+pub(super) fn check(cx: &Context<'_>, out: &mut Findings) {
     let instructions = &cx.document.instructions;
     let mut at = 0;
     while at < instructions.len() {

@@ -5,9 +5,9 @@
 use gcodec_source::{Diagnostic, codes};
 use rustc_hash::FxHashSet;
 
-use super::Context;
+use super::{Context, Findings};
 
-pub(super) fn check(cx: &Context<'_>, out: &mut Vec<Diagnostic>) {
+pub(super) fn check(cx: &Context<'_>, out: &mut Findings) {
     // A computed jump target or a `CALL BLOCK` of the program itself may
     // name any label.
     if cx.flow.returns().is_none() {
