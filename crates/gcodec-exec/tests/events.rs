@@ -61,6 +61,8 @@ fn linear_motion() -> MotionEvent {
         feed_mode: Cow::Borrowed("G94"),
         plane: Plane::G17,
         work_offset: WorkOffsetContext::new(WorkOffsetCode::G54, None),
+        inserted: None,
+        tool: None,
     }
 }
 
@@ -77,6 +79,14 @@ fn arc_motion() -> MotionEvent {
         feed_mode: Cow::Borrowed("G94"),
         plane: Plane::G17,
         work_offset: WorkOffsetContext::new(WorkOffsetCode::G54, Some(Suppression::G53)),
+        // A transition circle of compensation: the contour stays at the
+        // corner, the tool centre goes round it.
+        inserted: Some(InsertedElement::TransitionCircle),
+        tool: Some(Box::new(ToolCentre {
+            tool_to: AxisMap::from([("X", 24.0), ("Y", 15.5), ("Z", 5.0)]),
+            tool_to_machine: AxisMap::from([("X", 24.0), ("Y", 15.5), ("Z", 5.0)]),
+            tool_radius: 4.0,
+        })),
     }
 }
 
@@ -469,7 +479,15 @@ fn work_offset_context_follows_seed_003() {
 #[test]
 fn optional_fields_are_left_out_when_absent() {
     let value = round_trip(&event(7, EventKind::Motion(linear_motion())));
-    for field in ["centre", "radius", "turns"] {
+    for field in [
+        "centre",
+        "radius",
+        "turns",
+        "inserted",
+        "tool_to",
+        "tool_to_machine",
+        "tool_radius",
+    ] {
         assert!(value.get(field).is_none(), "{field} present: {value}");
     }
     let rapid = MotionEvent {

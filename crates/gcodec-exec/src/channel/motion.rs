@@ -58,6 +58,8 @@ impl MotionScratch {
                     feed_mode: Cow::Borrowed("G94"),
                     plane: Plane::G17,
                     work_offset: WorkOffsetContext::default(),
+                    inserted: None,
+                    tool: None,
                 }),
                 source: crate::event::EventSource {
                     file: Arc::from(""),

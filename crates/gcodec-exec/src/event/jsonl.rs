@@ -229,6 +229,19 @@ fn write_motion_json(out: &mut Vec<u8>, motion: &MotionEvent, last_to: &mut Axis
     out.extend_from_slice(b",\"effective_suppression_mask\":\"");
     out.extend_from_slice(context.effective_suppression_mask.name().as_bytes());
     out.push(b'"');
+    if let Some(inserted) = motion.inserted {
+        out.extend_from_slice(b",\"inserted\":\"");
+        out.extend_from_slice(inserted.name().as_bytes());
+        out.push(b'"');
+    }
+    if let Some(tool) = &motion.tool {
+        out.extend_from_slice(b",\"tool_to\":");
+        write_axis_map_json(out, &tool.tool_to);
+        out.extend_from_slice(b",\"tool_to_machine\":");
+        write_axis_map_json(out, &tool.tool_to_machine);
+        out.extend_from_slice(b",\"tool_radius\":");
+        write_f64_json(out, tool.tool_radius);
+    }
 }
 
 /// A modal change as serde writes it (the second commonest event),

@@ -245,6 +245,59 @@ pub struct MotionEvent {
     /// The work offset in effect for this block (the work-offset design).
     #[serde(flatten)]
     pub work_offset: WorkOffsetContext,
+    /// An element the control inserts rather than one a block programs:
+    /// a chamfer or rounding of the contour (`CHF`, `CHR`, `RND`, `RNDM`),
+    /// or a corner element of the tool-centre path only; left out for a
+    /// programmed element. `source` is the block that caused it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inserted: Option<InsertedElement>,
+    /// With tool radius compensation on (`G41`/`G42`): where the tool
+    /// centre goes; left out while compensation is off. Boxed: most
+    /// programs never compensate, and the commonest event stays small.
+    #[serde(default, flatten, skip_serializing_if = "Option::is_none")]
+    pub tool: Option<Box<ToolCentre>>,
+}
+
+/// Where the tool centre goes under tool radius compensation.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ToolCentre {
+    /// The tool centre at the element's end, in workpiece coordinates as
+    /// `to` (the program's unit, diameters as programmed).
+    pub tool_to: AxisMap,
+    /// The tool centre's end position in machine coordinates.
+    pub tool_to_machine: AxisMap,
+    /// The compensated radius: the cutting edge's radius plus `OFFN`, in
+    /// the program's unit.
+    pub tool_radius: f64,
+}
+
+/// What kind of element the control inserted into the path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum InsertedElement {
+    /// A chamfer of the contour (`CHF=`, `CHR=`).
+    Chamfer,
+    /// A tangent rounding arc of the contour (`RND=`, `RNDM=`).
+    Rounding,
+    /// A circle of the tool-centre path round an outside corner (`G450`);
+    /// the contour does not move (`from` = `to` = the corner).
+    TransitionCircle,
+    /// A straight piece of the tool-centre path at a corner (`G451`
+    /// beyond its limit, `KONT` round a start point); the contour does
+    /// not move.
+    CornerLine,
+}
+
+impl InsertedElement {
+    /// The name as the events spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Chamfer => "chamfer",
+            Self::Rounding => "rounding",
+            Self::TransitionCircle => "transition_circle",
+            Self::CornerLine => "corner_line",
+        }
+    }
 }
 
 fn is_zero(value: &u32) -> bool {

@@ -95,6 +95,14 @@ pub fn write_trace_line(out: &mut impl fmt::Write, event: &Event) -> fmt::Result
             }
             write!(out, " machine")?;
             write_axes(out, &motion.to_machine)?;
+            if let Some(inserted) = motion.inserted {
+                write!(out, " inserted {}", inserted.name())?;
+            }
+            if let Some(tool) = &motion.tool {
+                write!(out, " tool")?;
+                write_axes(out, &tool.tool_to)?;
+                write!(out, " tool_radius {}", Num(tool.tool_radius))?;
+            }
         }
         EventKind::ModalChange(change) => {
             write!(out, " group {}", change.group)?;
