@@ -20,6 +20,7 @@ pub mod frames;
 pub mod geometry;
 pub mod loader;
 pub mod machine;
+pub mod path;
 pub mod program;
 pub mod tool_resolution;
 pub mod toolchanger;

@@ -547,6 +547,11 @@ pub struct ProgramSettings {
     /// `CIRCLE_ERROR_FACTOR`), whichever is larger.
     #[serde(default = "default_circle_error_factor")]
     pub circle_error_factor: Spanned<f64>,
+    /// MD20250 `CUTCOM_MAXNUM_DUMMY_BLOCKS`: the blocks without motion in
+    /// the working plane allowed between two elements while tool radius
+    /// compensation is on (alarm 10762 beyond).
+    #[serde(default = "default_cutcom_max_dummy_blocks")]
+    pub cutcom_max_dummy_blocks: Spanned<u32>,
 }
 
 impl Default for ProgramSettings {
@@ -564,12 +569,17 @@ impl Default for ProgramSettings {
             stop_at_m0: true,
             circle_error_const: default_circle_error_const(),
             circle_error_factor: default_circle_error_factor(),
+            cutcom_max_dummy_blocks: default_cutcom_max_dummy_blocks(),
         }
     }
 }
 
 fn default_circle_error_const() -> Spanned<f64> {
     spanned(0.01)
+}
+
+fn default_cutcom_max_dummy_blocks() -> Spanned<u32> {
+    spanned(3)
 }
 
 fn default_circle_error_factor() -> Spanned<f64> {

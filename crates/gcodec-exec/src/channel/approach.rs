@@ -59,8 +59,7 @@ impl Channel<'_> {
         }
         let start = self.state.geometry_point(&self.motion.wcs);
         let end = self.state.geometry_point(&self.motion.target);
-        self.finish_motion(program, instruction, MotionKind::Rapid, start, end, None, 0);
-        Ok(())
+        self.finish_motion(program, instruction, MotionKind::Rapid, start, end, None, 0)
     }
 
     /// `FP=`: 1…4 (MD30600 has four fixed points per axis).

@@ -365,6 +365,27 @@ impl Channel<'_> {
                 s.position = Some(value);
                 self.spindle_event(program, instruction, number)?;
             }
+            NamedAddress::Offn | NamedAddress::Rndm | NamedAddress::Disc => {
+                let value = eval::eval_real(&self.env(), &address.value)?;
+                let length = if self.state.inch() {
+                    value * 25.4
+                } else {
+                    value
+                };
+                let contour = &mut self.state.contour;
+                match address.address {
+                    NamedAddress::Offn => contour.offn = length,
+                    NamedAddress::Rndm => contour.rndm = length,
+                    _ => {
+                        contour.disc = value;
+                        if value > 0.0 {
+                            self.not_simulated(program, instruction, "address DISC", || {
+                                "`DISC=` above 0 is not simulated: outside corners under `G450` get a transition circle".into()
+                            });
+                        }
+                    }
+                }
+            }
             other => {
                 // Read, for its errors, though it has no effect: an axis
                 // (`CPLA[X]=Y`) or a string (`CPSETTYPE[X]="CP"`) as well.

@@ -33,6 +33,7 @@ mod settings;
 pub mod state;
 mod summary;
 mod tool_data;
+mod toolpath;
 mod tools;
 
 use std::borrow::Cow;
@@ -206,6 +207,8 @@ struct BlockState {
     file: Option<Arc<str>>,
     level: u32,
     number: Option<u32>,
+    /// A motion of the block moved in the working plane.
+    moved_in_plane: bool,
 }
 
 /// A running channel.
@@ -250,6 +253,16 @@ pub struct Channel<'r> {
     /// A global variable of the definition files that did not fit the
     /// memory for variables, where it is defined: the run does not start.
     global_error: Option<(EventSource, RunError)>,
+    /// Chamfers, roundings and tool radius compensation: the motions and
+    /// outputs held for the look-ahead ([`crate::path`]).
+    path: toolpath::PathStage,
+    /// What the stage released, reused.
+    path_ready: Vec<crate::path::Held<toolpath::HeldMotion, toolpath::HeldOutput>>,
+    /// Where the tool centre stands after the last motion released under
+    /// compensation (workpiece coordinates); `None` without it.
+    last_tool_point: Option<Vec<f64>>,
+    /// An alarm of the stage at a block's end, raised at the next block.
+    path_alarm: Option<RunError>,
 }
 
 impl<'r> Channel<'r> {
@@ -263,6 +276,7 @@ impl<'r> Channel<'r> {
         let max_memory = *profile.program.max_variable_memory.get_ref();
         let vars = Variables::default().with_budgets(options.max_work, max_memory);
         let machine = Box::new(SimulatedMachine::new(&profile));
+        let max_dummy_blocks = *profile.program.cutcom_max_dummy_blocks.get_ref();
         let state = MachineState::new(profile);
         let motion = motion::MotionScratch::new(&state);
         Self {
@@ -290,6 +304,10 @@ impl<'r> Channel<'r> {
             output_error: None,
             figures_slot: None,
             global_error: None,
+            path: toolpath::PathStage::new(max_dummy_blocks),
+            path_ready: Vec::new(),
+            last_tool_point: None,
+            path_alarm: None,
         }
     }
 
@@ -383,8 +401,13 @@ impl<'r> Channel<'r> {
 
     /// Ends the run: the machine abandons what it was doing if the run
     /// ends in an alarm, the `program_end` event, the outcome.
-    pub(crate) fn finish(&mut self, reason: ProgramEndReason) -> io::Result<RunOutcome> {
+    pub(crate) fn finish(&mut self, mut reason: ProgramEndReason) -> io::Result<RunOutcome> {
         self.end_block();
+        if let Some(error) = self.path_alarm.take() {
+            self.alarm_in_definitions(self.last_source(), error);
+            reason = ProgramEndReason::Alarm;
+        }
+        self.release_path(true);
         if reason == ProgramEndReason::Alarm {
             self.abort_machine(crate::machine::AbortCause::Alarm);
         }
@@ -574,6 +597,9 @@ impl<'r> Channel<'r> {
         program: &Arc<Program>,
         instruction: &Instruction,
     ) -> Option<ProgramEndReason> {
+        if let Some(error) = self.path_alarm.take() {
+            return Some(self.alarm(program, instruction, error));
+        }
         let level = self.program_level();
         self.block = BlockState {
             open: true,
@@ -585,6 +611,7 @@ impl<'r> Channel<'r> {
             file: self.observer.is_some().then(|| program.file.clone()),
             level,
             number: None,
+            moved_in_plane: false,
         };
         if self.observer.is_some() {
             self.block.number = program.block_number(instruction.source.line);
@@ -635,9 +662,11 @@ impl<'r> Channel<'r> {
         }
         self.block.open = false;
         self.state.suppression = None;
+        self.path_block_ended();
         if self.observer.is_some() {
             self.fill_row();
-            if let Some(observer) = self.observer.as_mut()
+            if !self.hold_row()
+                && let Some(observer) = self.observer.as_mut()
                 && let Err(error) = observer.block(&self.row)
             {
                 self.output_error.get_or_insert(error);
@@ -915,10 +944,9 @@ impl<'r> Channel<'r> {
         let Some(code) = ggroups::member(group, index) else {
             return;
         };
-        if group == 7 && matches!(code, "G41" | "G42") {
-            self.not_simulated(program, instruction, "radius-compensation", || {
-                "tool radius compensation (G41/G42) is not simulated: paths are the programmed contour"
-                    .into()
+        if group == 17 && matches!(code, "KONT" | "KONTC" | "KONTT") {
+            self.not_simulated(program, instruction, "approach-mode", || {
+                format!("`{code}` approach and retraction is not simulated: compensation starts and ends as under `NORM`")
             });
         }
         let previous = self.state.modal(group);
@@ -1096,7 +1124,7 @@ impl<'r> Channel<'r> {
     }
 
     fn emit(&mut self, event: &Event) {
-        send(&mut *self.sink, &mut self.output_error, event);
+        self.emit_in_order(event);
     }
 
     /// Whether the block just ended calls the modal call: it traversed, a

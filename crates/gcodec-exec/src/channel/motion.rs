@@ -31,7 +31,7 @@ pub(super) struct MotionScratch {
     increment_start: Vec<f64>,
     pub(super) target: Vec<f64>,
     pub(super) machine: Vec<f64>,
-    event: Event,
+    pub(super) event: Event,
     /// The end tangent of the last path element (for `CT`).
     last_tangent: Option<Point3>,
 }
@@ -132,8 +132,8 @@ impl Channel<'_> {
                 let axis = self.axis(&name)?;
                 self.set_target(axis, &target.value, target.mode)?;
             }
-            if details.spline.is_some() || details.transition.is_some() {
-                self.not_simulated(program, instruction, "motion-details", || "spline weights, chamfers and roundings (`PW`, `PL`, `CHF`, `CHR`, `RND`) are not simulated: the path is the programmed straight or circular element".into());
+            if details.spline.is_some() {
+                self.not_simulated(program, instruction, "motion-details", || "spline weights (`PW`, `PL`) are not simulated: the path is the programmed element".into());
             }
         }
         let start = self.state.geometry_point(&self.motion.wcs);
@@ -183,8 +183,7 @@ impl Channel<'_> {
             self.state
                 .to_machine(&frame, &scratch.target, &mut scratch.machine);
         }
-        self.finish_motion(program, instruction, kind, start, end, arc, arc_turns);
-        Ok(())
+        self.finish_motion(program, instruction, kind, start, end, arc, arc_turns)
     }
 
     /// The motion from `scratch.wcs` (the start point `start`) to
@@ -201,13 +200,42 @@ impl Channel<'_> {
         end: Point3,
         arc: Option<geometry::Arc>,
         arc_turns: u32,
-    ) {
-        // Figures.
+    ) -> Result<(), RunError> {
         let length = match &arc {
             Some(a) => a.length,
             None => distance(start, end),
         };
         let time = self.motion_time(kind, length);
+        self.motion.last_tangent = match &arc {
+            Some(a) => {
+                let p = a.point_at(1.0);
+                let q = a.point_at(1.0 - 1e-6);
+                Some([p[0] - q[0], p[1] - q[1], p[2] - q[2]])
+            }
+            None if length > 0.0 => Some([end[0] - start[0], end[1] - start[1], end[2] - start[2]]),
+            None => self.motion.last_tangent,
+        };
+        self.fill_motion_event(program, instruction, kind, arc.as_ref(), arc_turns);
+        self.block.had_motion = true;
+        let corner = self.corner_element(instruction)?;
+        if self.path_engaged(corner) {
+            // Compensation or a corner element: the stage holds the
+            // motion until the next element makes it final.
+            let held = self.hold_motion(
+                program,
+                instruction,
+                start,
+                end,
+                arc.as_ref(),
+                length,
+                time,
+                corner,
+            );
+            self.state.machine.copy_from_slice(&self.motion.machine);
+            self.state.note_traversed_frame();
+            return held;
+        }
+        // Figures.
         let figures = self.figures();
         let bbox = match &arc {
             Some(a) => a.bounding_box(),
@@ -227,16 +255,22 @@ impl Channel<'_> {
             figures.feed_length += length;
             figures.feed_time += time;
         }
-        self.motion.last_tangent = match &arc {
-            Some(a) => {
-                let p = a.point_at(1.0);
-                let q = a.point_at(1.0 - 1e-6);
-                Some([p[0] - q[0], p[1] - q[1], p[2] - q[2]])
-            }
-            None if length > 0.0 => Some([end[0] - start[0], end[1] - start[1], end[2] - start[2]]),
-            None => self.motion.last_tangent,
-        };
-        // The event.
+        self.state.machine.copy_from_slice(&self.motion.machine);
+        self.state.note_traversed_frame();
+        super::send(&mut *self.sink, &mut self.output_error, &self.motion.event);
+        Ok(())
+    }
+
+    /// Fills the scratch motion event from `scratch.wcs` to
+    /// `scratch.target` (`scratch.machine`), along `arc` if one.
+    fn fill_motion_event(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        kind: MotionKind,
+        arc: Option<&geometry::Arc>,
+        arc_turns: u32,
+    ) {
         let source = self.source(program, instruction);
         let state = &self.state;
         let scratch = &mut self.motion;
@@ -245,7 +279,7 @@ impl Channel<'_> {
             fill_map(&mut event.from, state, &scratch.wcs, true);
             fill_map(&mut event.to, state, &scratch.target, true);
             fill_map(&mut event.to_machine, state, &scratch.machine, false);
-            match &arc {
+            match arc {
                 Some(a) => {
                     let mut centre = event.centre.take().unwrap_or_default();
                     centre.clear();
@@ -275,12 +309,10 @@ impl Channel<'_> {
             event.feed_mode = Cow::Borrowed(state.modal(15).unwrap_or("G94"));
             event.plane = state.plane();
             event.work_offset = WorkOffsetContext::new(state.group8, state.suppression);
+            event.inserted = None;
+            event.tool = None;
         }
         scratch.event.source = source;
-        self.state.machine.copy_from_slice(&self.motion.machine);
-        self.state.note_traversed_frame();
-        self.block.had_motion = true;
-        super::send(&mut *self.sink, &mut self.output_error, &self.motion.event);
     }
 
     /// Where incremental values count from (SD42440,

@@ -85,6 +85,11 @@ pub struct MachineState {
     pub edge: u32,
     /// The active edge's length, mm.
     pub tool_length: f64,
+    /// The active edge's radius, mm (tool radius compensation).
+    pub tool_radius: f64,
+    /// The contour settings of the named addresses `OFFN=`, `RNDM=`,
+    /// `DISC=`.
+    pub contour: ContourSettings,
     /// The run's tool table and the tool data the program wrote.
     pub(super) tool_data: ToolData,
     /// The programmed F, in the unit of group 15.
@@ -192,6 +197,8 @@ impl MachineState {
             programmed_tool: 0,
             edge: 0,
             tool_length: 0.0,
+            tool_radius: 0.0,
+            contour: ContourSettings::default(),
             tool_data: ToolData::new(&profile),
             feed: 0.0,
             spindles,
@@ -411,6 +418,18 @@ impl MachineState {
 
 /// The settable frame `$P_UIFR[index]` as the profile's
 /// `work_offsets.values` give it (translations).
+/// Modal values of the contour and its compensation, in mm.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContourSettings {
+    /// `OFFN=`: the allowance added to the tool radius under
+    /// compensation.
+    pub offn: f64,
+    /// `RNDM=`: the modal rounding at every corner; 0 is off.
+    pub rndm: f64,
+    /// `DISC=`: the transition circle's overshoot, 0…100.
+    pub disc: f64,
+}
+
 fn settable_frame(profile: &Profile, frame_axes: &FrameAxes, index: usize) -> Frame {
     let values: Vec<(usize, f64)> = profile_offsets(profile, index)
         .filter_map(|(axis, v)| Some((frame_axes.index_of(axis)?, v)))

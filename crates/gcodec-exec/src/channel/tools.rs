@@ -375,6 +375,7 @@ impl Channel<'_> {
     ) -> Result<(), RunError> {
         self.state.edge = d;
         self.state.tool_length = 0.0;
+        self.state.tool_radius = 0.0;
         if d == 0 {
             return Ok(());
         }
@@ -390,8 +391,11 @@ impl Channel<'_> {
         let Some(entry) = self.state.tool_data.tool(tool.number) else {
             return Ok(());
         };
-        match entry.edge(d).map(|e| e.length) {
-            Some(length) => self.state.tool_length = length,
+        match entry.edge(d).map(|e| (e.length, e.radius)) {
+            Some((length, radius)) => {
+                self.state.tool_length = length;
+                self.state.tool_radius = radius;
+            }
             None if programmed => {
                 let message = format!(
                     "tool {} has no cutting edge D{d} in the tool table; no length offset",

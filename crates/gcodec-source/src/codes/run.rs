@@ -67,4 +67,9 @@ super::codes! {
     CIRCLE_TURNS = circle_turns, Error, "a `TURN=` that is not a whole number 0…999";
     CIRCLE_TURNS_CIP = circle_turns_cip, Error, "`TURN=` with a `CIP` circle";
     CIRCLE_OUT_OF_RANGE = circle_out_of_range, Error, "a circle too large to be computed";
+    CORNER_ELEMENT_LEFT_OUT = corner_element_left_out, Warning, "a chamfer or rounding with no element in the plane after it";
+    CORNER_ELEMENT_REDUCED = corner_element_reduced, Advice, "a chamfer or rounding reduced to fit an element too short for it";
+    COMPENSATION_SELECTION = compensation_selection, Error, "tool radius compensation selected or ended in a circle block";
+    COMPENSATION_COLLISION = compensation_collision, Error, alarm 10751, "a contour the tool radius compensation cannot follow";
+    COMPENSATION_DUMMY_BLOCKS = compensation_dummy_blocks, Error, alarm 10762, "too many blocks without motion in the plane under tool radius compensation";
 }

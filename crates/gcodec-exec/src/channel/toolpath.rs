@@ -1,0 +1,604 @@
+//! The channel's side of the path stage (`crate::path`): what it keeps of
+//! a motion while the stage holds it, when motions go through the stage,
+//! and how released elements become motion events with their figures.
+
+use std::sync::Arc;
+
+use gcodec_ail::{Instruction, Op};
+use gcodec_lang::MotionKind;
+use gcodec_lang::addresses::TransitionKind;
+
+use super::Channel;
+use super::motion::fill_map;
+use crate::eval;
+use crate::event::{BlockRow, Event, EventKind, InsertedElement, ToolCentre};
+use crate::frames::Frame;
+use crate::geometry::{self, BoundingBox, Point3};
+use crate::path::planar::{self, P2, Segment};
+use crate::path::{Compensation, CornerElement, CornerMode, Element, Held, PathError, Side};
+use crate::program::Program;
+use crate::value::RunError;
+
+/// What the channel keeps of a motion the stage holds.
+#[derive(Clone, Debug)]
+pub(crate) struct HeldMotion {
+    /// The motion event of the programmed contour, source included.
+    event: Event,
+    /// Start and end of every axis, workpiece coordinates (mm, radius).
+    wcs_start: Vec<f64>,
+    wcs_end: Vec<f64>,
+    /// The frame the block ran in, for machine coordinates.
+    frame: Frame,
+    /// The channel axes of the plane's abscissa and ordinate.
+    plane_axes: [Option<usize>; 2],
+    /// The programmed element's length (mm) and time (s): elements made
+    /// from it take its time per length.
+    length: f64,
+    time: f64,
+    /// Where the figures of the block's tool are.
+    slot: usize,
+}
+
+/// What else the channel outputs while the stage holds motions.
+#[derive(Debug)]
+pub(crate) enum HeldOutput {
+    Event(Event),
+    Row(BlockRow),
+}
+
+pub(crate) type PathStage = crate::path::PathStage<HeldMotion, HeldOutput>;
+
+impl Channel<'_> {
+    /// The compensation in force now.
+    fn compensation(&self) -> Compensation {
+        let side = match self.state.modal(7) {
+            Some("G41") => Some(Side::Left),
+            Some("G42") => Some(Side::Right),
+            _ => None,
+        };
+        Compensation {
+            side,
+            radius: (self.state.tool_radius + self.state.contour.offn).max(0.0),
+            corner: match self.state.modal(18) {
+                Some("G451") => CornerMode::Intersection,
+                _ => CornerMode::Circle,
+            },
+            collision_detection: self.state.modal(23) == Some("CDON"),
+        }
+    }
+
+    /// The corner element the block programs (`CHF=`, `CHR=`, `RND=`), or
+    /// the modal rounding (`RNDM=`).
+    pub(super) fn corner_element(
+        &self,
+        instruction: &Instruction,
+    ) -> Result<Option<CornerElement>, RunError> {
+        let transition = match &instruction.op {
+            Op::Motion {
+                details: Some(details),
+                ..
+            } => details.transition.as_ref(),
+            _ => None,
+        };
+        let length = |v: f64| if self.state.inch() { v * 25.4 } else { v };
+        if let Some(t) = transition {
+            let value = length(eval::eval_real(&self.env(), &t.value)?);
+            return Ok(Some(match t.kind {
+                TransitionKind::Chamfer => CornerElement::ChamferLength(value),
+                TransitionKind::ChamferLeg => CornerElement::ChamferLeg(value),
+                TransitionKind::Rounding => CornerElement::Rounding(value),
+            }));
+        }
+        let modal = self.state.contour.rndm;
+        Ok((modal > 0.0).then_some(CornerElement::Rounding(modal)))
+    }
+
+    /// Whether a motion goes through the stage: it holds something, or
+    /// the motion is compensated or has a corner element.
+    pub(super) fn path_engaged(&self, corner: Option<CornerElement>) -> bool {
+        !self.path.is_idle() || corner.is_some() || self.state.modal(7).is_some_and(|c| c != "G40")
+    }
+
+    /// Hands the motion just filled in `self.motion.event` to the stage.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn hold_motion(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        start: Point3,
+        end: Point3,
+        arc: Option<&geometry::Arc>,
+        length: f64,
+        time: f64,
+        corner: Option<CornerElement>,
+    ) -> Result<(), RunError> {
+        let plane = self.state.plane();
+        let (h, v, n) = plane.axes();
+        let flat = |p: Point3| -> P2 { [p[h], p[v]] };
+        let contour = match arc {
+            // A circle in the plane (an oblique `CIP` circle is taken by
+            // its chord).
+            Some(a) if a.normal[n] > 0.999 => Segment::Arc {
+                start: flat(start),
+                end: flat(end),
+                centre: flat(a.centre),
+                radius: a.radius,
+                sweep: a.sweep,
+            },
+            _ => Segment::Line {
+                start: flat(start),
+                end: flat(end),
+            },
+        };
+        if contour.is_point() && corner.is_some() {
+            self.not_simulated(program, instruction, "corner-without-plane-motion", || {
+                "a chamfer or rounding in a block without motion in the plane inserts nothing"
+                    .into()
+            });
+        }
+        let mut plane_axes = [None; 2];
+        for (i, info) in self.state.axes.iter().enumerate() {
+            match info.geometry {
+                Some(g) if g == h => plane_axes[0] = Some(i),
+                Some(g) if g == v => plane_axes[1] = Some(i),
+                _ => {}
+            }
+        }
+        let slot = {
+            self.figures();
+            self.figures_slot.unwrap_or_default()
+        };
+        let motion = HeldMotion {
+            event: self.motion.event.clone(),
+            wcs_start: self.motion.wcs.clone(),
+            wcs_end: self.motion.target.clone(),
+            frame: self.state.total_frame().clone(),
+            plane_axes,
+            length,
+            time,
+            slot,
+        };
+        if !contour.is_point() {
+            self.block.moved_in_plane = true;
+        }
+        let compensation = self.compensation();
+        if compensation.side.is_some() && compensation.collision_detection {
+            self.not_simulated(program, instruction, "collision-detection", || {
+                "`CDON`: gcodec does not leave blocks out; where an element is too short for the tool it stops with alarm 10751 as under `CDOF`".into()
+            });
+        }
+        let element = Element {
+            motion,
+            contour: Some(contour),
+            compensation,
+            corner,
+            inserted: None,
+            trimmed: false,
+            tool: None,
+        };
+        let pushed = self.path.push(element);
+        self.report_path_warnings(program, instruction);
+        pushed.map_err(path_error)?;
+        self.release_path(false);
+        Ok(())
+    }
+
+    /// Reports what the stage left out or reduced, at `instruction`.
+    fn report_path_warnings(&mut self, program: &Arc<Program>, instruction: &Instruction) {
+        for warning in std::mem::take(&mut self.path.warnings) {
+            let level = warning.code.level();
+            self.diagnostic_at(
+                program,
+                instruction,
+                warning.code,
+                level,
+                warning.message,
+                None,
+            );
+        }
+    }
+
+    /// Sends what the stage has made final; with `finish`, everything
+    /// (the program ends).
+    pub(super) fn release_path(&mut self, finish: bool) {
+        let mut ready = std::mem::take(&mut self.path_ready);
+        if finish {
+            self.path.finish(&mut ready);
+            for warning in std::mem::take(&mut self.path.warnings) {
+                self.count(warning.code.level());
+                let event = Event {
+                    kind: EventKind::Diagnostic(crate::event::DiagnosticEvent::new(
+                        warning.code,
+                        warning.message,
+                    )),
+                    source: self.last_source(),
+                };
+                super::send(&mut *self.sink, &mut self.output_error, &event);
+            }
+        } else {
+            self.path.release(&mut ready);
+        }
+        for held in ready.drain(..) {
+            match held {
+                Held::Output(HeldOutput::Event(event)) => {
+                    super::send(&mut *self.sink, &mut self.output_error, &event)
+                }
+                Held::Output(HeldOutput::Row(mut row)) => {
+                    if let Some(tool) = self.last_tool_point.as_ref() {
+                        for (i, info) in self.state.axes.iter().enumerate() {
+                            if let Some(value) = tool.get(i) {
+                                row.positions
+                                    .update(&info.name, self.state.as_programmed(i, *value));
+                            }
+                        }
+                    }
+                    if let Some(observer) = self.observer.as_mut()
+                        && let Err(error) = observer.block(&row)
+                    {
+                        self.output_error.get_or_insert(error);
+                    }
+                }
+                Held::Element(element) => self.send_element(element),
+            }
+        }
+        self.path_ready = ready;
+    }
+
+    /// The motion events of a released element: the tool-only pieces
+    /// before it, then the element itself.
+    fn send_element(&mut self, element: Element<HeldMotion>) {
+        let Element {
+            motion,
+            contour,
+            compensation,
+            inserted,
+            trimmed,
+            tool,
+            ..
+        } = element;
+        let rate = if motion.length > 0.0 {
+            motion.time / motion.length
+        } else {
+            0.0
+        };
+        let radius = compensation.radius;
+        let offset = compensation.offset();
+        if let Some(track) = &tool {
+            for piece in &track.before {
+                let mut wcs = motion.wcs_start.clone();
+                motion.set_plane(&mut wcs, piece.corner);
+                let mut tool_wcs = wcs.clone();
+                motion.set_plane(&mut tool_wcs, piece.path.end());
+                let mut event = motion.event.clone();
+                self.fill_element_event(
+                    &mut event,
+                    &motion,
+                    (&wcs, &wcs),
+                    &piece.path,
+                    Some(piece.kind),
+                    Some((&tool_wcs, radius)),
+                );
+                let length = piece.path.length();
+                self.add_element_figures(&motion, &event, length, length * rate, &piece.path, &wcs);
+                self.last_tool_point = Some(tool_wcs);
+                super::send(&mut *self.sink, &mut self.output_error, &event);
+            }
+        }
+        let Some(contour) = contour else {
+            // No motion in the plane: as programmed, the tool where it is.
+            let mut event = motion.event.clone();
+            if let Some(point) = tool.as_ref().and_then(|t| t.end) {
+                let mut tool_wcs = motion.wcs_end.clone();
+                motion.set_plane(&mut tool_wcs, point);
+                self.attach_tool(&mut event, &motion, &tool_wcs, radius);
+                self.last_tool_point = Some(tool_wcs);
+            } else {
+                self.last_tool_point = None;
+            }
+            let line = Segment::Line {
+                start: [0.0; 2],
+                end: [0.0; 2],
+            };
+            let end = motion.wcs_end.clone();
+            self.add_element_figures(&motion, &event, motion.length, motion.time, &line, &end);
+            super::send(&mut *self.sink, &mut self.output_error, &event);
+            return;
+        };
+        let mut wcs_start = motion.wcs_start.clone();
+        let mut wcs_end = motion.wcs_end.clone();
+        if trimmed || inserted.is_some() {
+            motion.set_plane_along(&mut wcs_start, contour.start());
+            motion.set_plane_along(&mut wcs_end, contour.end());
+        }
+        let traversed = match tool.as_ref() {
+            Some(t) => tool_path(&contour, t, offset),
+            None => contour,
+        };
+        let mut tool_wcs = None;
+        if let Some(end) = tool.as_ref().and_then(|t| t.end) {
+            let mut wcs = wcs_end.clone();
+            motion.set_plane(&mut wcs, end);
+            tool_wcs = Some(wcs);
+        }
+        let mut event = motion.event.clone();
+        self.fill_element_event(
+            &mut event,
+            &motion,
+            (&wcs_start, &wcs_end),
+            &contour,
+            inserted,
+            tool_wcs.as_deref().map(|w| (w, radius)),
+        );
+        // Off the plane (an infeed with the element), as programmed.
+        let rise = motion.off_plane_travel(&wcs_start, &wcs_end);
+        let planar_length = traversed.length();
+        let length = planar_length.hypot(rise);
+        let contour_length = contour.length().hypot(rise);
+        let time = if trimmed || inserted.is_some() || tool.is_some() {
+            if contour_length > 0.0 && motion.length > 0.0 {
+                length * rate
+            } else {
+                motion.time
+            }
+        } else {
+            motion.time
+        };
+        let end_point = tool_wcs.clone().unwrap_or_else(|| wcs_end.clone());
+        self.add_element_figures(&motion, &event, length, time, &traversed, &end_point);
+        self.last_tool_point = tool_wcs;
+        super::send(&mut *self.sink, &mut self.output_error, &event);
+    }
+
+    /// Refills `event` for an element from `from` to `to` (workpiece
+    /// coordinates) along `path`, as inserted, with the tool centre.
+    fn fill_element_event(
+        &self,
+        event: &mut Event,
+        motion: &HeldMotion,
+        (from, to): (&[f64], &[f64]),
+        path: &Segment,
+        inserted: Option<InsertedElement>,
+        tool: Option<(&[f64], f64)>,
+    ) {
+        let state = &self.state;
+        let mut machine = vec![0.0; to.len()];
+        state.to_machine(&motion.frame, to, &mut machine);
+        let EventKind::Motion(m) = &mut event.kind else {
+            return;
+        };
+        fill_map(&mut m.from, state, from, true);
+        fill_map(&mut m.to, state, to, true);
+        fill_map(&mut m.to_machine, state, &machine, false);
+        m.inserted = inserted;
+        let unit = |v: f64| if state.inch() { v / 25.4 } else { v };
+        match (inserted, path) {
+            (
+                Some(InsertedElement::Rounding | InsertedElement::TransitionCircle),
+                Segment::Arc {
+                    centre,
+                    radius,
+                    sweep,
+                    ..
+                },
+            ) => {
+                m.motion = if *sweep >= 0.0 {
+                    MotionKind::ArcCcw
+                } else {
+                    MotionKind::ArcCw
+                };
+                let mut map = m.centre.take().unwrap_or_default();
+                map.clear();
+                for (k, axis) in motion.plane_axes.iter().enumerate() {
+                    if let Some(i) = axis {
+                        map.insert(
+                            state.axes[*i].name.clone(),
+                            state.as_programmed(*i, centre[k]),
+                        );
+                    }
+                }
+                m.centre = Some(map);
+                m.radius = Some(unit(*radius));
+                m.turns = 0;
+            }
+            (Some(InsertedElement::Chamfer | InsertedElement::CornerLine), _) => {
+                if m.motion != MotionKind::Rapid {
+                    m.motion = MotionKind::Linear;
+                }
+                m.centre = None;
+                m.radius = None;
+                m.turns = 0;
+            }
+            _ => {}
+        }
+        match tool {
+            Some((tool_wcs, radius)) => self.attach_tool(event, motion, tool_wcs, radius),
+            None => {
+                if let EventKind::Motion(m) = &mut event.kind {
+                    m.tool = None;
+                }
+            }
+        }
+    }
+
+    fn attach_tool(&self, event: &mut Event, motion: &HeldMotion, tool_wcs: &[f64], radius: f64) {
+        let state = &self.state;
+        let mut machine = vec![0.0; tool_wcs.len()];
+        state.to_machine(&motion.frame, tool_wcs, &mut machine);
+        let EventKind::Motion(m) = &mut event.kind else {
+            return;
+        };
+        let mut centre = m.tool.take().unwrap_or_else(|| {
+            Box::new(ToolCentre {
+                tool_to: Default::default(),
+                tool_to_machine: Default::default(),
+                tool_radius: 0.0,
+            })
+        });
+        fill_map(&mut centre.tool_to, state, tool_wcs, true);
+        fill_map(&mut centre.tool_to_machine, state, &machine, false);
+        centre.tool_radius = if state.inch() { radius / 25.4 } else { radius };
+        m.tool = Some(centre);
+    }
+
+    /// The figures of a released element: its length, time and extent.
+    fn add_element_figures(
+        &mut self,
+        motion: &HeldMotion,
+        event: &Event,
+        length: f64,
+        time: f64,
+        path: &Segment,
+        end: &[f64],
+    ) {
+        let rapid = matches!(&event.kind, EventKind::Motion(m) if m.motion == MotionKind::Rapid);
+        let mut bbox = BoundingBox::point(self.state.geometry_point(end));
+        if !path.is_point() {
+            let (h, v, _) = self.state.plane().axes();
+            let base = self.state.geometry_point(end);
+            for p in extent_points(path) {
+                let mut q = base;
+                q[h] = p[0];
+                q[v] = p[1];
+                bbox.include(q);
+            }
+        }
+        let figures = self.summary.at(motion.slot);
+        figures.bounding_box = Some(match figures.bounding_box {
+            Some(b) => b.union(&bbox),
+            None => bbox,
+        });
+        if rapid {
+            figures.rapid_length += length;
+            figures.rapid_time += time;
+        } else {
+            figures.feed_length += length;
+            figures.feed_time += time;
+        }
+    }
+
+    /// Holds `event` if the stage holds motions before it; else sends it.
+    pub(super) fn emit_in_order(&mut self, event: &Event) {
+        if self.path.is_idle() {
+            super::send(&mut *self.sink, &mut self.output_error, event);
+        } else {
+            self.path.hold_output(HeldOutput::Event(event.clone()));
+        }
+    }
+
+    /// Holds the block's CSV row if the stage holds motions before it.
+    /// `false`: write it now.
+    pub(super) fn hold_row(&mut self) -> bool {
+        if self.path.is_idle() {
+            return false;
+        }
+        self.path.hold_output(HeldOutput::Row(self.row.clone()));
+        true
+    }
+
+    /// The end of a block for the stage: too many blocks without motion
+    /// in the plane under compensation is an alarm at the next block.
+    pub(super) fn path_block_ended(&mut self) {
+        if self.path.is_idle() {
+            return;
+        }
+        if let Err(error) = self.path.block_ended(self.block.moved_in_plane) {
+            self.path_alarm.get_or_insert(path_error(error));
+        }
+    }
+}
+
+fn path_error(error: PathError) -> RunError {
+    RunError::new(error.code, error.message)
+}
+
+impl HeldMotion {
+    /// Puts plane point `p` into the plane axes of `wcs`.
+    fn set_plane(&self, wcs: &mut [f64], p: P2) {
+        for (k, axis) in self.plane_axes.iter().enumerate() {
+            if let Some(i) = axis {
+                wcs[*i] = p[k];
+            }
+        }
+    }
+
+    /// Puts plane point `p`, a point of the element, into `wcs`, the other
+    /// axes where the element is at `p` (linearly between its ends).
+    fn set_plane_along(&self, wcs: &mut [f64], p: P2) {
+        let (Some(h), Some(v)) = (self.plane_axes[0], self.plane_axes[1]) else {
+            return;
+        };
+        let a = [self.wcs_start[h], self.wcs_start[v]];
+        let b = [self.wcs_end[h], self.wcs_end[v]];
+        let total = planar::distance(a, b);
+        let t = if total > planar::EPS {
+            (planar::distance(a, p) / total).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        for (i, slot) in wcs.iter_mut().enumerate() {
+            if i != h && i != v {
+                *slot = self.wcs_start[i] + t * (self.wcs_end[i] - self.wcs_start[i]);
+            }
+        }
+        wcs[h] = p[0];
+        wcs[v] = p[1];
+    }
+
+    /// The travel of the linear axes outside the plane between `a` and
+    /// `b`.
+    fn off_plane_travel(&self, a: &[f64], b: &[f64]) -> f64 {
+        let mut sum = 0.0;
+        for (i, (x, y)) in a.iter().zip(b).enumerate() {
+            if Some(i) != self.plane_axes[0] && Some(i) != self.plane_axes[1] {
+                sum += (y - x) * (y - x);
+            }
+        }
+        sum.sqrt()
+    }
+}
+
+/// The tool centre's path along `contour` from the track's start to its
+/// end: a straight line for the approach and retraction, else the
+/// equidistant between them.
+fn tool_path(contour: &Segment, track: &crate::path::ToolTrack, offset: f64) -> Segment {
+    let start = track.start.unwrap_or(contour.start());
+    let end = track.end.unwrap_or(contour.end());
+    if track.approach || matches!(contour, Segment::Line { .. }) {
+        return Segment::Line { start, end };
+    }
+    match contour.offset(offset) {
+        Some(equidistant) => equidistant.with_ends(start, end),
+        None => Segment::Line { start, end },
+    }
+}
+
+/// Points that bound `path`: its ends and, for an arc, the extremes of
+/// its circle that it passes.
+fn extent_points(path: &Segment) -> Vec<P2> {
+    let mut points = vec![path.start(), path.end()];
+    if let Segment::Arc {
+        centre,
+        radius,
+        sweep,
+        start,
+        ..
+    } = *path
+    {
+        let a0 = planar::angle(planar::sub(start, centre));
+        for k in 0..4 {
+            let target = f64::from(k) * std::f64::consts::FRAC_PI_2;
+            let delta = if sweep >= 0.0 {
+                (target - a0).rem_euclid(std::f64::consts::TAU)
+            } else {
+                (a0 - target).rem_euclid(std::f64::consts::TAU)
+            };
+            if delta <= sweep.abs() {
+                points.push([
+                    centre[0] + radius * target.cos(),
+                    centre[1] + radius * target.sin(),
+                ]);
+            }
+        }
+    }
+    points
+}

@@ -1,0 +1,321 @@
+//! Tool radius compensation in the working plane (`G41`/`G42`, SPEC
+//! §11.12): the tool centre on the contour's equidistant at the radius of
+//! the active cutting edge plus `OFFN`, joined at each corner as the
+//! control joins it:
+//!
+//! - an inside corner: both equidistants end where they meet;
+//! - an outside corner under `G450`: a transition circle about the corner;
+//!   under `G451`: the equidistants extended to where they meet (lines),
+//!   or their end tangents (arcs);
+//! - the block that selects compensation (`NORM`): a straight line to
+//!   the point perpendicular to the next element's start; the block that
+//!   ends it: from the point perpendicular to the last element's end;
+//! - a change of side or of radius while on: the old equidistant ends
+//!   perpendicular to its element's end, the new one starts perpendicular
+//!   to its element's start, a straight line joins them.
+
+use super::planar::{
+    self, EPS, P2, Segment, add, arc_between, carrier_intersections, cross, dot, left, nearest,
+    scale,
+};
+use super::{Element, Held, PathError, PathStage, Piece, ToolTrack};
+use crate::event::InsertedElement;
+use gcodec_source::codes;
+
+/// The side of the contour the tool is on, seen in the direction of
+/// travel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    /// `G41`.
+    Left,
+    /// `G42`.
+    Right,
+}
+
+/// What joins the equidistants at an outside corner.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CornerMode {
+    /// `G450`: a transition circle about the corner.
+    Circle,
+    /// `G451`: the intersection of the equidistants.
+    Intersection,
+}
+
+/// The point perpendicular to the end of `contour` at `offset` (to its
+/// left when positive).
+pub fn normal_end(contour: &Segment, offset: f64) -> P2 {
+    match contour.end_tangent() {
+        Some(t) => add(contour.end(), scale(left(t), offset)),
+        None => contour.end(),
+    }
+}
+
+/// The point perpendicular to the start of `contour` at `offset`.
+pub fn normal_start(contour: &Segment, offset: f64) -> P2 {
+    match contour.start_tangent() {
+        Some(t) => add(contour.start(), scale(left(t), offset)),
+        None => contour.start(),
+    }
+}
+
+fn selection_error(what: &str) -> PathError {
+    PathError {
+        code: codes::run::COMPENSATION_SELECTION,
+        message: format!(
+            "tool radius compensation is {what} only in a straight block (`G0`, `G1`), not in a circle"
+        ),
+    }
+}
+
+fn collision(message: impl Into<String>) -> PathError {
+    PathError {
+        code: codes::run::COMPENSATION_COLLISION,
+        message: message.into(),
+    }
+}
+
+/// An element in the plane after one without compensation: it selects
+/// compensation, or there is none.
+pub fn start<M>(element: &mut Element<M>) -> Result<(), PathError> {
+    if element.compensation.side.is_none() {
+        return Ok(());
+    }
+    let Some(contour) = element.contour else {
+        return Ok(());
+    };
+    if !matches!(contour, Segment::Line { .. }) {
+        return Err(selection_error("selected"));
+    }
+    element.tool = Some(ToolTrack {
+        start: Some(contour.start()),
+        approach: true,
+        ..ToolTrack::default()
+    });
+    Ok(())
+}
+
+/// An element in the plane after the compensated one held at `lead`:
+/// resolves the corner between them.
+pub fn join<M: Clone, O>(
+    stage: &mut PathStage<M, O>,
+    lead: usize,
+    element: &mut Element<M>,
+) -> Result<(), PathError> {
+    let Held::Element(q) = &mut stage.held[lead] else {
+        return Ok(());
+    };
+    let (Some(a), Some(b)) = (q.contour, element.contour) else {
+        return Ok(());
+    };
+    let q_offset = q.compensation.offset();
+    let approach = q.tool.as_ref().is_some_and(|t| t.approach);
+    let q_start = q.tool.as_ref().and_then(|t| t.start).unwrap_or(a.start());
+    let mut track = ToolTrack::default();
+    let lead_end;
+    if element.compensation.side.is_none() {
+        if !matches!(b, Segment::Line { .. }) {
+            return Err(selection_error("ended"));
+        }
+        if approach {
+            // `G40` right after `G41`/`G42`: nothing was selected.
+            q.tool = None;
+            return Ok(());
+        }
+        lead_end = normal_end(&a, q_offset);
+        track.start = Some(lead_end);
+        track.end = Some(b.end());
+    } else if approach {
+        lead_end = normal_start(&b, element.compensation.offset());
+        track.start = Some(lead_end);
+    } else if q.compensation.side != element.compensation.side
+        || (q.compensation.radius - element.compensation.radius).abs() > EPS
+    {
+        lead_end = normal_end(&a, q_offset);
+        let start = normal_start(&b, element.compensation.offset());
+        track.start = Some(start);
+        if planar::distance(lead_end, start) > EPS {
+            track.before.push(Piece {
+                kind: InsertedElement::CornerLine,
+                path: Segment::Line {
+                    start: lead_end,
+                    end: start,
+                },
+                corner: b.start(),
+            });
+        }
+    } else {
+        let (end, start, pieces) = corner(&a, q_start, &b, q_offset, q.compensation.corner)?;
+        lead_end = end;
+        track.start = Some(start);
+        track.before = pieces;
+    }
+    if let Some(tool) = &mut q.tool {
+        tool.end = Some(lead_end);
+    }
+    // The motions without extent in the plane in between keep the tool
+    // where this element ends.
+    for held in stage.held.range_mut(lead + 1..) {
+        if let Held::Element(e) = held
+            && e.contour.is_none()
+            && let Some(tool) = &mut e.tool
+        {
+            tool.start = Some(lead_end);
+            tool.end = Some(lead_end);
+        }
+    }
+    element.tool = Some(track);
+    Ok(())
+}
+
+/// The corner between `a` (its tool path starting at `a_start`) and `b`
+/// on the same side at the same `offset`: where `a`'s equidistant ends,
+/// where `b`'s starts, and the pieces between.
+fn corner(
+    a: &Segment,
+    a_start: P2,
+    b: &Segment,
+    offset: f64,
+    mode: CornerMode,
+) -> Result<(P2, P2, Vec<Piece>), PathError> {
+    let at = a.end();
+    if offset.abs() <= EPS {
+        return Ok((at, at, Vec::new()));
+    }
+    let too_small = || {
+        collision(
+            "the tool radius is larger than the radius of an inside circle: the tool cannot follow the contour",
+        )
+    };
+    let oa = a.offset(offset).ok_or_else(too_small)?;
+    let ob = b.offset(offset).ok_or_else(too_small)?;
+    let (Some(ta), Some(tb)) = (a.end_tangent(), b.start_tangent()) else {
+        return Ok((oa.end(), ob.start(), Vec::new()));
+    };
+    let turn = cross(ta, tb);
+    let along = dot(ta, tb);
+    let side = offset.signum();
+    // Tangent: the equidistants meet, or (a step in curvature) nearly.
+    if turn.abs() <= 1e-7 && along > 0.0 {
+        let mut pieces = Vec::new();
+        if planar::distance(oa.end(), ob.start()) > 1e-6 {
+            pieces.push(corner_line(oa.end(), ob.start(), at));
+        }
+        return Ok((oa.end(), ob.start(), pieces));
+    }
+    if side * turn > 0.0 {
+        // Inside: where the equidistants meet, nearest the corner.
+        let meet = nearest(&carrier_intersections(&oa, &ob), at).ok_or_else(|| {
+            collision("the equidistants of an inside corner do not meet: the tool cannot follow the contour")
+        })?;
+        if !oa.runs_forward_between(a_start, meet) || !ob.runs_forward_between(meet, ob.end()) {
+            return Err(collision(
+                "an element is too short for the tool radius at an inside corner: the tool would cut into the contour (with `CDON` the control leaves such blocks out; gcodec does not simulate that yet)",
+            ));
+        }
+        return Ok((meet, meet, Vec::new()));
+    }
+    // Outside, or a reversal: round the corner on the tool's side.
+    let circle = |pieces: &mut Vec<Piece>| {
+        pieces.push(Piece {
+            kind: InsertedElement::TransitionCircle,
+            path: arc_between(at, oa.end(), ob.start(), side < 0.0),
+            corner: at,
+        });
+    };
+    let mut pieces = Vec::new();
+    match mode {
+        CornerMode::Circle => circle(&mut pieces),
+        CornerMode::Intersection => {
+            let lines = matches!(a, Segment::Line { .. }) && matches!(b, Segment::Line { .. });
+            match planar::line_line(oa.end(), ta, ob.start(), tb) {
+                Some(meet) if lines => return Ok((meet, meet, pieces)),
+                Some(meet) => {
+                    pieces.push(corner_line(oa.end(), meet, at));
+                    pieces.push(corner_line(meet, ob.start(), at));
+                }
+                None => circle(&mut pieces),
+            }
+        }
+    }
+    Ok((oa.end(), ob.start(), pieces))
+}
+
+fn corner_line(start: P2, end: P2, corner: P2) -> Piece {
+    Piece {
+        kind: InsertedElement::CornerLine,
+        path: Segment::Line { start, end },
+        corner,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    fn line(start: P2, end: P2) -> Segment {
+        Segment::Line { start, end }
+    }
+
+    fn close(a: P2, b: P2) -> bool {
+        planar::distance(a, b) < 1e-9
+    }
+
+    #[test]
+    fn an_inside_corner_of_two_lines_meets_at_the_intersection() {
+        // A pocket wall: right along Y=0, then up X=10; the tool on the
+        // left (G41) is inside the turn.
+        let a = line([0.0, 0.0], [10.0, 0.0]);
+        let b = line([10.0, 0.0], [10.0, 10.0]);
+        let (end, start, pieces) = corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle).unwrap();
+        assert!(close(end, [8.0, 2.0]) && close(start, [8.0, 2.0]));
+        assert!(pieces.is_empty());
+    }
+
+    #[test]
+    fn an_outside_corner_gets_a_transition_circle_or_the_intersection() {
+        // Right along Y=0, then down: a right turn, G41 outside.
+        let a = line([0.0, 0.0], [10.0, 0.0]);
+        let b = line([10.0, 0.0], [10.0, -10.0]);
+        let (end, start, pieces) = corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle).unwrap();
+        assert!(close(end, [10.0, 2.0]) && close(start, [12.0, 0.0]));
+        let [piece] = pieces.as_slice() else {
+            panic!("{pieces:?}")
+        };
+        let Segment::Arc { centre, sweep, .. } = piece.path else {
+            panic!()
+        };
+        assert!(close(centre, [10.0, 0.0]));
+        assert!(
+            (sweep + PI / 2.0).abs() < 1e-9,
+            "clockwise round the corner: {sweep}"
+        );
+        let (end, start, pieces) =
+            corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Intersection).unwrap();
+        assert!(close(end, [12.0, 2.0]) && close(start, [12.0, 2.0]) && pieces.is_empty());
+    }
+
+    #[test]
+    fn an_inside_circle_smaller_than_the_tool_is_an_alarm() {
+        let a = line([0.0, 0.0], [10.0, 0.0]);
+        // A counter-clockwise circle of radius 1: G41 is inside it.
+        let b = Segment::Arc {
+            start: [10.0, 0.0],
+            end: [10.0, 2.0],
+            centre: [10.0, 1.0],
+            radius: 1.0,
+            sweep: PI,
+        };
+        let error = corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle).unwrap_err();
+        assert_eq!(error.code, codes::run::COMPENSATION_COLLISION);
+    }
+
+    #[test]
+    fn an_element_shorter_than_the_radius_at_inside_corners_is_an_alarm() {
+        // Up 1 mm between two inside corners with a 2 mm tool on the left.
+        let a = line([0.0, 0.0], [10.0, 0.0]);
+        let b = line([10.0, 0.0], [10.0, 1.0]);
+        let error = corner(&a, [9.0, 2.0], &b, 2.0, CornerMode::Circle).unwrap_err();
+        assert_eq!(error.code, codes::run::COMPENSATION_COLLISION);
+    }
+}
