@@ -552,6 +552,11 @@ pub struct ProgramSettings {
     /// compensation is on (alarm 10762 beyond).
     #[serde(default = "default_cutcom_max_dummy_blocks")]
     pub cutcom_max_dummy_blocks: Spanned<u32>,
+    /// MD20240 `CUTCOM_MAXNUM_CHECK_BLOCKS`: the elements collision
+    /// detection (`CDON`) looks ahead over for an intersection of the
+    /// equidistants (alarm 10751 when there is none).
+    #[serde(default = "default_cutcom_check_blocks")]
+    pub cutcom_check_blocks: Spanned<u32>,
 }
 
 impl Default for ProgramSettings {
@@ -570,12 +575,17 @@ impl Default for ProgramSettings {
             circle_error_const: default_circle_error_const(),
             circle_error_factor: default_circle_error_factor(),
             cutcom_max_dummy_blocks: default_cutcom_max_dummy_blocks(),
+            cutcom_check_blocks: default_cutcom_check_blocks(),
         }
     }
 }
 
 fn default_circle_error_const() -> Spanned<f64> {
     spanned(0.01)
+}
+
+fn default_cutcom_check_blocks() -> Spanned<u32> {
+    spanned(4)
 }
 
 fn default_cutcom_max_dummy_blocks() -> Spanned<u32> {

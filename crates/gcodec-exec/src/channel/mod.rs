@@ -277,6 +277,7 @@ impl<'r> Channel<'r> {
         let vars = Variables::default().with_budgets(options.max_work, max_memory);
         let machine = Box::new(SimulatedMachine::new(&profile));
         let max_dummy_blocks = *profile.program.cutcom_max_dummy_blocks.get_ref();
+        let max_check_blocks = *profile.program.cutcom_check_blocks.get_ref();
         let state = MachineState::new(profile);
         let motion = motion::MotionScratch::new(&state);
         Self {
@@ -304,7 +305,7 @@ impl<'r> Channel<'r> {
             output_error: None,
             figures_slot: None,
             global_error: None,
-            path: toolpath::PathStage::new(max_dummy_blocks),
+            path: toolpath::PathStage::new(max_dummy_blocks, max_check_blocks),
             path_ready: Vec::new(),
             last_tool_point: None,
             path_alarm: None,

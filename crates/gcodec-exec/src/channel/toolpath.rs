@@ -7,6 +7,7 @@ use std::sync::Arc;
 use gcodec_ail::{Instruction, Op};
 use gcodec_lang::MotionKind;
 use gcodec_lang::addresses::TransitionKind;
+use gcodec_source::codes;
 
 use super::Channel;
 use super::motion::fill_map;
@@ -162,11 +163,6 @@ impl Channel<'_> {
             self.block.moved_in_plane = true;
         }
         let compensation = self.compensation();
-        if compensation.side.is_some() && compensation.collision_detection {
-            self.not_simulated(program, instruction, "collision-detection", || {
-                "`CDON`: gcodec does not leave blocks out; where an element is too short for the tool it stops with alarm 10751 as under `CDOF`".into()
-            });
-        }
         let element = Element {
             motion,
             contour: Some(contour),
@@ -347,6 +343,18 @@ impl Channel<'_> {
         self.add_element_figures(&motion, &event, length, time, &traversed, &end_point);
         self.last_tool_point = tool_wcs;
         super::send(&mut *self.sink, &mut self.output_error, &event);
+        if tool.as_ref().is_some_and(|t| t.left_out) {
+            let code = codes::run::COMPENSATION_BLOCK_LEFT_OUT;
+            self.count(code.level());
+            let warning = Event {
+                kind: EventKind::Diagnostic(crate::event::DiagnosticEvent::new(
+                    code,
+                    "`CDON` leaves this block out: its equidistant would run backwards between its neighbours'; the tool centre stands still",
+                )),
+                source: event.source.clone(),
+            };
+            super::send(&mut *self.sink, &mut self.output_error, &warning);
+        }
     }
 
     /// Refills `event` for an element from `from` to `to` (workpiece

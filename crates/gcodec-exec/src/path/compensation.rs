@@ -109,7 +109,6 @@ pub fn join<M: Clone, O>(
     };
     let q_offset = q.compensation.offset();
     let approach = q.tool.as_ref().is_some_and(|t| t.approach);
-    let q_start = q.tool.as_ref().and_then(|t| t.start).unwrap_or(a.start());
     let mut track = ToolTrack::default();
     let lead_end;
     if element.compensation.side.is_none() {
@@ -144,27 +143,117 @@ pub fn join<M: Clone, O>(
             });
         }
     } else {
-        let (end, start, pieces) = corner(&a, q_start, &b, q_offset, q.compensation.corner)?;
+        let detect = element.compensation.collision_detection;
+        let mode = q.compensation.corner;
+        let (at, end, start, pieces) = join_leaving_out(stage, lead, &b, q_offset, mode, detect)?;
         lead_end = end;
         track.start = Some(start);
         track.before = pieces;
+        finish_lead(stage, at, lead_end);
+        element.tool = Some(track);
+        return Ok(());
     }
-    if let Some(tool) = &mut q.tool {
-        tool.end = Some(lead_end);
-    }
-    // The motions without extent in the plane in between keep the tool
-    // where this element ends.
-    for held in stage.held.range_mut(lead + 1..) {
-        if let Held::Element(e) = held
-            && e.contour.is_none()
-            && let Some(tool) = &mut e.tool
-        {
-            tool.start = Some(lead_end);
-            tool.end = Some(lead_end);
-        }
-    }
+    finish_lead(stage, lead, lead_end);
     element.tool = Some(track);
     Ok(())
+}
+
+/// Ends the element at `lead` at `end`; the motions after it without
+/// extent in the plane, and the elements left out, keep the tool there.
+fn finish_lead<M, O>(stage: &mut PathStage<M, O>, lead: usize, end: P2) {
+    if let Some(Held::Element(q)) = stage.held.get_mut(lead)
+        && let Some(tool) = &mut q.tool
+    {
+        tool.end = Some(end);
+    }
+    for held in stage.held.range_mut(lead + 1..) {
+        if let Held::Element(e) = held
+            && let Some(tool) = &mut e.tool
+            && (e.contour.is_none() || tool.left_out)
+        {
+            tool.start = Some(end);
+            tool.end = Some(end);
+            tool.before.clear();
+        }
+    }
+}
+
+/// The corner between the compensated element at `lead` and `b`; with
+/// collision detection (`CDON`), an element whose equidistant would run
+/// backwards is left out (warning 10763) and the corner is made with the
+/// one before it, up to the profile's `cutcom_check_blocks` elements.
+/// Returns the element that now leads into the corner, where its
+/// equidistant ends, where `b`'s starts, and the pieces between.
+fn join_leaving_out<M: Clone, O>(
+    stage: &mut PathStage<M, O>,
+    lead: usize,
+    b: &Segment,
+    offset: f64,
+    mode: CornerMode,
+    detect: bool,
+) -> Result<(usize, P2, P2, Vec<Piece>), PathError> {
+    let mut at = lead;
+    let mut left_out = 0;
+    loop {
+        let Some(Held::Element(q)) = stage.held.get(at) else {
+            return Err(collision("no element to join"));
+        };
+        let Some(a) = q.contour else {
+            return Err(collision("no element to join"));
+        };
+        let approach = q.tool.as_ref().is_some_and(|t| t.approach);
+        if approach {
+            // Everything after the approach was left out: it ends where
+            // `b` starts.
+            let start = normal_start(b, offset);
+            return Ok((at, start, start, Vec::new()));
+        }
+        let a_start = q.tool.as_ref().and_then(|t| t.start).unwrap_or(a.start());
+        let adjacent = left_out == 0;
+        match corner(&a, a_start, b, offset, mode, detect, adjacent) {
+            Ok((end, start, pieces)) => return Ok((at, end, start, pieces)),
+            Err(CornerFailure::LeadReversed) if detect => {
+                if left_out >= stage.max_check_blocks {
+                    return Err(collision(format!(
+                        "no intersection of the equidistants within {} elements (MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS): the tool cannot follow the contour",
+                        stage.max_check_blocks
+                    )));
+                }
+                let previous = stage.held.range(..at).rposition(|h| match h {
+                    Held::Element(e) => {
+                        e.contour.is_some() && e.tool.as_ref().is_some_and(|t| !t.left_out)
+                    }
+                    Held::Output(_) => false,
+                });
+                let Some(previous) = previous else {
+                    return Err(collision(
+                        "an element is too short for the tool radius and no element before it is held: the tool cannot follow the contour",
+                    ));
+                };
+                if let Some(Held::Element(q)) = stage.held.get_mut(at)
+                    && let Some(tool) = &mut q.tool
+                {
+                    tool.left_out = true;
+                }
+                left_out += 1;
+                at = previous;
+            }
+            Err(CornerFailure::LeadReversed) => {
+                return Err(collision(
+                    "an element is too short for the tool radius at an inside corner: the tool would cut into the contour (`CDON` would leave it out)",
+                ));
+            }
+            Err(CornerFailure::Alarm(error)) => return Err(error),
+        }
+    }
+}
+
+/// Why a corner cannot be joined.
+#[derive(Debug)]
+enum CornerFailure {
+    /// The leading element's equidistant would run backwards to it.
+    LeadReversed,
+    Alarm(PathError),
 }
 
 /// The corner between `a` (its tool path starting at `a_start`) and `b`
@@ -176,7 +265,9 @@ fn corner(
     b: &Segment,
     offset: f64,
     mode: CornerMode,
-) -> Result<(P2, P2, Vec<Piece>), PathError> {
+    detect: bool,
+    adjacent: bool,
+) -> Result<(P2, P2, Vec<Piece>), CornerFailure> {
     let at = a.end();
     if offset.abs() <= EPS {
         return Ok((at, at, Vec::new()));
@@ -186,15 +277,48 @@ fn corner(
             "the tool radius is larger than the radius of an inside circle: the tool cannot follow the contour",
         )
     };
-    let oa = a.offset(offset).ok_or_else(too_small)?;
-    let ob = b.offset(offset).ok_or_else(too_small)?;
+    let oa = a
+        .offset(offset)
+        .ok_or_else(too_small)
+        .map_err(CornerFailure::Alarm)?;
+    let ob = b
+        .offset(offset)
+        .ok_or_else(too_small)
+        .map_err(CornerFailure::Alarm)?;
     let (Some(ta), Some(tb)) = (a.end_tangent(), b.start_tangent()) else {
         return Ok((oa.end(), ob.start(), Vec::new()));
     };
     let turn = cross(ta, tb);
     let along = dot(ta, tb);
     let side = offset.signum();
+    if !adjacent {
+        // Elements left out between them: the equidistants must meet,
+        // whatever the tangents say, or more is left out.
+        let near = planar::scale(add(at, b.start()), 0.5);
+        return match nearest(&carrier_intersections(&oa, &ob), near) {
+            Some(meet) if oa.runs_forward_between(a_start, meet) => Ok((meet, meet, Vec::new())),
+            _ if turn.abs() <= 1e-7
+                && along > 0.0
+                && oa.runs_forward_between(a_start, oa.end()) =>
+            {
+                // Parallel and the same way (a notch the tool cannot
+                // enter): straight on.
+                Ok((
+                    oa.end(),
+                    ob.start(),
+                    vec![corner_line(oa.end(), ob.start(), at)],
+                ))
+            }
+            _ => Err(CornerFailure::LeadReversed),
+        };
+    }
     // Tangent: the equidistants meet, or (a step in curvature) nearly.
+    // Where the equidistant ends unchanged (tangent, outside), it must
+    // still run forward from where it starts.
+    let keeps_end = !(side * turn > 0.0 && !(turn.abs() <= 1e-7 && along > 0.0));
+    if keeps_end && !oa.runs_forward_between(a_start, oa.end()) {
+        return Err(CornerFailure::LeadReversed);
+    }
     if turn.abs() <= 1e-7 && along > 0.0 {
         let mut pieces = Vec::new();
         if planar::distance(oa.end(), ob.start()) > 1e-6 {
@@ -205,12 +329,15 @@ fn corner(
     if side * turn > 0.0 {
         // Inside: where the equidistants meet, nearest the corner.
         let meet = nearest(&carrier_intersections(&oa, &ob), at).ok_or_else(|| {
-            collision("the equidistants of an inside corner do not meet: the tool cannot follow the contour")
+            CornerFailure::Alarm(collision(
+                "the equidistants of an inside corner do not meet: the tool cannot follow the contour",
+            ))
         })?;
-        if !oa.runs_forward_between(a_start, meet) || !ob.runs_forward_between(meet, ob.end()) {
-            return Err(collision(
-                "an element is too short for the tool radius at an inside corner: the tool would cut into the contour (with `CDON` the control leaves such blocks out; gcodec does not simulate that yet)",
-            ));
+        // Under `CDON` the leaving element is checked at its own end.
+        if !oa.runs_forward_between(a_start, meet)
+            || (!detect && !ob.runs_forward_between(meet, ob.end()))
+        {
+            return Err(CornerFailure::LeadReversed);
         }
         return Ok((meet, meet, Vec::new()));
     }
@@ -267,7 +394,8 @@ mod tests {
         // left (G41) is inside the turn.
         let a = line([0.0, 0.0], [10.0, 0.0]);
         let b = line([10.0, 0.0], [10.0, 10.0]);
-        let (end, start, pieces) = corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle).unwrap();
+        let (end, start, pieces) =
+            corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle, false, true).unwrap();
         assert!(close(end, [8.0, 2.0]) && close(start, [8.0, 2.0]));
         assert!(pieces.is_empty());
     }
@@ -277,7 +405,8 @@ mod tests {
         // Right along Y=0, then down: a right turn, G41 outside.
         let a = line([0.0, 0.0], [10.0, 0.0]);
         let b = line([10.0, 0.0], [10.0, -10.0]);
-        let (end, start, pieces) = corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle).unwrap();
+        let (end, start, pieces) =
+            corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle, false, true).unwrap();
         assert!(close(end, [10.0, 2.0]) && close(start, [12.0, 0.0]));
         let [piece] = pieces.as_slice() else {
             panic!("{pieces:?}")
@@ -290,8 +419,16 @@ mod tests {
             (sweep + PI / 2.0).abs() < 1e-9,
             "clockwise round the corner: {sweep}"
         );
-        let (end, start, pieces) =
-            corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Intersection).unwrap();
+        let (end, start, pieces) = corner(
+            &a,
+            [0.0, 2.0],
+            &b,
+            2.0,
+            CornerMode::Intersection,
+            false,
+            true,
+        )
+        .unwrap();
         assert!(close(end, [12.0, 2.0]) && close(start, [12.0, 2.0]) && pieces.is_empty());
     }
 
@@ -306,7 +443,11 @@ mod tests {
             radius: 1.0,
             sweep: PI,
         };
-        let error = corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle).unwrap_err();
+        let Err(CornerFailure::Alarm(error)) =
+            corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle, false, true)
+        else {
+            panic!("an alarm")
+        };
         assert_eq!(error.code, codes::run::COMPENSATION_COLLISION);
     }
 
@@ -315,7 +456,9 @@ mod tests {
         // Up 1 mm between two inside corners with a 2 mm tool on the left.
         let a = line([0.0, 0.0], [10.0, 0.0]);
         let b = line([10.0, 0.0], [10.0, 1.0]);
-        let error = corner(&a, [9.0, 2.0], &b, 2.0, CornerMode::Circle).unwrap_err();
-        assert_eq!(error.code, codes::run::COMPENSATION_COLLISION);
+        assert!(matches!(
+            corner(&a, [9.0, 2.0], &b, 2.0, CornerMode::Circle, false, true),
+            Err(CornerFailure::LeadReversed)
+        ));
     }
 }

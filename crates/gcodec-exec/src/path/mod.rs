@@ -97,6 +97,8 @@ pub struct ToolTrack {
     /// The block that selects compensation: its tool path is a straight
     /// line from the start to the compensated start of the next element.
     pub approach: bool,
+    /// Left out by collision detection (`CDON`): the tool stands still.
+    pub left_out: bool,
 }
 
 /// A piece of the tool-centre path at a corner, where the contour stands
@@ -129,7 +131,7 @@ pub struct PathError {
     pub message: String,
 }
 
-/// Something the stage left out, for a warning.
+/// Something the stage left out or changed, for a warning.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PathWarning {
     pub code: &'static Code,
@@ -144,16 +146,20 @@ pub struct PathStage<M, O> {
     /// compensation was on.
     dummy_blocks: u32,
     max_dummy_blocks: u32,
+    /// MD20240 `CUTCOM_MAXNUM_CHECK_BLOCKS`: how many elements collision
+    /// detection looks back over, and holds.
+    pub(crate) max_check_blocks: u32,
     /// Warnings to report, taken by the channel.
     pub warnings: Vec<PathWarning>,
 }
 
 impl<M: Clone, O> PathStage<M, O> {
-    pub fn new(max_dummy_blocks: u32) -> Self {
+    pub fn new(max_dummy_blocks: u32, max_check_blocks: u32) -> Self {
         Self {
             held: VecDeque::new(),
             dummy_blocks: 0,
             max_dummy_blocks,
+            max_check_blocks,
             warnings: Vec::new(),
         }
     }
@@ -348,11 +354,34 @@ impl<M: Clone, O> PathStage<M, O> {
         Ok(())
     }
 
+    /// Under collision detection an element may still be left out until
+    /// `max_check_blocks` elements follow it, or compensation ends.
+    fn may_still_be_left_out(&self, index: usize) -> bool {
+        let Some(Held::Element(e)) = self.held.get(index) else {
+            return false;
+        };
+        if !e.compensation.collision_detection || e.tool.is_none() || e.contour.is_none() {
+            return false;
+        }
+        let mut after = 0;
+        for held in self.held.range(index + 1..) {
+            if let Held::Element(later) = held {
+                if later.compensation.side.is_none() {
+                    return false;
+                }
+                if later.contour.is_some() {
+                    after += 1;
+                }
+            }
+        }
+        after < self.max_check_blocks
+    }
+
     /// Takes what is final from the front, in order.
     pub fn release(&mut self, out: &mut Vec<Held<M, O>>) {
         while let Some(front) = self.held.front() {
             if let Held::Element(e) = front
-                && !e.is_final()
+                && (!e.is_final() || self.may_still_be_left_out(0))
             {
                 break;
             }
@@ -391,6 +420,6 @@ impl<M: Clone, O> PathStage<M, O> {
                 end = tool.end;
             }
         }
-        self.release(out);
+        out.extend(self.held.drain(..));
     }
 }

@@ -71,5 +71,6 @@ super::codes! {
     CORNER_ELEMENT_REDUCED = corner_element_reduced, Advice, "a chamfer or rounding reduced to fit an element too short for it";
     COMPENSATION_SELECTION = compensation_selection, Error, "tool radius compensation selected or ended in a circle block";
     COMPENSATION_COLLISION = compensation_collision, Error, alarm 10751, "a contour the tool radius compensation cannot follow";
+    COMPENSATION_BLOCK_LEFT_OUT = compensation_block_left_out, Warning, alarm 10763, "a block collision detection (`CDON`) leaves out";
     COMPENSATION_DUMMY_BLOCKS = compensation_dummy_blocks, Error, alarm 10762, "too many blocks without motion in the plane under tool radius compensation";
 }
