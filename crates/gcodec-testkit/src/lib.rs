@@ -8,6 +8,8 @@
 //! - [`profiles`]: the shipped profiles and small test machines.
 //! - [`corpus`]: the machines and definitions the corpus was written for.
 //! - [`schema`]: the checked-in JSON Schemas are current.
+//! - [`linuxcnc`]: LinuxCNC's interpreter as a reference, its recorded
+//!   canonical calls (`rs274`) read back as moves, each with its block.
 //! - [`compile`]: the compile set-up a test repeats (parse a program that
 //!   must parse cleanly, lower it for a profile). It stays thin so that
 //!   the pipeline's facade can take its place.
@@ -15,6 +17,7 @@
 pub mod compile;
 pub mod corpus;
 pub mod fixtures;
+pub mod linuxcnc;
 pub mod paths;
 pub mod profiles;
 pub mod schema;
