@@ -945,7 +945,7 @@ impl<'r> Channel<'r> {
         let Some(code) = ggroups::member(group, index) else {
             return;
         };
-        if group == 17 && matches!(code, "KONT" | "KONTC" | "KONTT") {
+        if group == 17 && matches!(code, "KONTC" | "KONTT") {
             self.not_simulated(program, instruction, "approach-mode", || {
                 format!("`{code}` approach and retraction is not simulated: compensation starts and ends as under `NORM`")
             });

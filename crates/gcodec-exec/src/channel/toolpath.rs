@@ -65,6 +65,7 @@ impl Channel<'_> {
                 _ => CornerMode::Circle,
             },
             collision_detection: self.state.modal(23) == Some("CDON"),
+            around_ends: self.state.modal(17) == Some("KONT"),
         }
     }
 

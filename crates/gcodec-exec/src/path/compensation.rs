@@ -123,9 +123,28 @@ pub fn join<M: Clone, O>(
         lead_end = normal_end(&a, q_offset);
         track.start = Some(lead_end);
         track.end = Some(b.end());
+        // `KONT`, ending behind the contour: round its end point.
+        if element.compensation.around_ends
+            && let Some((start, pieces)) = around(&a, &b, q_offset, q.compensation.corner)
+        {
+            track.start = Some(start);
+            track.before = pieces;
+        }
     } else if approach {
         lead_end = normal_start(&b, element.compensation.offset());
         track.start = Some(lead_end);
+        // `KONT`, starting behind the contour: round its start point.
+        if q.compensation.around_ends {
+            let offset = element.compensation.offset();
+            if let Some((start, pieces)) = around(&a, &b, offset, q.compensation.corner) {
+                let end = normal_end(&a, offset);
+                track.start = Some(start);
+                track.before = pieces;
+                finish_lead(stage, lead, end);
+                element.tool = Some(track);
+                return Ok(());
+            }
+        }
     } else if q.compensation.side != element.compensation.side
         || (q.compensation.radius - element.compensation.radius).abs() > EPS
     {
@@ -156,6 +175,31 @@ pub fn join<M: Clone, O>(
     finish_lead(stage, lead, lead_end);
     element.tool = Some(track);
     Ok(())
+}
+
+/// `KONT`: where the straight approach or retraction `a`–`b` (one of
+/// them the contour's first or last element) makes an outside corner at
+/// the contour's end point, the tool goes round it as round any outside
+/// corner: where `b`'s equidistant starts and the pieces before it.
+/// `None` where the corner is inside or tangent: then as under `NORM`.
+fn around(a: &Segment, b: &Segment, offset: f64, mode: CornerMode) -> Option<(P2, Vec<Piece>)> {
+    let (ta, tb) = (a.end_tangent()?, b.start_tangent()?);
+    let turn = cross(ta, tb);
+    let outside = offset * turn < 0.0 || (turn.abs() <= 1e-7 && dot(ta, tb) < 0.0);
+    if !outside {
+        return None;
+    }
+    match corner(a, a.start(), b, offset, mode, false, true) {
+        Ok((end, start, mut pieces)) => {
+            // Under `G451` two lines meet at a point: the approach ends
+            // there, a corner line leads on.
+            if planar::distance(end, normal_end(a, offset)) > EPS {
+                pieces.insert(0, corner_line(normal_end(a, offset), end, a.end()));
+            }
+            Some((start, pieces))
+        }
+        Err(_) => None,
+    }
 }
 
 /// Ends the element at `lead` at `end`; the motions after it without

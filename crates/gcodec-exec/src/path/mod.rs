@@ -48,6 +48,9 @@ pub struct Compensation {
     pub corner: CornerMode,
     /// `CDON`.
     pub collision_detection: bool,
+    /// `KONT` (group 17), else `NORM`: round the contour's start and end
+    /// point when the tool starts or ends behind it.
+    pub around_ends: bool,
 }
 
 impl Compensation {
@@ -56,6 +59,7 @@ impl Compensation {
         radius: 0.0,
         corner: CornerMode::Circle,
         collision_detection: false,
+        around_ends: false,
     };
 
     /// The signed offset: positive to the left of the contour.
