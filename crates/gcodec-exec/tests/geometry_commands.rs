@@ -213,9 +213,10 @@ fn one_block_contour_angle_gives_the_other_coordinate() {
     close(&r.last(false, &["X", "Y"]), &[15.0, -5.0]);
     let r = run("G0 X10 Y0\nG1 X20 ANG=90 F100\nM30\n");
     assert_eq!(r.errors, ["gcodec::run::contour_angle"]);
-    // Several blocks make the contour: not built (issue 19).
+    // Several blocks make the contour: not built yet, and said so (not
+    // "no axis `ANG`": `ANG` is an address, not an axis).
     let r = run("G0 X10 Y0\nG1 ANG=45 F100\nM30\n");
-    assert_eq!(r.errors, ["gcodec::run::unknown_axis"]);
+    assert_eq!(r.errors, ["gcodec::run::contour_angle"]);
 }
 
 const FIXED_POINTS: &str = r#"

@@ -161,12 +161,16 @@ impl Channel<'_> {
                     ),
                 ));
             }
-            // A contour of several blocks (issue 19): as before, `ANG`
-            // reads as an axis the machine lacks.
+            // Neither or both plane coordinates: the first block of a
+            // contour of two or three blocks, or an angle the end point
+            // already fixes.
             _ => {
                 return Err(RunError::new(
-                    codes::run::UNKNOWN_AXIS,
-                    "the machine has no axis `ANG`",
+                    codes::run::CONTOUR_ANGLE,
+                    format!(
+                        "`ANG={angle}` with {} begins a contour definition of two or three blocks, which gcodec does not simulate yet",
+                        if written.0 { "both plane coordinates" } else { "no end point in the plane" }
+                    ),
                 ));
             }
         };
