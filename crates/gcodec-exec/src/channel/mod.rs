@@ -263,6 +263,8 @@ pub struct Channel<'r> {
     last_tool_point: Option<Vec<f64>>,
     /// An alarm of the stage at a block's end, raised at the next block.
     path_alarm: Option<RunError>,
+    /// A contour definition waiting for its second block.
+    pending_contour: Option<toolpath::PendingContour>,
 }
 
 impl<'r> Channel<'r> {
@@ -309,6 +311,7 @@ impl<'r> Channel<'r> {
             path_ready: Vec::new(),
             last_tool_point: None,
             path_alarm: None,
+            pending_contour: None,
         }
     }
 

@@ -17,7 +17,7 @@ use crate::geometry::{self, ArcForm, BoundingBox, Direction, Point3};
 use crate::program::Program;
 use crate::value::{RtValue, RunError, finite_real};
 
-use super::polar::PolarWords;
+use super::polar::{ContourAngle, PolarWords};
 use super::state::MachineState;
 
 /// Buffers reused by every motion, so that a traversing block allocates
@@ -34,6 +34,9 @@ pub(super) struct MotionScratch {
     pub(super) event: Event,
     /// The end tangent of the last path element (for `CT`).
     last_tangent: Option<Point3>,
+    /// The block begins a contour definition at this angle (`ANG=` with
+    /// no end point in the plane).
+    pub(super) begins_contour: Option<f64>,
 }
 
 impl MotionScratch {
@@ -69,6 +72,7 @@ impl MotionScratch {
                 },
             },
             last_tangent: None,
+            begins_contour: None,
         }
     }
 
@@ -136,11 +140,49 @@ impl Channel<'_> {
                 self.not_simulated(program, instruction, "motion-details", || "spline weights (`PW`, `PL`) are not simulated: the path is the programmed element".into());
             }
         }
-        let start = self.state.geometry_point(&self.motion.wcs);
+        let mut start = self.state.geometry_point(&self.motion.wcs);
+        let contour_error =
+            |message: &str| Err(RunError::new(codes::run::CONTOUR_ANGLE, message.to_owned()));
         let pole = if polar.is_polar() {
+            if self.pending_contour.take().is_some() {
+                self.path.abandon_pending();
+                return contour_error(
+                    "the block after `ANG=` without an end point must end the contour: `X… Y… ANG=…` in Cartesian coordinates",
+                );
+            }
             Some(self.polar_end_point(&polar, plane, written)?)
         } else {
-            self.contour_angle_end_point(&polar, plane, written, start)?;
+            let step = self.contour_angle_end_point(&polar, plane, written, start)?;
+            match (step, self.pending_contour.is_some()) {
+                (ContourAngle::Ends(angle), true) if kind_is_straight(kind) => {
+                    self.complete_contour(angle)?;
+                    start = self.state.geometry_point(&self.motion.wcs);
+                }
+                (_, true) => {
+                    self.pending_contour = None;
+                    self.path.abandon_pending();
+                    return contour_error(
+                        "the block after `ANG=` without an end point must end the contour: a straight block with both coordinates of the plane and its own `ANG=`",
+                    );
+                }
+                (ContourAngle::Begins(angle), false) => {
+                    if !kind_is_straight(kind) {
+                        return contour_error(
+                            "a contour definition by `ANG=` is made of straight blocks (`G0`, `G1`)",
+                        );
+                    }
+                    self.motion.begins_contour = Some(angle);
+                }
+                (ContourAngle::Ends(angle), false) => {
+                    return Err(RunError::new(
+                        codes::run::CONTOUR_ANGLE,
+                        format!(
+                            "`ANG={angle}` with both coordinates of the plane: the end point fixes the line already, and no contour definition was begun"
+                        ),
+                    ));
+                }
+                (ContourAngle::None, false) => {}
+            }
             None
         };
         if kind != MotionKind::Rapid && self.state.feed <= 0.0 {
@@ -552,6 +594,10 @@ impl Channel<'_> {
         };
         minutes * 60.0
     }
+}
+
+fn kind_is_straight(kind: MotionKind) -> bool {
+    matches!(kind, MotionKind::Rapid | MotionKind::Linear)
 }
 
 fn kind_key(kind: MotionKind) -> &'static str {

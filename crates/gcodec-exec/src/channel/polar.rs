@@ -46,6 +46,19 @@ impl<'a> PolarWords<'a> {
 /// ordinate).
 pub(super) type PlaneWritten = (bool, bool);
 
+/// What `ANG=` makes of a block.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum ContourAngle {
+    /// No `ANG=`, or one that gave the missing coordinate.
+    None,
+    /// `ANG=` with no end point in the plane: the first block of a
+    /// contour definition of two blocks, at this angle.
+    Begins(f64),
+    /// `ANG=` with both coordinates: the second block of one, arriving at
+    /// its end point at this angle.
+    Ends(f64),
+}
+
 impl Channel<'_> {
     /// `AP` and `RP` as programmed (degrees; mm, inches under `G70`), from
     /// `angle` and `radius` where incremental (`IC(…)`, `G91`) or not
@@ -134,11 +147,19 @@ impl Channel<'_> {
         plane: Plane,
         written: PlaneWritten,
         start: Point3,
-    ) -> Result<(), RunError> {
+    ) -> Result<ContourAngle, RunError> {
         let Some(value) = words.contour_angle else {
-            return Ok(());
+            return Ok(ContourAngle::None);
         };
         let angle = eval::eval_real(&self.env(), value)?;
+        if written == (false, false) {
+            // The first block of a contour of two blocks: its end point
+            // is where the next block's line meets it.
+            return Ok(ContourAngle::Begins(angle));
+        }
+        if written == (true, true) {
+            return Ok(ContourAngle::Ends(angle));
+        }
         let (sin, cos) = angle.to_radians().sin_cos();
         let (h, v, _) = plane.axes();
         let end = self.state.geometry_point(&self.motion.target);
@@ -161,20 +182,10 @@ impl Channel<'_> {
                     ),
                 ));
             }
-            // Neither or both plane coordinates: the first block of a
-            // contour of two or three blocks, or an angle the end point
-            // already fixes.
-            _ => {
-                return Err(RunError::new(
-                    codes::run::CONTOUR_ANGLE,
-                    format!(
-                        "`ANG={angle}` with {} begins a contour definition of two or three blocks, which gcodec does not simulate yet",
-                        if written.0 { "both plane coordinates" } else { "no end point in the plane" }
-                    ),
-                ));
-            }
+            _ => return Ok(ContourAngle::None),
         };
-        self.set_plane_coordinate(plane, slot, coordinate)
+        self.set_plane_coordinate(plane, slot, coordinate)?;
+        Ok(ContourAngle::None)
     }
 
     /// Sets the end point's coordinate of geometry slot `slot`.

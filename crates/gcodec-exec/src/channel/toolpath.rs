@@ -49,6 +49,16 @@ pub(crate) enum HeldOutput {
 
 pub(crate) type PathStage = crate::path::PathStage<HeldMotion, HeldOutput>;
 
+/// The first block of a contour definition, waiting for its second.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PendingContour {
+    /// `ANG=` of the first block, degrees from the plane's abscissa.
+    angle: f64,
+    /// Where it starts, in the plane.
+    start: P2,
+    line: u32,
+}
+
 impl Channel<'_> {
     /// The compensation in force now.
     fn compensation(&self) -> Compensation {
@@ -96,9 +106,79 @@ impl Channel<'_> {
     }
 
     /// Whether a motion goes through the stage: it holds something, or
-    /// the motion is compensated or has a corner element.
+    /// the motion is compensated, has a corner element or begins a
+    /// contour definition.
     pub(super) fn path_engaged(&self, corner: Option<CornerElement>) -> bool {
-        !self.path.is_idle() || corner.is_some() || self.state.modal(7).is_some_and(|c| c != "G40")
+        !self.path.is_idle()
+            || corner.is_some()
+            || self.motion.begins_contour.is_some()
+            || self.state.modal(7).is_some_and(|c| c != "G40")
+    }
+
+    /// The second block of a contour definition (`X… Y… ANG=α2`, its end
+    /// point already in `scratch.target`): the first block's line at its
+    /// angle and this one at `angle` meet where the first ends and this
+    /// one starts. The held first block gets that end point, and the
+    /// channel moves there before this block.
+    pub(super) fn complete_contour(&mut self, angle: f64) -> Result<(), RunError> {
+        let Some(pending) = self.pending_contour.take() else {
+            return Ok(());
+        };
+        let (h, v, _) = self.state.plane().axes();
+        let end = self.state.geometry_point(&self.motion.target);
+        let direction = |degrees: f64| {
+            let (sin, cos) = degrees.to_radians().sin_cos();
+            [cos, sin]
+        };
+        let corner = planar::line_line(
+            pending.start,
+            direction(pending.angle),
+            [end[h], end[v]],
+            direction(angle),
+        )
+        .ok_or_else(|| {
+            RunError::new(
+                codes::run::CONTOUR_ANGLE,
+                format!(
+                    "the lines at `ANG={}` (line {}) and `ANG={angle}` are parallel: the contour's corner is nowhere",
+                    pending.angle, pending.line
+                ),
+            )
+        })?;
+        let mut wcs = self.motion.wcs.clone();
+        let mut machine = vec![0.0; wcs.len()];
+        let state = &self.state;
+        let frame = state.total_frame().clone();
+        let length = planar::distance(pending.start, corner);
+        let feed = state.feed;
+        self.path
+            .complete_pending(|element| {
+                let motion = &mut element.motion;
+                let mut end = std::mem::take(&mut motion.wcs_end);
+                motion.set_plane(&mut end, corner);
+                motion.wcs_end = end;
+                wcs.copy_from_slice(&motion.wcs_end);
+                state.to_machine(&frame, &motion.wcs_end, &mut machine);
+                if let EventKind::Motion(m) = &mut motion.event.kind {
+                    fill_map(&mut m.to, state, &motion.wcs_end, true);
+                    fill_map(&mut m.to_machine, state, &machine, false);
+                    let rapid = m.motion == MotionKind::Rapid;
+                    motion.time += if rapid || feed <= 0.0 {
+                        0.0
+                    } else {
+                        length / feed * 60.0
+                    };
+                }
+                motion.length += length;
+                element.contour = Some(Segment::Line {
+                    start: pending.start,
+                    end: corner,
+                });
+            })
+            .map_err(path_error)?;
+        self.state.machine.copy_from_slice(&machine);
+        self.motion.wcs.copy_from_slice(&wcs);
+        Ok(())
     }
 
     /// Hands the motion just filled in `self.motion.event` to the stage.
@@ -132,7 +212,7 @@ impl Channel<'_> {
                 end: flat(end),
             },
         };
-        if contour.is_point() && corner.is_some() {
+        if contour.is_point() && corner.is_some() && self.motion.begins_contour.is_none() {
             self.not_simulated(program, instruction, "corner-without-plane-motion", || {
                 "a chamfer or rounding in a block without motion in the plane inserts nothing"
                     .into()
@@ -172,7 +252,18 @@ impl Channel<'_> {
             inserted: None,
             trimmed: false,
             tool: None,
+            pending: false,
         };
+        if let Some(angle) = self.motion.begins_contour.take() {
+            let (h, v, _) = self.state.plane().axes();
+            self.pending_contour = Some(PendingContour {
+                angle,
+                start: [start[h], start[v]],
+                line: instruction.source.line,
+            });
+            self.path.hold_pending(element);
+            return Ok(());
+        }
         let pushed = self.path.push(element);
         self.report_path_warnings(program, instruction);
         pushed.map_err(path_error)?;
@@ -201,17 +292,6 @@ impl Channel<'_> {
         let mut ready = std::mem::take(&mut self.path_ready);
         if finish {
             self.path.finish(&mut ready);
-            for warning in std::mem::take(&mut self.path.warnings) {
-                self.count(warning.code.level());
-                let event = Event {
-                    kind: EventKind::Diagnostic(crate::event::DiagnosticEvent::new(
-                        warning.code,
-                        warning.message,
-                    )),
-                    source: self.last_source(),
-                };
-                super::send(&mut *self.sink, &mut self.output_error, &event);
-            }
         } else {
             self.path.release(&mut ready);
         }
@@ -236,6 +316,20 @@ impl Channel<'_> {
                     }
                 }
                 Held::Element(element) => self.send_element(element),
+            }
+        }
+        // What the end left out, after what it released.
+        if finish {
+            for warning in std::mem::take(&mut self.path.warnings) {
+                self.count(warning.code.level());
+                let event = Event {
+                    kind: EventKind::Diagnostic(crate::event::DiagnosticEvent::new(
+                        warning.code,
+                        warning.message,
+                    )),
+                    source: self.last_source(),
+                };
+                super::send(&mut *self.sink, &mut self.output_error, &event);
             }
         }
         self.path_ready = ready;

@@ -88,6 +88,9 @@ pub struct Element<M> {
     pub trimmed: bool,
     /// Where the tool centre goes while compensation is on.
     pub tool: Option<ToolTrack>,
+    /// The first block of a contour definition (`ANG=` alone): its end
+    /// point comes with the next block ([`PathStage::complete_pending`]).
+    pub pending: bool,
 }
 
 /// The tool centre's path for one element.
@@ -117,7 +120,7 @@ pub struct Piece {
 
 impl<M> Element<M> {
     fn is_final(&self) -> bool {
-        self.corner.is_none() && self.tool.as_ref().is_none_or(|t| t.end.is_some())
+        !self.pending && self.corner.is_none() && self.tool.as_ref().is_none_or(|t| t.end.is_some())
     }
 }
 
@@ -175,6 +178,57 @@ impl<M: Clone, O> PathStage<M, O> {
 
     pub fn hold_output(&mut self, output: O) {
         self.held.push_back(Held::Output(output));
+    }
+
+    /// Holds the first block of a contour definition, whose end point is
+    /// not known yet: everything after it waits.
+    pub fn hold_pending(&mut self, mut element: Element<M>) {
+        element.pending = true;
+        self.held.push_back(Held::Element(element));
+    }
+
+    /// Whether a contour definition waits for its second block.
+    pub fn has_pending(&self) -> bool {
+        self.held
+            .iter()
+            .any(|h| matches!(h, Held::Element(e) if e.pending))
+    }
+
+    /// The second block of a contour definition came: `patch` gives the
+    /// waiting element its end point, and it is taken as if it came now,
+    /// before the outputs made after it.
+    pub fn complete_pending(
+        &mut self,
+        patch: impl FnOnce(&mut Element<M>),
+    ) -> Result<(), PathError> {
+        let Some(at) = self
+            .held
+            .iter()
+            .rposition(|h| matches!(h, Held::Element(e) if e.pending))
+        else {
+            return Ok(());
+        };
+        let after = self.held.split_off(at + 1);
+        let Some(Held::Element(mut element)) = self.held.pop_back() else {
+            self.held.extend(after);
+            return Ok(());
+        };
+        element.pending = false;
+        patch(&mut element);
+        let pushed = self.push(element);
+        self.held.extend(after);
+        pushed
+    }
+
+    /// The contour definition waiting will not be completed (the run
+    /// stops at the block that should have ended it): it goes out as it
+    /// stands, without a second complaint.
+    pub fn abandon_pending(&mut self) {
+        for held in &mut self.held {
+            if let Held::Element(e) = held {
+                e.pending = false;
+            }
+        }
     }
 
     /// Takes the next motion of the program.
@@ -324,6 +378,7 @@ impl<M: Clone, O> PathStage<M, O> {
             }),
             trimmed: false,
             tool: None,
+            pending: false,
         })
     }
 
@@ -402,6 +457,12 @@ impl<M: Clone, O> PathStage<M, O> {
         let mut end: Option<P2> = None;
         for held in &mut self.held {
             let Held::Element(e) = held else { continue };
+            if std::mem::take(&mut e.pending) {
+                self.warnings.push(PathWarning {
+                    code: gcodec_source::codes::run::CONTOUR_ANGLE,
+                    message: "the contour definition begun by `ANG=` without an end point has no block that ends it (`X… Y… ANG=…`)".into(),
+                });
+            }
             if e.corner.take().is_some() {
                 self.warnings.push(PathWarning {
                     code: gcodec_source::codes::run::CORNER_ELEMENT_LEFT_OUT,
