@@ -348,6 +348,7 @@ impl Tool {
                     d: Spanned::new(0..0, d),
                     length: 0.0,
                     radius: 0.0,
+                    position: default_edge_position(),
                 });
                 self.edges.len() - 1
             }
@@ -382,6 +383,16 @@ pub struct Edge {
     /// Radius, mm.
     #[serde(default)]
     pub radius: f64,
+    /// The cutting edge position of a turning tool (`$TC_DP2`), 1…9:
+    /// where the theoretical tip, the point the machine positions, lies
+    /// from the centre of the nose radius (SPEC §11.12); 0 (the default)
+    /// and 9: at the centre, as for a milling tool.
+    #[serde(default = "default_edge_position")]
+    pub position: Spanned<u8>,
+}
+
+fn default_edge_position() -> Spanned<u8> {
+    spanned(0)
 }
 
 /// M functions per the M-function design.

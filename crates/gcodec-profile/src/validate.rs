@@ -307,6 +307,14 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
                     "here",
                 ));
             }
+            if *edge.position.get_ref() > 9 {
+                out.push(error(
+                    codes::profile::OUT_OF_RANGE,
+                    &edge.position,
+                    "a cutting edge position is 0…9 (0: none)".to_owned(),
+                    "here",
+                ));
+            }
             if !edges.insert(d) {
                 out.push(error(
                     codes::profile::DUPLICATE,
@@ -614,6 +622,17 @@ mod tests {
             codes("[[axes]]\nname = \"X\"\nkind = \"linear\"\nreference_point = inf\n"),
             ["gcodec::profile::out_of_range"]
         );
+    }
+
+    #[test]
+    fn cutting_edge_positions_are_0_to_9() {
+        let tool = |position: u8| {
+            format!(
+                "[[tools]]\nnumber = 1\nedges = [{{ d = 1, radius = 0.8, position = {position} }}]\n"
+            )
+        };
+        assert_eq!(codes(&tool(10)), ["gcodec::profile::out_of_range"]);
+        assert!(codes(&tool(9)).is_empty());
     }
 
     #[test]

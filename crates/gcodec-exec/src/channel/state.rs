@@ -87,6 +87,8 @@ pub struct MachineState {
     pub tool_length: f64,
     /// The active edge's radius, mm (tool radius compensation).
     pub tool_radius: f64,
+    /// The active edge's cutting edge position (`$TC_DP2`; 0: none).
+    pub edge_position: u8,
     /// The contour settings of the named addresses `OFFN=`, `RNDM=`,
     /// `DISC=`.
     pub contour: ContourSettings,
@@ -198,6 +200,7 @@ impl MachineState {
             edge: 0,
             tool_length: 0.0,
             tool_radius: 0.0,
+            edge_position: 0,
             contour: ContourSettings::default(),
             tool_data: ToolData::new(&profile),
             feed: 0.0,

@@ -93,6 +93,18 @@ impl ToolData {
         };
         let edge = self.edge_mut(t, d);
         match k + 1 {
+            2 => {
+                let position = value.to_real()?;
+                *edge.position.get_mut() = match position {
+                    p if p.fract() == 0.0 && (0.0..=9.0).contains(&p) => p as u8,
+                    _ => {
+                        return Err(RunError::new(
+                            codes::run::INDEX_OUT_OF_RANGE,
+                            format!("`{name}[{t},{d}]={position}`: a cutting edge position is 0…9"),
+                        ));
+                    }
+                };
+            }
             3 => edge.length = value.to_real()?,
             6 => edge.radius = value.to_real()?,
             _ => return self.keep(key, value.clone()),

@@ -14,7 +14,7 @@ use super::motion::fill_map;
 use crate::eval;
 use crate::event::{BlockRow, Event, EventKind, InsertedElement, ToolCentre};
 use crate::frames::Frame;
-use crate::geometry::{self, BoundingBox, Point3};
+use crate::geometry::{self, BoundingBox, Plane, Point3};
 use crate::path::planar::{self, P2, Segment};
 use crate::path::{Compensation, CornerElement, CornerMode, Element, Held, PathError, Side};
 use crate::program::Program;
@@ -76,7 +76,34 @@ impl Channel<'_> {
             },
             collision_detection: self.state.modal(23) == Some("CDON"),
             around_ends: self.state.modal(17) == Some("KONT"),
+            tip: self.tip_offset(),
         }
+    }
+
+    /// Where a turning tool's theoretical tip lies from the centre of its
+    /// nose radius, in the plane's (abscissa, ordinate): by the active
+    /// edge's cutting edge position, in the turning plane `G18` (Z, X).
+    /// The positions are numbered as ISO's (and LinuxCNC's lathe tool
+    /// orientations): 1 tip at +Z −X, 2 at −Z −X, 3 at −Z +X, 4 at +Z +X,
+    /// 5 at +Z, 6 at −X, 7 at −Z, 8 at +X, 9 (and 0) at the centre.
+    fn tip_offset(&self) -> P2 {
+        let r = self.state.tool_radius;
+        if self.state.plane() != Plane::G18 || r <= 0.0 {
+            return [0.0, 0.0];
+        }
+        let p = self.state.edge_position;
+        let x = match p {
+            1 | 2 | 6 => -r,
+            3 | 4 | 8 => r,
+            _ => 0.0,
+        };
+        let z = match p {
+            2 | 3 | 7 => -r,
+            1 | 4 | 5 => r,
+            _ => 0.0,
+        };
+        // G18: the abscissa is Z, the ordinate X.
+        [z, x]
     }
 
     /// The corner element the block programs (`CHF=`, `CHR=`, `RND=`), or
@@ -354,12 +381,13 @@ impl Channel<'_> {
         };
         let radius = compensation.radius;
         let offset = compensation.offset();
+        let tip = compensation.tip;
         if let Some(track) = &tool {
             for piece in &track.before {
                 let mut wcs = motion.wcs_start.clone();
                 motion.set_plane(&mut wcs, piece.corner);
                 let mut tool_wcs = wcs.clone();
-                motion.set_plane(&mut tool_wcs, piece.path.end());
+                motion.set_plane(&mut tool_wcs, planar::add(piece.path.end(), tip));
                 let mut event = motion.event.clone();
                 self.fill_element_event(
                     &mut event,
@@ -370,7 +398,8 @@ impl Channel<'_> {
                     Some((&tool_wcs, radius)),
                 );
                 let length = piece.path.length();
-                self.add_element_figures(&motion, &event, length, length * rate, &piece.path, &wcs);
+                let path = piece.path.translated(tip);
+                self.add_element_figures(&motion, &event, length, length * rate, &path, &tool_wcs);
                 self.last_tool_point = Some(tool_wcs);
                 super::send(&mut *self.sink, &mut self.output_error, &event);
             }
@@ -380,7 +409,7 @@ impl Channel<'_> {
             let mut event = motion.event.clone();
             if let Some(point) = tool.as_ref().and_then(|t| t.end) {
                 let mut tool_wcs = motion.wcs_end.clone();
-                motion.set_plane(&mut tool_wcs, point);
+                motion.set_plane(&mut tool_wcs, planar::add(point, tip));
                 self.attach_tool(&mut event, &motion, &tool_wcs, radius);
                 self.last_tool_point = Some(tool_wcs);
             } else {
@@ -401,14 +430,21 @@ impl Channel<'_> {
             motion.set_plane_along(&mut wcs_start, contour.start());
             motion.set_plane_along(&mut wcs_end, contour.end());
         }
+        // The retraction ends uncompensated: the tip on the programmed
+        // point.
+        let end_tip = if compensation.side.is_some() {
+            tip
+        } else {
+            [0.0, 0.0]
+        };
         let traversed = match tool.as_ref() {
-            Some(t) => tool_path(&contour, t, offset),
+            Some(t) => tool_path(&contour, t, offset).translated(end_tip),
             None => contour,
         };
         let mut tool_wcs = None;
         if let Some(end) = tool.as_ref().and_then(|t| t.end) {
             let mut wcs = wcs_end.clone();
-            motion.set_plane(&mut wcs, end);
+            motion.set_plane(&mut wcs, planar::add(end, end_tip));
             tool_wcs = Some(wcs);
         }
         let mut event = motion.event.clone();

@@ -376,6 +376,7 @@ impl Channel<'_> {
         self.state.edge = d;
         self.state.tool_length = 0.0;
         self.state.tool_radius = 0.0;
+        self.state.edge_position = 0;
         if d == 0 {
             return Ok(());
         }
@@ -391,10 +392,14 @@ impl Channel<'_> {
         let Some(entry) = self.state.tool_data.tool(tool.number) else {
             return Ok(());
         };
-        match entry.edge(d).map(|e| (e.length, e.radius)) {
-            Some((length, radius)) => {
+        match entry
+            .edge(d)
+            .map(|e| (e.length, e.radius, *e.position.get_ref()))
+        {
+            Some((length, radius, position)) => {
                 self.state.tool_length = length;
                 self.state.tool_radius = radius;
+                self.state.edge_position = position;
             }
             None if programmed => {
                 let message = format!(

@@ -239,6 +239,7 @@ pub(crate) fn tool_parameter(
             codes::run::SYSTEM_VARIABLE,
             format!("`{name}[{t},{d}]`: the tool type is not in the machine profile"),
         )),
+        2 => Ok(RtValue::Real(f64::from(*edge.position.get_ref()))),
         3 => Ok(RtValue::Real(edge.length)),
         6 => Ok(RtValue::Real(edge.radius)),
         _ => Ok(RtValue::Real(0.0)),

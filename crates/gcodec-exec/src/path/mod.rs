@@ -51,6 +51,10 @@ pub struct Compensation {
     /// `KONT` (group 17), else `NORM`: round the contour's start and end
     /// point when the tool starts or ends behind it.
     pub around_ends: bool,
+    /// From the centre of the cutting edge's radius to the point the
+    /// machine positions (a turning tool's theoretical tip), in the plane;
+    /// zero for a milling tool.
+    pub tip: P2,
 }
 
 impl Compensation {
@@ -60,6 +64,7 @@ impl Compensation {
         corner: CornerMode::Circle,
         collision_detection: false,
         around_ends: false,
+        tip: [0.0, 0.0],
     };
 
     /// The signed offset: positive to the left of the contour.
@@ -126,6 +131,9 @@ impl<M> Element<M> {
 
 /// What the stage holds, in the order the channel produced it.
 #[derive(Debug)]
+// Not boxed: what is held is a few elements at a time, moved in and out
+// of one queue, and a box would allocate for each.
+#[allow(clippy::large_enum_variant)]
 pub enum Held<M, O> {
     Element(Element<M>),
     Output(O),

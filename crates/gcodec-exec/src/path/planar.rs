@@ -99,6 +99,29 @@ impl Segment {
         }
     }
 
+    /// The element moved by `d`.
+    pub fn translated(&self, d: P2) -> Segment {
+        match *self {
+            Self::Line { start, end } => Self::Line {
+                start: add(start, d),
+                end: add(end, d),
+            },
+            Self::Arc {
+                start,
+                end,
+                centre,
+                radius,
+                sweep,
+            } => Self::Arc {
+                start: add(start, d),
+                end: add(end, d),
+                centre: add(centre, d),
+                radius,
+                sweep,
+            },
+        }
+    }
+
     /// Whether the element has no extent in the plane.
     pub fn is_point(&self) -> bool {
         self.length() <= EPS
