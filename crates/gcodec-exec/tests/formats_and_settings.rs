@@ -31,6 +31,14 @@ fn motion_csv() {
     insta::assert_snapshot!(golden(&motion, Output::Csv));
 }
 
+/// Under tool radius compensation the CSV's positions are the tool
+/// centre's, in block order, though the rows wait for the look-ahead.
+#[test]
+fn compensated_csv_rows_follow_the_tool_centre() {
+    let square = Fixture::read("run", &fixture("compensation_outside_g450.mpf"));
+    insta::assert_snapshot!(golden(&square, Output::Csv));
+}
+
 /// Runs `file` with the fixture mill and `program` as the profile's
 /// `[program]` section; the end reason.
 fn end_with_program_settings(file: &str, program: &str) -> ProgramEndReason {
