@@ -86,6 +86,11 @@ fn arc_motion() -> MotionEvent {
             tool_to: AxisMap::from([("X", 24.0), ("Y", 15.5), ("Z", 5.0)]),
             tool_to_machine: AxisMap::from([("X", 24.0), ("Y", 15.5), ("Z", 5.0)]),
             tool_radius: 4.0,
+            tool_arc: Some(ToolArc {
+                motion: MotionKind::ArcCw,
+                centre: AxisMap::from([("X", 20.0), ("Y", 15.5)]),
+                radius: 4.0,
+            }),
         })),
     }
 }

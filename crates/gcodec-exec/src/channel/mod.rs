@@ -948,9 +948,9 @@ impl<'r> Channel<'r> {
         let Some(code) = ggroups::member(group, index) else {
             return;
         };
-        if group == 17 && matches!(code, "KONTC" | "KONTT") {
+        if group == 17 && code == "KONTC" {
             self.not_simulated(program, instruction, "approach-mode", || {
-                format!("`{code}` approach and retraction is not simulated: compensation starts and ends as under `NORM`")
+                "`KONTC`: the curvature-continuous approach and retraction is not simulated: the tool approaches and leaves on a tangent circle as under `KONTT`".into()
             });
         }
         let previous = self.state.modal(group);

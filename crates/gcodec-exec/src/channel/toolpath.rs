@@ -12,11 +12,13 @@ use gcodec_source::codes;
 use super::Channel;
 use super::motion::fill_map;
 use crate::eval;
-use crate::event::{BlockRow, Event, EventKind, InsertedElement, ToolCentre};
+use crate::event::{BlockRow, Event, EventKind, InsertedElement, ToolArc, ToolCentre};
 use crate::frames::Frame;
 use crate::geometry::{self, BoundingBox, Plane, Point3};
 use crate::path::planar::{self, P2, Segment};
-use crate::path::{Compensation, CornerElement, CornerMode, Element, Held, PathError, Side};
+use crate::path::{
+    Approach, Compensation, CornerElement, CornerMode, Element, Held, PathError, Side,
+};
 use crate::program::Program;
 use crate::value::RunError;
 
@@ -75,7 +77,11 @@ impl Channel<'_> {
                 _ => CornerMode::Circle,
             },
             collision_detection: self.state.modal(23) == Some("CDON"),
-            around_ends: self.state.modal(17) == Some("KONT"),
+            approach: match self.state.modal(17) {
+                Some("KONT") => Approach::AroundEnds,
+                Some("KONTT" | "KONTC") => Approach::Tangent,
+                _ => Approach::Normal,
+            },
             tip: self.tip_offset(),
         }
     }
@@ -456,6 +462,45 @@ impl Channel<'_> {
             inserted,
             tool_wcs.as_deref().map(|w| (w, radius)),
         );
+        // A tangential approach or retraction: the tool centre's circle.
+        if let Some(crate::path::ToolTrack {
+            curve:
+                Some(Segment::Arc {
+                    centre,
+                    radius: arc_radius,
+                    sweep,
+                    ..
+                }),
+            ..
+        }) = &tool
+            && let EventKind::Motion(m) = &mut event.kind
+            && let Some(tool_centre) = m.tool.as_mut()
+        {
+            let state = &self.state;
+            let mut map = crate::event::AxisMap::default();
+            let centre = planar::add(*centre, end_tip);
+            for (k, axis) in motion.plane_axes.iter().enumerate() {
+                if let Some(i) = axis {
+                    map.insert(
+                        state.axes[*i].name.clone(),
+                        state.as_programmed(*i, centre[k]),
+                    );
+                }
+            }
+            tool_centre.tool_arc = Some(ToolArc {
+                motion: if *sweep >= 0.0 {
+                    MotionKind::ArcCcw
+                } else {
+                    MotionKind::ArcCw
+                },
+                centre: map,
+                radius: if state.inch() {
+                    arc_radius / 25.4
+                } else {
+                    *arc_radius
+                },
+            });
+        }
         // Off the plane (an infeed with the element), as programmed.
         let rise = motion.off_plane_travel(&wcs_start, &wcs_end);
         let planar_length = traversed.length();
@@ -571,8 +616,10 @@ impl Channel<'_> {
                 tool_to: Default::default(),
                 tool_to_machine: Default::default(),
                 tool_radius: 0.0,
+                tool_arc: None,
             })
         });
+        centre.tool_arc = None;
         fill_map(&mut centre.tool_to, state, tool_wcs, true);
         fill_map(&mut centre.tool_to_machine, state, &machine, false);
         centre.tool_radius = if state.inch() { radius / 25.4 } else { radius };
@@ -700,6 +747,9 @@ impl HeldMotion {
 /// end: a straight line for the approach and retraction, else the
 /// equidistant between them.
 fn tool_path(contour: &Segment, track: &crate::path::ToolTrack, offset: f64) -> Segment {
+    if let Some(curve) = track.curve {
+        return curve;
+    }
     let start = track.start.unwrap_or(contour.start());
     let end = track.end.unwrap_or(contour.end());
     if track.approach || matches!(contour, Segment::Line { .. }) {

@@ -241,6 +241,15 @@ fn write_motion_json(out: &mut Vec<u8>, motion: &MotionEvent, last_to: &mut Axis
         write_axis_map_json(out, &tool.tool_to_machine);
         out.extend_from_slice(b",\"tool_radius\":");
         write_f64_json(out, tool.tool_radius);
+        if let Some(arc) = &tool.tool_arc {
+            out.extend_from_slice(b",\"tool_arc\":{\"motion\":\"");
+            out.extend_from_slice(motion_name(arc.motion).as_bytes());
+            out.extend_from_slice(b"\",\"centre\":");
+            write_axis_map_json(out, &arc.centre);
+            out.extend_from_slice(b",\"radius\":");
+            write_f64_json(out, arc.radius);
+            out.push(b'}');
+        }
     }
 }
 

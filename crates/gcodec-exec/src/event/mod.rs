@@ -269,6 +269,20 @@ pub struct ToolCentre {
     /// The compensated radius: the cutting edge's radius plus `OFFN`, in
     /// the program's unit.
     pub tool_radius: f64,
+    /// The tool centre's own circle where the element's is not it: the
+    /// tangential approach or retraction (`KONTT`) of a straight block.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tool_arc: Option<ToolArc>,
+}
+
+/// A circle of the tool-centre path.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ToolArc {
+    /// `arc_cw` or `arc_ccw`, seen as the plane's circles are.
+    pub motion: MotionKind,
+    /// Its centre, in workpiece coordinates (the axes of the plane).
+    pub centre: AxisMap,
+    pub radius: f64,
 }
 
 /// What kind of element the control inserted into the path.

@@ -102,6 +102,11 @@ pub fn write_trace_line(out: &mut impl fmt::Write, event: &Event) -> fmt::Result
                 write!(out, " tool")?;
                 write_axes(out, &tool.tool_to)?;
                 write!(out, " tool_radius {}", Num(tool.tool_radius))?;
+                if let Some(arc) = &tool.tool_arc {
+                    write!(out, " tool_arc {}", motion_name(arc.motion))?;
+                    write_axes(out, &arc.centre)?;
+                    write!(out, " radius {}", Num(arc.radius))?;
+                }
             }
         }
         EventKind::ModalChange(change) => {

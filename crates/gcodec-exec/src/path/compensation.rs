@@ -18,7 +18,7 @@ use super::planar::{
     self, EPS, P2, Segment, add, arc_between, carrier_intersections, cross, dot, left, nearest,
     scale,
 };
-use super::{Element, Held, PathError, PathStage, Piece, ToolTrack};
+use super::{Approach, Element, Held, PathError, PathStage, Piece, ToolTrack};
 use crate::event::InsertedElement;
 use gcodec_source::codes;
 
@@ -123,18 +123,36 @@ pub fn join<M: Clone, O>(
         lead_end = normal_end(&a, q_offset);
         track.start = Some(lead_end);
         track.end = Some(b.end());
-        // `KONT`, ending behind the contour: round its end point.
-        if element.compensation.around_ends
-            && let Some((start, pieces)) = around(&a, &b, q_offset, q.compensation.corner)
-        {
-            track.start = Some(start);
-            track.before = pieces;
+        match element.compensation.approach {
+            // `KONT`, ending behind the contour: round its end point.
+            Approach::AroundEnds => {
+                if let Some((start, pieces)) = around(&a, &b, q_offset, q.compensation.corner) {
+                    track.start = Some(start);
+                    track.before = pieces;
+                }
+            }
+            // `KONTT`: leave on a circle tangent to the equidistant.
+            Approach::Tangent => {
+                if let Some(t) = a.end_tangent() {
+                    track.curve = tangent_arc(lead_end, t, b.end());
+                }
+            }
+            Approach::Normal => {}
         }
     } else if approach {
         lead_end = normal_start(&b, element.compensation.offset());
         track.start = Some(lead_end);
+        // `KONTT`: arrive on a circle tangent to the equidistant.
+        if q.compensation.approach == Approach::Tangent
+            && let Some(t) = b.start_tangent()
+            && let Some(tool) = &mut q.tool
+        {
+            // Leaving the start backwards through the start point, turned
+            // round: it arrives along the equidistant.
+            tool.curve = tangent_arc(lead_end, scale(t, -1.0), a.start()).map(reversed);
+        }
         // `KONT`, starting behind the contour: round its start point.
-        if q.compensation.around_ends {
+        if q.compensation.approach == Approach::AroundEnds {
             let offset = element.compensation.offset();
             if let Some((start, pieces)) = around(&a, &b, offset, q.compensation.corner) {
                 let end = normal_end(&a, offset);
@@ -199,6 +217,46 @@ fn around(a: &Segment, b: &Segment, offset: f64, mode: CornerMode) -> Option<(P2
             Some((start, pieces))
         }
         Err(_) => None,
+    }
+}
+
+/// The circle that touches direction `t` at `at` and passes through
+/// `through`, from `at` to `through`; `None` where `through` lies on the
+/// tangent (a straight line does).
+fn tangent_arc(at: P2, t: P2, through: P2) -> Option<Segment> {
+    let n = left(t);
+    let chord = planar::sub(at, through);
+    let across = dot(n, chord);
+    if across.abs() <= 1e-9 * dot(chord, chord).sqrt().max(1.0) {
+        return None;
+    }
+    // The centre on the normal at `at`, as far from `through` as from `at`.
+    let lambda = -dot(chord, chord) / (2.0 * across);
+    let centre = add(at, scale(n, lambda));
+    // Counter-clockwise when the centre is on the left of `t`.
+    Some(arc_between(centre, at, through, lambda > 0.0))
+}
+
+/// `segment` traversed the other way.
+fn reversed(segment: Segment) -> Segment {
+    match segment {
+        Segment::Line { start, end } => Segment::Line {
+            start: end,
+            end: start,
+        },
+        Segment::Arc {
+            start,
+            end,
+            centre,
+            radius,
+            sweep,
+        } => Segment::Arc {
+            start: end,
+            end: start,
+            centre,
+            radius,
+            sweep: -sweep,
+        },
     }
 }
 
@@ -430,6 +488,24 @@ mod tests {
 
     fn close(a: P2, b: P2) -> bool {
         planar::distance(a, b) < 1e-9
+    }
+
+    #[test]
+    fn a_tangent_arc_touches_its_direction_and_passes_its_point() {
+        // Touching +X at the origin, through (10, 10): the quarter circle
+        // about (0, 10), counter-clockwise.
+        let Some(Segment::Arc {
+            centre,
+            radius,
+            sweep,
+            ..
+        }) = tangent_arc([0.0, 0.0], [1.0, 0.0], [10.0, 10.0])
+        else {
+            panic!("an arc")
+        };
+        assert!(close(centre, [0.0, 10.0]) && (radius - 10.0).abs() < 1e-9);
+        assert!((sweep - PI / 2.0).abs() < 1e-9, "{sweep}");
+        assert!(tangent_arc([0.0, 0.0], [1.0, 0.0], [10.0, 0.0]).is_none());
     }
 
     #[test]

@@ -48,9 +48,8 @@ pub struct Compensation {
     pub corner: CornerMode,
     /// `CDON`.
     pub collision_detection: bool,
-    /// `KONT` (group 17), else `NORM`: round the contour's start and end
-    /// point when the tool starts or ends behind it.
-    pub around_ends: bool,
+    /// How compensation starts and ends (group 17).
+    pub approach: Approach,
     /// From the centre of the cutting edge's radius to the point the
     /// machine positions (a turning tool's theoretical tip), in the plane;
     /// zero for a milling tool.
@@ -63,7 +62,7 @@ impl Compensation {
         radius: 0.0,
         corner: CornerMode::Circle,
         collision_detection: false,
-        around_ends: false,
+        approach: Approach::Normal,
         tip: [0.0, 0.0],
     };
 
@@ -75,6 +74,17 @@ impl Compensation {
             None => 0.0,
         }
     }
+}
+
+/// How compensation starts and ends (group 17).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Approach {
+    /// `NORM`: straight, perpendicular to the contour at its end point.
+    Normal,
+    /// `KONT`: round the contour's end point when the tool is behind it.
+    AroundEnds,
+    /// `KONTT` (and `KONTC`): on a circle tangent to the equidistant.
+    Tangent,
 }
 
 /// A motion as the stage holds it: what the channel keeps of it, its
@@ -111,6 +121,9 @@ pub struct ToolTrack {
     pub approach: bool,
     /// Left out by collision detection (`CDON`): the tool stands still.
     pub left_out: bool,
+    /// The tool-centre path of an approach or retraction that is not a
+    /// straight line (`KONTT`).
+    pub curve: Option<Segment>,
 }
 
 /// A piece of the tool-centre path at a corner, where the contour stands
