@@ -89,6 +89,9 @@ pub struct MachineState {
     pub tool_radius: f64,
     /// The active edge's cutting edge position (`$TC_DP2`; 0: none).
     pub edge_position: u8,
+    /// Under tool radius compensation, where the tool centre (a turning
+    /// tool's tip) stands, machine coordinates: what `$AA_IM` reads.
+    pub tool_centre: Option<Vec<f64>>,
     /// The contour settings of the named addresses `OFFN=`, `RNDM=`,
     /// `DISC=`.
     pub contour: ContourSettings,
@@ -201,6 +204,7 @@ impl MachineState {
             tool_length: 0.0,
             tool_radius: 0.0,
             edge_position: 0,
+            tool_centre: None,
             contour: ContourSettings::default(),
             tool_data: ToolData::new(&profile),
             feed: 0.0,
@@ -521,14 +525,21 @@ impl MachineState {
                 let index = self.modal_index(group).map_or(0, i32::from);
                 Ok(RtValue::Int(index))
             }
+            // The actual positions are the tool centre's; the programmed
+            // end point (`$P_EP`) is the contour's.
             (SysVarId::AA_IM, _) => {
                 let axis = one_axis("the machine position")?;
-                Ok(RtValue::Real(self.machine[axis]))
+                let actual = self.tool_centre.as_deref().unwrap_or(&self.machine);
+                Ok(RtValue::Real(actual[axis]))
             }
             (SysVarId::AA_IW | SysVarId::P_EP, _) => {
                 let axis = one_axis("the workpiece position")?;
+                let machine = match (id, &self.tool_centre) {
+                    (SysVarId::AA_IW, Some(actual)) => actual,
+                    _ => &self.machine,
+                };
                 let mut wcs = vec![0.0; self.axes.len()];
-                self.to_workpiece(&self.total_frame(), &self.machine, &mut wcs);
+                self.to_workpiece(&self.total_frame(), machine, &mut wcs);
                 Ok(RtValue::Real(self.as_programmed(axis, wcs[axis])))
             }
             _ => match self.tool_data.read(id, indices) {

@@ -277,6 +277,11 @@ impl Channel<'_> {
             self.block.moved_in_plane = true;
         }
         let compensation = self.compensation();
+        let tip = if compensation.side.is_some() {
+            compensation.tip
+        } else {
+            [0.0, 0.0]
+        };
         let element = Element {
             motion,
             contour: Some(contour),
@@ -301,7 +306,33 @@ impl Channel<'_> {
         self.report_path_warnings(program, instruction);
         pushed.map_err(path_error)?;
         self.release_path(false);
+        self.note_tool_centre(tip);
         Ok(())
+    }
+
+    /// Keeps where the tool centre stands now for `$AA_IM` (machine
+    /// coordinates: the block's end with the plane's coordinates the
+    /// tool centre's, `tip` added).
+    fn note_tool_centre(&mut self, tip: P2) {
+        let Some(point) = self.path.tool_centre_now() else {
+            self.state.tool_centre = None;
+            return;
+        };
+        let (h, v, _) = self.state.plane().axes();
+        let mut wcs = self.motion.target.clone();
+        for (i, info) in self.state.axes.iter().enumerate() {
+            match info.geometry {
+                Some(g) if g == h => wcs[i] = point[0] + tip[0],
+                Some(g) if g == v => wcs[i] = point[1] + tip[1],
+                _ => {}
+            }
+        }
+        let mut machine = self.state.tool_centre.take().unwrap_or_default();
+        machine.resize(wcs.len(), 0.0);
+        let frame = self.state.total_frame();
+        self.state.to_machine(&frame, &wcs, &mut machine);
+        drop(frame);
+        self.state.tool_centre = Some(machine);
     }
 
     /// Reports what the stage left out or reduced, at `instruction`.

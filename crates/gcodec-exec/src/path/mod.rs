@@ -201,6 +201,30 @@ impl<M: Clone, O> PathStage<M, O> {
         self.held.push_back(Held::Output(output));
     }
 
+    /// Where the tool centre stands after the last motion taken, in the
+    /// plane, while compensation is on: the end of its equidistant where
+    /// it is final, else perpendicular to its element's end (where a
+    /// stop of the look-ahead would leave it); `None` without
+    /// compensation.
+    pub fn tool_centre_now(&self) -> Option<P2> {
+        let last = self.held.iter().rev().find_map(|h| match h {
+            Held::Element(e) => Some(e),
+            Held::Output(_) => None,
+        })?;
+        last.compensation.side?;
+        let tool = last.tool.as_ref()?;
+        if let Some(end) = tool.end {
+            return Some(end);
+        }
+        match last.contour {
+            Some(contour) => Some(compensation::normal_end(
+                &contour,
+                last.compensation.offset(),
+            )),
+            None => tool.start,
+        }
+    }
+
     /// Holds the first block of a contour definition, whose end point is
     /// not known yet: everything after it waits.
     pub fn hold_pending(&mut self, mut element: Element<M>) {
