@@ -1,5 +1,7 @@
 //! `gcodec run`: runs a program on the machine a profile describes and
 //! streams its events (jsonl, a text trace, or one CSV row per block).
+//! Its options and setup ([`RunInputs`], [`prepare`], [`run_events`],
+//! [`conclude`]) are every running command's (`plot` too).
 
 use std::io::{self, Write};
 use std::path::PathBuf;
@@ -10,8 +12,8 @@ use clap::ValueEnum;
 use gcodec_driver::event::{
     CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
 };
-use gcodec_driver::{LoadedFiles, RunReport, RunSetup, run_main};
-use gcodec_source::escape_controls;
+use gcodec_driver::{BlockObserver, LoadedFiles, RunOutcome, RunReport, RunSetup, run_main};
+use gcodec_source::{SourceFile, escape_controls};
 
 use crate::diagnostic_formats::DiagnosticFormat;
 use crate::exit::{EXIT_CLEAN, EXIT_DIAGNOSTICS};
@@ -36,6 +38,18 @@ pub enum RunFormat {
 /// The options of `gcodec run`.
 #[derive(Debug, clap::Args)]
 pub struct RunArgs {
+    #[command(flatten)]
+    pub inputs: RunInputs,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = RunFormat::Jsonl)]
+    pub format: RunFormat,
+}
+
+/// What a command that runs a program (`run`, `plot`) runs it with: the
+/// program, the machine, definitions, search paths, the configuration,
+/// the limits of the run and how diagnostics are shown.
+#[derive(Debug, clap::Args)]
+pub struct RunInputs {
     /// The main program (`.mpf`).
     pub file: PathBuf,
     /// The machine profile (TOML); the built-in one if omitted.
@@ -44,9 +58,6 @@ pub struct RunArgs {
     /// A definition file (`MGUD.DEF`, `SMAC.DEF`). Repeat for several.
     #[arg(long = "definitions", value_name = "FILE.DEF")]
     pub definitions: Vec<PathBuf>,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t = RunFormat::Jsonl)]
-    pub format: RunFormat,
     /// How the diagnostics are written on stderr: `full` renders each as
     /// it comes (the run's as they happen, the program's after the run);
     /// the others write one document of them all after the run, alone on
@@ -160,69 +171,63 @@ impl EventSink for Discard {
 }
 
 pub fn run(args: RunArgs) -> u8 {
-    let reporter = Reporter::new(args.diagnostics, args.output_format);
+    let reporter = Reporter::new(args.inputs.diagnostics, args.inputs.output_format);
     let exit = run_with(&args, &reporter);
     reporter.finish();
     exit
 }
 
-fn run_with(args: &RunArgs, reporter: &Reporter) -> u8 {
-    let program = match ProgramSetup::of(
-        &args.config,
-        &args.file,
-        args.profile.as_deref(),
-        &args.definitions,
+/// A program ready to run: its file, and the run's setup from the
+/// command line and the configuration.
+pub struct PreparedRun {
+    pub file: Arc<SourceFile>,
+    pub setup: RunSetup,
+}
+
+/// Reads what `inputs` names (the configuration, profile, definitions,
+/// toolchanger scenario, the program) and sets the run up, Ctrl-C
+/// stopping it cleanly; the exit code if anything cannot be read.
+pub fn prepare(inputs: &RunInputs, reporter: &Reporter) -> Result<PreparedRun, u8> {
+    let program = ProgramSetup::of(
+        &inputs.config,
+        &inputs.file,
+        inputs.profile.as_deref(),
+        &inputs.definitions,
         reporter,
-    ) {
-        Ok(program) => program,
-        Err(code) => return code,
-    };
+    )?;
     let profile_path = program.profile.as_deref();
-    let profile = match load_profile(profile_path, reporter) {
-        Ok(p) => Arc::new(p),
-        Err(code) => return code,
-    };
-    let reading = Reading::new(&profile, args.encoding);
-    let definitions = match load_definitions(&program.definitions, reading, reporter) {
-        Ok(mut d) => {
-            for name in &program.assume_defined {
-                d.assume_defined(name);
-            }
-            Arc::new(d)
-        }
-        Err(code) => return code,
-    };
-    let toolchanger = match &args.toolchanger {
-        Some(path) => match load_toolchanger(path, &profile, reporter) {
-            Ok(changer) => Some(changer),
-            Err(code) => return code,
-        },
+    let profile = Arc::new(load_profile(profile_path, reporter)?);
+    let reading = Reading::new(&profile, inputs.encoding);
+    let mut definitions = load_definitions(&program.definitions, reading, reporter)?;
+    for name in &program.assume_defined {
+        definitions.assume_defined(name);
+    }
+    let definitions = Arc::new(definitions);
+    let toolchanger = match &inputs.toolchanger {
+        Some(path) => Some(load_toolchanger(path, &profile, reporter)?),
         None => None,
     };
-    let file = match read(&args.file, reading, reporter) {
-        Ok(f) => f,
-        Err(code) => return code,
-    };
+    let file = read(&inputs.file, reading, reporter)?;
     let mut setup = RunSetup::new(profile);
     setup.toolchanger = toolchanger;
     setup.encoding = reading.encoding;
     setup.profile_file = profile_path.map(PathBuf::from);
     setup.definitions = definitions;
     // The command line's folders first, then the configuration's.
-    setup.search_dirs = args.subprogram_paths.clone();
+    setup.search_dirs = inputs.subprogram_paths.clone();
     setup
         .search_dirs
         .extend(program.search_paths.iter().cloned());
     let run_options = &mut setup.options;
-    if let Some(SkipLevels(levels)) = args.skip_levels {
+    if let Some(SkipLevels(levels)) = inputs.skip_levels {
         run_options.skip_levels = levels;
     }
-    run_options.max_steps = args.max_steps;
-    run_options.max_work = args.max_work;
-    if args.no_stop {
+    run_options.max_steps = inputs.max_steps;
+    run_options.max_work = inputs.max_work;
+    if inputs.no_stop {
         run_options.stop_at_m0 = false;
     }
-    run_options.optional_stop = args.optional_stop;
+    run_options.optional_stop = inputs.optional_stop;
     let interrupt = Arc::new(AtomicBool::new(false));
     {
         let flag = Arc::clone(&interrupt);
@@ -235,54 +240,99 @@ fn run_with(args: &RunArgs, reporter: &Reporter) -> u8 {
         });
     }
     run_options.interrupt = Some(interrupt);
-    let file = Arc::new(file);
-    let out = match args.format {
-        RunFormat::Text => Stdout::text(),
-        RunFormat::Jsonl | RunFormat::Csv => Stdout::data(),
-    };
-    let (events, mut rows): (Box<dyn EventSink>, _) = match args.format {
-        RunFormat::Jsonl => (Box::new(JsonlSink::new(out)), None),
-        RunFormat::Text => (Box::new(TextSink::new(out)), None),
-        RunFormat::Csv => match CsvWriter::for_profile(out, &setup.profile) {
-            Ok(rows) => (Box::new(Discard) as Box<dyn EventSink>, Some(rows)),
-            Err(e) => return after_output(EXIT_CLEAN, Err(e)),
-        },
-    };
-    let mut sink = Diagnostics::new(events, setup.loaded_files.clone(), reporter);
-    let observer = rows.as_mut().map(|rows| rows as _);
-    let RunReport {
-        outcome,
-        diagnostics,
-    } = run_main(Arc::clone(&file), &setup, &mut sink, observer);
-    let outcome = outcome.and_then(|outcome| {
-        rows.as_mut().map_or(Ok(()), CsvWriter::finish)?;
-        Ok(outcome)
-    });
-    // The event stream is complete before anything else is written.
-    drop(sink);
-    drop(rows);
-    // The program's own diagnostics, all of them, after the run that
-    // went on while it was lowered.
-    let has_errors = reporter.report(&diagnostics, Some(&*file), file.name());
-    let outcome = match outcome {
-        Ok(outcome) => outcome,
-        Err(e) => return after_output(EXIT_CLEAN, Err(e)),
-    };
+    Ok(PreparedRun {
+        file: Arc::new(file),
+        setup,
+    })
+}
+
+/// Runs the prepared program: its events to `sink`, the runtime
+/// diagnostics among them reported as they happen, the state after each
+/// block to `observer`.
+pub fn run_events(
+    prepared: &PreparedRun,
+    sink: &mut dyn EventSink,
+    observer: Option<&mut dyn BlockObserver>,
+    reporter: &Reporter,
+) -> RunReport {
+    let mut sink = Diagnostics::new(sink, prepared.setup.loaded_files.clone(), reporter);
+    run_main(
+        Arc::clone(&prepared.file),
+        &prepared.setup,
+        &mut sink,
+        observer,
+    )
+}
+
+/// After the run, once its events are all written: reports the
+/// program's own diagnostics (all of them, after the run that went on
+/// while it was lowered); the outcome and the exit code the run earned,
+/// or the exit code of an output error.
+pub fn conclude(
+    prepared: &PreparedRun,
+    outcome: io::Result<RunOutcome>,
+    diagnostics: &gcodec_source::Diagnostics,
+    reporter: &Reporter,
+) -> Result<(RunOutcome, u8), u8> {
+    let file = &prepared.file;
+    let has_errors = reporter.report(diagnostics, Some(&**file), file.name());
+    let outcome = outcome.map_err(|e| after_output(EXIT_CLEAN, Err(e)))?;
     let exit = if has_errors || outcome.errors > 0 || outcome.reason == ProgramEndReason::Alarm {
         EXIT_DIAGNOSTICS
     } else {
         EXIT_CLEAN
     };
-    let summary = outcome.summary.to_string();
+    Ok((outcome, exit))
+}
+
+/// The run's summary on stderr, unless stderr holds the diagnostics'
+/// document alone.
+pub fn summary_to_stderr(outcome: &RunOutcome, reporter: &Reporter) {
+    if !reporter.collects() {
+        to_stderr(&escape_controls(&outcome.summary.to_string()));
+    }
+}
+
+fn run_with(args: &RunArgs, reporter: &Reporter) -> u8 {
+    let prepared = match prepare(&args.inputs, reporter) {
+        Ok(prepared) => prepared,
+        Err(code) => return code,
+    };
+    let out = match args.format {
+        RunFormat::Text => Stdout::text(),
+        RunFormat::Jsonl | RunFormat::Csv => Stdout::data(),
+    };
+    let (mut events, mut rows): (Box<dyn EventSink>, _) = match args.format {
+        RunFormat::Jsonl => (Box::new(JsonlSink::new(out)), None),
+        RunFormat::Text => (Box::new(TextSink::new(out)), None),
+        RunFormat::Csv => match CsvWriter::for_profile(out, &prepared.setup.profile) {
+            Ok(rows) => (Box::new(Discard) as Box<dyn EventSink>, Some(rows)),
+            Err(e) => return after_output(EXIT_CLEAN, Err(e)),
+        },
+    };
+    let observer = rows.as_mut().map(|rows| rows as _);
+    let RunReport {
+        outcome,
+        diagnostics,
+    } = run_events(&prepared, &mut *events, observer, reporter);
+    let outcome = outcome.and_then(|outcome| {
+        rows.as_mut().map_or(Ok(()), CsvWriter::finish)?;
+        Ok(outcome)
+    });
+    // The event stream is complete before anything else is written.
+    drop(events);
+    drop(rows);
+    let (outcome, exit) = match conclude(&prepared, outcome, &diagnostics, reporter) {
+        Ok(concluded) => concluded,
+        Err(code) => return code,
+    };
     let written = match args.format {
         RunFormat::Text => {
             let mut out = Stdout::text();
-            writeln!(out, "\n{summary}").and_then(|()| out.flush())
+            writeln!(out, "\n{}", outcome.summary).and_then(|()| out.flush())
         }
-        // stderr holds the diagnostics' document alone.
-        RunFormat::Jsonl | RunFormat::Csv if reporter.collects() => Ok(()),
         RunFormat::Jsonl | RunFormat::Csv => {
-            to_stderr(&escape_controls(&summary));
+            summary_to_stderr(&outcome, reporter);
             Ok(())
         }
     };
