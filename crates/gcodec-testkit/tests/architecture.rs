@@ -67,6 +67,8 @@ fn crates_depend_only_downwards() {
         gcodec_dependencies("gcodec-cli"),
         set(&["gcodec-driver", "gcodec-profile", "gcodec-source"])
     );
+    // The picture reads the public events, nothing of the pipeline.
+    assert_eq!(gcodec_dependencies("gcodec-plot"), set(&["gcodec-exec"]));
     for krate in workspace_crates() {
         assert!(
             !gcodec_dependencies(&krate).contains("gcodec-testkit"),
@@ -116,6 +118,20 @@ fn the_cli_names_no_gcodec_crate_but_its_dependencies() {
             assert!(
                 allowed.contains(&name.as_str()),
                 "{} names {name}",
+                file.display()
+            );
+        }
+    }
+}
+
+#[test]
+fn the_picture_reads_only_the_executor_s_events() {
+    for file in rust_files(&crates_dir().join("gcodec-plot/src")) {
+        let code = code_of(&fs::read_to_string(&file).expect("source"));
+        for (at, _) in code.match_indices("gcodec_exec") {
+            assert!(
+                code[at..].starts_with("gcodec_exec::event::"),
+                "{} names more of gcodec_exec than its events",
                 file.display()
             );
         }
