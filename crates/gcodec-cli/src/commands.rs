@@ -76,6 +76,9 @@ enum Command {
     /// Run a program on the machine a profile describes and stream its
     /// events: motions, modal changes, M functions, tool changes, calls…
     Run(crate::run::RunArgs),
+    /// Run a program and draw its path as an SVG picture: rapids dashed,
+    /// feed moves in a colour per tool, a legend, a scale bar.
+    Plot(crate::plot::PlotArgs),
     /// Check or show machine profiles.
     #[command(subcommand)]
     Profile(ProfileCommand),
@@ -173,6 +176,7 @@ pub fn run(cli: Cli) -> u8 {
             exit
         }
         Command::Run(args) => crate::run::run(args),
+        Command::Plot(args) => crate::plot::plot(args),
         Command::Check(args) => crate::check::check(args),
         Command::Explain { code, list } => explain(code.as_deref(), list),
         Command::Profile(ProfileCommand::Check { file, diagnostics }) => {

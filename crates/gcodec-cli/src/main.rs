@@ -7,6 +7,7 @@ mod commands;
 mod diagnostic_formats;
 mod exit;
 mod output;
+mod plot;
 mod report;
 mod run;
 mod sarif;
