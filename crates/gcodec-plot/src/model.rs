@@ -9,6 +9,7 @@
 
 use gcodec_exec::event::Plane;
 use indexmap::IndexSet;
+use rustc_hash::FxBuildHasher;
 
 use crate::geometry::{ArcPath, Point3};
 
@@ -162,7 +163,9 @@ pub struct ToolFigures {
 /// drawn, and the tools.
 #[derive(Clone, Debug)]
 pub struct PathModel {
-    elements: IndexSet<Element>,
+    /// Hashed with Fx: an element is a handful of integers, and SipHash
+    /// would be most of the cost of keeping one.
+    elements: IndexSet<Element, FxBuildHasher>,
     /// The open run of the tool's path and of the contour (which merge
     /// independently: under compensation they alternate).
     open_path: Option<OpenLine>,
@@ -174,7 +177,7 @@ pub struct PathModel {
 impl Default for PathModel {
     fn default() -> Self {
         Self {
-            elements: IndexSet::new(),
+            elements: IndexSet::default(),
             open_path: None,
             open_contour: None,
             tools: vec![ToolFigures::default()],
