@@ -6,7 +6,7 @@ mod common;
 use gcodec_driver::event::{InsertedElement, MotionKind, Plane};
 use gcodec_plot::View;
 
-use common::{about, compensated, event, inserted, motion, plot_program, tool_change, xyz};
+use common::{about, compensated, event, inserted, motion, plot_program, run_on, tool_change, xyz};
 
 fn svg(name: &str, text: &str, view: Option<View>) -> String {
     plot_program(name, text, view).to_svg(name)
@@ -174,4 +174,40 @@ fn compensation_draws_the_contour_and_the_tool_centre() {
     let expected = 2.0 * 125_f64.sqrt() + 40.0 + std::f64::consts::PI * 2.5;
     assert!((figures.feed_length - expected).abs() < 1e-9, "{figures:?}");
     insta::assert_snapshot!(plot.to_svg("compensated.mpf"));
+}
+
+#[test]
+fn a_compensated_program_draws_its_contour_beneath_the_tool_centre() {
+    // The executor's fixture machine (a radius-5 T1): a 40 × 30 block
+    // milled round its outside with G41 G450, a rounding at one corner.
+    // Each outside corner is a transition circle of the tool centre; the
+    // contour (grey) has the rounding and no circles.
+    let text = "N10 G17 G90 G54 T1 D1 M6\n\
+                N20 G0 X-20 Y-10 Z2\n\
+                N30 G1 Z-2 F300\n\
+                N40 G41 G450 G1 X0 Y0\n\
+                N50 Y30 RND=5\n\
+                N60 X40\n\
+                N70 Y0\n\
+                N80 X0\n\
+                N90 G40 G1 X-20 Y-10\n\
+                N100 G0 Z50\n\
+                M30\n";
+    let profile_text =
+        std::fs::read_to_string(gcodec_testkit::repo().join("tests/fixtures/run/mill.toml"))
+            .expect("the fixture machine");
+    let profile = gcodec_profile::load(&profile_text).expect("a valid profile");
+    let events = run_on(profile, "compensated_run.mpf", text);
+    let mut sink = gcodec_plot::PlotSink::new(None);
+    for event in &events {
+        sink.plot(event);
+    }
+    let svg = sink.into_plot().to_svg("compensated_run.mpf");
+    let contour = svg
+        .split("<g id=\"contour\">")
+        .nth(1)
+        .and_then(|rest| rest.split("</g>").next())
+        .expect("a contour group");
+    assert_eq!(contour.matches(" A").count(), 1, "the rounding: {contour}");
+    insta::assert_snapshot!(svg);
 }

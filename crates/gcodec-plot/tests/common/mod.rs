@@ -27,7 +27,11 @@ pub fn plot_program(name: &str, text: &str, view: Option<View>) -> Plot {
 /// The events of `text` run on the built-in profile; the run must end
 /// cleanly.
 pub fn run(name: &str, text: &str) -> Vec<Event> {
-    let profile = gcodec_testkit::profile("default.toml");
+    run_on(gcodec_testkit::profile("default.toml"), name, text)
+}
+
+/// The events of `text` run on `profile`; the run must end cleanly.
+pub fn run_on(profile: gcodec_profile::Profile, name: &str, text: &str) -> Vec<Event> {
     let setup = RunSetup::new(profile);
     let mut sink = VecSink::default();
     let report = run_main(
