@@ -138,3 +138,65 @@ impl ArcPath {
             .chain(quarters)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    use super::*;
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() < 1e-9
+    }
+
+    #[test]
+    fn the_sweep_follows_the_direction_and_the_turns() {
+        let from = [0.0, 0.0, 0.0];
+        let to = [20.0, 0.0, 0.0];
+        let cw = ArcPath::new(Plane::G17, from, to, (10.0, 0.0), true, 0);
+        assert!(close(cw.sweep, -PI), "{cw:?}");
+        // Clockwise from 180° passes 90°: over the top.
+        assert!(close(cw.point_at(0.5)[1], 10.0));
+        let ccw = ArcPath::new(Plane::G17, from, to, (10.0, 0.0), false, 2);
+        assert!(close(ccw.sweep, 5.0 * PI));
+        let full = ArcPath::new(Plane::G17, from, from, (10.0, 0.0), true, 0);
+        assert!(close(full.sweep, -TAU));
+        assert!(close(full.length(), TAU * 10.0));
+    }
+
+    #[test]
+    fn a_helix_rises_along_the_infeed_and_is_not_flat() {
+        let helix = ArcPath::new(
+            Plane::G18,
+            [0.0, 0.0, 10.0],
+            [0.0, -4.0, 10.0],
+            (0.0, 0.0),
+            false,
+            1,
+        );
+        // G18: Z is the abscissa, X the ordinate, Y the infeed.
+        assert!(close(helix.point_at(0.5)[1], -2.0));
+        assert!(!helix.is_flat());
+        assert!(close(helix.length(), (10.0 * 4.0 * PI).hypot(4.0)));
+    }
+
+    #[test]
+    fn the_extremes_bound_a_three_quarter_arc() {
+        // Counter-clockwise from 180° to 90° about the origin, radius 10.
+        let arc = ArcPath::new(
+            Plane::G17,
+            [-10.0, 0.0, 0.0],
+            [0.0, 10.0, 0.0],
+            (0.0, 0.0),
+            false,
+            0,
+        );
+        let xs: Vec<f64> = arc.extremes().map(|p| p[0]).collect();
+        let ys: Vec<f64> = arc.extremes().map(|p| p[1]).collect();
+        let max = |v: &[f64]| v.iter().copied().fold(f64::MIN, f64::max);
+        let min = |v: &[f64]| v.iter().copied().fold(f64::MAX, f64::min);
+        assert!(close(max(&xs), 10.0) && close(min(&xs), -10.0));
+        assert!(close(max(&ys), 10.0) && close(min(&ys), -10.0));
+        assert!(arc.chords() >= 3);
+    }
+}

@@ -83,11 +83,46 @@ impl FromStr for View {
 
     fn from_str(name: &str) -> Result<Self, Self::Err> {
         match name.to_ascii_lowercase().as_str() {
-            "xy" | "g17" => Ok(Self::Plane(Plane::G17)),
-            "xz" | "zx" | "g18" => Ok(Self::Plane(Plane::G18)),
-            "yz" | "g19" => Ok(Self::Plane(Plane::G19)),
+            "xy" => Ok(Self::Plane(Plane::G17)),
+            "xz" => Ok(Self::Plane(Plane::G18)),
+            "yz" => Ok(Self::Plane(Plane::G19)),
             "iso" => Ok(Self::Iso),
             _ => Err(UnknownView(name.to_owned())),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_view_is_read_back_from_its_name() {
+        for view in [
+            View::Plane(Plane::G17),
+            View::Plane(Plane::G18),
+            View::Plane(Plane::G19),
+            View::Iso,
+        ] {
+            assert_eq!(view.name().parse::<View>(), Ok(view));
+        }
+        assert_eq!("XY".parse::<View>(), Ok(View::Plane(Plane::G17)));
+        assert!("top".parse::<View>().is_err());
+    }
+
+    #[test]
+    fn g18_is_seen_with_z_right_and_x_up() {
+        assert_eq!(View::Plane(Plane::G18).project([1.0, 2.0, 3.0]), (3.0, 1.0));
+    }
+
+    #[test]
+    fn iso_draws_lengths_along_the_axes_true() {
+        for axis in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] {
+            let (u, v) = View::Iso.project(axis);
+            assert!((u.hypot(v) - 1.0).abs() < 1e-12, "{axis:?}");
+        }
+        // Seen from (-1, -1, 1): that direction is drawn as a point.
+        let (u, v) = View::Iso.project([-1.0, -1.0, 1.0]);
+        assert!(u.abs() < 1e-12 && v.abs() < 1e-12);
     }
 }
