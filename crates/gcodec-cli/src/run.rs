@@ -61,7 +61,8 @@ pub struct RunInputs {
     /// How the diagnostics are written on stderr: `full` renders each as
     /// it comes (the run's as they happen, the program's after the run);
     /// the others write one document of them all after the run, alone on
-    /// stderr (the figures of a `jsonl` or `csv` run are then left out).
+    /// stderr (the figures a `jsonl` or `csv` run or a plot write there
+    /// are then left out).
     #[arg(long, value_enum, default_value_t = DiagnosticFormat::Full)]
     pub output_format: DiagnosticFormat,
     #[command(flatten)]
