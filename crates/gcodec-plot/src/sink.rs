@@ -4,7 +4,7 @@
 use std::io;
 
 use gcodec_exec::event::{
-    AxisMap, Event, EventKind, EventSink, InsertedElement, MotionEvent, MotionKind, Plane,
+    AxisMap, Event, EventKind, EventSink, InsertedElement, MotionEvent, MotionKind, Plane, ToolArc,
 };
 
 use crate::geometry::{ArcPath, Point3};
@@ -119,8 +119,15 @@ impl PlotSink {
                 if stroke == Stroke::Feed && contour_moves {
                     self.draw(Stroke::Contour, from, to, arc);
                 }
+                // The tool centre's own circle (a `KONTT` approach or
+                // retraction of a straight block), else the contour's
+                // element, concentric.
+                let tool_arc = match &tool.tool_arc {
+                    Some(own) => self.own_arc(own, motion.plane),
+                    None => arc,
+                };
                 self.tool_end = Some(tool_to);
-                self.draw(stroke, tool_from, tool_to, arc)
+                self.draw(stroke, tool_from, tool_to, tool_arc)
             }
             // The move that ends compensation starts where the tool
             // centre is.
@@ -206,6 +213,29 @@ impl PlotSink {
             centre,
             clockwise,
             turns: motion.turns,
+        })
+    }
+}
+
+impl PlotSink {
+    /// The tool centre's own circle of an element, in `plane`; `None`
+    /// (a straight piece) if the event names no centre in the plane.
+    fn own_arc(&self, own: &ToolArc, plane: Plane) -> Option<ArcOf> {
+        let (h, v, _) = plane.axes();
+        let centre = (
+            own.centre.get(AXES[h])? * self.unit,
+            own.centre.get(AXES[v])? * self.unit,
+        );
+        let clockwise = match own.motion {
+            MotionKind::ArcCw => true,
+            MotionKind::ArcCcw => false,
+            _ => return None,
+        };
+        Some(ArcOf {
+            plane,
+            centre,
+            clockwise,
+            turns: 0,
         })
     }
 }

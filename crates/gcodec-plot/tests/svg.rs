@@ -193,21 +193,51 @@ fn a_compensated_program_draws_its_contour_beneath_the_tool_centre() {
                 N90 G40 G1 X-20 Y-10\n\
                 N100 G0 Z50\n\
                 M30\n";
-    let profile_text =
-        std::fs::read_to_string(gcodec_testkit::repo().join("tests/fixtures/run/mill.toml"))
-            .expect("the fixture machine");
+    let svg = plot_on_fixture_machine("compensated_run.mpf", text);
+    let contour = group(&svg, "contour");
+    assert_eq!(contour.matches(" A").count(), 1, "the rounding: {contour}");
+    insta::assert_snapshot!(svg);
+}
+
+/// The SVG of `text` run on the executor's fixture machine
+/// (`tests/fixtures/run/mill.toml`: T1 has radius 5).
+fn plot_on_fixture_machine(name: &str, text: &str) -> String {
+    let path = gcodec_testkit::repo().join("tests/fixtures/run/mill.toml");
+    let profile_text = std::fs::read_to_string(path).expect("the fixture machine");
     let profile = gcodec_profile::load(&profile_text).expect("a valid profile");
-    let events = run_on(profile, "compensated_run.mpf", text);
     let mut sink = gcodec_plot::PlotSink::new(None);
-    for event in &events {
+    for event in &run_on(profile, name, text) {
         sink.plot(event);
     }
-    let svg = sink.into_plot().to_svg("compensated_run.mpf");
-    let contour = svg
-        .split("<g id=\"contour\">")
+    sink.into_plot().to_svg(name)
+}
+
+/// The `<path>` data of the group `id`; empty if there is none.
+fn group<'a>(svg: &'a str, id: &str) -> &'a str {
+    svg.split(&format!("<g id=\"{id}\">"))
         .nth(1)
         .and_then(|rest| rest.split("</g>").next())
-        .expect("a contour group");
-    assert_eq!(contour.matches(" A").count(), 1, "the rounding: {contour}");
+        .unwrap_or_default()
+}
+
+#[test]
+fn a_kontt_approach_is_the_tool_centre_s_own_circle() {
+    // The executor's fixture `compensation_kontt.mpf`: the approach and
+    // the retraction are straight blocks whose tool centre goes along a
+    // circle of its own (`tool_arc`).
+    let text = "N10 G17 G90 G54 T1 D1 M6\n\
+                N20 G0 X20 Y-20 Z2\n\
+                N30 G1 Z-2 F300\n\
+                N40 KONTT G41 G1 X0 Y0\n\
+                N50 Y30\n\
+                N60 X30\n\
+                N70 G40 G1 X40 Y10\n\
+                N80 G0 Z50\n\
+                M30\n";
+    let svg = plot_on_fixture_machine("kontt.mpf", text);
+    assert_eq!(group(&svg, "contour").matches(" A").count(), 0);
+    // The approach's and the retraction's circles, and the transition
+    // circle round the outside corner (X0 Y30) between them.
+    assert_eq!(group(&svg, "path").matches(" A").count(), 3, "{svg}");
     insta::assert_snapshot!(svg);
 }
