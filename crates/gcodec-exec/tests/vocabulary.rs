@@ -271,6 +271,18 @@ fn a_written_tool_length_takes_effect_at_the_next_d_selection() {
 }
 
 #[test]
+fn tool_types_and_edge_positions_are_checked_when_written() {
+    let (reported, end) = run("$TC_DP1[1,1]=42\nM30\n");
+    assert_eq!(end, ProgramEndReason::Alarm);
+    assert_eq!(reported[0].2, "`$TC_DP1[1,1]=42`: a tool type is 100…999");
+    let (reported, _) = run("$TC_DP2[1,1]=12\nM30\n");
+    assert_eq!(
+        reported[0].2,
+        "`$TC_DP2[1,1]=12`: a cutting edge position is 0…9"
+    );
+}
+
+#[test]
 fn tool_data_needs_tools_and_edges_numbered_from_one() {
     let (reported, end) = run("$TC_DP3[0,1]=5\nM30\n");
     assert_eq!(end, ProgramEndReason::Alarm);

@@ -349,6 +349,7 @@ impl Tool {
                     length: 0.0,
                     radius: 0.0,
                     position: default_edge_position(),
+                    tool_type: None,
                 });
                 self.edges.len() - 1
             }
@@ -389,6 +390,28 @@ pub struct Edge {
     /// and 9: at the centre, as for a milling tool.
     #[serde(default = "default_edge_position")]
     pub position: Spanned<u8>,
+    /// The tool type of the edge (`$TC_DP1`: 1xx milling, 2xx drilling,
+    /// 4xx grinding, 5xx turning, 7xx special, 9xx auxiliary tools);
+    /// `None` where the profile does not say.
+    #[serde(default, rename = "type", skip_serializing_if = "Option::is_none")]
+    pub tool_type: Option<Spanned<u32>>,
+}
+
+impl Edge {
+    /// Sets the tool type, as a program's write of `$TC_DP1` does (no
+    /// span in the profile).
+    pub fn set_tool_type(&mut self, tool_type: u32) {
+        self.tool_type = Some(spanned(tool_type));
+    }
+
+    /// Whether the edge is a turning tool's, whose cutting edge position
+    /// places its tip (a type 5xx, or no type and a position).
+    pub fn is_turning(&self) -> bool {
+        match &self.tool_type {
+            Some(t) => (500..600).contains(t.get_ref()),
+            None => *self.position.get_ref() != 0,
+        }
+    }
 }
 
 fn default_edge_position() -> Spanned<u8> {

@@ -307,6 +307,16 @@ fn check_tools(profile: &Profile, out: &mut Vec<Diagnostic>) {
                     "here",
                 ));
             }
+            if let Some(tool_type) = &edge.tool_type
+                && !(100..=999).contains(tool_type.get_ref())
+            {
+                out.push(error(
+                    codes::profile::OUT_OF_RANGE,
+                    tool_type,
+                    "a tool type is 100…999 (1xx milling, 2xx drilling, 4xx grinding, 5xx turning, 7xx special, 9xx auxiliary)".to_owned(),
+                    "here",
+                ));
+            }
             if *edge.position.get_ref() > 9 {
                 out.push(error(
                     codes::profile::OUT_OF_RANGE,
@@ -633,6 +643,25 @@ mod tests {
         };
         assert_eq!(codes(&tool(10)), ["gcodec::profile::out_of_range"]);
         assert!(codes(&tool(9)).is_empty());
+        let typed = |tool_type: u32| {
+            format!("[[tools]]\nnumber = 1\nedges = [{{ d = 1, type = {tool_type} }}]\n")
+        };
+        assert_eq!(codes(&typed(5)), ["gcodec::profile::out_of_range"]);
+        assert!(codes(&typed(500)).is_empty());
+    }
+
+    #[test]
+    fn only_turning_tools_place_their_tip_by_the_edge_position() {
+        let edge = |extra: &str| {
+            let text = format!(
+                "[machine]\nname = \"t\"\ncontrol = \"828d\"\n[[tools]]\nnumber = 1\nedges = [{{ d = 1, position = 3{extra} }}]\n"
+            );
+            let profile = crate::load(&text).expect("valid");
+            profile.tools[0].edges[0].is_turning()
+        };
+        assert!(edge(""));
+        assert!(edge(", type = 510"));
+        assert!(!edge(", type = 120"));
     }
 
     #[test]

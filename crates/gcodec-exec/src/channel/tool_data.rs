@@ -93,6 +93,16 @@ impl ToolData {
         };
         let edge = self.edge_mut(t, d);
         match k + 1 {
+            1 => {
+                let tool_type = value.to_real()?;
+                if !(tool_type.fract() == 0.0 && (100.0..=999.0).contains(&tool_type)) {
+                    return Err(RunError::new(
+                        codes::run::INDEX_OUT_OF_RANGE,
+                        format!("`{name}[{t},{d}]={tool_type}`: a tool type is 100…999"),
+                    ));
+                }
+                edge.set_tool_type(tool_type as u32);
+            }
             2 => {
                 let position = value.to_real()?;
                 *edge.position.get_mut() = match position {

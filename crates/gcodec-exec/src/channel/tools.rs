@@ -392,10 +392,15 @@ impl Channel<'_> {
         let Some(entry) = self.state.tool_data.tool(tool.number) else {
             return Ok(());
         };
-        match entry
-            .edge(d)
-            .map(|e| (e.length, e.radius, *e.position.get_ref()))
-        {
+        // A cutting edge position places the tip of turning tools only.
+        let position = |e: &gcodec_profile::Edge| {
+            if e.is_turning() {
+                *e.position.get_ref()
+            } else {
+                0
+            }
+        };
+        match entry.edge(d).map(|e| (e.length, e.radius, position(e))) {
             Some((length, radius, position)) => {
                 self.state.tool_length = length;
                 self.state.tool_radius = radius;

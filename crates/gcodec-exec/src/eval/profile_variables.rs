@@ -235,10 +235,15 @@ pub(crate) fn tool_parameter(
             )
         })?;
     match k {
-        1 => Err(RunError::new(
-            codes::run::SYSTEM_VARIABLE,
-            format!("`{name}[{t},{d}]`: the tool type is not in the machine profile"),
-        )),
+        1 => match &edge.tool_type {
+            Some(tool_type) => Ok(RtValue::Real(f64::from(*tool_type.get_ref()))),
+            None => Err(RunError::new(
+                codes::run::SYSTEM_VARIABLE,
+                format!(
+                    "`{name}[{t},{d}]`: the tool type is not in the machine profile (its edge's `type`)"
+                ),
+            )),
+        },
         2 => Ok(RtValue::Real(f64::from(*edge.position.get_ref()))),
         3 => Ok(RtValue::Real(edge.length)),
         6 => Ok(RtValue::Real(edge.radius)),
