@@ -110,7 +110,11 @@ impl PlotSink {
         let arc = self.arc_of(motion, from, to);
         let contour_moves = !matches!(
             motion.inserted,
-            Some(InsertedElement::TransitionCircle | InsertedElement::CornerLine)
+            Some(
+                InsertedElement::TransitionCircle
+                    | InsertedElement::CornerLine
+                    | InsertedElement::TransitionCurve
+            )
         );
         let length = match &motion.tool {
             Some(tool) => {

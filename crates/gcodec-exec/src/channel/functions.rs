@@ -376,14 +376,7 @@ impl Channel<'_> {
                 match address.address {
                     NamedAddress::Offn => contour.offn = length,
                     NamedAddress::Rndm => contour.rndm = length,
-                    _ => {
-                        contour.disc = value;
-                        if value > 0.0 {
-                            self.not_simulated(program, instruction, "address DISC", || {
-                                "`DISC=` above 0 is not simulated: outside corners under `G450` get a transition circle".into()
-                            });
-                        }
-                    }
+                    _ => contour.disc = value,
                 }
             }
             other => {

@@ -74,7 +74,9 @@ impl Channel<'_> {
             radius: (self.state.tool_radius + self.state.contour.offn).max(0.0),
             corner: match self.state.modal(18) {
                 Some("G451") => CornerMode::Intersection,
-                _ => CornerMode::Circle,
+                _ => CornerMode::Circle {
+                    disc: self.state.contour.disc.clamp(0.0, 100.0).round() as u8,
+                },
             },
             collision_detection: self.state.modal(23) == Some("CDON"),
             approach: match self.state.modal(17) {
@@ -615,7 +617,14 @@ impl Channel<'_> {
                 m.radius = Some(unit(*radius));
                 m.turns = 0;
             }
-            (Some(InsertedElement::Chamfer | InsertedElement::CornerLine), _) => {
+            (
+                Some(
+                    InsertedElement::Chamfer
+                    | InsertedElement::CornerLine
+                    | InsertedElement::TransitionCurve,
+                ),
+                _,
+            ) => {
                 if m.motion != MotionKind::Rapid {
                     m.motion = MotionKind::Linear;
                 }

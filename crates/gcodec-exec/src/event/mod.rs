@@ -300,6 +300,9 @@ pub enum InsertedElement {
     /// beyond its limit, `KONT` round a start point); the contour does
     /// not move.
     CornerLine,
+    /// One of the straight pieces a `DISC=` transition curve is drawn in
+    /// round an outside corner (`G450`); the contour does not move.
+    TransitionCurve,
 }
 
 impl InsertedElement {
@@ -310,6 +313,7 @@ impl InsertedElement {
             Self::Rounding => "rounding",
             Self::TransitionCircle => "transition_circle",
             Self::CornerLine => "corner_line",
+            Self::TransitionCurve => "transition_curve",
         }
     }
 }

@@ -35,8 +35,10 @@ pub enum Side {
 /// What joins the equidistants at an outside corner.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CornerMode {
-    /// `G450`: a transition circle about the corner.
-    Circle,
+    /// `G450`: a transition circle about the corner; with `DISC=` above 0
+    /// (percent, to 100) a transition curve drawn towards where the
+    /// equidistants meet.
+    Circle { disc: u8 },
     /// `G451`: the intersection of the equidistants.
     Intersection,
 }
@@ -180,7 +182,7 @@ pub fn join<M: Clone, O>(
             });
         }
     } else {
-        let detect = element.compensation.collision_detection;
+        let detect = q.compensation.collision_detection;
         let mode = q.compensation.corner;
         let (at, end, start, pieces) = join_leaving_out(stage, lead, &b, q_offset, mode, detect)?;
         lead_end = end;
@@ -453,7 +455,13 @@ fn corner(
     };
     let mut pieces = Vec::new();
     match mode {
-        CornerMode::Circle => circle(&mut pieces),
+        CornerMode::Circle { disc: 0 } => circle(&mut pieces),
+        CornerMode::Circle { disc } => {
+            match transition_curve(at, oa.end(), ta, ob.start(), tb, disc) {
+                Some(curve) => pieces.extend(curve),
+                None => circle(&mut pieces),
+            }
+        }
         CornerMode::Intersection => {
             let lines = matches!(a, Segment::Line { .. }) && matches!(b, Segment::Line { .. });
             match planar::line_line(oa.end(), ta, ob.start(), tb) {
@@ -467,6 +475,74 @@ fn corner(
         }
     }
     Ok((oa.end(), ob.start(), pieces))
+}
+
+/// Straight pieces in which a `DISC=` transition curve is drawn: the conic
+/// from `start` (leaving along `ta`) to `end` (arriving along `tb`) whose
+/// control point is where those tangents meet. At `disc` 0 it is the
+/// transition circle; its shoulder moves `disc` percent of the way from
+/// the circle's middle to the tangents' intersection, which it reaches at
+/// 100. `None` where the tangents do not meet (a reversal).
+fn transition_curve(
+    corner: P2,
+    start: P2,
+    ta: P2,
+    end: P2,
+    tb: P2,
+    disc: u8,
+) -> Option<Vec<Piece>> {
+    /// Pieces a curve is drawn in.
+    const PIECES: usize = 8;
+    let meet = planar::line_line(start, ta, end, tb)?;
+    let chord_middle = scale(add(start, end), 0.5);
+    // The circle's middle: on the bisector, the radius from the corner.
+    let radius = planar::distance(corner, start);
+    let towards = planar::unit(planar::sub(meet, corner))?;
+    let circle_middle = add(corner, scale(towards, radius));
+    let shoulder = add(
+        circle_middle,
+        scale(
+            planar::sub(meet, circle_middle),
+            f64::from(disc.min(100)) / 100.0,
+        ),
+    );
+    let to_meet = planar::distance(shoulder, meet);
+    if to_meet <= EPS {
+        return Some(vec![
+            corner_line(start, meet, corner),
+            corner_line(meet, end, corner),
+        ]);
+    }
+    // The shoulder of a rational quadratic Bézier of weight w is
+    // (chord middle + w · control point) / (1 + w).
+    let weight = planar::distance(shoulder, chord_middle) / to_meet;
+    let at = |t: f64| {
+        let (a, b, c) = ((1.0 - t) * (1.0 - t), 2.0 * weight * t * (1.0 - t), t * t);
+        let sum = a + b + c;
+        [
+            (a * start[0] + b * meet[0] + c * end[0]) / sum,
+            (a * start[1] + b * meet[1] + c * end[1]) / sum,
+        ]
+    };
+    let mut pieces = Vec::with_capacity(PIECES);
+    let mut from = start;
+    for k in 1..=PIECES {
+        let to = if k == PIECES {
+            end
+        } else {
+            at(k as f64 / PIECES as f64)
+        };
+        pieces.push(Piece {
+            kind: InsertedElement::TransitionCurve,
+            path: Segment::Line {
+                start: from,
+                end: to,
+            },
+            corner,
+        });
+        from = to;
+    }
+    Some(pieces)
 }
 
 fn corner_line(start: P2, end: P2, corner: P2) -> Piece {
@@ -514,8 +590,16 @@ mod tests {
         // left (G41) is inside the turn.
         let a = line([0.0, 0.0], [10.0, 0.0]);
         let b = line([10.0, 0.0], [10.0, 10.0]);
-        let (end, start, pieces) =
-            corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle, false, true).unwrap();
+        let (end, start, pieces) = corner(
+            &a,
+            [0.0, 2.0],
+            &b,
+            2.0,
+            CornerMode::Circle { disc: 0 },
+            false,
+            true,
+        )
+        .unwrap();
         assert!(close(end, [8.0, 2.0]) && close(start, [8.0, 2.0]));
         assert!(pieces.is_empty());
     }
@@ -525,8 +609,16 @@ mod tests {
         // Right along Y=0, then down: a right turn, G41 outside.
         let a = line([0.0, 0.0], [10.0, 0.0]);
         let b = line([10.0, 0.0], [10.0, -10.0]);
-        let (end, start, pieces) =
-            corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle, false, true).unwrap();
+        let (end, start, pieces) = corner(
+            &a,
+            [0.0, 2.0],
+            &b,
+            2.0,
+            CornerMode::Circle { disc: 0 },
+            false,
+            true,
+        )
+        .unwrap();
         assert!(close(end, [10.0, 2.0]) && close(start, [12.0, 0.0]));
         let [piece] = pieces.as_slice() else {
             panic!("{pieces:?}")
@@ -553,6 +645,42 @@ mod tests {
     }
 
     #[test]
+    fn a_disc_curve_runs_between_the_circle_and_the_intersection() {
+        // Right along Y=0, then down at X=10: the circle's middle is at
+        // (10 + √2, √2), the intersection at (12, 2).
+        let a = line([0.0, 0.0], [10.0, 0.0]);
+        let b = line([10.0, 0.0], [10.0, -10.0]);
+        let shoulder = |disc: u8| {
+            let (_, _, pieces) = corner(
+                &a,
+                [0.0, 2.0],
+                &b,
+                2.0,
+                CornerMode::Circle { disc },
+                false,
+                true,
+            )
+            .unwrap();
+            assert_eq!(pieces.len(), if disc == 100 { 2 } else { 8 });
+            assert!(
+                pieces
+                    .iter()
+                    .all(|p| p.kind == InsertedElement::TransitionCurve || disc == 100)
+            );
+            pieces[pieces.len() / 2 - 1].path.end()
+        };
+        let root = 2f64.sqrt();
+        assert!(close(
+            shoulder(1).map(|v| (v * 10.0).round() / 10.0),
+            [11.4, 1.4]
+        ));
+        let half = shoulder(50);
+        let expected = [10.0 + root + (2.0 - root) / 2.0, root + (2.0 - root) / 2.0];
+        assert!(planar::distance(half, expected) < 1e-9, "{half:?}");
+        assert!(close(shoulder(100), [12.0, 2.0]));
+    }
+
+    #[test]
     fn an_inside_circle_smaller_than_the_tool_is_an_alarm() {
         let a = line([0.0, 0.0], [10.0, 0.0]);
         // A counter-clockwise circle of radius 1: G41 is inside it.
@@ -563,9 +691,15 @@ mod tests {
             radius: 1.0,
             sweep: PI,
         };
-        let Err(CornerFailure::Alarm(error)) =
-            corner(&a, [0.0, 2.0], &b, 2.0, CornerMode::Circle, false, true)
-        else {
+        let Err(CornerFailure::Alarm(error)) = corner(
+            &a,
+            [0.0, 2.0],
+            &b,
+            2.0,
+            CornerMode::Circle { disc: 0 },
+            false,
+            true,
+        ) else {
             panic!("an alarm")
         };
         assert_eq!(error.code, codes::run::COMPENSATION_COLLISION);
@@ -577,7 +711,15 @@ mod tests {
         let a = line([0.0, 0.0], [10.0, 0.0]);
         let b = line([10.0, 0.0], [10.0, 1.0]);
         assert!(matches!(
-            corner(&a, [9.0, 2.0], &b, 2.0, CornerMode::Circle, false, true),
+            corner(
+                &a,
+                [9.0, 2.0],
+                &b,
+                2.0,
+                CornerMode::Circle { disc: 0 },
+                false,
+                true
+            ),
             Err(CornerFailure::LeadReversed)
         ));
     }

@@ -60,7 +60,7 @@ impl Compensation {
     pub const OFF: Compensation = Compensation {
         side: None,
         radius: 0.0,
-        corner: CornerMode::Circle,
+        corner: CornerMode::Circle { disc: 0 },
         collision_detection: false,
         approach: Approach::Normal,
         tip: [0.0, 0.0],
