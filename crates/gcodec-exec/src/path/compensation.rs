@@ -151,7 +151,7 @@ pub fn join<M: Clone, O>(
         {
             // Leaving the start backwards through the start point, turned
             // round: it arrives along the equidistant.
-            tool.curve = tangent_arc(lead_end, scale(t, -1.0), a.start()).map(reversed);
+            tool.curve = tangent_arc(lead_end, scale(t, -1.0), a.start()).map(|arc| arc.reversed());
         }
         // `KONT`, starting behind the contour: round its start point.
         if q.compensation.approach == Approach::AroundEnds {
@@ -237,29 +237,6 @@ fn tangent_arc(at: P2, t: P2, through: P2) -> Option<Segment> {
     let centre = add(at, scale(n, lambda));
     // Counter-clockwise when the centre is on the left of `t`.
     Some(arc_between(centre, at, through, lambda > 0.0))
-}
-
-/// `segment` traversed the other way.
-fn reversed(segment: Segment) -> Segment {
-    match segment {
-        Segment::Line { start, end } => Segment::Line {
-            start: end,
-            end: start,
-        },
-        Segment::Arc {
-            start,
-            end,
-            centre,
-            radius,
-            sweep,
-        } => Segment::Arc {
-            start: end,
-            end: start,
-            centre,
-            radius,
-            sweep: -sweep,
-        },
-    }
 }
 
 /// Ends the element at `lead` at `end`; the motions after it without
@@ -566,6 +543,23 @@ mod tests {
         planar::distance(a, b) < 1e-9
     }
 
+    /// The corner at a 2 mm offset under `G450`, between adjacent elements.
+    fn circle_corner(
+        a: &Segment,
+        a_start: P2,
+        b: &Segment,
+    ) -> Result<(P2, P2, Vec<Piece>), CornerFailure> {
+        corner(
+            a,
+            a_start,
+            b,
+            2.0,
+            CornerMode::Circle { disc: 0 },
+            false,
+            true,
+        )
+    }
+
     #[test]
     fn a_tangent_arc_touches_its_direction_and_passes_its_point() {
         // Touching +X at the origin, through (10, 10): the quarter circle
@@ -590,16 +584,7 @@ mod tests {
         // left (G41) is inside the turn.
         let a = line([0.0, 0.0], [10.0, 0.0]);
         let b = line([10.0, 0.0], [10.0, 10.0]);
-        let (end, start, pieces) = corner(
-            &a,
-            [0.0, 2.0],
-            &b,
-            2.0,
-            CornerMode::Circle { disc: 0 },
-            false,
-            true,
-        )
-        .unwrap();
+        let (end, start, pieces) = circle_corner(&a, [0.0, 2.0], &b).unwrap();
         assert!(close(end, [8.0, 2.0]) && close(start, [8.0, 2.0]));
         assert!(pieces.is_empty());
     }
@@ -609,16 +594,7 @@ mod tests {
         // Right along Y=0, then down: a right turn, G41 outside.
         let a = line([0.0, 0.0], [10.0, 0.0]);
         let b = line([10.0, 0.0], [10.0, -10.0]);
-        let (end, start, pieces) = corner(
-            &a,
-            [0.0, 2.0],
-            &b,
-            2.0,
-            CornerMode::Circle { disc: 0 },
-            false,
-            true,
-        )
-        .unwrap();
+        let (end, start, pieces) = circle_corner(&a, [0.0, 2.0], &b).unwrap();
         assert!(close(end, [10.0, 2.0]) && close(start, [12.0, 0.0]));
         let [piece] = pieces.as_slice() else {
             panic!("{pieces:?}")
@@ -691,15 +667,7 @@ mod tests {
             radius: 1.0,
             sweep: PI,
         };
-        let Err(CornerFailure::Alarm(error)) = corner(
-            &a,
-            [0.0, 2.0],
-            &b,
-            2.0,
-            CornerMode::Circle { disc: 0 },
-            false,
-            true,
-        ) else {
+        let Err(CornerFailure::Alarm(error)) = circle_corner(&a, [0.0, 2.0], &b) else {
             panic!("an alarm")
         };
         assert_eq!(error.code, codes::run::COMPENSATION_COLLISION);
@@ -711,15 +679,7 @@ mod tests {
         let a = line([0.0, 0.0], [10.0, 0.0]);
         let b = line([10.0, 0.0], [10.0, 1.0]);
         assert!(matches!(
-            corner(
-                &a,
-                [9.0, 2.0],
-                &b,
-                2.0,
-                CornerMode::Circle { disc: 0 },
-                false,
-                true
-            ),
+            circle_corner(&a, [9.0, 2.0], &b),
             Err(CornerFailure::LeadReversed)
         ));
     }

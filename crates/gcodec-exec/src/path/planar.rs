@@ -122,6 +122,29 @@ impl Segment {
         }
     }
 
+    /// The element traversed the other way.
+    pub fn reversed(&self) -> Segment {
+        match *self {
+            Self::Line { start, end } => Self::Line {
+                start: end,
+                end: start,
+            },
+            Self::Arc {
+                start,
+                end,
+                centre,
+                radius,
+                sweep,
+            } => Self::Arc {
+                start: end,
+                end: start,
+                centre,
+                radius,
+                sweep: -sweep,
+            },
+        }
+    }
+
     /// Whether the element has no extent in the plane.
     pub fn is_point(&self) -> bool {
         self.length() <= EPS
@@ -382,6 +405,18 @@ mod tests {
         distance(a, b) < 1e-9
     }
 
+    /// A quarter circle of radius 10 about the origin, counter-clockwise
+    /// from the abscissa.
+    fn quarter() -> Segment {
+        Segment::Arc {
+            start: [10.0, 0.0],
+            end: [0.0, 10.0],
+            centre: [0.0, 0.0],
+            radius: 10.0,
+            sweep: PI / 2.0,
+        }
+    }
+
     #[test]
     fn a_line_offsets_to_its_left_and_right() {
         let line = Segment::Line {
@@ -397,13 +432,7 @@ mod tests {
     #[test]
     fn an_arc_offsets_towards_or_away_from_its_centre() {
         // A quarter counter-clockwise: the left is inside.
-        let arc = Segment::Arc {
-            start: [10.0, 0.0],
-            end: [0.0, 10.0],
-            centre: [0.0, 0.0],
-            radius: 10.0,
-            sweep: PI / 2.0,
-        };
+        let arc = quarter();
         let inside = arc.offset(3.0).unwrap();
         assert!(close(inside.start(), [7.0, 0.0]) && close(inside.end(), [0.0, 7.0]));
         let outside = arc.offset(-3.0).unwrap();
@@ -413,13 +442,7 @@ mod tests {
 
     #[test]
     fn positions_along_an_arc_count_from_the_nearer_end() {
-        let arc = Segment::Arc {
-            start: [10.0, 0.0],
-            end: [0.0, 10.0],
-            centre: [0.0, 0.0],
-            radius: 10.0,
-            sweep: PI / 2.0,
-        };
+        let arc = quarter();
         let beyond_end = [-10.0 * 0.1f64.sin(), 10.0 * 0.1f64.cos()];
         assert!((arc.position(beyond_end) - (1.0 + 0.1 / (PI / 2.0))).abs() < 1e-9);
         let before_start = [10.0 * 0.1f64.cos(), -10.0 * 0.1f64.sin()];
@@ -428,13 +451,7 @@ mod tests {
 
     #[test]
     fn trimming_keeps_the_sense_of_rotation() {
-        let arc = Segment::Arc {
-            start: [10.0, 0.0],
-            end: [0.0, 10.0],
-            centre: [0.0, 0.0],
-            radius: 10.0,
-            sweep: PI / 2.0,
-        };
+        let arc = quarter();
         let p = [10.0 * (PI / 8.0).cos(), 10.0 * (PI / 8.0).sin()];
         let Segment::Arc { sweep, .. } = arc.with_ends(p, arc.end()) else {
             unreachable!()
