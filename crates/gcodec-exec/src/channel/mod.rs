@@ -265,6 +265,8 @@ pub struct Channel<'r> {
     path_alarm: Option<RunError>,
     /// A contour definition waiting for its second block.
     pending_contour: Option<toolpath::PendingContour>,
+    /// The frame of the last motion the stage took, shared while it holds.
+    path_frame: Option<Arc<crate::frames::Frame>>,
 }
 
 impl<'r> Channel<'r> {
@@ -312,6 +314,7 @@ impl<'r> Channel<'r> {
             last_tool_point: None,
             path_alarm: None,
             pending_contour: None,
+            path_frame: None,
         }
     }
 

@@ -27,11 +27,18 @@ use crate::value::RunError;
 pub(crate) struct HeldMotion {
     /// The motion event of the programmed contour, source included.
     event: Event,
+    place: Placement,
+}
+
+/// Where a held motion runs: what its events are computed from.
+#[derive(Clone, Debug)]
+pub(crate) struct Placement {
     /// Start and end of every axis, workpiece coordinates (mm, radius).
     wcs_start: Vec<f64>,
     wcs_end: Vec<f64>,
-    /// The frame the block ran in, for machine coordinates.
-    frame: Frame,
+    /// The frame the block ran in, for machine coordinates (shared by the
+    /// blocks that run in one frame).
+    frame: Arc<Frame>,
     /// The channel axes of the plane's abscissa and ordinate.
     plane_axes: [Option<usize>; 2],
     /// The programmed element's length (mm) and time (s): elements made
@@ -188,23 +195,23 @@ impl Channel<'_> {
         let feed = state.feed;
         self.path
             .complete_pending(|element| {
-                let motion = &mut element.motion;
-                let mut end = std::mem::take(&mut motion.wcs_end);
-                motion.set_plane(&mut end, corner);
-                motion.wcs_end = end;
-                wcs.copy_from_slice(&motion.wcs_end);
-                state.to_machine(&frame, &motion.wcs_end, &mut machine);
-                if let EventKind::Motion(m) = &mut motion.event.kind {
-                    fill_map(&mut m.to, state, &motion.wcs_end, true);
+                let HeldMotion { event, place } = &mut element.motion;
+                let mut end = std::mem::take(&mut place.wcs_end);
+                place.set_plane(&mut end, corner);
+                place.wcs_end = end;
+                wcs.copy_from_slice(&place.wcs_end);
+                state.to_machine(&frame, &place.wcs_end, &mut machine);
+                if let EventKind::Motion(m) = &mut event.kind {
+                    fill_map(&mut m.to, state, &place.wcs_end, true);
                     fill_map(&mut m.to_machine, state, &machine, false);
                     let rapid = m.motion == MotionKind::Rapid;
-                    motion.time += if rapid || feed <= 0.0 {
+                    place.time += if rapid || feed <= 0.0 {
                         0.0
                     } else {
                         length / feed * 60.0
                     };
                 }
-                motion.length += length;
+                place.length += length;
                 element.contour = Some(Segment::Line {
                     start: pending.start,
                     end: corner,
@@ -265,15 +272,25 @@ impl Channel<'_> {
             self.figures();
             self.figures_slot.unwrap_or_default()
         };
+        let frame = {
+            let current = self.state.total_frame();
+            match &self.path_frame {
+                Some(shared) if shared.same_as(&current) => Arc::clone(shared),
+                _ => Arc::new(current.clone()),
+            }
+        };
+        self.path_frame = Some(Arc::clone(&frame));
         let motion = HeldMotion {
             event: self.motion.event.clone(),
-            wcs_start: self.motion.wcs.clone(),
-            wcs_end: self.motion.target.clone(),
-            frame: self.state.total_frame().clone(),
-            plane_axes,
-            length,
-            time,
-            slot,
+            place: Placement {
+                wcs_start: self.motion.wcs.clone(),
+                wcs_end: self.motion.target.clone(),
+                frame,
+                plane_axes,
+                length,
+                time,
+                slot,
+            },
         };
         if !contour.is_point() {
             self.block.moved_in_plane = true;
@@ -405,7 +422,11 @@ impl Channel<'_> {
     /// before it, then the element itself.
     fn send_element(&mut self, element: Element<HeldMotion>) {
         let Element {
-            motion,
+            motion:
+                HeldMotion {
+                    event: programmed,
+                    place,
+                },
             contour,
             compensation,
             inserted,
@@ -413,8 +434,8 @@ impl Channel<'_> {
             tool,
             ..
         } = element;
-        let rate = if motion.length > 0.0 {
-            motion.time / motion.length
+        let rate = if place.length > 0.0 {
+            place.time / place.length
         } else {
             0.0
         };
@@ -423,14 +444,14 @@ impl Channel<'_> {
         let tip = compensation.tip;
         if let Some(track) = &tool {
             for piece in &track.before {
-                let mut wcs = motion.wcs_start.clone();
-                motion.set_plane(&mut wcs, piece.corner);
+                let mut wcs = place.wcs_start.clone();
+                place.set_plane(&mut wcs, piece.corner);
                 let mut tool_wcs = wcs.clone();
-                motion.set_plane(&mut tool_wcs, planar::add(piece.path.end(), tip));
-                let mut event = motion.event.clone();
+                place.set_plane(&mut tool_wcs, planar::add(piece.path.end(), tip));
+                let mut event = programmed.clone();
                 self.fill_element_event(
                     &mut event,
-                    &motion,
+                    &place,
                     (&wcs, &wcs),
                     &piece.path,
                     Some(piece.kind),
@@ -438,18 +459,18 @@ impl Channel<'_> {
                 );
                 let length = piece.path.length();
                 let path = piece.path.translated(tip);
-                self.add_element_figures(&motion, &event, length, length * rate, &path, &tool_wcs);
+                self.add_element_figures(&place, &event, length, length * rate, &path, &tool_wcs);
                 self.last_tool_point = Some(tool_wcs);
                 super::send(&mut *self.sink, &mut self.output_error, &event);
             }
         }
         let Some(contour) = contour else {
             // No motion in the plane: as programmed, the tool where it is.
-            let mut event = motion.event.clone();
+            let mut event = programmed.clone();
             if let Some(point) = tool.as_ref().and_then(|t| t.end) {
-                let mut tool_wcs = motion.wcs_end.clone();
-                motion.set_plane(&mut tool_wcs, planar::add(point, tip));
-                self.attach_tool(&mut event, &motion, &tool_wcs, radius);
+                let mut tool_wcs = place.wcs_end.clone();
+                place.set_plane(&mut tool_wcs, planar::add(point, tip));
+                self.attach_tool(&mut event, &place, &tool_wcs, radius);
                 self.last_tool_point = Some(tool_wcs);
             } else {
                 self.last_tool_point = None;
@@ -458,16 +479,16 @@ impl Channel<'_> {
                 start: [0.0; 2],
                 end: [0.0; 2],
             };
-            let end = motion.wcs_end.clone();
-            self.add_element_figures(&motion, &event, motion.length, motion.time, &line, &end);
+            let end = place.wcs_end.clone();
+            self.add_element_figures(&place, &event, place.length, place.time, &line, &end);
             super::send(&mut *self.sink, &mut self.output_error, &event);
             return;
         };
-        let mut wcs_start = motion.wcs_start.clone();
-        let mut wcs_end = motion.wcs_end.clone();
+        let mut wcs_start = place.wcs_start.clone();
+        let mut wcs_end = place.wcs_end.clone();
         if trimmed || inserted.is_some() {
-            motion.set_plane_along(&mut wcs_start, contour.start());
-            motion.set_plane_along(&mut wcs_end, contour.end());
+            place.set_plane_along(&mut wcs_start, contour.start());
+            place.set_plane_along(&mut wcs_end, contour.end());
         }
         // The retraction ends uncompensated: the tip on the programmed
         // point.
@@ -483,13 +504,13 @@ impl Channel<'_> {
         let mut tool_wcs = None;
         if let Some(end) = tool.as_ref().and_then(|t| t.end) {
             let mut wcs = wcs_end.clone();
-            motion.set_plane(&mut wcs, planar::add(end, end_tip));
+            place.set_plane(&mut wcs, planar::add(end, end_tip));
             tool_wcs = Some(wcs);
         }
-        let mut event = motion.event.clone();
+        let mut event = programmed;
         self.fill_element_event(
             &mut event,
-            &motion,
+            &place,
             (&wcs_start, &wcs_end),
             &contour,
             inserted,
@@ -512,7 +533,7 @@ impl Channel<'_> {
             let state = &self.state;
             let mut map = crate::event::AxisMap::default();
             let centre = planar::add(*centre, end_tip);
-            for (k, axis) in motion.plane_axes.iter().enumerate() {
+            for (k, axis) in place.plane_axes.iter().enumerate() {
                 if let Some(i) = axis {
                     map.insert(
                         state.axes[*i].name.clone(),
@@ -535,21 +556,21 @@ impl Channel<'_> {
             });
         }
         // Off the plane (an infeed with the element), as programmed.
-        let rise = motion.off_plane_travel(&wcs_start, &wcs_end);
+        let rise = place.off_plane_travel(&wcs_start, &wcs_end);
         let planar_length = traversed.length();
         let length = planar_length.hypot(rise);
         let contour_length = contour.length().hypot(rise);
         let time = if trimmed || inserted.is_some() || tool.is_some() {
-            if contour_length > 0.0 && motion.length > 0.0 {
+            if contour_length > 0.0 && place.length > 0.0 {
                 length * rate
             } else {
-                motion.time
+                place.time
             }
         } else {
-            motion.time
+            place.time
         };
         let end_point = tool_wcs.clone().unwrap_or_else(|| wcs_end.clone());
-        self.add_element_figures(&motion, &event, length, time, &traversed, &end_point);
+        self.add_element_figures(&place, &event, length, time, &traversed, &end_point);
         self.last_tool_point = tool_wcs;
         super::send(&mut *self.sink, &mut self.output_error, &event);
         if tool.as_ref().is_some_and(|t| t.left_out) {
@@ -571,7 +592,7 @@ impl Channel<'_> {
     fn fill_element_event(
         &self,
         event: &mut Event,
-        motion: &HeldMotion,
+        place: &Placement,
         (from, to): (&[f64], &[f64]),
         path: &Segment,
         inserted: Option<InsertedElement>,
@@ -579,7 +600,7 @@ impl Channel<'_> {
     ) {
         let state = &self.state;
         let mut machine = vec![0.0; to.len()];
-        state.to_machine(&motion.frame, to, &mut machine);
+        state.to_machine(&place.frame, to, &mut machine);
         let EventKind::Motion(m) = &mut event.kind else {
             return;
         };
@@ -605,7 +626,7 @@ impl Channel<'_> {
                 };
                 let mut map = m.centre.take().unwrap_or_default();
                 map.clear();
-                for (k, axis) in motion.plane_axes.iter().enumerate() {
+                for (k, axis) in place.plane_axes.iter().enumerate() {
                     if let Some(i) = axis {
                         map.insert(
                             state.axes[*i].name.clone(),
@@ -635,7 +656,7 @@ impl Channel<'_> {
             _ => {}
         }
         match tool {
-            Some((tool_wcs, radius)) => self.attach_tool(event, motion, tool_wcs, radius),
+            Some((tool_wcs, radius)) => self.attach_tool(event, place, tool_wcs, radius),
             None => {
                 if let EventKind::Motion(m) = &mut event.kind {
                     m.tool = None;
@@ -644,10 +665,10 @@ impl Channel<'_> {
         }
     }
 
-    fn attach_tool(&self, event: &mut Event, motion: &HeldMotion, tool_wcs: &[f64], radius: f64) {
+    fn attach_tool(&self, event: &mut Event, place: &Placement, tool_wcs: &[f64], radius: f64) {
         let state = &self.state;
         let mut machine = vec![0.0; tool_wcs.len()];
-        state.to_machine(&motion.frame, tool_wcs, &mut machine);
+        state.to_machine(&place.frame, tool_wcs, &mut machine);
         let EventKind::Motion(m) = &mut event.kind else {
             return;
         };
@@ -669,7 +690,7 @@ impl Channel<'_> {
     /// The figures of a released element: its length, time and extent.
     fn add_element_figures(
         &mut self,
-        motion: &HeldMotion,
+        place: &Placement,
         event: &Event,
         length: f64,
         time: f64,
@@ -688,7 +709,7 @@ impl Channel<'_> {
                 bbox.include(q);
             }
         }
-        let figures = self.summary.at(motion.slot);
+        let figures = self.summary.at(place.slot);
         figures.bounding_box = Some(match figures.bounding_box {
             Some(b) => b.union(&bbox),
             None => bbox,
@@ -737,7 +758,7 @@ fn path_error(error: PathError) -> RunError {
     RunError::new(error.code, error.message)
 }
 
-impl HeldMotion {
+impl Placement {
     /// Puts plane point `p` into the plane axes of `wcs`.
     fn set_plane(&self, wcs: &mut [f64], p: P2) {
         for (k, axis) in self.plane_axes.iter().enumerate() {
