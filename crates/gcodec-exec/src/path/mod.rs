@@ -232,13 +232,6 @@ impl<M: Clone, O> PathStage<M, O> {
         self.held.push_back(Held::Element(element));
     }
 
-    /// Whether a contour definition waits for its second block.
-    pub fn has_pending(&self) -> bool {
-        self.held
-            .iter()
-            .any(|h| matches!(h, Held::Element(e) if e.pending))
-    }
-
     /// The second block of a contour definition came: `patch` gives the
     /// waiting element its end point, and it is taken as if it came now,
     /// before the outputs made after it.
@@ -531,5 +524,92 @@ impl<M: Clone, O> PathStage<M, O> {
             }
         }
         out.extend(self.held.drain(..));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line(motion: u32, start: P2, end: P2) -> Element<u32> {
+        Element {
+            motion,
+            contour: Some(Segment::Line { start, end }),
+            compensation: Compensation::OFF,
+            corner: None,
+            inserted: None,
+            trimmed: false,
+            tool: None,
+            pending: false,
+        }
+    }
+
+    /// What the stage releases, as (motion or output, inserted?).
+    fn released(stage: &mut PathStage<u32, &'static str>) -> Vec<String> {
+        let mut out = Vec::new();
+        stage.release(&mut out);
+        out.iter()
+            .map(|h| match h {
+                Held::Element(e) => match e.inserted {
+                    Some(kind) => format!("{} {}", e.motion, kind.name()),
+                    None => e.motion.to_string(),
+                },
+                Held::Output(o) => (*o).to_owned(),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_corner_element_holds_what_follows_until_the_next_element() {
+        let mut stage = PathStage::new(3, 4);
+        let mut first = line(1, [0.0, 0.0], [0.0, 10.0]);
+        first.corner = Some(CornerElement::Rounding(2.0));
+        stage.push(first).unwrap();
+        stage.hold_output("M8 of block 2");
+        assert!(released(&mut stage).is_empty(), "the corner is not known");
+        stage.push(line(2, [0.0, 10.0], [10.0, 10.0])).unwrap();
+        // The rounding goes right after the element it ends, before the
+        // next block's own output; the next element is final at once.
+        assert_eq!(
+            released(&mut stage),
+            ["1", "1 rounding", "M8 of block 2", "2"]
+        );
+        assert!(stage.is_idle());
+    }
+
+    #[test]
+    fn compensation_holds_an_element_until_its_corner_is_known() {
+        let mut stage = PathStage::new(3, 4);
+        let left = Compensation {
+            side: Some(Side::Left),
+            radius: 1.0,
+            ..Compensation::OFF
+        };
+        let mut approach = line(1, [-5.0, 0.0], [0.0, 0.0]);
+        approach.compensation = left;
+        stage.push(approach).unwrap();
+        let mut wall = line(2, [0.0, 0.0], [10.0, 0.0]);
+        wall.compensation = left;
+        stage.push(wall).unwrap();
+        assert_eq!(
+            released(&mut stage),
+            ["1"],
+            "the approach ends where the wall starts"
+        );
+        assert!(!stage.is_idle(), "the wall waits for its corner");
+        for _ in 0..3 {
+            stage.block_ended(false).unwrap();
+        }
+        let error = stage.block_ended(false).unwrap_err();
+        assert_eq!(
+            error.code,
+            gcodec_source::codes::run::COMPENSATION_DUMMY_BLOCKS
+        );
+        let mut out = Vec::new();
+        stage.finish(&mut out);
+        let Some(Held::Element(wall)) = out.first() else {
+            panic!("{out:?}")
+        };
+        assert_eq!(wall.tool.as_ref().and_then(|t| t.end), Some([10.0, 1.0]));
     }
 }
