@@ -267,6 +267,8 @@ pub struct Channel<'r> {
     pending_contour: Option<toolpath::PendingContour>,
     /// The frame of the last motion the stage took, shared while it holds.
     path_frame: Option<Arc<crate::frames::Frame>>,
+    /// The event the stage's released elements are written in, reused.
+    path_event: Option<Event>,
 }
 
 impl<'r> Channel<'r> {
@@ -315,6 +317,7 @@ impl<'r> Channel<'r> {
             path_alarm: None,
             pending_contour: None,
             path_frame: None,
+            path_event: None,
         }
     }
 

@@ -448,7 +448,7 @@ impl Channel<'_> {
                 place.set_plane(&mut wcs, piece.corner);
                 let mut tool_wcs = wcs.clone();
                 place.set_plane(&mut tool_wcs, planar::add(piece.path.end(), tip));
-                let mut event = programmed.clone();
+                let mut event = self.event_like(&programmed);
                 self.fill_element_event(
                     &mut event,
                     &place,
@@ -462,17 +462,21 @@ impl Channel<'_> {
                 self.add_element_figures(&place, &event, length, length * rate, &path, &tool_wcs);
                 self.last_tool_point = Some(tool_wcs);
                 super::send(&mut *self.sink, &mut self.output_error, &event);
+                self.path_event = Some(event);
             }
         }
         let Some(contour) = contour else {
             // No motion in the plane: as programmed, the tool where it is.
-            let mut event = programmed.clone();
+            let mut event = self.event_like(&programmed);
             if let Some(point) = tool.as_ref().and_then(|t| t.end) {
                 let mut tool_wcs = place.wcs_end.clone();
                 place.set_plane(&mut tool_wcs, planar::add(point, tip));
                 self.attach_tool(&mut event, &place, &tool_wcs, radius);
                 self.last_tool_point = Some(tool_wcs);
             } else {
+                if let EventKind::Motion(m) = &mut event.kind {
+                    m.tool = None;
+                }
                 self.last_tool_point = None;
             }
             let line = Segment::Line {
@@ -482,6 +486,7 @@ impl Channel<'_> {
             let end = place.wcs_end.clone();
             self.add_element_figures(&place, &event, place.length, place.time, &line, &end);
             super::send(&mut *self.sink, &mut self.output_error, &event);
+            self.path_event = Some(event);
             return;
         };
         let mut wcs_start = place.wcs_start.clone();
@@ -507,7 +512,7 @@ impl Channel<'_> {
             place.set_plane(&mut wcs, planar::add(end, end_tip));
             tool_wcs = Some(wcs);
         }
-        let mut event = programmed;
+        let mut event = self.event_like(&programmed);
         self.fill_element_event(
             &mut event,
             &place,
@@ -573,6 +578,8 @@ impl Channel<'_> {
         self.add_element_figures(&place, &event, length, time, &traversed, &end_point);
         self.last_tool_point = tool_wcs;
         super::send(&mut *self.sink, &mut self.output_error, &event);
+        let source = event.source.clone();
+        self.path_event = Some(event);
         if tool.as_ref().is_some_and(|t| t.left_out) {
             let code = codes::run::COMPENSATION_BLOCK_LEFT_OUT;
             self.count(code.level());
@@ -581,9 +588,29 @@ impl Channel<'_> {
                     code,
                     "`CDON` leaves this block out: its equidistant would run backwards between its neighbours'; the tool centre stands still",
                 )),
-                source: event.source.clone(),
+                source,
             };
             super::send(&mut *self.sink, &mut self.output_error, &warning);
+        }
+    }
+
+    /// An event to fill for an element of `programmed`: the stage's
+    /// reused one made equal to it (no allocation once its maps have
+    /// their size), or a copy the first time. Its tool fields are left
+    /// from before, for the caller to refill or clear.
+    fn event_like(&mut self, programmed: &Event) -> Event {
+        match self.path_event.take() {
+            Some(mut event) => {
+                if let (EventKind::Motion(target), EventKind::Motion(source)) =
+                    (&mut event.kind, &programmed.kind)
+                {
+                    target.copy_from(source);
+                    event.source.clone_from(&programmed.source);
+                    return event;
+                }
+                programmed.clone()
+            }
+            None => programmed.clone(),
         }
     }
 

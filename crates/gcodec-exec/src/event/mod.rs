@@ -258,6 +258,28 @@ pub struct MotionEvent {
     pub tool: Option<Box<ToolCentre>>,
 }
 
+impl MotionEvent {
+    /// Makes this event the programmed one `other`, reusing its storage;
+    /// the tool fields are left as they are, for the caller to set.
+    pub fn copy_from(&mut self, other: &MotionEvent) {
+        self.motion = other.motion;
+        self.from.copy_from(&other.from);
+        self.to.copy_from(&other.to);
+        self.to_machine.copy_from(&other.to_machine);
+        match (&mut self.centre, &other.centre) {
+            (Some(centre), Some(source)) => centre.copy_from(source),
+            (centre, source) => centre.clone_from(source),
+        }
+        self.radius = other.radius;
+        self.turns = other.turns;
+        self.feed = other.feed;
+        self.feed_mode.clone_from(&other.feed_mode);
+        self.plane = other.plane;
+        self.work_offset = other.work_offset;
+        self.inserted = other.inserted;
+    }
+}
+
 /// Where the tool centre goes under tool radius compensation.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ToolCentre {
