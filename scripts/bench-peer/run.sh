@@ -187,7 +187,10 @@ done
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 
 echo
-echo "$("$gcodec" --version 2>/dev/null | head -1) ($(git -C "$repo" rev-parse --short HEAD)), peer $("$peer" --version | head -1)"
+# A given binary may not be the checkout's build: say which it is.
+built="built from $(git -C "$repo" rev-parse --short HEAD)"
+[[ -n ${GCODEC:-} ]] && built="$gcodec, the checkout at $(git -C "$repo" rev-parse --short HEAD)"
+echo "$("$gcodec" --version 2>/dev/null | head -1) ($built), peer $("$peer" --version | head -1)"
 echo "$(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, $rounds rounds, load average (1/5/15 min) $load_before before, $load_after after"
 echo
 python3 "$here/table.py" "$results" "$examples_tsv" "${#kept[@]}" "$excluded"
