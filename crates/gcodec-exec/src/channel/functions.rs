@@ -367,11 +367,7 @@ impl Channel<'_> {
             }
             NamedAddress::Offn | NamedAddress::Rndm | NamedAddress::Disc => {
                 let value = eval::eval_real(&self.env(), &address.value)?;
-                let length = if self.state.inch() {
-                    value * 25.4
-                } else {
-                    value
-                };
+                let length = self.state.length_in_mm(value);
                 let contour = &mut self.state.contour;
                 match address.address {
                     NamedAddress::Offn => contour.offn = length,

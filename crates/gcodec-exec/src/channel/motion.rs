@@ -260,10 +260,13 @@ impl Channel<'_> {
         self.fill_motion_event(program, instruction, kind, arc.as_ref(), arc_turns);
         self.block.had_motion = true;
         let corner = self.corner_element(instruction)?;
+        // The channel is at the programmed end point, held or not.
+        self.state.machine.copy_from_slice(&self.motion.machine);
+        self.state.note_traversed_frame();
         if self.path_engaged(corner) {
             // Compensation or a corner element: the stage holds the
             // motion until the next element makes it final.
-            let held = self.hold_motion(
+            return self.hold_motion(
                 program,
                 instruction,
                 start,
@@ -273,32 +276,16 @@ impl Channel<'_> {
                 time,
                 corner,
             );
-            self.state.machine.copy_from_slice(&self.motion.machine);
-            self.state.note_traversed_frame();
-            return held;
         }
-        // Figures.
-        let figures = self.figures();
-        let bbox = match &arc {
+        let extent = match &arc {
             Some(a) => a.bounding_box(),
             // The end point only: a start point is the previous end, or a
             // position from before a frame or offset change, which is no
             // point of the part in this frame.
             None => BoundingBox::point(end),
         };
-        figures.bounding_box = Some(match figures.bounding_box {
-            Some(b) => b.union(&bbox),
-            None => bbox,
-        });
-        if kind == MotionKind::Rapid {
-            figures.rapid_length += length;
-            figures.rapid_time += time;
-        } else {
-            figures.feed_length += length;
-            figures.feed_time += time;
-        }
-        self.state.machine.copy_from_slice(&self.motion.machine);
-        self.state.note_traversed_frame();
+        self.figures()
+            .add_motion(kind == MotionKind::Rapid, length, time, extent);
         super::send(&mut *self.sink, &mut self.output_error, &self.motion.event);
         Ok(())
     }
@@ -334,11 +321,7 @@ impl Channel<'_> {
                         }
                     }
                     event.centre = Some(centre);
-                    event.radius = Some(if state.inch() {
-                        a.radius / 25.4
-                    } else {
-                        a.radius
-                    });
+                    event.radius = Some(state.length_as_programmed(a.radius));
                     event.turns = arc_turns;
                 }
                 None => {

@@ -396,6 +396,20 @@ impl MachineState {
         v
     }
 
+    /// A length in mm as the program writes it: inches under G70/G700.
+    pub fn length_as_programmed(&self, mm: f64) -> f64 {
+        if self.inch() { mm / 25.4 } else { mm }
+    }
+
+    /// A length as the program writes it, in mm.
+    pub fn length_in_mm(&self, programmed: f64) -> f64 {
+        if self.inch() {
+            programmed * 25.4
+        } else {
+            programmed
+        }
+    }
+
     /// The spindle an address extension names: `None` or 0 the master
     /// spindle, another number one of the profile's spindles. The table is
     /// the profile's and never grows: a spindle the machine does not have

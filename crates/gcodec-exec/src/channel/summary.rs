@@ -53,6 +53,24 @@ pub struct RunSummary {
     no_tool_slot: Option<usize>,
 }
 
+impl ToolSummary {
+    /// Adds a traversing motion: its length (mm) and time (s) at rapid
+    /// traverse or at feed, and its extent.
+    pub(super) fn add_motion(&mut self, rapid: bool, length: f64, time: f64, extent: BoundingBox) {
+        self.bounding_box = Some(match self.bounding_box {
+            Some(b) => b.union(&extent),
+            None => extent,
+        });
+        if rapid {
+            self.rapid_length += length;
+            self.rapid_time += time;
+        } else {
+            self.feed_length += length;
+            self.feed_time += time;
+        }
+    }
+}
+
 impl RunSummary {
     /// The figures per tool, in the order first used.
     pub fn tools(&self) -> &[ToolSummary] {

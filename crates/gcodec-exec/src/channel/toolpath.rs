@@ -7,17 +7,17 @@ use std::sync::Arc;
 use gcodec_ail::{Instruction, Op};
 use gcodec_lang::MotionKind;
 use gcodec_lang::addresses::TransitionKind;
-use gcodec_source::codes;
+use gcodec_source::{Code, codes};
 
 use super::Channel;
 use super::motion::fill_map;
 use crate::eval;
-use crate::event::{BlockRow, Event, EventKind, InsertedElement, ToolArc, ToolCentre};
+use crate::event::{BlockRow, Event, EventKind, EventSource, InsertedElement, ToolArc, ToolCentre};
 use crate::frames::Frame;
 use crate::geometry::{self, BoundingBox, Plane, Point3};
 use crate::path::planar::{self, P2, Segment};
 use crate::path::{
-    Approach, Compensation, CornerElement, CornerMode, Element, Held, PathError, Side,
+    Approach, Compensation, CornerElement, CornerMode, Element, Held, PathDiagnostic, Side,
 };
 use crate::program::Program;
 use crate::value::RunError;
@@ -134,9 +134,10 @@ impl Channel<'_> {
             } => details.transition.as_ref(),
             _ => None,
         };
-        let length = |v: f64| if self.state.inch() { v * 25.4 } else { v };
         if let Some(t) = transition {
-            let value = length(eval::eval_real(&self.env(), &t.value)?);
+            let value = self
+                .state
+                .length_in_mm(eval::eval_real(&self.env(), &t.value)?);
             return Ok(Some(match t.kind {
                 TransitionKind::Chamfer => CornerElement::ChamferLength(value),
                 TransitionKind::ChamferLeg => CornerElement::ChamferLeg(value),
@@ -296,11 +297,7 @@ impl Channel<'_> {
             self.block.moved_in_plane = true;
         }
         let compensation = self.compensation();
-        let tip = if compensation.side.is_some() {
-            compensation.tip
-        } else {
-            [0.0, 0.0]
-        };
+        let tip = compensation.tip_in_force();
         let element = Element {
             motion,
             contour: Some(contour),
@@ -404,15 +401,8 @@ impl Channel<'_> {
         // What the end left out, after what it released.
         if finish {
             for warning in std::mem::take(&mut self.path.warnings) {
-                self.count(warning.code.level());
-                let event = Event {
-                    kind: EventKind::Diagnostic(crate::event::DiagnosticEvent::new(
-                        warning.code,
-                        warning.message,
-                    )),
-                    source: self.last_source(),
-                };
-                super::send(&mut *self.sink, &mut self.output_error, &event);
+                let source = self.last_source();
+                self.send_diagnostic(warning.code, warning.message, source);
             }
         }
         self.path_ready = ready;
@@ -497,11 +487,7 @@ impl Channel<'_> {
         }
         // The retraction ends uncompensated: the tip on the programmed
         // point.
-        let end_tip = if compensation.side.is_some() {
-            tip
-        } else {
-            [0.0, 0.0]
-        };
+        let end_tip = compensation.tip_in_force();
         let traversed = match tool.as_ref() {
             Some(t) => tool_path(&contour, t, offset).translated(end_tip),
             None => contour,
@@ -535,29 +521,12 @@ impl Channel<'_> {
             && let EventKind::Motion(m) = &mut event.kind
             && let Some(tool_centre) = m.tool.as_mut()
         {
-            let state = &self.state;
             let mut map = crate::event::AxisMap::default();
-            let centre = planar::add(*centre, end_tip);
-            for (k, axis) in place.plane_axes.iter().enumerate() {
-                if let Some(i) = axis {
-                    map.insert(
-                        state.axes[*i].name.clone(),
-                        state.as_programmed(*i, centre[k]),
-                    );
-                }
-            }
+            place.fill_plane_map(&mut map, &self.state, planar::add(*centre, end_tip));
             tool_centre.tool_arc = Some(ToolArc {
-                motion: if *sweep >= 0.0 {
-                    MotionKind::ArcCcw
-                } else {
-                    MotionKind::ArcCw
-                },
+                motion: arc_kind(*sweep),
                 centre: map,
-                radius: if state.inch() {
-                    arc_radius / 25.4
-                } else {
-                    *arc_radius
-                },
+                radius: self.state.length_as_programmed(*arc_radius),
             });
         }
         // Off the plane (an infeed with the element), as programmed.
@@ -581,17 +550,23 @@ impl Channel<'_> {
         let source = event.source.clone();
         self.path_event = Some(event);
         if tool.as_ref().is_some_and(|t| t.left_out) {
-            let code = codes::run::COMPENSATION_BLOCK_LEFT_OUT;
-            self.count(code.level());
-            let warning = Event {
-                kind: EventKind::Diagnostic(crate::event::DiagnosticEvent::new(
-                    code,
-                    "`CDON` leaves this block out: its equidistant would run backwards between its neighbours'; the tool centre stands still",
-                )),
+            self.send_diagnostic(
+                codes::run::COMPENSATION_BLOCK_LEFT_OUT,
+                "`CDON` leaves this block out: its equidistant would run backwards between its neighbours'; the tool centre stands still".into(),
                 source,
-            };
-            super::send(&mut *self.sink, &mut self.output_error, &warning);
+            );
         }
+    }
+
+    /// Sends a diagnostic at its own level from `source`, counted, past
+    /// the stage (what it is about is released already).
+    fn send_diagnostic(&mut self, code: &'static Code, message: String, source: EventSource) {
+        self.count(code.level());
+        let event = Event {
+            kind: EventKind::Diagnostic(crate::event::DiagnosticEvent::new(code, message)),
+            source,
+        };
+        super::send(&mut *self.sink, &mut self.output_error, &event);
     }
 
     /// An event to fill for an element of `programmed`: the stage's
@@ -635,7 +610,6 @@ impl Channel<'_> {
         fill_map(&mut m.to, state, to, true);
         fill_map(&mut m.to_machine, state, &machine, false);
         m.inserted = inserted;
-        let unit = |v: f64| if state.inch() { v / 25.4 } else { v };
         match (inserted, path) {
             (
                 Some(InsertedElement::Rounding | InsertedElement::TransitionCircle),
@@ -646,23 +620,11 @@ impl Channel<'_> {
                     ..
                 },
             ) => {
-                m.motion = if *sweep >= 0.0 {
-                    MotionKind::ArcCcw
-                } else {
-                    MotionKind::ArcCw
-                };
+                m.motion = arc_kind(*sweep);
                 let mut map = m.centre.take().unwrap_or_default();
-                map.clear();
-                for (k, axis) in place.plane_axes.iter().enumerate() {
-                    if let Some(i) = axis {
-                        map.insert(
-                            state.axes[*i].name.clone(),
-                            state.as_programmed(*i, centre[k]),
-                        );
-                    }
-                }
+                place.fill_plane_map(&mut map, state, *centre);
                 m.centre = Some(map);
-                m.radius = Some(unit(*radius));
+                m.radius = Some(state.length_as_programmed(*radius));
                 m.turns = 0;
             }
             (
@@ -710,7 +672,7 @@ impl Channel<'_> {
         centre.tool_arc = None;
         fill_map(&mut centre.tool_to, state, tool_wcs, true);
         fill_map(&mut centre.tool_to_machine, state, &machine, false);
-        centre.tool_radius = if state.inch() { radius / 25.4 } else { radius };
+        centre.tool_radius = state.length_as_programmed(radius);
         m.tool = Some(centre);
     }
 
@@ -725,29 +687,20 @@ impl Channel<'_> {
         end: &[f64],
     ) {
         let rapid = matches!(&event.kind, EventKind::Motion(m) if m.motion == MotionKind::Rapid);
-        let mut bbox = BoundingBox::point(self.state.geometry_point(end));
+        let base = self.state.geometry_point(end);
+        let mut extent = BoundingBox::point(base);
         if !path.is_point() {
             let (h, v, _) = self.state.plane().axes();
-            let base = self.state.geometry_point(end);
             for p in extent_points(path) {
                 let mut q = base;
                 q[h] = p[0];
                 q[v] = p[1];
-                bbox.include(q);
+                extent.include(q);
             }
         }
-        let figures = self.summary.at(place.slot);
-        figures.bounding_box = Some(match figures.bounding_box {
-            Some(b) => b.union(&bbox),
-            None => bbox,
-        });
-        if rapid {
-            figures.rapid_length += length;
-            figures.rapid_time += time;
-        } else {
-            figures.feed_length += length;
-            figures.feed_time += time;
-        }
+        self.summary
+            .at(place.slot)
+            .add_motion(rapid, length, time, extent);
     }
 
     /// Holds `event` if the stage holds motions before it; else sends it.
@@ -781,11 +734,22 @@ impl Channel<'_> {
     }
 }
 
-fn path_error(error: PathError) -> RunError {
+fn path_error(error: PathDiagnostic) -> RunError {
     RunError::new(error.code, error.message)
 }
 
 impl Placement {
+    /// Refills `map` with plane point `p` (mm) on the plane's two axes, as
+    /// the program writes them.
+    fn fill_plane_map(&self, map: &mut crate::event::AxisMap, state: &super::MachineState, p: P2) {
+        map.clear();
+        for (k, axis) in self.plane_axes.iter().enumerate() {
+            if let Some(i) = axis {
+                map.insert(state.axes[*i].name.clone(), state.as_programmed(*i, p[k]));
+            }
+        }
+    }
+
     /// Puts plane point `p` into the plane axes of `wcs`.
     fn set_plane(&self, wcs: &mut [f64], p: P2) {
         for (k, axis) in self.plane_axes.iter().enumerate() {
@@ -846,6 +810,16 @@ fn tool_path(contour: &Segment, track: &crate::path::ToolTrack, offset: f64) -> 
     match contour.offset(offset) {
         Some(equidistant) => equidistant.with_ends(start, end),
         None => Segment::Line { start, end },
+    }
+}
+
+/// The motion kind of a circle of signed `sweep` (positive
+/// counter-clockwise).
+fn arc_kind(sweep: f64) -> MotionKind {
+    if sweep >= 0.0 {
+        MotionKind::ArcCcw
+    } else {
+        MotionKind::ArcCw
     }
 }
 

@@ -18,7 +18,7 @@ use super::planar::{
     self, EPS, P2, Segment, add, arc_between, carrier_intersections, cross, dot, left, nearest,
     scale,
 };
-use super::{Approach, Element, Held, PathError, PathStage, Piece, ToolTrack};
+use super::{Approach, Element, Held, PathDiagnostic, PathStage, Piece, ToolTrack};
 use crate::event::InsertedElement;
 use gcodec_source::codes;
 
@@ -60,8 +60,8 @@ pub fn normal_start(contour: &Segment, offset: f64) -> P2 {
     }
 }
 
-fn selection_error(what: &str) -> PathError {
-    PathError {
+fn selection_error(what: &str) -> PathDiagnostic {
+    PathDiagnostic {
         code: codes::run::COMPENSATION_SELECTION,
         message: format!(
             "tool radius compensation is {what} only in a straight block (`G0`, `G1`), not in a circle"
@@ -69,8 +69,8 @@ fn selection_error(what: &str) -> PathError {
     }
 }
 
-fn collision(message: impl Into<String>) -> PathError {
-    PathError {
+fn collision(message: impl Into<String>) -> PathDiagnostic {
+    PathDiagnostic {
         code: codes::run::COMPENSATION_COLLISION,
         message: message.into(),
     }
@@ -78,7 +78,7 @@ fn collision(message: impl Into<String>) -> PathError {
 
 /// An element in the plane after one without compensation: it selects
 /// compensation, or there is none.
-pub fn start<M>(element: &mut Element<M>) -> Result<(), PathError> {
+pub fn start<M>(element: &mut Element<M>) -> Result<(), PathDiagnostic> {
     if element.compensation.side.is_none() {
         return Ok(());
     }
@@ -102,7 +102,7 @@ pub fn join<M: Clone, O>(
     stage: &mut PathStage<M, O>,
     lead: usize,
     element: &mut Element<M>,
-) -> Result<(), PathError> {
+) -> Result<(), PathDiagnostic> {
     let Held::Element(q) = &mut stage.held[lead] else {
         return Ok(());
     };
@@ -272,7 +272,7 @@ fn join_leaving_out<M: Clone, O>(
     offset: f64,
     mode: CornerMode,
     detect: bool,
-) -> Result<(usize, P2, P2, Vec<Piece>), PathError> {
+) -> Result<(usize, P2, P2, Vec<Piece>), PathDiagnostic> {
     let mut at = lead;
     let mut left_out = 0;
     loop {
@@ -334,7 +334,7 @@ fn join_leaving_out<M: Clone, O>(
 enum CornerFailure {
     /// The leading element's equidistant would run backwards to it.
     LeadReversed,
-    Alarm(PathError),
+    Alarm(PathDiagnostic),
 }
 
 /// The corner between `a` (its tool path starting at `a_start`) and `b`

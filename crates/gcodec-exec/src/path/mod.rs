@@ -66,6 +66,17 @@ impl Compensation {
         tip: [0.0, 0.0],
     };
 
+    /// Where the tool's reference point lies from the centre of its
+    /// cutting edge while compensation is on (`tip`); zero under `G40`,
+    /// where the reference point is on the programmed point.
+    pub fn tip_in_force(&self) -> P2 {
+        if self.side.is_some() {
+            self.tip
+        } else {
+            [0.0, 0.0]
+        }
+    }
+
     /// The signed offset: positive to the left of the contour.
     pub fn offset(&self) -> f64 {
         match self.side {
@@ -152,16 +163,11 @@ pub enum Held<M, O> {
     Output(O),
 }
 
-/// Why the compensation cannot follow the contour: the control's alarm.
+/// What the stage reports: an alarm it stops with (the compensation
+/// cannot follow the contour) or a warning of what it left out or
+/// changed; the code's level says which.
 #[derive(Clone, Debug, PartialEq)]
-pub struct PathError {
-    pub code: &'static Code,
-    pub message: String,
-}
-
-/// Something the stage left out or changed, for a warning.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PathWarning {
+pub struct PathDiagnostic {
     pub code: &'static Code,
     pub message: String,
 }
@@ -178,7 +184,7 @@ pub struct PathStage<M, O> {
     /// detection looks back over, and holds.
     pub(crate) max_check_blocks: u32,
     /// Warnings to report, taken by the channel.
-    pub warnings: Vec<PathWarning>,
+    pub warnings: Vec<PathDiagnostic>,
 }
 
 impl<M: Clone, O> PathStage<M, O> {
@@ -238,7 +244,7 @@ impl<M: Clone, O> PathStage<M, O> {
     pub fn complete_pending(
         &mut self,
         patch: impl FnOnce(&mut Element<M>),
-    ) -> Result<(), PathError> {
+    ) -> Result<(), PathDiagnostic> {
         let Some(at) = self
             .held
             .iter()
@@ -270,7 +276,7 @@ impl<M: Clone, O> PathStage<M, O> {
     }
 
     /// Takes the next motion of the program.
-    pub fn push(&mut self, mut element: Element<M>) -> Result<(), PathError> {
+    pub fn push(&mut self, mut element: Element<M>) -> Result<(), PathDiagnostic> {
         let Some(contour) = element.contour else {
             return self.push_without_plane_motion(element);
         };
@@ -309,7 +315,7 @@ impl<M: Clone, O> PathStage<M, O> {
         &mut self,
         previous: Option<usize>,
         element: &mut Element<M>,
-    ) -> Result<(), PathError> {
+    ) -> Result<(), PathDiagnostic> {
         match previous {
             Some(p) => compensation::join(self, p, element),
             None => compensation::start(element),
@@ -335,13 +341,13 @@ impl<M: Clone, O> PathStage<M, O> {
     /// A motion with no extent in the plane: while compensation is on it
     /// keeps the tool where the last element ends; a corner element
     /// waiting for it is left out.
-    fn push_without_plane_motion(&mut self, mut element: Element<M>) -> Result<(), PathError> {
+    fn push_without_plane_motion(&mut self, mut element: Element<M>) -> Result<(), PathDiagnostic> {
         element.corner = None;
         if let Some(p) = self.last_plane_element()
             && let Held::Element(lead) = &mut self.held[p]
             && lead.corner.take().is_some()
         {
-            self.warnings.push(PathWarning {
+            self.warnings.push(PathDiagnostic {
                 code: gcodec_source::codes::run::CORNER_ELEMENT_LEFT_OUT,
                 message: "the chamfer or rounding is left out: the next motion does not move in the plane".into(),
             });
@@ -396,7 +402,7 @@ impl<M: Clone, O> PathStage<M, O> {
         let (a, b) = (lead_element.contour?, leave.contour?);
         let resolved = transition::resolve(&a, &b, corner)?;
         if resolved.reduced {
-            self.warnings.push(PathWarning {
+            self.warnings.push(PathDiagnostic {
                 code: gcodec_source::codes::run::CORNER_ELEMENT_REDUCED,
                 message: "the chamfer or rounding is reduced: an element at the corner is too short for it".into(),
             });
@@ -430,7 +436,7 @@ impl<M: Clone, O> PathStage<M, O> {
 
     /// The end of a block: counts the blocks without motion in the plane
     /// while compensation waits for the next element.
-    pub fn block_ended(&mut self, moved_in_plane: bool) -> Result<(), PathError> {
+    pub fn block_ended(&mut self, moved_in_plane: bool) -> Result<(), PathDiagnostic> {
         if moved_in_plane {
             return Ok(());
         }
@@ -440,7 +446,7 @@ impl<M: Clone, O> PathStage<M, O> {
         self.dummy_blocks += 1;
         if self.dummy_blocks > self.max_dummy_blocks {
             self.dummy_blocks = 0;
-            return Err(PathError {
+            return Err(PathDiagnostic {
                 code: gcodec_source::codes::run::COMPENSATION_DUMMY_BLOCKS,
                 message: format!(
                     "more than {} blocks without motion in the plane while tool radius compensation is on (MD20250 CUTCOM_MAXNUM_DUMMY_BLOCKS)",
@@ -496,13 +502,13 @@ impl<M: Clone, O> PathStage<M, O> {
         for held in &mut self.held {
             let Held::Element(e) = held else { continue };
             if std::mem::take(&mut e.pending) {
-                self.warnings.push(PathWarning {
+                self.warnings.push(PathDiagnostic {
                     code: gcodec_source::codes::run::CONTOUR_ANGLE,
                     message: "the contour definition begun by `ANG=` without an end point has no block that ends it (`X… Y… ANG=…`)".into(),
                 });
             }
             if e.corner.take().is_some() {
-                self.warnings.push(PathWarning {
+                self.warnings.push(PathDiagnostic {
                     code: gcodec_source::codes::run::CORNER_ELEMENT_LEFT_OUT,
                     message: "the chamfer or rounding is left out: no motion in the plane follows"
                         .into(),
