@@ -1,5 +1,5 @@
 //! `gcodec run`: runs a program on the machine a profile describes and
-//! streams its events (jsonl, a text trace, or one CSV row per block).
+//! streams its events (jsonl, a text trace, or CSV rows of the state).
 //! Its options and setup ([`RunInputs`], [`prepare`], [`run_events`],
 //! [`conclude`]) are every running command's (`plot` too).
 
@@ -10,7 +10,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::ValueEnum;
 use gcodec_driver::event::{
-    CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
+    CsvRows, CsvWriter, Event, EventKind, EventSink, JsonlSink, ProgramEndReason, TextSink,
 };
 use gcodec_driver::{BlockObserver, LoadedFiles, RunOutcome, RunReport, RunSetup, run_main};
 use gcodec_source::{SourceFile, escape_controls};
@@ -30,9 +30,29 @@ pub enum RunFormat {
     Jsonl,
     /// A readable trace, one line per event.
     Text,
-    /// One row per executed block: positions, tool, feed, spindle, the
-    /// main modal groups.
+    /// A row per block that moves or changes the state (positions, tool,
+    /// feed, spindle, the main modal groups), and for the last block.
     Csv,
+}
+
+/// Which blocks `--format csv` writes a row for.
+#[derive(Clone, Copy, Debug, Default, ValueEnum)]
+pub enum CsvRowsOption {
+    /// A block with a motion or after which a column shows something
+    /// new, and the last block; the `blocks` column counts all of them.
+    #[default]
+    Changes,
+    /// Every executed block, `WHILE` and `ENDWHILE` included.
+    EveryBlock,
+}
+
+impl From<CsvRowsOption> for CsvRows {
+    fn from(option: CsvRowsOption) -> Self {
+        match option {
+            CsvRowsOption::Changes => CsvRows::Changes,
+            CsvRowsOption::EveryBlock => CsvRows::EveryBlock,
+        }
+    }
 }
 
 /// The options of `gcodec run`.
@@ -43,6 +63,9 @@ pub struct RunArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = RunFormat::Jsonl)]
     pub format: RunFormat,
+    /// Which blocks get a row with `--format csv`.
+    #[arg(long, value_enum, value_name = "ROWS", default_value_t = CsvRowsOption::Changes)]
+    pub csv_rows: CsvRowsOption,
 }
 
 /// What a command that runs a program (`run`, `plot`) runs it with: the
@@ -307,7 +330,10 @@ fn run_with(args: &RunArgs, reporter: &Reporter) -> u8 {
         RunFormat::Jsonl => (Box::new(JsonlSink::new(out)), None),
         RunFormat::Text => (Box::new(TextSink::new(out)), None),
         RunFormat::Csv => match CsvWriter::for_profile(out, &prepared.setup.profile) {
-            Ok(rows) => (Box::new(Discard) as Box<dyn EventSink>, Some(rows)),
+            Ok(rows) => (
+                Box::new(Discard) as Box<dyn EventSink>,
+                Some(rows.with_rows(args.csv_rows.into())),
+            ),
             Err(e) => return after_output(EXIT_CLEAN, Err(e)),
         },
     };

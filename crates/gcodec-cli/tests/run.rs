@@ -67,23 +67,42 @@ fn text_trace_ends_with_the_summary() {
 }
 
 #[test]
-fn csv_has_a_header_and_a_row_per_block() {
-    let out = gcodec([
-        "run".as_ref(),
-        example("pocket_mill.mpf").as_os_str(),
-        "--format".as_ref(),
-        "csv".as_ref(),
-    ]);
-    assert_eq!(code(&out), EXIT_CLEAN);
-    let text = stdout(&out);
-    let mut lines = text.lines();
+fn csv_has_a_row_per_change_or_per_block_on_request() {
+    let csv = |rows: &str| {
+        let out = gcodec([
+            "run".as_ref(),
+            example("pocket_mill.mpf").as_os_str(),
+            "--format".as_ref(),
+            "csv".as_ref(),
+            "--csv-rows".as_ref(),
+            rows.as_ref(),
+        ]);
+        assert_eq!(code(&out), EXIT_CLEAN);
+        stdout(&out)
+    };
+    let column = |line: &str, index: usize| line.split(',').nth(index).unwrap_or("").to_owned();
+    let changes = csv("changes");
+    let mut lines = changes.lines();
     assert!(
         lines
             .next()
             .expect("header")
-            .starts_with("block,file,line,level,X,Y,Z,tool")
+            .starts_with("block,file,line,level,blocks,X,Y,Z,tool")
     );
-    assert_eq!(lines.count(), 81);
+    let rows: Vec<&str> = lines.collect();
+    // The pocket's WHILE loop, its R1 arithmetic and the DEFs change
+    // nothing a column shows: no rows of theirs.
+    for number in ["20", "100", "110", "200"] {
+        let main_block = |r: &&str| column(r, 0) == number && column(r, 3) == "0";
+        assert!(!rows.iter().any(main_block), "N{number}: {changes}");
+    }
+    // The last block (M30) has its row, and the count of every block.
+    let last = rows.last().expect("rows");
+    assert_eq!(column(last, 4), "81", "{last}");
+    assert_eq!(rows.len(), 46);
+    let every_block = csv("every-block");
+    assert_eq!(every_block.lines().count(), 1 + 81);
+    assert!(every_block.lines().any(|r| column(r, 0) == "200"));
 }
 
 #[test]

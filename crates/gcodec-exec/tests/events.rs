@@ -602,6 +602,8 @@ fn row() -> BlockRow {
         file: Arc::from("part.mpf"),
         line: 7,
         level: 0,
+        blocks: 3,
+        moved: true,
         positions: AxisMap::from([("X", 10.0), ("Y", 5.5), ("Z", 0.1)]),
         tool: Some("T7".into()),
         edge: 1,
@@ -637,6 +639,7 @@ fn csv_has_a_header_and_one_row_per_block() {
     unnumbered.edge = 0;
     unnumbered.spindle = SpindleState::Stopped;
     unnumbered.line = 8;
+    unnumbered.blocks = 4;
     csv.row(&unnumbered).expect("row");
     csv.finish().expect("flushes");
     let text = String::from_utf8(csv.into_inner().expect("flushes")).expect("UTF-8");
@@ -644,12 +647,80 @@ fn csv_has_a_header_and_one_row_per_block() {
     assert_eq!(
         lines,
         [
-            "block,file,line,level,X,Y,Z,A,tool,edge,feed,spindle_speed,spindle,\
+            "block,file,line,level,blocks,X,Y,Z,A,tool,edge,feed,spindle_speed,spindle,\
              motion,plane,radius_compensation,work_offset,path_mode,units,dimensions,feed_mode",
-            "20,part.mpf,7,0,10,5.5,0.1,,T7,1,200,1200,cw,G1,G17,G40,G54,G64,G71,G90,G94",
-            ",part.mpf,8,0,10,5.5,0.1,,\"DRILL,10 \"\"long\"\"\",0,200,1200,stopped,\
+            "20,part.mpf,7,0,3,10,5.5,0.1,,T7,1,200,1200,cw,G1,G17,G40,G54,G64,G71,G90,G94",
+            ",part.mpf,8,0,4,10,5.5,0.1,,\"DRILL,10 \"\"long\"\"\",0,200,1200,stopped,\
              G1,G17,G40,G54,G64,G71,G90,G94",
         ]
+    );
+}
+
+/// The rows of `blocks` as `CsvRows` selects them, by line number.
+fn csv_lines_written(rows: CsvRows, blocks: &[BlockRow]) -> Vec<u32> {
+    let mut csv = CsvWriter::new(Vec::new(), [Cow::Borrowed("X")])
+        .expect("header")
+        .with_rows(rows);
+    for block in blocks {
+        csv.row(block).expect("row");
+    }
+    let text = String::from_utf8(csv.into_inner().expect("flushes")).expect("UTF-8");
+    text.lines()
+        .skip(1)
+        .map(|l| {
+            l.split(',')
+                .nth(2)
+                .and_then(|n| n.parse().ok())
+                .expect("line")
+        })
+        .collect()
+}
+
+#[test]
+fn csv_rows_are_written_for_motions_changes_and_the_last_block() {
+    // A loop's blocks: line 1 moves, 2 computes, 3 and 4 are its WHILE
+    // and ENDWHILE, 5 starts the spindle, 6 computes, 7 computes and is
+    // the last.
+    let block = |line: u32, moved: bool| BlockRow {
+        line,
+        blocks: u64::from(line),
+        moved,
+        ..row()
+    };
+    let mut spindle_on = block(5, false);
+    spindle_on.spindle = SpindleState::Ccw;
+    let mut after = block(6, false);
+    after.spindle = SpindleState::Ccw;
+    let mut last = block(7, false);
+    last.spindle = SpindleState::Ccw;
+    let blocks = [
+        block(1, true),
+        block(2, false),
+        block(3, false),
+        block(4, false),
+        spindle_on,
+        after,
+        last,
+    ];
+    assert_eq!(csv_lines_written(CsvRows::Changes, &blocks), [1, 5, 7]);
+    assert_eq!(
+        csv_lines_written(CsvRows::EveryBlock, &blocks),
+        [1, 2, 3, 4, 5, 6, 7]
+    );
+    // The first block has no row before it; a run whose last block is
+    // written writes it once.
+    assert_eq!(
+        csv_lines_written(CsvRows::Changes, &[block(1, false), block(2, true)]),
+        [1, 2]
+    );
+    // A position written otherwise (`-0` against `0`) is a change.
+    let mut negative_zero = block(2, false);
+    negative_zero.positions = AxisMap::from([("X", -0.0)]);
+    let mut zero = block(1, false);
+    zero.positions = AxisMap::from([("X", 0.0)]);
+    assert_eq!(
+        csv_lines_written(CsvRows::Changes, &[zero, negative_zero, block(3, true)]),
+        [1, 2, 3]
     );
 }
 
@@ -882,7 +953,7 @@ fn csv_numbers_are_written_exactly() {
     }
     let text = String::from_utf8(csv.into_inner().expect("flushes")).expect("UTF-8");
     for (line, value) in text.lines().skip(1).zip(&numbers) {
-        let cell = line.split(',').nth(4).unwrap_or("?");
+        let cell = line.split(',').nth(5).unwrap_or("?");
         assert_eq!(cell, value.to_string(), "{line}");
         if value.is_finite() {
             assert_eq!(cell.parse::<f64>().ok(), Some(*value));

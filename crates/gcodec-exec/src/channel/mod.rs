@@ -130,7 +130,8 @@ pub trait BlockObserver {
     fn block(&mut self, row: &BlockRow) -> io::Result<()>;
 }
 
-/// The CSV trace: a row per block.
+/// The CSV trace: the writer takes every block's row and writes those
+/// [`crate::event::CsvRows`] selects.
 impl<W: io::Write> BlockObserver for crate::event::CsvWriter<W> {
     fn block(&mut self, row: &BlockRow) -> io::Result<()> {
         self.row(row)
@@ -693,6 +694,8 @@ impl<'r> Channel<'r> {
         }
         row.line = self.block.line;
         row.level = self.block.level;
+        row.blocks = self.summary.blocks;
+        row.moved = self.block.had_motion;
         self.motion.workpiece_position(state);
         motion::fill_map(&mut row.positions, state, &self.motion.wcs, true);
         match (&mut row.tool, &state.active_tool) {

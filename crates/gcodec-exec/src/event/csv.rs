@@ -1,5 +1,6 @@
 //! `--format csv`: [`BlockRow`], the state after one executed block, and
-//! [`CsvWriter`], which writes one row per block.
+//! [`CsvWriter`], which writes a row for each block that moves or changes
+//! what the columns show ([`CsvRows`]).
 
 use std::borrow::Cow;
 use std::fmt;
@@ -53,6 +54,20 @@ pub const MAIN_MODAL_GROUPS: [ModalColumn; 8] = [
     },
 ];
 
+/// Which blocks get a CSV row.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CsvRows {
+    /// A block with a motion, a block after which a state column (a
+    /// position, the tool, the edge, the feed, the spindle, a modal group)
+    /// shows something else than the last row, and the run's last block.
+    /// A loop's `WHILE` or a block that only computes writes no row; the
+    /// `blocks` column says how many blocks ran.
+    #[default]
+    Changes,
+    /// Every executed block: a trace of the control flow.
+    EveryBlock,
+}
+
 /// The state after one executed block: one row of `--format csv`. The
 /// executor keeps one row and refills it after every block (the maps and
 /// strings keep their storage).
@@ -64,6 +79,11 @@ pub struct BlockRow {
     pub line: u32,
     /// The program level (0: main program).
     pub level: u32,
+    /// The blocks executed so far, this one included.
+    pub blocks: u64,
+    /// Whether the block had a motion (even one that ends where it
+    /// started): such a block always gets a row.
+    pub moved: bool,
     /// The position at the block's end, in workpiece coordinates. Axes the
     /// writer's header names and the map lacks are empty cells.
     pub positions: AxisMap,
@@ -82,6 +102,27 @@ pub struct BlockRow {
 }
 
 impl BlockRow {
+    /// Whether the state columns show the same as `other`'s: numbers bit
+    /// for bit (`-0` is written otherwise than `0`).
+    fn shows_same_state(&self, other: &BlockRow) -> bool {
+        let same_number = |a: f64, b: f64| a.to_bits() == b.to_bits();
+        self.edge == other.edge
+            && same_number(self.feed, other.feed)
+            && same_number(self.spindle_speed, other.spindle_speed)
+            && self.spindle == other.spindle
+            && self.tool == other.tool
+            && self.modal == other.modal
+            && self.positions.entries.len() == other.positions.entries.len()
+            && self
+                .positions
+                .entries
+                .iter()
+                .zip(&other.positions.entries)
+                .all(|((axis, value), (other_axis, other_value))| {
+                    same_number(*value, *other_value) && axis == other_axis
+                })
+    }
+
     /// Sets the command of `group` if the CSV shows that group; false
     /// otherwise.
     pub fn set_modal(&mut self, group: u8, code: Cow<'static, str>) -> bool {
@@ -95,16 +136,26 @@ impl BlockRow {
     }
 }
 
-/// `--format csv`: a header, then one row per executed block.
+/// `--format csv`: a header, then a row for each block [`CsvRows`]
+/// selects.
 ///
-/// Columns: `block,file,line,level`, one per axis (the order given to
-/// [`CsvWriter::new`]), `tool,edge,feed,spindle_speed,spindle`, then the
+/// Columns: `block,file,line,level,blocks`, one per axis (the order given
+/// to [`CsvWriter::new`]), `tool,edge,feed,spindle_speed,spindle`, then the
 /// [`MAIN_MODAL_GROUPS`]. Numbers are written exactly (the shortest text
 /// that reads back as the same value); fields holding a comma, a quote or
-/// a line break are quoted (RFC 4180).
+/// a line break are quoted (RFC 4180). [`CsvWriter::finish`] writes the
+/// last block's row if it was passed over.
 pub struct CsvWriter<W: Write> {
     out: BufWriter<W>,
     axes: Vec<AxisName>,
+    rows: CsvRows,
+    /// The state of the last row written, once one is.
+    written: Option<BlockRow>,
+    /// The last row passed over (its storage reused for the next).
+    passed_over: BlockRow,
+    /// Whether `passed_over` is the last block's: [`CsvWriter::finish`]
+    /// writes it then.
+    last_passed_over: bool,
     /// The row being built, reused.
     line: Vec<u8>,
 }
@@ -115,9 +166,13 @@ impl<W: Write> CsvWriter<W> {
         let mut csv = Self {
             out: BufWriter::with_capacity(1 << 16, writer),
             axes: axes.into_iter().collect(),
+            rows: CsvRows::default(),
+            written: None,
+            passed_over: BlockRow::default(),
+            last_passed_over: false,
             line: Vec::with_capacity(256),
         };
-        csv.out.write_all(b"block,file,line,level")?;
+        csv.out.write_all(b"block,file,line,level,blocks")?;
         for axis in &csv.axes {
             write!(csv.out, ",{}", CsvField(axis))?;
         }
@@ -135,8 +190,35 @@ impl<W: Write> CsvWriter<W> {
         Self::new(writer, axis_names(profile))
     }
 
-    /// Writes one row.
+    /// Which blocks get a row; [`CsvRows::Changes`] unless set.
+    pub fn with_rows(mut self, rows: CsvRows) -> Self {
+        self.rows = rows;
+        self
+    }
+
+    /// Takes the row of the next executed block and writes it if
+    /// [`CsvRows`] selects it.
     pub fn row(&mut self, row: &BlockRow) -> io::Result<()> {
+        if self.rows == CsvRows::Changes {
+            if !row.moved
+                && let Some(written) = &self.written
+                && row.shows_same_state(written)
+            {
+                // Kept in case it is the last block.
+                self.passed_over.clone_from(row);
+                self.last_passed_over = true;
+                return Ok(());
+            }
+            self.last_passed_over = false;
+            match &mut self.written {
+                Some(written) => written.clone_from(row),
+                None => self.written = Some(row.clone()),
+            }
+        }
+        self.write(row)
+    }
+
+    fn write(&mut self, row: &BlockRow) -> io::Result<()> {
         let line = &mut self.line;
         line.clear();
         if let Some(number) = row.block_number {
@@ -148,6 +230,8 @@ impl<W: Write> CsvWriter<W> {
         write_u64(line, u64::from(row.line));
         line.push(b',');
         write_u64(line, u64::from(row.level));
+        line.push(b',');
+        write_u64(line, row.blocks);
         for axis in &self.axes {
             line.push(b',');
             if let Some(value) = row.positions.get(axis) {
@@ -172,13 +256,24 @@ impl<W: Write> CsvWriter<W> {
         self.out.write_all(line)
     }
 
-    /// Flushes.
+    /// Writes the last block's row if it was passed over, and flushes.
     pub fn finish(&mut self) -> io::Result<()> {
+        self.write_passed_over()?;
         self.out.flush()
     }
 
-    /// Flushes and gives the writer back.
-    pub fn into_inner(self) -> io::Result<W> {
+    fn write_passed_over(&mut self) -> io::Result<()> {
+        if !std::mem::take(&mut self.last_passed_over) {
+            return Ok(());
+        }
+        let last = std::mem::take(&mut self.passed_over);
+        self.write(&last)
+    }
+
+    /// Writes the last block's row if it was passed over, flushes, and
+    /// gives the writer back.
+    pub fn into_inner(mut self) -> io::Result<W> {
+        self.write_passed_over()?;
         self.out
             .into_inner()
             .map_err(io::IntoInnerError::into_error)

@@ -54,7 +54,7 @@ use serde::{Deserialize, Serialize};
 pub use crate::geometry::Plane;
 pub use crate::toolchanger::{ToolchangerEdge, ToolchangerEvent};
 pub use axis_map::{AxisMap, AxisName, axis_name, axis_names};
-pub use csv::{BlockRow, CsvWriter, MAIN_MODAL_GROUPS, ModalColumn};
+pub use csv::{BlockRow, CsvRows, CsvWriter, MAIN_MODAL_GROUPS, ModalColumn};
 pub use jsonl::JsonlSink;
 pub use sinks::{CountingSink, EventQueue, VecSink};
 pub use text::{TextSink, write_trace_line};
