@@ -1,6 +1,7 @@
 //! The `gcodec` command. Thin over the library crates: it reads files,
 //! calls a stage, prints the result and renders diagnostics.
 
+mod allocator;
 mod baseline;
 mod check;
 mod commands;
@@ -22,9 +23,10 @@ use crate::exit::{EXIT_CLEAN, EXIT_USAGE};
 /// free. Built without transparent huge pages (the `no_thp` feature): a
 /// fault on a huge page zeroes 2 MiB however little of it is used, which
 /// cost a sixth of a streamed run of the 1,000,000-block program and
-/// doubled its peak memory (docs/performance.md).
+/// doubled its peak memory (docs/performance.md). Alignment is asked for
+/// only where a layout needs it (`allocator.rs`).
 #[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+static ALLOCATOR: allocator::Mimalloc = allocator::Mimalloc;
 
 /// mimalloc's `mi_option_purge_delay` (`mimalloc.h`, the same in v2 and
 /// v3; `libmimalloc-sys` has no constant for it).
