@@ -444,7 +444,9 @@ fn read_chunk_into(
 fn token_room(chunk: &Chunk, reading: Reading) -> usize {
     match reading {
         Reading::Skim => 64,
-        _ => chunk.bytes.len().min(FLUSH_BYTES_BOUND) / 4 + 64,
+        // A line of short words (`G1 X1.5 Y2 F100`) has a token every
+        // three to four bytes; growing the buffer once copies all of it.
+        _ => chunk.bytes.len().min(FLUSH_BYTES_BOUND) / 3 + 64,
     }
 }
 
