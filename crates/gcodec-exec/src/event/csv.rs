@@ -3,7 +3,6 @@
 //! what the columns show ([`CsvRows`]).
 
 use std::borrow::Cow;
-use std::fmt;
 use std::io::{self, BufWriter, Write};
 use std::sync::Arc;
 
@@ -172,16 +171,19 @@ impl<W: Write> CsvWriter<W> {
             last_passed_over: false,
             line: Vec::with_capacity(256),
         };
-        csv.out.write_all(b"block,file,line,level,blocks")?;
+        let header = &mut csv.line;
+        header.extend_from_slice(b"block,file,line,level,blocks");
         for axis in &csv.axes {
-            write!(csv.out, ",{}", CsvField(axis))?;
+            header.push(b',');
+            write_csv_field(header, axis);
         }
-        csv.out
-            .write_all(b",tool,edge,feed,spindle_speed,spindle")?;
+        header.extend_from_slice(b",tool,edge,feed,spindle_speed,spindle");
         for column in &MAIN_MODAL_GROUPS {
-            write!(csv.out, ",{}", column.column)?;
+            header.push(b',');
+            header.extend_from_slice(column.column.as_bytes());
         }
-        csv.out.write_all(b"\n")?;
+        header.push(b'\n');
+        csv.out.write_all(header)?;
         Ok(csv)
     }
 
@@ -289,26 +291,24 @@ fn write_f64_csv(out: &mut Vec<u8>, value: f64) {
     }
 }
 
+/// Writes `field`, quoted when it holds a comma, a quote or a line break
+/// (RFC 4180). Byte by byte rather than through `fmt`: the file name and
+/// eight modal commands are in every row.
 fn write_csv_field(out: &mut Vec<u8>, field: &str) {
-    // Writing into a vector does not fail.
-    let _ = write!(out, "{}", CsvField(field));
-}
-
-/// A CSV field, quoted when it must be.
-struct CsvField<'a>(&'a str);
-
-impl fmt::Display for CsvField<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if !self.0.contains([',', '"', '\n', '\r']) {
-            return f.write_str(self.0);
-        }
-        f.write_str("\"")?;
-        for (index, part) in self.0.split('"').enumerate() {
-            if index > 0 {
-                f.write_str("\"\"")?;
-            }
-            f.write_str(part)?;
-        }
-        f.write_str("\"")
+    let bytes = field.as_bytes();
+    if !bytes
+        .iter()
+        .any(|b| matches!(b, b',' | b'"' | b'\n' | b'\r'))
+    {
+        out.extend_from_slice(bytes);
+        return;
     }
+    out.push(b'"');
+    for &b in bytes {
+        if b == b'"' {
+            out.push(b'"');
+        }
+        out.push(b);
+    }
+    out.push(b'"');
 }
