@@ -22,6 +22,21 @@ pub fn invalid_name(name: &str) -> Option<(String, &'static str)> {
             RENAME,
         ));
     }
+    // `R0` is R parameter 0: predefined (reference §7.2), never declared.
+    if let [b'R' | b'r', digits @ ..] = bytes
+        && digits.iter().all(u8::is_ascii_digit)
+    {
+        // Leading zeros are ignored (`R01` is `R1`, reference §1.8).
+        let number = match name[1..].trim_start_matches('0') {
+            "" => "0",
+            number => number,
+        };
+        return Some((
+            format!("`{name}` is R parameter {number}, predefined on the control, not a name"),
+            "use the R parameter without a `DEF`, or give the variable a name that begins \
+             with two letters or `_`",
+        ));
+    }
     if let Some(at) = bytes[..2]
         .iter()
         .position(|b| !(b.is_ascii_alphabetic() || *b == b'_'))
@@ -62,6 +77,19 @@ mod tests {
         for bad in ["I", "P1X", "R2D2", "K1", "N1", "_1LBL", "1A"] {
             assert!(invalid_name(bad).is_some(), "{bad}");
         }
+    }
+
+    #[test]
+    fn r_parameters_are_predefined_not_names() {
+        for (name, number) in [("R0", "0"), ("r12", "12"), ("R007", "7")] {
+            let (message, _) = invalid_name(name).expect(name);
+            assert_eq!(
+                message,
+                format!("`{name}` is R parameter {number}, predefined on the control, not a name")
+            );
+        }
+        let (message, _) = invalid_name("R2D2").expect("R2D2");
+        assert!(message.contains("first two characters"), "{message}");
     }
 
     #[test]
