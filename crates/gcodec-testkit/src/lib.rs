@@ -7,6 +7,8 @@
 //!   and its snapshot (the scheme is in `tests/fixtures/README.md`).
 //! - [`profiles`]: the shipped profiles and small test machines.
 //! - [`corpus`]: the machines and definitions the corpus was written for.
+//! - [`peer`]: the verdicts on the peer interpreter's example programs
+//!   (issue 20) and the configuration they run with.
 //! - [`schema`]: the checked-in JSON Schemas are current.
 //! - [`linuxcnc`]: LinuxCNC's interpreter as a reference, its recorded
 //!   canonical calls (`rs274`) read back as moves, each with its block.
@@ -19,6 +21,7 @@ pub mod corpus;
 pub mod fixtures;
 pub mod linuxcnc;
 pub mod paths;
+pub mod peer;
 pub mod profiles;
 pub mod schema;
 
