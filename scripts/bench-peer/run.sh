@@ -132,7 +132,10 @@ done
 # The peer's examples, copied because the peer writes its CSV beside the
 # input. Each runs once on both sides first; only those both exit 0 on
 # are timed, as one loop of processes per side, the sides alternating.
+# gcodec runs each on the machine it needs (gcodec.toml beside this
+# script: rotary axes, tool management) and past `M0`, as the peer does.
 examples_dir=$scratch/examples
+gcodec_example=("$gcodec" run --config "$here/gcodec.toml" --no-stop)
 mkdir -p "$examples_dir"
 cp "$examples"/*.mpf "$examples_dir"/
 # The first diagnostic that says why: gcodec reports a run stopped at a
@@ -153,7 +156,7 @@ excluded=$scratch/excluded.tsv
 for file in "$examples_dir"/*.mpf; do
     name=$(basename "$file")
     g=0 p=0
-    "$gcodec" run "$file" >/dev/null 2>"$scratch/gerr" || g=$?
+    "${gcodec_example[@]}" "$file" >/dev/null 2>"$scratch/gerr" || g=$?
     "$peer" -l "$peer_limit" "$file" >/dev/null 2>"$scratch/perr" || p=$?
     if ((g == 0 && p == 0)); then
         kept+=("$file")
@@ -170,7 +173,7 @@ run_all() {
     local side=$1 file
     for file in "${kept[@]}"; do
         if [[ $side == gcodec_jsonl ]]; then
-            "$gcodec" run "$file" >/dev/null 2>&1
+            "${gcodec_example[@]}" "$file" >/dev/null 2>&1
         else
             "$peer" -l "$peer_limit" "$file" >/dev/null 2>&1
         fi
