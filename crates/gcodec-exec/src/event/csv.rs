@@ -101,6 +101,31 @@ pub struct BlockRow {
 }
 
 impl BlockRow {
+    /// Makes this row equal to `other`, reusing its storage: the derived
+    /// `clone_from` clones whole, allocating the maps and strings anew for
+    /// every row the writer keeps.
+    fn copy_from(&mut self, other: &BlockRow) {
+        self.block_number = other.block_number;
+        if !Arc::ptr_eq(&self.file, &other.file) {
+            self.file = Arc::clone(&other.file);
+        }
+        self.line = other.line;
+        self.level = other.level;
+        self.blocks = other.blocks;
+        self.moved = other.moved;
+        self.positions.copy_from(&other.positions);
+        self.tool.clone_from(&other.tool);
+        self.edge = other.edge;
+        self.feed = other.feed;
+        self.spindle_speed = other.spindle_speed;
+        self.spindle = other.spindle;
+        for (slot, code) in self.modal.iter_mut().zip(&other.modal) {
+            if slot != code {
+                slot.clone_from(code);
+            }
+        }
+    }
+
     /// Whether the state columns show the same as `other`'s: numbers bit
     /// for bit (`-0` is written otherwise than `0`).
     fn shows_same_state(&self, other: &BlockRow) -> bool {
@@ -157,6 +182,38 @@ pub struct CsvWriter<W: Write> {
     last_passed_over: bool,
     /// The row being built, reused.
     line: Vec<u8>,
+    /// The modal columns as last written.
+    modal_text: ModalText,
+}
+
+/// The modal columns' text and the commands it was written from: they
+/// change seldom, and writing eight fields was a fifth of a row's cost.
+#[derive(Default)]
+struct ModalText {
+    /// Each command's address and length when it is a static name (the
+    /// registry's, as the executor fills rows): static text never
+    /// changes, so equal addresses mean equal text. `None` for an owned
+    /// command, whose address a later one may reuse: never taken as equal.
+    codes: [Option<(usize, usize)>; MAIN_MODAL_GROUPS.len()],
+    text: Vec<u8>,
+}
+
+impl ModalText {
+    fn write(&mut self, out: &mut Vec<u8>, modal: &[Cow<'static, str>; MAIN_MODAL_GROUPS.len()]) {
+        let codes = modal.each_ref().map(|code| match code {
+            Cow::Borrowed(text) => Some((text.as_ptr() as usize, text.len())),
+            Cow::Owned(_) => None,
+        });
+        if codes != self.codes || codes.contains(&None) || self.text.is_empty() {
+            self.text.clear();
+            for code in modal {
+                self.text.push(b',');
+                write_csv_field(&mut self.text, code);
+            }
+            self.codes = codes;
+        }
+        out.extend_from_slice(&self.text);
+    }
 }
 
 impl<W: Write> CsvWriter<W> {
@@ -170,6 +227,7 @@ impl<W: Write> CsvWriter<W> {
             passed_over: BlockRow::default(),
             last_passed_over: false,
             line: Vec::with_capacity(256),
+            modal_text: ModalText::default(),
         };
         let header = &mut csv.line;
         header.extend_from_slice(b"block,file,line,level,blocks");
@@ -207,13 +265,13 @@ impl<W: Write> CsvWriter<W> {
                 && row.shows_same_state(written)
             {
                 // Kept in case it is the last block.
-                self.passed_over.clone_from(row);
+                self.passed_over.copy_from(row);
                 self.last_passed_over = true;
                 return Ok(());
             }
             self.last_passed_over = false;
             match &mut self.written {
-                Some(written) => written.clone_from(row),
+                Some(written) => written.copy_from(row),
                 None => self.written = Some(row.clone()),
             }
         }
@@ -250,10 +308,7 @@ impl<W: Write> CsvWriter<W> {
         write_f64_csv(line, row.spindle_speed);
         line.push(b',');
         line.extend_from_slice(row.spindle.name().as_bytes());
-        for code in &row.modal {
-            line.push(b',');
-            write_csv_field(line, code);
-        }
+        self.modal_text.write(line, &row.modal);
         line.push(b'\n');
         self.out.write_all(line)
     }
@@ -311,4 +366,31 @@ fn write_csv_field(out: &mut Vec<u8>, field: &str) {
         out.push(b);
     }
     out.push(b'"');
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn modal_columns_follow_every_change_static_or_owned() {
+        let mut text = ModalText::default();
+        let mut modal: [Cow<'static, str>; MAIN_MODAL_GROUPS.len()] = Default::default();
+        let mut written = |modal: &[Cow<'static, str>; MAIN_MODAL_GROUPS.len()]| {
+            let mut out = Vec::new();
+            text.write(&mut out, modal);
+            String::from_utf8(out).expect("UTF-8")
+        };
+        modal[0] = Cow::Borrowed("G1");
+        assert_eq!(written(&modal), ",G1,,,,,,,");
+        modal[0] = Cow::Borrowed("G0");
+        assert_eq!(written(&modal), ",G0,,,,,,,");
+        // Owned texts of one length, likely at one address in turn.
+        for code in ["G54", "G55", "G56"] {
+            modal[3] = Cow::Owned(code.to_owned());
+            assert_eq!(written(&modal), format!(",G0,,,{code},,,,"));
+        }
+        modal[3] = Cow::Borrowed("a,b");
+        assert_eq!(written(&modal), ",G0,,,\"a,b\",,,,");
+    }
 }

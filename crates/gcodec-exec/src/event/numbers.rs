@@ -3,8 +3,8 @@
 //! unsigned integers.
 
 /// Writes `value` with at most 4 decimals when that is its shortest text,
-/// a whole number as `1.0` if `point_zero` (JSON) or `1` (Rust's `{}`);
-/// false, writing nothing, when it is no such number.
+/// a whole number (zero too) as `1.0` if `point_zero` (JSON) or `1`
+/// (Rust's `{}`); false, writing nothing, when it is no such number.
 ///
 /// Positions and feeds mostly have at most 4 decimals. When `n / 10^4`
 /// reads back as `value` (IEEE division rounds correctly, so this is
@@ -12,8 +12,17 @@
 /// 1e9 an f64's spacing is far under 1e-4, so no other multiple of 1e-4
 /// reads back as the same value.
 pub(super) fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> bool {
+    if value == 0.0 {
+        // Zero is in most rows (an axis at 0, a stopped spindle): `-0` keeps
+        // its sign, as `{}` and serde_json write it.
+        if value.is_sign_negative() {
+            out.push(b'-');
+        }
+        out.extend_from_slice(if point_zero { b"0.0" } else { b"0" });
+        return true;
+    }
     let scaled = value * 1e4;
-    if !(value != 0.0 && value.abs() < 1e9) {
+    if value.is_nan() || value.abs() >= 1e9 {
         return false;
     }
     // |scaled| < 1e13: exact in i64. Rounding half away from zero by hand
