@@ -126,27 +126,6 @@ impl BlockRow {
         }
     }
 
-    /// Whether the state columns show the same as `other`'s: numbers bit
-    /// for bit (`-0` is written otherwise than `0`).
-    fn shows_same_state(&self, other: &BlockRow) -> bool {
-        let same_number = |a: f64, b: f64| a.to_bits() == b.to_bits();
-        self.edge == other.edge
-            && same_number(self.feed, other.feed)
-            && same_number(self.spindle_speed, other.spindle_speed)
-            && self.spindle == other.spindle
-            && self.tool == other.tool
-            && self.modal == other.modal
-            && self.positions.entries.len() == other.positions.entries.len()
-            && self
-                .positions
-                .entries
-                .iter()
-                .zip(&other.positions.entries)
-                .all(|((axis, value), (other_axis, other_value))| {
-                    same_number(*value, *other_value) && axis == other_axis
-                })
-    }
-
     /// Sets the command of `group` if the CSV shows that group; false
     /// otherwise.
     pub fn set_modal(&mut self, group: u8, code: Cow<'static, str>) -> bool {
@@ -173,8 +152,6 @@ pub struct CsvWriter<W: Write> {
     out: BufWriter<W>,
     axes: Vec<AxisName>,
     rows: CsvRows,
-    /// The state of the last row written, once one is.
-    written: Option<BlockRow>,
     /// The last row passed over (its storage reused for the next).
     passed_over: BlockRow,
     /// Whether `passed_over` is the last block's: [`CsvWriter::finish`]
@@ -182,37 +159,143 @@ pub struct CsvWriter<W: Write> {
     last_passed_over: bool,
     /// The row being built, reused.
     line: Vec<u8>,
-    /// The modal columns as last written.
-    modal_text: ModalText,
+    /// The state columns of the last row written, and their text.
+    state: StateText,
 }
 
-/// The modal columns' text and the commands it was written from: they
-/// change seldom, and writing eight fields was a fifth of a row's cost.
+/// The state columns of the last row written, as values and as text: a
+/// row whose state is the same is passed over ([`CsvRows::Changes`]), and
+/// a row whose positions or other state columns are the same copies
+/// their text (the feed, the tool and the modal commands seldom change).
 #[derive(Default)]
-struct ModalText {
+struct StateText {
+    /// Whether a row was written: the first row has none before it.
+    written: bool,
+    /// The bits of each header axis's value (`None`: the row had none):
+    /// `-0` is written otherwise than `0`.
+    positions: Vec<Option<u64>>,
+    /// The same for the row at hand, before it is compared.
+    next_positions: Vec<Option<u64>>,
+    positions_text: Vec<u8>,
+    tool: Option<String>,
+    edge: u32,
+    feed: u64,
+    spindle_speed: u64,
+    spindle: SpindleState,
+    modal: ModalCodes,
+    /// `,tool,edge,feed,spindle_speed,spindle` and the modal columns.
+    rest_text: Vec<u8>,
+}
+
+impl StateText {
+    /// Whether `row`'s positions on `axes`, and its other state columns,
+    /// are the last row's.
+    fn compare(&mut self, axes: &[AxisName], row: &BlockRow) -> (bool, bool) {
+        self.next_positions.clear();
+        self.next_positions.extend(
+            axes.iter()
+                .map(|axis| row.positions.get(axis).map(f64::to_bits)),
+        );
+        if !self.written {
+            return (false, false);
+        }
+        let positions = self.next_positions == self.positions;
+        let rest = self.edge == row.edge
+            && self.feed == row.feed.to_bits()
+            && self.spindle_speed == row.spindle_speed.to_bits()
+            && self.spindle == row.spindle
+            && self.tool == row.tool
+            && self.modal.same(&row.modal);
+        (positions, rest)
+    }
+
+    /// Writes the state columns of `row` after [`StateText::compare`]
+    /// said which are the same, and remembers them.
+    fn write(&mut self, line: &mut Vec<u8>, row: &BlockRow, (positions, rest): (bool, bool)) {
+        if !positions {
+            std::mem::swap(&mut self.positions, &mut self.next_positions);
+            let text = &mut self.positions_text;
+            text.clear();
+            for bits in &self.positions {
+                text.push(b',');
+                if let Some(bits) = bits {
+                    write_f64_csv(text, f64::from_bits(*bits));
+                }
+            }
+        }
+        line.extend_from_slice(&self.positions_text);
+        if !rest {
+            self.tool.clone_from(&row.tool);
+            self.edge = row.edge;
+            self.feed = row.feed.to_bits();
+            self.spindle_speed = row.spindle_speed.to_bits();
+            self.spindle = row.spindle;
+            self.modal.remember(&row.modal);
+            let text = &mut self.rest_text;
+            text.clear();
+            text.push(b',');
+            write_csv_field(text, row.tool.as_deref().unwrap_or(""));
+            text.push(b',');
+            write_u64(text, u64::from(row.edge));
+            text.push(b',');
+            write_f64_csv(text, row.feed);
+            text.push(b',');
+            write_f64_csv(text, row.spindle_speed);
+            text.push(b',');
+            text.extend_from_slice(row.spindle.name().as_bytes());
+            for code in &row.modal {
+                text.push(b',');
+                write_csv_field(text, code);
+            }
+        }
+        line.extend_from_slice(&self.rest_text);
+        self.written = true;
+    }
+}
+
+/// The modal commands of the last row written.
+#[derive(Default)]
+struct ModalCodes {
     /// Each command's address and length when it is a static name (the
     /// registry's, as the executor fills rows): static text never
     /// changes, so equal addresses mean equal text. `None` for an owned
-    /// command, whose address a later one may reuse: never taken as equal.
+    /// command, whose address a later one may reuse: compared by text.
     codes: [Option<(usize, usize)>; MAIN_MODAL_GROUPS.len()],
-    text: Vec<u8>,
+    owned: Vec<String>,
 }
 
-impl ModalText {
-    fn write(&mut self, out: &mut Vec<u8>, modal: &[Cow<'static, str>; MAIN_MODAL_GROUPS.len()]) {
-        let codes = modal.each_ref().map(|code| match code {
-            Cow::Borrowed(text) => Some((text.as_ptr() as usize, text.len())),
-            Cow::Owned(_) => None,
-        });
-        if codes != self.codes || codes.contains(&None) || self.text.is_empty() {
-            self.text.clear();
-            for code in modal {
-                self.text.push(b',');
-                write_csv_field(&mut self.text, code);
+type ModalRow = [Cow<'static, str>; MAIN_MODAL_GROUPS.len()];
+
+// The variant matters, not only the text: `&str` would lose it.
+#[allow(clippy::ptr_arg)]
+fn static_key(code: &Cow<'static, str>) -> Option<(usize, usize)> {
+    match code {
+        Cow::Borrowed(text) => Some((text.as_ptr() as usize, text.len())),
+        Cow::Owned(_) => None,
+    }
+}
+
+impl ModalCodes {
+    fn same(&self, modal: &ModalRow) -> bool {
+        let mut owned = self.owned.iter();
+        self.codes
+            .iter()
+            .zip(modal)
+            .all(|(key, code)| match (key, code) {
+                (Some(_), Cow::Borrowed(_)) => *key == static_key(code),
+                (None, Cow::Owned(text)) => owned.next().is_some_and(|o| o == text),
+                _ => false,
+            })
+    }
+
+    fn remember(&mut self, modal: &ModalRow) {
+        self.owned.clear();
+        for (key, code) in self.codes.iter_mut().zip(modal) {
+            *key = static_key(code);
+            if let Cow::Owned(text) = code {
+                self.owned.push(text.clone());
             }
-            self.codes = codes;
         }
-        out.extend_from_slice(&self.text);
     }
 }
 
@@ -223,11 +306,10 @@ impl<W: Write> CsvWriter<W> {
             out: BufWriter::with_capacity(1 << 16, writer),
             axes: axes.into_iter().collect(),
             rows: CsvRows::default(),
-            written: None,
             passed_over: BlockRow::default(),
             last_passed_over: false,
             line: Vec::with_capacity(256),
-            modal_text: ModalText::default(),
+            state: StateText::default(),
         };
         let header = &mut csv.line;
         header.extend_from_slice(b"block,file,line,level,blocks");
@@ -259,26 +341,18 @@ impl<W: Write> CsvWriter<W> {
     /// Takes the row of the next executed block and writes it if
     /// [`CsvRows`] selects it.
     pub fn row(&mut self, row: &BlockRow) -> io::Result<()> {
-        if self.rows == CsvRows::Changes {
-            if !row.moved
-                && let Some(written) = &self.written
-                && row.shows_same_state(written)
-            {
-                // Kept in case it is the last block.
-                self.passed_over.copy_from(row);
-                self.last_passed_over = true;
-                return Ok(());
-            }
-            self.last_passed_over = false;
-            match &mut self.written {
-                Some(written) => written.copy_from(row),
-                None => self.written = Some(row.clone()),
-            }
+        let same = self.state.compare(&self.axes, row);
+        if self.rows == CsvRows::Changes && !row.moved && same == (true, true) {
+            // Kept in case it is the last block.
+            self.passed_over.copy_from(row);
+            self.last_passed_over = true;
+            return Ok(());
         }
-        self.write(row)
+        self.last_passed_over = false;
+        self.write(row, same)
     }
 
-    fn write(&mut self, row: &BlockRow) -> io::Result<()> {
+    fn write(&mut self, row: &BlockRow, same: (bool, bool)) -> io::Result<()> {
         let line = &mut self.line;
         line.clear();
         if let Some(number) = row.block_number {
@@ -292,23 +366,7 @@ impl<W: Write> CsvWriter<W> {
         write_u64(line, u64::from(row.level));
         line.push(b',');
         write_u64(line, row.blocks);
-        for axis in &self.axes {
-            line.push(b',');
-            if let Some(value) = row.positions.get(axis) {
-                write_f64_csv(line, value);
-            }
-        }
-        line.push(b',');
-        write_csv_field(line, row.tool.as_deref().unwrap_or(""));
-        line.push(b',');
-        write_u64(line, u64::from(row.edge));
-        line.push(b',');
-        write_f64_csv(line, row.feed);
-        line.push(b',');
-        write_f64_csv(line, row.spindle_speed);
-        line.push(b',');
-        line.extend_from_slice(row.spindle.name().as_bytes());
-        self.modal_text.write(line, &row.modal);
+        self.state.write(line, row, same);
         line.push(b'\n');
         self.out.write_all(line)
     }
@@ -324,7 +382,8 @@ impl<W: Write> CsvWriter<W> {
             return Ok(());
         }
         let last = std::mem::take(&mut self.passed_over);
-        self.write(&last)
+        let same = self.state.compare(&self.axes, &last);
+        self.write(&last, same)
     }
 
     /// Writes the last block's row if it was passed over, flushes, and
@@ -372,25 +431,52 @@ fn write_csv_field(out: &mut Vec<u8>, field: &str) {
 mod tests {
     use super::*;
 
+    /// Rows of `modal` commands (one axis, nothing else changing), every
+    /// block written.
+    fn modal_rows(modals: &[ModalRow]) -> Vec<String> {
+        let mut csv = CsvWriter::new(Vec::new(), [Cow::Borrowed("X")])
+            .expect("header")
+            .with_rows(CsvRows::EveryBlock);
+        for modal in modals {
+            let row = BlockRow {
+                modal: modal.clone(),
+                ..BlockRow::default()
+            };
+            csv.row(&row).expect("row");
+        }
+        let text = String::from_utf8(csv.into_inner().expect("flushes")).expect("UTF-8");
+        text.lines()
+            .skip(1)
+            .map(|l| l.splitn(12, ',').nth(11).unwrap_or("").to_owned())
+            .collect()
+    }
+
     #[test]
     fn modal_columns_follow_every_change_static_or_owned() {
-        let mut text = ModalText::default();
-        let mut modal: [Cow<'static, str>; MAIN_MODAL_GROUPS.len()] = Default::default();
-        let mut written = |modal: &[Cow<'static, str>; MAIN_MODAL_GROUPS.len()]| {
-            let mut out = Vec::new();
-            text.write(&mut out, modal);
-            String::from_utf8(out).expect("UTF-8")
-        };
-        modal[0] = Cow::Borrowed("G1");
-        assert_eq!(written(&modal), ",G1,,,,,,,");
-        modal[0] = Cow::Borrowed("G0");
-        assert_eq!(written(&modal), ",G0,,,,,,,");
+        let mut modal: ModalRow = Default::default();
+        let mut modals = Vec::new();
+        for code in ["G1", "G0", "G0"] {
+            modal[0] = Cow::Borrowed(code);
+            modals.push(modal.clone());
+        }
         // Owned texts of one length, likely at one address in turn.
-        for code in ["G54", "G55", "G56"] {
+        for code in ["G54", "G55", "G55"] {
             modal[3] = Cow::Owned(code.to_owned());
-            assert_eq!(written(&modal), format!(",G0,,,{code},,,,"));
+            modals.push(modal.clone());
         }
         modal[3] = Cow::Borrowed("a,b");
-        assert_eq!(written(&modal), ",G0,,,\"a,b\",,,,");
+        modals.push(modal.clone());
+        assert_eq!(
+            modal_rows(&modals),
+            [
+                "G1,,,,,,,",
+                "G0,,,,,,,",
+                "G0,,,,,,,",
+                "G0,,,G54,,,,",
+                "G0,,,G55,,,,",
+                "G0,,,G55,,,,",
+                "G0,,,\"a,b\",,,,",
+            ]
+        );
     }
 }
