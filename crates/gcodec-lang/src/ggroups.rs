@@ -803,10 +803,7 @@ fn search(code: &str) -> Option<(u8, u8)> {
 /// commands below 1,000 are read from a table by number, with no
 /// text to write and no search.
 pub fn lookup_g(n: u64) -> Option<(u8, u8)> {
-    static BY_NUMBER: std::sync::OnceLock<Vec<Option<(u8, u8)>>> = std::sync::OnceLock::new();
-    let table =
-        BY_NUMBER.get_or_init(|| (0..NUMBERED_G).map(|n| search(&format!("G{n}"))).collect());
-    match usize::try_from(n).ok().and_then(|i| table.get(i)) {
+    match usize::try_from(n).ok().and_then(|i| BY_NUMBER.get(i)) {
         Some(found) => *found,
         None => search(&format!("G{n}")),
     }
@@ -814,6 +811,50 @@ pub fn lookup_g(n: u64) -> Option<(u8, u8)> {
 
 /// Every numbered G command of the control is below this.
 const NUMBERED_G: u64 = 1000;
+
+/// [`lookup_g`]'s table: the group and index of `G<n>` at `n`. Built from
+/// [`G_GROUPS`] at compile time, so no start spends time on it (building
+/// it on first use, by a search per number, was a tenth of the start of a
+/// one-line program).
+static BY_NUMBER: [Option<(u8, u8)>; NUMBERED_G as usize] = numbered_members();
+
+const fn numbered_members() -> [Option<(u8, u8)>; NUMBERED_G as usize] {
+    let mut table = [None; NUMBERED_G as usize];
+    let mut g = 0;
+    while g < G_GROUPS.len() {
+        let group = &G_GROUPS[g];
+        let mut i = 0;
+        while i < group.members.len() {
+            if let Some(n) = g_number(group.members[i].as_bytes())
+                && n < NUMBERED_G
+            {
+                // At most 21 members a group: the index fits a byte.
+                table[n as usize] = Some((group.number, (i + 1) as u8));
+            }
+            i += 1;
+        }
+        g += 1;
+    }
+    table
+}
+
+/// `n` for a member named `G<n>` as [`search`] finds it by `G{n}`: the
+/// digits without a leading zero (`G0` itself is the one exception).
+const fn g_number(name: &[u8]) -> Option<u64> {
+    if name.len() < 2 || name[0] != b'G' || (name[1] == b'0' && name.len() > 2) {
+        return None;
+    }
+    let mut n = 0u64;
+    let mut i = 1;
+    while i < name.len() {
+        if !name[i].is_ascii_digit() {
+            return None;
+        }
+        n = n * 10 + (name[i] - b'0') as u64;
+        i += 1;
+    }
+    Some(n)
+}
 
 /// Length of the longest member name (`DYNSEMIFIN`); anything longer
 /// cannot match, which bounds the normalisation buffer.
