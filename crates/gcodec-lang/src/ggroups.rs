@@ -888,23 +888,74 @@ fn normalise<'a>(code: &[u8], buf: &'a mut [u8; MAX_NAME_LEN]) -> Option<&'a [u8
 }
 
 /// Every member of [`G_GROUPS`] as (name, group, index), sorted by the
-/// bytes of the name for [`lookup`]: derived from the one table the first
-/// time a name is looked up, so no second table can drift from it.
+/// bytes of the name for [`lookup`]: derived from the one table, so no
+/// second table can drift from it, and at compile time, so no start
+/// sorts it (sorting it on first use was a sixth of a one-line run).
 fn by_name() -> &'static [(&'static str, u8, u8)] {
-    static BY_NAME: std::sync::OnceLock<Vec<(&'static str, u8, u8)>> = std::sync::OnceLock::new();
-    BY_NAME.get_or_init(|| {
-        let mut names: Vec<(&'static str, u8, u8)> = G_GROUPS
-            .iter()
-            .flat_map(|g| {
-                (1u8..)
-                    .zip(g.members)
-                    .filter(|(_, name)| !name.is_empty())
-                    .map(|(index, name)| (*name, g.number, index))
-            })
-            .collect();
-        names.sort_unstable_by(|a, b| a.0.as_bytes().cmp(b.0.as_bytes()));
-        names
-    })
+    &BY_NAME
+}
+
+/// The number of members, gaps left out.
+const NAME_COUNT: usize = {
+    let mut count = 0;
+    let mut g = 0;
+    while g < G_GROUPS.len() {
+        let mut i = 0;
+        while i < G_GROUPS[g].members.len() {
+            if !G_GROUPS[g].members[i].is_empty() {
+                count += 1;
+            }
+            i += 1;
+        }
+        g += 1;
+    }
+    count
+};
+
+static BY_NAME: [(&str, u8, u8); NAME_COUNT] = sorted_names();
+
+const fn sorted_names() -> [(&'static str, u8, u8); NAME_COUNT] {
+    let mut names = [("", 0, 0); NAME_COUNT];
+    let mut count = 0;
+    let mut g = 0;
+    while g < G_GROUPS.len() {
+        let group = &G_GROUPS[g];
+        let mut i = 0;
+        while i < group.members.len() {
+            if !group.members[i].is_empty() {
+                // At most 21 members a group: the index fits a byte.
+                names[count] = (group.members[i], group.number, (i + 1) as u8);
+                count += 1;
+            }
+            i += 1;
+        }
+        g += 1;
+    }
+    // Insertion sort: a few hundred names, once, by the compiler.
+    let mut i = 1;
+    while i < NAME_COUNT {
+        let mut j = i;
+        while j > 0 && bytes_before(names[j].0.as_bytes(), names[j - 1].0.as_bytes()) {
+            let before = names[j - 1];
+            names[j - 1] = names[j];
+            names[j] = before;
+            j -= 1;
+        }
+        i += 1;
+    }
+    names
+}
+
+/// `a < b` as `[u8]`'s `Ord` has it, in a `const fn`.
+const fn bytes_before(a: &[u8], b: &[u8]) -> bool {
+    let mut i = 0;
+    while i < a.len() && i < b.len() {
+        if a[i] != b[i] {
+            return a[i] < b[i];
+        }
+        i += 1;
+    }
+    a.len() < b.len()
 }
 
 #[cfg(test)]
