@@ -269,17 +269,24 @@ pub fn load_profile(
     path: Option<&Path>,
     reporter: &Reporter,
 ) -> Result<gcodec_profile::Profile, u8> {
-    let file = match path {
-        // A profile is read before any profile says how large a file may
-        // be; TOML is UTF-8, which loading checks.
-        Some(path) => read(
-            path,
-            Reading::builtin(EncodingOption { encoding: None }),
-            reporter,
-        )?,
-        None => gcodec_driver::builtin_profile_file(),
+    let (file, loaded) = match path {
+        Some(path) => {
+            // A profile is read before any profile says how large a file
+            // may be; TOML is UTF-8, which loading checks.
+            let file = read(
+                path,
+                Reading::builtin(EncodingOption { encoding: None }),
+                reporter,
+            )?;
+            let loaded = gcodec_driver::load_profile(&file);
+            (file, loaded)
+        }
+        None => (
+            gcodec_driver::builtin_profile_file(),
+            gcodec_driver::load_builtin_profile(),
+        ),
     };
-    match gcodec_driver::load_profile(&file) {
+    match loaded {
         Ok((profile, warnings)) => {
             reporter.report(&warnings.into(), Some(&file), file.name());
             Ok(profile)

@@ -10,7 +10,9 @@
 //! - [`compile()`]: parse and lower one program, as a main program or a
 //!   subprogram ([`ProgramKind`]), against a profile and definitions.
 //! - [`load_profile`]: a machine profile checked in full (its form and
-//!   its G codes); [`Definitions`], the global names of definition files.
+//!   its G codes), [`load_builtin_profile`] the built-in one without
+//!   parsing its text; [`Definitions`], the global names of definition
+//!   files.
 //! - [`loader`]: the programs a running program calls, found on a search
 //!   path ([`FileLoader`]) or given as text ([`MemoryLoader`]).
 //! - [`run_main`]: a main program run as `gcodec run` runs it, streamed
@@ -44,5 +46,8 @@ pub use gcodec_sema::{Definitions, ProgramKind};
 pub use loaded_files::LoadedFiles;
 pub use loader::{FileLoader, MemoryLoader, SearchPath, program_name};
 pub use run::{RunReport, RunSetup, globals, run_main, run_program};
-pub use setup::{ProfileError, builtin_profile_file, load_profile, load_toolchanger, read_source};
+pub use setup::{
+    ProfileError, builtin_profile_file, load_builtin_profile, load_profile, load_toolchanger,
+    read_source,
+};
 pub use stream::{StreamOptions, run_streamed};

@@ -24,9 +24,19 @@ pub fn read_source(
     Ok(file.decoded(encoding))
 }
 
-/// The built-in profile's file (`profiles/default.toml`, compiled in).
+/// The built-in profile's file (`profiles/default.toml`, compiled in):
+/// what diagnostics about the built-in profile point into.
 pub fn builtin_profile_file() -> SourceFile {
     SourceFile::new(gcodec_profile::BUILTIN_NAME, gcodec_profile::BUILTIN_TOML)
+}
+
+/// The built-in profile checked as [`load_profile`] checks
+/// [`builtin_profile_file`], with the same result, but precompiled
+/// ([`gcodec_profile::builtin`]): no TOML is parsed, only the G-code
+/// check runs. Every start without `--profile` takes this path.
+pub fn load_builtin_profile() -> Result<(Profile, Vec<Diagnostic>), ProfileError> {
+    let profile = gcodec_profile::builtin().map_err(|diagnostics| ProfileError { diagnostics })?;
+    checked(profile)
 }
 
 /// A machine profile that cannot be used: every problem, against the
@@ -70,9 +80,33 @@ pub fn load_toolchanger(
 pub fn load_profile(file: &SourceFile) -> Result<(Profile, Vec<Diagnostic>), ProfileError> {
     let text = toml_text(file, codes::profile::SYNTAX)?;
     let profile = gcodec_profile::load(text).map_err(|diagnostics| ProfileError { diagnostics })?;
+    checked(profile)
+}
+
+/// A loaded profile after its check against the G-group table.
+fn checked(profile: Profile) -> Result<(Profile, Vec<Diagnostic>), ProfileError> {
     let diagnostics = gcodec_sema::check_profile(&profile);
     if diagnostics.iter().any(Diagnostic::is_error) {
         return Err(ProfileError { diagnostics });
     }
     Ok((profile, diagnostics))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The precompiled built-in profile is what checking its text gives,
+    /// spans and warnings included (`Spanned`'s `==` ignores spans; its
+    /// `Debug` shows them).
+    #[test]
+    fn the_builtin_profile_is_its_file_checked() {
+        let (precompiled, precompiled_warnings) = load_builtin_profile().expect("precompiled");
+        let (loaded, loaded_warnings) = load_profile(&builtin_profile_file()).expect("loaded");
+        assert_eq!(format!("{precompiled:#?}"), format!("{loaded:#?}"));
+        assert_eq!(
+            format!("{precompiled_warnings:?}"),
+            format!("{loaded_warnings:?}")
+        );
+    }
 }

@@ -803,10 +803,7 @@ fn search(code: &str) -> Option<(u8, u8)> {
 /// commands below 1,000 are read from a table by number, with no
 /// text to write and no search.
 pub fn lookup_g(n: u64) -> Option<(u8, u8)> {
-    static BY_NUMBER: std::sync::OnceLock<Vec<Option<(u8, u8)>>> = std::sync::OnceLock::new();
-    let table =
-        BY_NUMBER.get_or_init(|| (0..NUMBERED_G).map(|n| search(&format!("G{n}"))).collect());
-    match usize::try_from(n).ok().and_then(|i| table.get(i)) {
+    match usize::try_from(n).ok().and_then(|i| BY_NUMBER.get(i)) {
         Some(found) => *found,
         None => search(&format!("G{n}")),
     }
@@ -814,6 +811,50 @@ pub fn lookup_g(n: u64) -> Option<(u8, u8)> {
 
 /// Every numbered G command of the control is below this.
 const NUMBERED_G: u64 = 1000;
+
+/// [`lookup_g`]'s table: the group and index of `G<n>` at `n`. Built from
+/// [`G_GROUPS`] at compile time, so no start spends time on it (building
+/// it on first use, by a search per number, was a tenth of the start of a
+/// one-line program).
+static BY_NUMBER: [Option<(u8, u8)>; NUMBERED_G as usize] = numbered_members();
+
+const fn numbered_members() -> [Option<(u8, u8)>; NUMBERED_G as usize] {
+    let mut table = [None; NUMBERED_G as usize];
+    let mut g = 0;
+    while g < G_GROUPS.len() {
+        let group = &G_GROUPS[g];
+        let mut i = 0;
+        while i < group.members.len() {
+            if let Some(n) = g_number(group.members[i].as_bytes())
+                && n < NUMBERED_G
+            {
+                // At most 21 members a group: the index fits a byte.
+                table[n as usize] = Some((group.number, (i + 1) as u8));
+            }
+            i += 1;
+        }
+        g += 1;
+    }
+    table
+}
+
+/// `n` for a member named `G<n>` as [`search`] finds it by `G{n}`: the
+/// digits without a leading zero (`G0` itself is the one exception).
+const fn g_number(name: &[u8]) -> Option<u64> {
+    if name.len() < 2 || name[0] != b'G' || (name[1] == b'0' && name.len() > 2) {
+        return None;
+    }
+    let mut n = 0u64;
+    let mut i = 1;
+    while i < name.len() {
+        if !name[i].is_ascii_digit() {
+            return None;
+        }
+        n = n * 10 + (name[i] - b'0') as u64;
+        i += 1;
+    }
+    Some(n)
+}
 
 /// Length of the longest member name (`DYNSEMIFIN`); anything longer
 /// cannot match, which bounds the normalisation buffer.
@@ -847,23 +888,74 @@ fn normalise<'a>(code: &[u8], buf: &'a mut [u8; MAX_NAME_LEN]) -> Option<&'a [u8
 }
 
 /// Every member of [`G_GROUPS`] as (name, group, index), sorted by the
-/// bytes of the name for [`lookup`]: derived from the one table the first
-/// time a name is looked up, so no second table can drift from it.
+/// bytes of the name for [`lookup`]: derived from the one table, so no
+/// second table can drift from it, and at compile time, so no start
+/// sorts it (sorting it on first use was a sixth of a one-line run).
 fn by_name() -> &'static [(&'static str, u8, u8)] {
-    static BY_NAME: std::sync::OnceLock<Vec<(&'static str, u8, u8)>> = std::sync::OnceLock::new();
-    BY_NAME.get_or_init(|| {
-        let mut names: Vec<(&'static str, u8, u8)> = G_GROUPS
-            .iter()
-            .flat_map(|g| {
-                (1u8..)
-                    .zip(g.members)
-                    .filter(|(_, name)| !name.is_empty())
-                    .map(|(index, name)| (*name, g.number, index))
-            })
-            .collect();
-        names.sort_unstable_by(|a, b| a.0.as_bytes().cmp(b.0.as_bytes()));
-        names
-    })
+    &BY_NAME
+}
+
+/// The number of members, gaps left out.
+const NAME_COUNT: usize = {
+    let mut count = 0;
+    let mut g = 0;
+    while g < G_GROUPS.len() {
+        let mut i = 0;
+        while i < G_GROUPS[g].members.len() {
+            if !G_GROUPS[g].members[i].is_empty() {
+                count += 1;
+            }
+            i += 1;
+        }
+        g += 1;
+    }
+    count
+};
+
+static BY_NAME: [(&str, u8, u8); NAME_COUNT] = sorted_names();
+
+const fn sorted_names() -> [(&'static str, u8, u8); NAME_COUNT] {
+    let mut names = [("", 0, 0); NAME_COUNT];
+    let mut count = 0;
+    let mut g = 0;
+    while g < G_GROUPS.len() {
+        let group = &G_GROUPS[g];
+        let mut i = 0;
+        while i < group.members.len() {
+            if !group.members[i].is_empty() {
+                // At most 21 members a group: the index fits a byte.
+                names[count] = (group.members[i], group.number, (i + 1) as u8);
+                count += 1;
+            }
+            i += 1;
+        }
+        g += 1;
+    }
+    // Insertion sort: a few hundred names, once, by the compiler.
+    let mut i = 1;
+    while i < NAME_COUNT {
+        let mut j = i;
+        while j > 0 && bytes_before(names[j].0.as_bytes(), names[j - 1].0.as_bytes()) {
+            let before = names[j - 1];
+            names[j - 1] = names[j];
+            names[j] = before;
+            j -= 1;
+        }
+        i += 1;
+    }
+    names
+}
+
+/// `a < b` as `[u8]`'s `Ord` has it, in a `const fn`.
+const fn bytes_before(a: &[u8], b: &[u8]) -> bool {
+    let mut i = 0;
+    while i < a.len() && i < b.len() {
+        if a[i] != b[i] {
+            return a[i] < b[i];
+        }
+        i += 1;
+    }
+    a.len() < b.len()
 }
 
 #[cfg(test)]

@@ -120,7 +120,7 @@ pub fn check_with(
     let found = walk::files(config, inputs).map_err(|d| SetupError {
         reports: vec![FileReport::new(String::new(), None, vec![d])],
     })?;
-    let builtin = crate::load_profile(&crate::builtin_profile_file())
+    let builtin = crate::load_builtin_profile()
         .map(|(profile, _)| profile)
         .map_err(|e| SetupError {
             reports: vec![FileReport::new(
