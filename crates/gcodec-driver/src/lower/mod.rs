@@ -44,6 +44,10 @@ pub use listing::write_listing;
 /// Pages the channel holds before pass 2 waits for the writer.
 const PAGES_AHEAD: usize = 2;
 
+/// Instructions a page of the held rest of a program holds: about those
+/// of a chunk of the straight-line programs measured.
+const HELD_PAGE: usize = 4096;
+
 /// Instructions handed on in order: those of one chunk, or the held rest
 /// of the program filled in from the dataflow. Dropped, a chunk's page
 /// goes back to the worker that lowered it, to be freed there.
@@ -109,6 +113,7 @@ pub fn lower_streamed<R>(
                 diagnostics: Diagnostics::new(),
                 handed_on: 0,
                 chunks_taken: 0,
+                chunks: chunks.len(),
                 held: None,
             };
             lower_chunks(
@@ -167,6 +172,8 @@ struct Pass2 {
     handed_on: usize,
     /// Lowered chunks taken so far.
     chunks_taken: usize,
+    /// The chunks of the program.
+    chunks: usize,
     held: Option<Held>,
 }
 
@@ -192,9 +199,18 @@ impl Pass2 {
             return;
         }
         if let Some(open) = instructions.iter().position(is_open) {
+            // Room for the rest of the program, at the rate of the chunks
+            // so far, and for the instructions before it, which are put
+            // in front at the end: growing a vector of most of the
+            // program copies it. Room not filled takes no memory.
+            let per_chunk = (self.handed_on + instructions.len()).div_ceil(self.chunks_taken);
+            let to_come = (self.chunks - self.chunks_taken.min(self.chunks) + 1) * per_chunk;
+            let room = self.handed_on + open + to_come + to_come / 2;
+            let mut held = Vec::with_capacity(room);
+            held.extend(instructions.drain(open..));
             self.held = Some(Held {
                 chunks_before: self.chunks_taken,
-                instructions: instructions.split_off(open),
+                instructions: held,
             });
         }
         self.hand_on(Page {
@@ -226,27 +242,35 @@ impl Pass2 {
     ) -> (Diagnostics, Diagnostics) {
         if let Some(held) = self.held.take() {
             let before = self.handed_on;
-            let mut instructions = Vec::with_capacity(before + held.instructions.len());
+            let mut first = Vec::with_capacity(before);
             // The program's end comes after these chunks: it is left out
             // with whatever else passes `before`.
             let again = &chunks[..held.chunks_before.min(chunks.len())];
             lower_chunks(file, again, workers, outline, profile, |lowered| {
-                let wanted = before.saturating_sub(instructions.len());
-                instructions.extend(lowered.instructions.into_iter().take(wanted));
+                let wanted = before.saturating_sub(first.len());
+                first.extend(lowered.instructions.into_iter().take(wanted));
             });
-            instructions.extend(held.instructions);
+            // In front of the held ones, in the room kept for them.
+            let mut instructions = held.instructions;
+            instructions.splice(0..0, first);
             let mut document = Document {
                 ail_version: AIL_VERSION,
                 instructions,
             };
             resolve_from_dataflow(&mut document, profile, outline.is_subprogram());
-            let rest = document
-                .instructions
-                .split_off(before.min(document.instructions.len()));
-            self.hand_on(Page {
-                instructions: rest,
-                spent: None,
-            });
+            // Handed on in pages, so that the writer renders a page at a
+            // time, not the rest of the program at once.
+            let mut rest = document.instructions.into_iter().skip(before);
+            loop {
+                let page: Vec<Instruction> = rest.by_ref().take(HELD_PAGE).collect();
+                if page.is_empty() {
+                    break;
+                }
+                self.hand_on(Page {
+                    instructions: page,
+                    spent: None,
+                });
+            }
         }
         (self.parse_diagnostics, self.diagnostics)
     }
