@@ -650,18 +650,27 @@ pub fn json_schema() -> String {
 /// form (`R1+5`), fully parenthesised so that the order of evaluation shows.
 pub fn write_listing(document: &Document, out: &mut impl std::fmt::Write) -> std::fmt::Result {
     for instruction in &document.instructions {
-        let source = &instruction.source;
-        let fields = serde_json::to_value(&instruction.op).unwrap_or_default();
-        let kind = fields.get("kind").and_then(|k| k.as_str()).unwrap_or("?");
-        write!(out, "{:>6}:{:<4} {kind}", source.line, source.col)?;
-        if let Some(map) = fields.as_object() {
-            for (key, value) in map.iter().filter(|(k, v)| *k != "kind" && !v.is_null()) {
-                write!(out, " {key}={}", listing_value(value))?;
-            }
-        }
-        writeln!(out)?;
+        write_instruction_listing(instruction, out)?;
     }
     Ok(())
+}
+
+/// Writes the line of [`write_listing`] for one instruction, newline
+/// included: a listing written as the instructions come.
+pub fn write_instruction_listing(
+    instruction: &Instruction,
+    out: &mut impl std::fmt::Write,
+) -> std::fmt::Result {
+    let source = &instruction.source;
+    let fields = serde_json::to_value(&instruction.op).unwrap_or_default();
+    let kind = fields.get("kind").and_then(|k| k.as_str()).unwrap_or("?");
+    write!(out, "{:>6}:{:<4} {kind}", source.line, source.col)?;
+    if let Some(map) = fields.as_object() {
+        for (key, value) in map.iter().filter(|(k, v)| *k != "kind" && !v.is_null()) {
+            write!(out, " {key}={}", listing_value(value))?;
+        }
+    }
+    writeln!(out)
 }
 
 /// A field of the listing: expressions (objects with `op`) in infix form,

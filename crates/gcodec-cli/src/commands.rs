@@ -314,35 +314,27 @@ fn lower(
         Ok(f) => f,
         Err(code) => return code,
     };
+    let file = Arc::new(file);
     let kind = gcodec_driver::ProgramKind::of_file(file.name());
-    let compiled = gcodec_driver::compile(Arc::new(file), kind, &profile, &definitions);
-    let has_errors = reporter.report(
-        &compiled.diagnostics,
-        Some(&compiled.file),
-        compiled.file.name(),
-    );
+    let options = gcodec_driver::StreamOptions::default();
+    // The instructions are written as they are made; the diagnostics,
+    // all known only at the end, follow on stderr.
+    let (written, diagnostics) =
+        gcodec_driver::lower_streamed(&file, kind, &profile, &definitions, options, |pages| {
+            let mut out = format.stdout();
+            match format {
+                Format::Text => gcodec_driver::lower::write_listing(pages, &mut out),
+                Format::Json => gcodec_driver::lower::write_json(pages, &mut out),
+            }
+            .and_then(|()| out.flush())
+        });
+    let has_errors = reporter.report(&diagnostics, Some(&file), file.name());
     let exit = if has_errors {
         EXIT_DIAGNOSTICS
     } else {
         EXIT_CLEAN
     };
-    let document = compiled.document;
-    let mut out = format.stdout();
-    let written = match format {
-        Format::Text => {
-            let mut listing = FmtToIo::new(&mut out);
-            let _ = gcodec_driver::write_listing(&document, &mut listing);
-            listing.finish()
-        }
-        Format::Json => serde_json::to_writer_pretty(&mut out, &document)
-            .map_err(std::io::Error::from)
-            .and_then(|()| writeln!(out)),
-    };
-    let exit = after_output(exit, written.and_then(|()| out.flush()));
-    // The process ends next: freeing a large program's instruction list
-    // block by block would only delay the exit.
-    std::mem::forget(document);
-    exit
+    after_output(exit, written)
 }
 
 /// Writes formatted text straight to an `io::Write` (the listing of a

@@ -9,6 +9,9 @@
 //!   ([`diagnostics::DiagnosticRecord`]).
 //! - [`compile()`]: parse and lower one program, as a main program or a
 //!   subprogram ([`ProgramKind`]), against a profile and definitions.
+//! - [`lower`]: `gcodec lower`, a program lowered streamed, its
+//!   instructions handed on as they are made ([`lower_streamed`]) and
+//!   written as the AIL document in JSON or as the listing.
 //! - [`load_profile`]: a machine profile checked in full (its form and
 //!   its G codes), [`load_builtin_profile`] the built-in one without
 //!   parsing its text; [`Definitions`], the global names of definition
@@ -29,6 +32,7 @@ pub mod compile;
 pub mod diagnostics;
 mod loaded_files;
 pub mod loader;
+pub mod lower;
 mod meant_command;
 pub mod run;
 mod setup;
@@ -45,6 +49,7 @@ pub use gcodec_parser::{Parse, parse, write_tree};
 pub use gcodec_sema::{Definitions, ProgramKind};
 pub use loaded_files::LoadedFiles;
 pub use loader::{FileLoader, MemoryLoader, SearchPath, program_name};
+pub use lower::lower_streamed;
 pub use run::{RunReport, RunSetup, globals, run_main, run_program};
 pub use setup::{
     ProfileError, builtin_profile_file, load_builtin_profile, load_profile, load_toolchanger,
