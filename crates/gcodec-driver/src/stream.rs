@@ -106,20 +106,41 @@ pub fn run_streamed<R>(
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
         (result, lowered)
     });
-    // In the order the whole program's parse and lowering give them: a
-    // stable sort keeps the parser's ahead of the pairing's, the
-    // outline's and the lowering's at one place.
-    let (parse_diagnostics, mut lowering_diagnostics) = lowered;
-    let mut outline_diagnostics = outline_diagnostics.clone();
-    let macros = definitions.macros();
-    macros.label_expansions(src, &mut outline_diagnostics);
-    macros.label_expansions(src, &mut lowering_diagnostics);
-    let mut diagnostics = parse_diagnostics;
-    diagnostics.append(structure_diagnostics.into());
-    diagnostics.append(outline_diagnostics);
-    diagnostics.append(lowering_diagnostics);
-    diagnostics.sort_by_start();
+    let (parse_diagnostics, lowering_diagnostics) = lowered;
+    let diagnostics = in_program_order(
+        src,
+        definitions,
+        structure_diagnostics,
+        outline_diagnostics,
+        parse_diagnostics,
+        lowering_diagnostics,
+    );
     (result, diagnostics)
+}
+
+/// The diagnostics of a program read in passes (the structure's, the
+/// outline's, the parser's and the lowering's), in the order the whole
+/// program's parse and lowering give them: a stable sort keeps the
+/// parser's ahead of the pairing's, the outline's and the lowering's at
+/// one place. Those inside macro expansions name the macro.
+pub(crate) fn in_program_order(
+    src: &[u8],
+    definitions: &Definitions,
+    structure: Vec<Diagnostic>,
+    outline: &Diagnostics,
+    parse: Diagnostics,
+    mut lowering: Diagnostics,
+) -> Diagnostics {
+    let mut outline = outline.clone();
+    let macros = definitions.macros();
+    macros.label_expansions(src, &mut outline);
+    macros.label_expansions(src, &mut lowering);
+    let mut diagnostics = parse;
+    diagnostics.append(structure.into());
+    diagnostics.append(outline);
+    diagnostics.append(lowering);
+    diagnostics.sort_by_start();
+    diagnostics
 }
 
 /// The pages pass 2 sends, while the run takes them, and the parser's

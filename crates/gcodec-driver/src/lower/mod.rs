@@ -135,18 +135,16 @@ pub fn lower_streamed<R>(
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
         (written, lowered)
     });
-    // In the order `compile` gives them, as a streamed run orders them
-    // (`stream.rs`).
-    let (parse_diagnostics, mut lowering_diagnostics) = lowered;
-    let mut outline_diagnostics = outline.diagnostics().clone();
-    let macros = definitions.macros();
-    macros.label_expansions(src, &mut outline_diagnostics);
-    macros.label_expansions(src, &mut lowering_diagnostics);
-    let mut diagnostics = parse_diagnostics;
-    diagnostics.append(structure_diagnostics.into());
-    diagnostics.append(outline_diagnostics);
-    diagnostics.append(lowering_diagnostics);
-    diagnostics.sort_by_start();
+    // In the order `compile` gives them, as a streamed run orders them.
+    let (parse_diagnostics, lowering_diagnostics) = lowered;
+    let diagnostics = crate::stream::in_program_order(
+        src,
+        definitions,
+        structure_diagnostics,
+        outline.diagnostics(),
+        parse_diagnostics,
+        lowering_diagnostics,
+    );
     (written, diagnostics)
 }
 
