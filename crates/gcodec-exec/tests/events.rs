@@ -849,6 +849,84 @@ fn hand_written_motion_json_is_what_serde_writes() {
     assert_written_as_serde_writes(&events);
 }
 
+/// The JSONL sink copies a motion's feed, plane and work-offset fields
+/// from the last motion's text while they are the same: motions that now
+/// keep them, now change one (the feed to `-0.0`, to none, the feed mode
+/// to an owned text, the plane, the work offset) must still be written as
+/// serde writes each.
+#[test]
+fn repeated_motion_settings_are_written_as_serde_writes_them() {
+    let mut events = Vec::new();
+    let settings: [(Option<f64>, Cow<'static, str>, Plane, WorkOffsetContext); 8] = [
+        (
+            Some(100.0),
+            Cow::Borrowed("G94"),
+            Plane::G17,
+            WorkOffsetContext::new(WorkOffsetCode::G54, None),
+        ),
+        (
+            Some(100.0),
+            Cow::Borrowed("G94"),
+            Plane::G17,
+            WorkOffsetContext::new(WorkOffsetCode::G54, None),
+        ),
+        (
+            Some(-0.0),
+            Cow::Borrowed("G94"),
+            Plane::G17,
+            WorkOffsetContext::new(WorkOffsetCode::G54, None),
+        ),
+        (
+            Some(0.0),
+            Cow::Borrowed("G94"),
+            Plane::G17,
+            WorkOffsetContext::new(WorkOffsetCode::G54, None),
+        ),
+        (
+            None,
+            Cow::Borrowed("G94"),
+            Plane::G17,
+            WorkOffsetContext::new(WorkOffsetCode::G54, None),
+        ),
+        (
+            None,
+            Cow::Owned("G95".into()),
+            Plane::G17,
+            WorkOffsetContext::new(WorkOffsetCode::G54, None),
+        ),
+        (
+            None,
+            Cow::Owned("G95".into()),
+            Plane::G18,
+            WorkOffsetContext::new(WorkOffsetCode::G54, None),
+        ),
+        (
+            None,
+            Cow::Owned("G95".into()),
+            Plane::G18,
+            WorkOffsetContext::new(WorkOffsetCode::G54, Some(Suppression::G53)),
+        ),
+    ];
+    for (index, (feed, feed_mode, plane, work_offset)) in settings.into_iter().enumerate() {
+        let mut motion = arc_motion();
+        motion.feed = feed;
+        motion.feed_mode = feed_mode;
+        motion.plane = plane;
+        motion.work_offset = work_offset;
+        let source = EventSource {
+            file: Arc::from("part.mpf"),
+            line: index as u32,
+            col: 1,
+            level: 0,
+        };
+        events.push(Event {
+            kind: EventKind::Motion(motion),
+            source,
+        });
+    }
+    assert_written_as_serde_writes(&events);
+}
+
 /// The JSONL sink copies the text of a motion's `from` and `to_machine`
 /// when they are the last `to`, and of a file it just wrote: a run of
 /// motions whose maps and files are now the same, now not (another

@@ -1,14 +1,16 @@
 //! `--format jsonl`: [`JsonlSink`], with the hand-written writer of
 //! motions and modal changes (the hot path of a run's output).
 
+use std::borrow::Cow;
 use std::io::{self, Write};
 use std::sync::Arc;
 
 use super::numbers::{write_fixed_point, write_u64};
 use super::{
     AxisMap, AxisName, Event, EventKind, EventSink, EventSource, ModalChangeEvent, MotionEvent,
-    motion_name,
+    WorkOffsetContext, motion_name,
 };
+use crate::geometry::Plane;
 
 /// `--format jsonl`: one JSON object a line, buffered.
 ///
@@ -28,6 +30,61 @@ pub struct JsonlSink<W: Write> {
     last_to: AxisMapText,
     /// The last event's file, as written.
     last_file: FileText,
+    /// The last motion's feed, plane and work-offset fields, as written.
+    last_settings: MotionSettingsText,
+}
+
+/// A motion's `feed` … `effective_suppression_mask` fields and their
+/// text: the same from motion to motion but where the program changes
+/// them, and about a third of a motion's line.
+#[derive(Default)]
+struct MotionSettingsText {
+    /// The feed's bits, the plane and the work-offset context written.
+    key: Option<(Option<u64>, Plane, WorkOffsetContext)>,
+    feed_mode: Cow<'static, str>,
+    text: Vec<u8>,
+}
+
+impl MotionSettingsText {
+    fn write(&mut self, out: &mut Vec<u8>, motion: &MotionEvent) {
+        let key = (
+            motion.feed.map(f64::to_bits),
+            motion.plane,
+            motion.work_offset,
+        );
+        if self.key != Some(key) || self.feed_mode != motion.feed_mode {
+            self.key = Some(key);
+            self.feed_mode.clone_from(&motion.feed_mode);
+            self.text.clear();
+            write_motion_settings_json(&mut self.text, motion);
+        }
+        out.extend_from_slice(&self.text);
+    }
+}
+
+/// `,"feed":…` to `"effective_suppression_mask":"…"`.
+fn write_motion_settings_json(out: &mut Vec<u8>, motion: &MotionEvent) {
+    out.extend_from_slice(b",\"feed\":");
+    match motion.feed {
+        Some(feed) => write_f64_json(out, feed),
+        None => out.extend_from_slice(b"null"),
+    }
+    out.extend_from_slice(b",\"feed_mode\":");
+    write_str_json(out, &motion.feed_mode);
+    out.extend_from_slice(b",\"plane\":\"");
+    out.extend_from_slice(motion.plane.code().as_bytes());
+    let context = &motion.work_offset;
+    out.extend_from_slice(b"\",\"effective_work_offset_selected\":\"g");
+    write_u64(out, u64::from(context.effective_work_offset_selected.0));
+    out.extend_from_slice(b"\",\"effective_work_offset_enabled\":");
+    out.extend_from_slice(if context.effective_work_offset_enabled {
+        b"true"
+    } else {
+        b"false"
+    });
+    out.extend_from_slice(b",\"effective_suppression_mask\":\"");
+    out.extend_from_slice(context.effective_suppression_mask.name().as_bytes());
+    out.push(b'"');
 }
 
 /// A file name and its JSON text: every event names its file, mostly the
@@ -123,6 +180,7 @@ impl<W: Write> JsonlSink<W> {
             buffer: Vec::with_capacity(JSONL_BLOCK + 4096),
             last_to: AxisMapText::default(),
             last_file: FileText::default(),
+            last_settings: MotionSettingsText::default(),
         }
     }
 
@@ -162,7 +220,12 @@ impl<W: Write> EventSink for JsonlSink<W> {
     fn event(&mut self, event: &Event) -> io::Result<()> {
         match &event.kind {
             EventKind::Motion(motion) => {
-                write_motion_json(&mut self.buffer, motion, &mut self.last_to);
+                write_motion_json(
+                    &mut self.buffer,
+                    motion,
+                    &mut self.last_to,
+                    &mut self.last_settings,
+                );
                 write_source_json(&mut self.buffer, &event.source, &mut self.last_file);
             }
             EventKind::ModalChange(change) => {
@@ -187,7 +250,12 @@ impl<W: Write> EventSink for JsonlSink<W> {
 /// A motion event as serde writes it: the same fields in the same order,
 /// numbers in the same shortest form.
 /// (without its source and closing brace).
-fn write_motion_json(out: &mut Vec<u8>, motion: &MotionEvent, last_to: &mut AxisMapText) {
+fn write_motion_json(
+    out: &mut Vec<u8>,
+    motion: &MotionEvent,
+    last_to: &mut AxisMapText,
+    last_settings: &mut MotionSettingsText,
+) {
     out.extend_from_slice(b"{\"event\":\"motion\",\"motion\":\"");
     out.extend_from_slice(motion_name(motion.motion).as_bytes());
     out.extend_from_slice(b"\",\"from\":");
@@ -208,27 +276,7 @@ fn write_motion_json(out: &mut Vec<u8>, motion: &MotionEvent, last_to: &mut Axis
         out.extend_from_slice(b",\"turns\":");
         write_u64(out, u64::from(motion.turns));
     }
-    out.extend_from_slice(b",\"feed\":");
-    match motion.feed {
-        Some(feed) => write_f64_json(out, feed),
-        None => out.extend_from_slice(b"null"),
-    }
-    out.extend_from_slice(b",\"feed_mode\":");
-    write_str_json(out, &motion.feed_mode);
-    out.extend_from_slice(b",\"plane\":\"");
-    out.extend_from_slice(motion.plane.code().as_bytes());
-    let context = &motion.work_offset;
-    out.extend_from_slice(b"\",\"effective_work_offset_selected\":\"g");
-    write_u64(out, u64::from(context.effective_work_offset_selected.0));
-    out.extend_from_slice(b"\",\"effective_work_offset_enabled\":");
-    out.extend_from_slice(if context.effective_work_offset_enabled {
-        b"true"
-    } else {
-        b"false"
-    });
-    out.extend_from_slice(b",\"effective_suppression_mask\":\"");
-    out.extend_from_slice(context.effective_suppression_mask.name().as_bytes());
-    out.push(b'"');
+    last_settings.write(out, motion);
     if let Some(inserted) = motion.inserted {
         out.extend_from_slice(b",\"inserted\":\"");
         out.extend_from_slice(inserted.name().as_bytes());
