@@ -105,6 +105,39 @@ fn csv_has_a_row_per_change_or_per_block_on_request() {
     assert!(every_block.lines().any(|r| column(r, 0) == "200"));
 }
 
+/// A block without motion that moves the workpiece zero or changes the
+/// units changes the CSV's positions: its row shows them anew.
+#[test]
+fn csv_positions_follow_frames_and_units_without_motion() {
+    let program = "G0 X10 Y0 Z0\nR1=1\nTRANS X5\nG70\nR2=2\nTRANS\nG71\nM30\n";
+    let file = temp_file("run-csv-frames", "frames.mpf", program);
+    let out = gcodec(["run", file.to_str().expect("path"), "--format", "csv"]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let text = stdout(&out);
+    // line, X
+    let rows: Vec<(String, String)> = text
+        .lines()
+        .skip(1)
+        .map(|r| {
+            let cells: Vec<&str> = r.split(',').collect();
+            (cells[2].to_owned(), cells[5].to_owned())
+        })
+        .collect();
+    let expected = [
+        ("1", "10"),
+        ("3", "5"),
+        ("4", "0.1968503937007874"),
+        ("6", "0.3937007874015748"),
+        ("7", "10"),
+        ("8", "10"),
+    ];
+    let expected: Vec<(String, String)> = expected
+        .iter()
+        .map(|(l, x)| ((*l).to_owned(), (*x).to_owned()))
+        .collect();
+    assert_eq!(rows, expected, "{text}");
+}
+
 #[test]
 fn skip_levels_and_max_steps_and_no_stop() {
     let program = "N10 G0 X0\n/1 N20 X10\nN30 M0\nN40 LOOP\nN50 R1=R1+1\nN60 ENDLOOP\n";

@@ -245,6 +245,8 @@ pub struct Channel<'r> {
     reported: FxHashSet<String>,
     motion: motion::MotionScratch,
     row: BlockRow,
+    /// What the row's positions were computed from.
+    row_positions_from: RowPositionsFrom,
     errors: u64,
     warnings: u64,
     output_error: Option<io::Error>,
@@ -307,6 +309,7 @@ impl<'r> Channel<'r> {
             reported: FxHashSet::default(),
             motion,
             row: BlockRow::default(),
+            row_positions_from: RowPositionsFrom::default(),
             errors: 0,
             warnings: 0,
             output_error: None,
@@ -696,8 +699,12 @@ impl<'r> Channel<'r> {
         row.level = self.block.level;
         row.blocks = self.summary.blocks;
         row.moved = self.block.had_motion;
-        self.motion.workpiece_position(state);
-        motion::fill_map(&mut row.positions, state, &self.motion.wcs, true);
+        // A block without motion mostly leaves them as they were: the
+        // frame transform is the costliest part of a row.
+        if self.row_positions_from.refresh(state) {
+            self.motion.workpiece_position(state);
+            motion::fill_map(&mut row.positions, state, &self.motion.wcs, true);
+        }
         match (&mut row.tool, &state.active_tool) {
             (Some(label), Some(tool)) => label.clone_from(&tool.label),
             (label, tool) => *label = tool.as_ref().map(|t| t.label.clone()),
@@ -1161,5 +1168,53 @@ fn send(sink: &mut dyn EventSink, error: &mut Option<io::Error>, event: &Event) 
     }
     if let Err(e) = sink.event(event) {
         *error = Some(e);
+    }
+}
+
+/// What a CSV row's positions are a function of: the machine position,
+/// the total frame, the tool length on the infeed axis, and the units and
+/// diameter mode they are written in.
+#[derive(Default)]
+struct RowPositionsFrom {
+    /// `None` before the first row.
+    frame_generation: Option<u64>,
+    machine: Vec<u64>,
+    tool_length: u64,
+    infeed_axis: Option<usize>,
+    inch: bool,
+    diameter_mode: (bool, bool),
+}
+
+impl RowPositionsFrom {
+    /// Whether the positions must be computed again for `state`; takes
+    /// `state`'s inputs as the new ones.
+    fn refresh(&mut self, state: &MachineState) -> bool {
+        let frame_generation = Some(state.total_frame_generation());
+        let tool_length = state.tool_length.to_bits();
+        let infeed_axis = state.infeed_axis();
+        let inch = state.inch();
+        let diameter_mode = state.diameter_mode();
+        let same = self.frame_generation == frame_generation
+            && self.tool_length == tool_length
+            && self.infeed_axis == infeed_axis
+            && self.inch == inch
+            && self.diameter_mode == diameter_mode
+            && self.machine.len() == state.machine.len()
+            && self
+                .machine
+                .iter()
+                .zip(&state.machine)
+                .all(|(bits, value)| *bits == value.to_bits());
+        if !same {
+            self.frame_generation = frame_generation;
+            self.tool_length = tool_length;
+            self.infeed_axis = infeed_axis;
+            self.inch = inch;
+            self.diameter_mode = diameter_mode;
+            self.machine.clear();
+            self.machine
+                .extend(state.machine.iter().map(|v| v.to_bits()));
+        }
+        !same
     }
 }

@@ -126,6 +126,9 @@ pub struct MachineState {
 }
 
 struct FrameCache {
+    /// Counts the rebuilds: a total frame of another generation may be
+    /// another frame.
+    generation: u64,
     group8: WorkOffsetCode,
     suppressed: bool,
     settable: Frame,
@@ -217,6 +220,7 @@ impl MachineState {
             machine_reads: MachineReads::default(),
             // A group 8 code no block selects: the first motion fills it.
             frame_cache: RefCell::new(FrameCache {
+                generation: 0,
                 group8: WorkOffsetCode(0),
                 suppressed: false,
                 settable: neutral.clone(),
@@ -325,7 +329,9 @@ impl MachineState {
             } else {
                 settable.chain(&self.programmable)
             };
+            let generation = self.frame_cache.borrow().generation + 1;
             *self.frame_cache.borrow_mut() = FrameCache {
+                generation,
                 group8: self.group8,
                 suppressed,
                 settable: settable.clone(),
@@ -334,6 +340,13 @@ impl MachineState {
             };
         }
         Ref::map(self.frame_cache.borrow(), |c| &c.total)
+    }
+
+    /// The generation of the total frame [`Self::total_frame`] gives now:
+    /// the same generation, the same frame.
+    pub fn total_frame_generation(&self) -> u64 {
+        drop(self.total_frame());
+        self.frame_cache.borrow().generation
     }
 
     /// Keeps the total frame of the motion just made, for the increments
