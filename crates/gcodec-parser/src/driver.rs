@@ -437,15 +437,13 @@ fn read_chunk_into(
     }
 }
 
-/// Room for a chunk's tokens up to its first flush. Lines of real
-/// programs hold a token per 4–6 bytes; growing the buffer from a fixed
-/// size copied it three times per flush. A skim reads the lines it
-/// parses one at a time.
+/// Room for a chunk's tokens up to its first flush: a token per three
+/// bytes, as lines of short words (`G1 X1.5 Y2 F100`) have them (real
+/// programs' lines mostly fewer); growing the buffer copies all of it. A
+/// skim reads the lines it parses one at a time.
 fn token_room(chunk: &Chunk, reading: Reading) -> usize {
     match reading {
         Reading::Skim => 64,
-        // A line of short words (`G1 X1.5 Y2 F100`) has a token every
-        // three to four bytes; growing the buffer once copies all of it.
         _ => chunk.bytes.len().min(FLUSH_BYTES_BOUND) / 3 + 64,
     }
 }

@@ -119,11 +119,7 @@ impl BlockRow {
         self.feed = other.feed;
         self.spindle_speed = other.spindle_speed;
         self.spindle = other.spindle;
-        for (slot, code) in self.modal.iter_mut().zip(&other.modal) {
-            if slot != code {
-                slot.clone_from(code);
-            }
-        }
+        copy_modal(&mut self.modal, &other.modal);
     }
 
     /// Sets the command of `group` if the CSV shows that group; false
@@ -182,7 +178,7 @@ struct StateText {
     feed: u64,
     spindle_speed: u64,
     spindle: SpindleState,
-    modal: ModalCodes,
+    modal: ModalRow,
     /// `,tool,edge,feed,spindle_speed,spindle` and the modal columns.
     rest_text: Vec<u8>,
 }
@@ -218,7 +214,7 @@ impl StateText {
             && self.spindle_speed == row.spindle_speed.to_bits()
             && self.spindle == row.spindle
             && self.tool == row.tool
-            && self.modal.same(&row.modal);
+            && self.modal == row.modal;
         (positions, rest)
     }
 
@@ -243,7 +239,7 @@ impl StateText {
             self.feed = row.feed.to_bits();
             self.spindle_speed = row.spindle_speed.to_bits();
             self.spindle = row.spindle;
-            self.modal.remember(&row.modal);
+            copy_modal(&mut self.modal, &row.modal);
             let text = &mut self.rest_text;
             text.clear();
             text.push(b',');
@@ -266,48 +262,15 @@ impl StateText {
     }
 }
 
-/// The modal commands of the last row written.
-#[derive(Default)]
-struct ModalCodes {
-    /// Each command's address and length when it is a static name (the
-    /// registry's, as the executor fills rows): static text never
-    /// changes, so equal addresses mean equal text. `None` for an owned
-    /// command, whose address a later one may reuse: compared by text.
-    codes: [Option<(usize, usize)>; MAIN_MODAL_GROUPS.len()],
-    owned: Vec<String>,
-}
-
+/// A row's modal commands, in [`MAIN_MODAL_GROUPS`] order.
 type ModalRow = [Cow<'static, str>; MAIN_MODAL_GROUPS.len()];
 
-// The variant matters, not only the text: `&str` would lose it.
-#[allow(clippy::ptr_arg)]
-fn static_key(code: &Cow<'static, str>) -> Option<(usize, usize)> {
-    match code {
-        Cow::Borrowed(text) => Some((text.as_ptr() as usize, text.len())),
-        Cow::Owned(_) => None,
-    }
-}
-
-impl ModalCodes {
-    fn same(&self, modal: &ModalRow) -> bool {
-        let mut owned = self.owned.iter();
-        self.codes
-            .iter()
-            .zip(modal)
-            .all(|(key, code)| match (key, code) {
-                (Some(_), Cow::Borrowed(_)) => *key == static_key(code),
-                (None, Cow::Owned(text)) => owned.next().is_some_and(|o| o == text),
-                _ => false,
-            })
-    }
-
-    fn remember(&mut self, modal: &ModalRow) {
-        self.owned.clear();
-        for (key, code) in self.codes.iter_mut().zip(modal) {
-            *key = static_key(code);
-            if let Cow::Owned(text) = code {
-                self.owned.push(text.clone());
-            }
+/// Makes `to` hold the commands of `from`; the registry's static names
+/// are copied as references, and only a command that differs is copied.
+fn copy_modal(to: &mut ModalRow, from: &ModalRow) {
+    for (slot, code) in to.iter_mut().zip(from) {
+        if slot != code {
+            slot.clone_from(code);
         }
     }
 }
