@@ -7,6 +7,7 @@ mod check;
 mod commands;
 mod diagnostic_formats;
 mod exit;
+mod interrupt;
 mod output;
 mod plot;
 mod report;

@@ -6,7 +6,6 @@
 use std::io::{self, Write};
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::ValueEnum;
 use gcodec_driver::event::{
@@ -252,18 +251,7 @@ pub fn prepare(inputs: &RunInputs, reporter: &Reporter) -> Result<PreparedRun, u
         run_options.stop_at_m0 = false;
     }
     run_options.optional_stop = inputs.optional_stop;
-    let interrupt = Arc::new(AtomicBool::new(false));
-    {
-        let flag = Arc::clone(&interrupt);
-        // A second Ctrl-C while the first is handled ends the process as
-        // usual; failing to install the handler only loses the clean stop.
-        let _ = ctrlc::set_handler(move || {
-            if flag.swap(true, Ordering::Relaxed) {
-                std::process::exit(130);
-            }
-        });
-    }
-    run_options.interrupt = Some(interrupt);
+    run_options.interrupt = Some(crate::interrupt::ctrl_c_flag());
     Ok(PreparedRun {
         file: Arc::new(file),
         setup,

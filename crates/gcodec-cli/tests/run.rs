@@ -485,3 +485,54 @@ fn a_bad_toolchanger_scenario_is_a_diagnostic_into_its_toml_and_exit_2() {
     assert!(err.contains("bad.toml:2:1"), "{err}");
     assert!(stdout(&out).is_empty(), "no run: {}", stdout(&out));
 }
+
+/// Ctrl-C stops an endless run at the next block: the error
+/// `gcodec::run::interrupted`, `program_end` with `limit`, exit code 1.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_the_run_at_the_next_block() {
+    use std::io::{BufRead, BufReader, Read};
+    use std::process::Stdio;
+
+    let program = temp_file(
+        "ctrl_c",
+        "endless.mpf",
+        "WHILE 1\nG1 X=R1 F1000\nR1=R1+1\nENDWHILE\nM30\n",
+    );
+    let mut child = common::command([
+        "run".as_ref(),
+        "--max-steps".as_ref(),
+        "18446744073709551615".as_ref(),
+        program.as_os_str(),
+    ])
+    .stdout(Stdio::piped())
+    .stderr(Stdio::piped())
+    .spawn()
+    .expect("gcodec starts");
+    let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
+    // The first event comes after the handler is installed.
+    let mut first = String::new();
+    stdout.read_line(&mut first).expect("an event");
+    assert!(first.contains("\"event\""), "{first}");
+    let kill = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(kill.success());
+    let mut rest = String::new();
+    stdout.read_to_string(&mut rest).expect("the events");
+    let mut errors = String::new();
+    child
+        .stderr
+        .take()
+        .expect("stderr")
+        .read_to_string(&mut errors)
+        .expect("the diagnostics");
+    let status = child.wait().expect("gcodec ends");
+    assert_eq!(status.code(), Some(EXIT_DIAGNOSTICS), "{errors}");
+    assert!(errors.contains("gcodec::run::interrupted"), "{errors}");
+    let last: Value =
+        serde_json::from_str(rest.lines().last().expect("program_end")).expect("json");
+    assert_eq!(last["event"], "program_end");
+    assert_eq!(last["reason"], "limit");
+}
