@@ -25,7 +25,7 @@ fn set(flag: &AtomicBool) -> bool {
 #[cfg(unix)]
 mod imp {
     use std::sync::atomic::AtomicBool;
-    use std::sync::{Arc, OnceLock};
+    use std::sync::{Arc, Once, OnceLock};
 
     static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
 
@@ -41,22 +41,17 @@ mod imp {
     }
 
     pub fn ctrl_c_flag() -> Arc<AtomicBool> {
-        let mut installed = true;
-        let flag = FLAG.get_or_init(|| {
-            installed = false;
-            Arc::new(AtomicBool::new(false))
+        let flag = FLAG.get_or_init(|| Arc::new(AtomicBool::new(false)));
+        static INSTALL: Once = Once::new();
+        // SAFETY: a zeroed `sigaction` is a valid value; the handler only
+        // touches `FLAG`, set before it is installed.
+        INSTALL.call_once(|| unsafe {
+            let mut action: libc::sigaction = std::mem::zeroed();
+            action.sa_sigaction = on_sigint as extern "C" fn(libc::c_int) as libc::sighandler_t;
+            action.sa_flags = libc::SA_RESTART;
+            libc::sigemptyset(&mut action.sa_mask);
+            libc::sigaction(libc::SIGINT, &action, std::ptr::null_mut());
         });
-        if !installed {
-            // SAFETY: a zeroed `sigaction` is a valid value; the handler
-            // only touches `FLAG`, set before it is installed.
-            unsafe {
-                let mut action: libc::sigaction = std::mem::zeroed();
-                action.sa_sigaction = on_sigint as extern "C" fn(libc::c_int) as libc::sighandler_t;
-                action.sa_flags = libc::SA_RESTART;
-                libc::sigemptyset(&mut action.sa_mask);
-                libc::sigaction(libc::SIGINT, &action, std::ptr::null_mut());
-            }
-        }
         Arc::clone(flag)
     }
 }
