@@ -724,6 +724,75 @@ fn csv_rows_are_written_for_motions_changes_and_the_last_block() {
     );
 }
 
+/// The text of `blocks` as `CsvRows` selects them, header left out.
+fn csv_rows(rows: CsvRows, blocks: &[BlockRow]) -> Vec<String> {
+    let mut csv = CsvWriter::new(Vec::new(), [Cow::Borrowed("X"), Cow::Borrowed("Y")])
+        .expect("header")
+        .with_rows(rows);
+    for block in blocks {
+        csv.row(block).expect("row");
+    }
+    let text = String::from_utf8(csv.into_inner().expect("flushes")).expect("UTF-8");
+    text.lines().skip(1).map(str::to_owned).collect()
+}
+
+/// A last block passed over is written at the end with its own number,
+/// file, line, level and count, and the state columns of the last row
+/// written, which were its own: the row the every-block trace has.
+#[test]
+fn a_passed_over_last_block_is_written_as_the_trace_writes_it() {
+    let mut first = row();
+    first.positions = AxisMap::from([("X", 1.5), ("Y", -0.0)]);
+    let mut computes = first.clone();
+    computes.moved = false;
+    computes.block_number = None;
+    computes.line = 8;
+    computes.blocks = 4;
+    let mut called = computes.clone();
+    called.file = Arc::from("sub, with a comma.spf");
+    called.block_number = Some(130);
+    called.line = 2;
+    called.level = 1;
+    called.blocks = 5;
+    let blocks = [first, computes, called];
+    let changes = csv_rows(CsvRows::Changes, &blocks);
+    let trace = csv_rows(CsvRows::EveryBlock, &blocks);
+    assert_eq!(changes.len(), 2, "{changes:?}");
+    assert_eq!(changes[0], trace[0]);
+    assert_eq!(changes[1], trace[2]);
+    assert!(
+        changes[1].starts_with("130,\"sub, with a comma.spf\",2,1,5,1.5,-0,T7,"),
+        "{}",
+        changes[1]
+    );
+}
+
+/// A modal command is compared by its text, whether the registry's or
+/// owned: the same text is no change, another one is.
+#[test]
+fn csv_modal_columns_compare_static_and_owned_commands_by_text() {
+    let block = |line: u32, motion: Cow<'static, str>| {
+        let mut row = BlockRow {
+            line,
+            blocks: u64::from(line),
+            moved: false,
+            ..row()
+        };
+        row.set_modal(1, motion);
+        row
+    };
+    let owned = |code: &str| Cow::Owned(code.to_owned());
+    let blocks = [
+        block(1, Cow::Borrowed("G1")),
+        block(2, owned("G1")),
+        block(3, owned("G0")),
+        block(4, Cow::Borrowed("G0")),
+        block(5, Cow::Borrowed("G2")),
+        block(6, Cow::Borrowed("G2")),
+    ];
+    assert_eq!(csv_lines_written(CsvRows::Changes, &blocks), [1, 3, 5, 6]);
+}
+
 #[test]
 fn a_diagnostic_is_written_with_its_code_s_name_level_and_alarm() {
     let diagnostic = DiagnosticEvent::new(codes::run::JUMP_TARGET_NOT_FOUND, "not found");

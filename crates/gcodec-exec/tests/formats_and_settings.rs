@@ -8,10 +8,11 @@ use std::sync::Arc;
 
 use common::golden::{Output, golden};
 use common::runs::{RunSetup, compile_main, run_main};
+use common::setup::{Setup, at_repo_root, setup};
 use gcodec_driver::Definitions;
 use gcodec_driver::SearchPath;
-use gcodec_exec::channel::RunOptions;
-use gcodec_exec::event::{CountingSink, ProgramEndReason};
+use gcodec_exec::channel::{BlockObserver, RunOptions};
+use gcodec_exec::event::{BlockRow, CountingSink, CsvRows, CsvWriter, ProgramEndReason};
 use gcodec_source::SourceFile;
 use gcodec_testkit::Fixture;
 
@@ -79,4 +80,88 @@ fn the_circle_tolerance_comes_from_the_profile() {
         end_with_program_settings("arcs.mpf", "circle_error_const = 41.2"),
         End::M30
     );
+}
+
+/// Hands the CSV writer each row with its promise (`unchanged`) taken
+/// back, so the writer compares every row; counts the promises.
+struct Unpromised<'w> {
+    csv: &'w mut CsvWriter<Vec<u8>>,
+    promised: usize,
+}
+
+impl BlockObserver for Unpromised<'_> {
+    fn block(&mut self, row: &BlockRow) -> std::io::Result<()> {
+        self.promised += usize::from(row.unchanged);
+        let mut row = row.clone();
+        row.unchanged = false;
+        self.csv.row(&row)
+    }
+}
+
+/// The executor's promise that a row's state columns are the row
+/// before's lets the writer skip its comparison; the CSV is then what
+/// comparing every row writes, in both row selections, for every run
+/// fixture (loops, calls, frames, compensation with held rows).
+#[test]
+fn csv_rows_promised_unchanged_are_written_as_compared_rows() {
+    at_repo_root();
+    let mut fixtures: Vec<PathBuf> = std::fs::read_dir(gcodec_testkit::fixtures::root("run"))
+        .expect("fixtures")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "mpf"))
+        .collect();
+    fixtures.sort();
+    let mut promised = 0;
+    for path in &fixtures {
+        let fixture = Fixture::read("run", path);
+        let Setup { profile, options } = setup(&fixture);
+        let file = Arc::new(fixture.file.clone());
+        let definitions = Arc::new(Definitions::new());
+        let main = compile_main(&file, &profile, &definitions);
+        if main.has_errors {
+            continue;
+        }
+        for rows in [CsvRows::Changes, CsvRows::EveryBlock] {
+            let csv = |unpromised: bool| {
+                let run = RunSetup {
+                    profile: Arc::clone(&profile),
+                    options: options.clone(),
+                    definitions: Arc::clone(&definitions),
+                    search: SearchPath::new(),
+                };
+                let mut csv = CsvWriter::for_profile(Vec::new(), &profile)
+                    .expect("header")
+                    .with_rows(rows);
+                let mut count = 0;
+                let program = Arc::clone(&main.program);
+                if unpromised {
+                    let mut observer = Unpromised {
+                        csv: &mut csv,
+                        promised: 0,
+                    };
+                    run_main(
+                        program,
+                        run,
+                        &mut CountingSink::default(),
+                        Some(&mut observer),
+                    );
+                    count = observer.promised;
+                } else {
+                    run_main(program, run, &mut CountingSink::default(), Some(&mut csv));
+                }
+                (csv.into_inner().expect("rows"), count)
+            };
+            let (as_promised, _) = csv(false);
+            let (compared, count) = csv(true);
+            assert!(
+                as_promised == compared,
+                "{} ({rows:?}): the promised rows differ\n{}\n---\n{}",
+                fixture.relative,
+                String::from_utf8_lossy(&as_promised),
+                String::from_utf8_lossy(&compared)
+            );
+            promised += count;
+        }
+    }
+    assert!(promised > 100, "only {promised} rows promised unchanged");
 }

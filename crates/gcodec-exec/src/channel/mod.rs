@@ -247,6 +247,11 @@ pub struct Channel<'r> {
     row: BlockRow,
     /// What the row's positions were computed from.
     row_positions_from: RowPositionsFrom,
+    /// What the row's other state columns were filled from.
+    row_columns_from: Option<RowColumnsFrom>,
+    /// Whether the last row filled went to the observer as it was (the
+    /// path stage was idle): only then can the next say it is the same.
+    row_went_as_filled: bool,
     errors: u64,
     warnings: u64,
     output_error: Option<io::Error>,
@@ -310,6 +315,8 @@ impl<'r> Channel<'r> {
             motion,
             row: BlockRow::default(),
             row_positions_from: RowPositionsFrom::default(),
+            row_columns_from: None,
+            row_went_as_filled: false,
             errors: 0,
             warnings: 0,
             output_error: None,
@@ -678,7 +685,8 @@ impl<'r> Channel<'r> {
         self.state.suppression = None;
         self.path_block_ended();
         if self.observer.is_some() {
-            self.fill_row();
+            let as_filled = self.path.is_idle();
+            self.fill_row(as_filled);
             if !self.hold_row()
                 && let Some(observer) = self.observer.as_mut()
                 && let Err(error) = observer.block(&self.row)
@@ -688,7 +696,9 @@ impl<'r> Channel<'r> {
         }
     }
 
-    fn fill_row(&mut self) {
+    /// Fills the row of the block just ended; `as_filled`: the row goes
+    /// to the observer as it is (the path stage does not hold it).
+    fn fill_row(&mut self, as_filled: bool) {
         let state = &self.state;
         let row = &mut self.row;
         row.block_number = self.block.number;
@@ -701,10 +711,23 @@ impl<'r> Channel<'r> {
         row.moved = self.block.had_motion;
         // A block without motion mostly leaves them as they were: the
         // frame transform is the costliest part of a row.
-        if self.row_positions_from.refresh(state) {
+        let positions_changed = self.row_positions_from.refresh(state);
+        if positions_changed {
             self.motion.workpiece_position(state);
             motion::fill_map(&mut row.positions, state, &self.motion.wcs, true);
         }
+        // Most blocks of a loop change no column: the writer need not
+        // compare them (a sixth of a CSV run without motion).
+        let columns_from = RowColumnsFrom::of(state);
+        let tool = state.active_tool.as_ref().map(|t| t.label.as_str());
+        let columns_same =
+            self.row_columns_from == Some(columns_from) && row.tool.as_deref() == tool;
+        row.unchanged = columns_same && !positions_changed && self.row_went_as_filled && as_filled;
+        self.row_went_as_filled = as_filled;
+        if columns_same {
+            return;
+        }
+        self.row_columns_from = Some(columns_from);
         match (&mut row.tool, &state.active_tool) {
             (Some(label), Some(tool)) => label.clone_from(&tool.label),
             (label, tool) => *label = tool.as_ref().map(|t| t.label.clone()),
@@ -1168,6 +1191,32 @@ fn send(sink: &mut dyn EventSink, error: &mut Option<io::Error>, event: &Event) 
     }
     if let Err(e) = sink.event(event) {
         *error = Some(e);
+    }
+}
+
+/// What a CSV row's state columns other than the positions and the tool
+/// are a function of: the same values, the same columns.
+#[derive(Clone, Copy, PartialEq)]
+struct RowColumnsFrom {
+    edge: u32,
+    feed: u64,
+    spindle_speed: u64,
+    spindle: crate::event::SpindleState,
+    /// The registry index of each group of `MAIN_MODAL_GROUPS`.
+    modal: [u8; crate::event::MAIN_MODAL_GROUPS.len()],
+}
+
+impl RowColumnsFrom {
+    fn of(state: &MachineState) -> Self {
+        let master = state.master_spindle();
+        Self {
+            edge: state.edge,
+            feed: state.feed.to_bits(),
+            spindle_speed: master.map_or(0.0, |s| s.speed).to_bits(),
+            spindle: master.map(|s| s.state).unwrap_or_default(),
+            modal: crate::event::MAIN_MODAL_GROUPS
+                .map(|column| state.modal_index(column.group).unwrap_or(0)),
+        }
     }
 }
 

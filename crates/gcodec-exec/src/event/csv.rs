@@ -98,30 +98,13 @@ pub struct BlockRow {
     /// The command of each group of [`MAIN_MODAL_GROUPS`], in that order
     /// (`G1`, `G17`, …; empty when unknown).
     pub modal: [Cow<'static, str>; MAIN_MODAL_GROUPS.len()],
+    /// A promise that the state columns (positions to modal commands) are
+    /// those of the row before, handed to the same writer: the writer
+    /// then compares nothing. `false` promises nothing.
+    pub unchanged: bool,
 }
 
 impl BlockRow {
-    /// Makes this row equal to `other`, reusing its storage: the derived
-    /// `clone_from` clones whole, allocating the maps and strings anew for
-    /// every row the writer keeps.
-    fn copy_from(&mut self, other: &BlockRow) {
-        self.block_number = other.block_number;
-        if !Arc::ptr_eq(&self.file, &other.file) {
-            self.file = Arc::clone(&other.file);
-        }
-        self.line = other.line;
-        self.level = other.level;
-        self.blocks = other.blocks;
-        self.moved = other.moved;
-        self.positions.copy_from(&other.positions);
-        self.tool.clone_from(&other.tool);
-        self.edge = other.edge;
-        self.feed = other.feed;
-        self.spindle_speed = other.spindle_speed;
-        self.spindle = other.spindle;
-        copy_modal(&mut self.modal, &other.modal);
-    }
-
     /// Sets the command of `group` if the CSV shows that group; false
     /// otherwise.
     pub fn set_modal(&mut self, group: u8, code: Cow<'static, str>) -> bool {
@@ -148,8 +131,9 @@ pub struct CsvWriter<W: Write> {
     out: BufWriter<W>,
     axes: Vec<AxisName>,
     rows: CsvRows,
-    /// The last row passed over (its storage reused for the next).
-    passed_over: BlockRow,
+    /// Where the last row passed over stands: its state columns are
+    /// those of the last row written.
+    passed_over: RowPlace,
     /// Whether `passed_over` is the last block's: [`CsvWriter::finish`]
     /// writes it then.
     last_passed_over: bool,
@@ -157,6 +141,29 @@ pub struct CsvWriter<W: Write> {
     line: Vec<u8>,
     /// The state columns of the last row written, and their text.
     state: StateText,
+}
+
+/// The columns of a row that say which block it is: all a passed-over
+/// row has of its own, since its state columns are the last row's.
+#[derive(Default)]
+struct RowPlace {
+    block_number: Option<u32>,
+    file: Arc<str>,
+    line: u32,
+    level: u32,
+    blocks: u64,
+}
+
+impl RowPlace {
+    fn of(&mut self, row: &BlockRow) {
+        self.block_number = row.block_number;
+        if !Arc::ptr_eq(&self.file, &row.file) {
+            self.file = Arc::clone(&row.file);
+        }
+        self.line = row.line;
+        self.level = row.level;
+        self.blocks = row.blocks;
+    }
 }
 
 /// The state columns of the last row written, as values and as text: a
@@ -214,7 +221,7 @@ impl StateText {
             && self.spindle_speed == row.spindle_speed.to_bits()
             && self.spindle == row.spindle
             && self.tool == row.tool
-            && self.modal == row.modal;
+            && same_modal(&self.modal, &row.modal);
         (positions, rest)
     }
 
@@ -260,6 +267,12 @@ impl StateText {
         line.extend_from_slice(&self.rest_text);
         self.written = true;
     }
+
+    /// Writes the state columns of the last row again.
+    fn write_again(&self, line: &mut Vec<u8>) {
+        line.extend_from_slice(&self.positions_text);
+        line.extend_from_slice(&self.rest_text);
+    }
 }
 
 /// A row's modal commands, in [`MAIN_MODAL_GROUPS`] order.
@@ -269,9 +282,30 @@ type ModalRow = [Cow<'static, str>; MAIN_MODAL_GROUPS.len()];
 /// are copied as references, and only a command that differs is copied.
 fn copy_modal(to: &mut ModalRow, from: &ModalRow) {
     for (slot, code) in to.iter_mut().zip(from) {
-        if slot != code {
+        if !same_command(slot, code) {
             slot.clone_from(code);
         }
+    }
+}
+
+/// Whether two rows' modal commands are the same.
+fn same_modal(a: &ModalRow, b: &ModalRow) -> bool {
+    a.iter().zip(b).all(|(a, b)| same_command(a, b))
+}
+
+/// Whether two modal commands are the same text. The registry's names are
+/// static: one address is one text, and no bytes need comparing (a
+/// comparison of the eight columns' bytes after every block was a sixth
+/// of a CSV run without motion). An owned text may reuse a freed one's
+/// address, so it is compared by its bytes.
+#[expect(
+    clippy::ptr_arg,
+    reason = "the variant says whether the address stands for the text"
+)]
+fn same_command(a: &Cow<'static, str>, b: &Cow<'static, str>) -> bool {
+    match (a, b) {
+        (Cow::Borrowed(a), Cow::Borrowed(b)) if std::ptr::eq(*a, *b) => true,
+        _ => a == b,
     }
 }
 
@@ -282,7 +316,7 @@ impl<W: Write> CsvWriter<W> {
             out: BufWriter::with_capacity(1 << 16, writer),
             axes: axes.into_iter().collect(),
             rows: CsvRows::default(),
-            passed_over: BlockRow::default(),
+            passed_over: RowPlace::default(),
             last_passed_over: false,
             line: Vec::with_capacity(256),
             state: StateText::default(),
@@ -317,10 +351,16 @@ impl<W: Write> CsvWriter<W> {
     /// Takes the row of the next executed block and writes it if
     /// [`CsvRows`] selects it.
     pub fn row(&mut self, row: &BlockRow) -> io::Result<()> {
-        let same = self.state.compare(&self.axes, row);
+        // The row before was written or passed over as the same as the
+        // last written: either way this one is the same as that.
+        let same = if row.unchanged && self.state.written {
+            (true, true)
+        } else {
+            self.state.compare(&self.axes, row)
+        };
         if self.rows == CsvRows::Changes && !row.moved && same == (true, true) {
             // Kept in case it is the last block.
-            self.passed_over.copy_from(row);
+            self.passed_over.of(row);
             self.last_passed_over = true;
             return Ok(());
         }
@@ -329,22 +369,13 @@ impl<W: Write> CsvWriter<W> {
     }
 
     fn write(&mut self, row: &BlockRow, same: (bool, bool)) -> io::Result<()> {
-        let line = &mut self.line;
-        line.clear();
-        if let Some(number) = row.block_number {
-            write_u64(line, u64::from(number));
-        }
-        line.push(b',');
-        write_csv_field(line, &row.file);
-        line.push(b',');
-        write_u64(line, u64::from(row.line));
-        line.push(b',');
-        write_u64(line, u64::from(row.level));
-        line.push(b',');
-        write_u64(line, row.blocks);
-        self.state.write(line, row, same);
-        line.push(b'\n');
-        self.out.write_all(line)
+        let mut place = std::mem::take(&mut self.passed_over);
+        place.of(row);
+        write_place(&mut self.line, &place);
+        self.passed_over = place;
+        self.state.write(&mut self.line, row, same);
+        self.line.push(b'\n');
+        self.out.write_all(&self.line)
     }
 
     /// Writes the last block's row if it was passed over, and flushes.
@@ -357,9 +388,10 @@ impl<W: Write> CsvWriter<W> {
         if !std::mem::take(&mut self.last_passed_over) {
             return Ok(());
         }
-        let last = std::mem::take(&mut self.passed_over);
-        let same = self.state.compare(&self.axes, &last);
-        self.write(&last, same)
+        write_place(&mut self.line, &self.passed_over);
+        self.state.write_again(&mut self.line);
+        self.line.push(b'\n');
+        self.out.write_all(&self.line)
     }
 
     /// Writes the last block's row if it was passed over, flushes, and
@@ -370,6 +402,22 @@ impl<W: Write> CsvWriter<W> {
             .into_inner()
             .map_err(io::IntoInnerError::into_error)
     }
+}
+
+/// Starts `line` with the columns `block,file,line,level,blocks`.
+fn write_place(line: &mut Vec<u8>, place: &RowPlace) {
+    line.clear();
+    if let Some(number) = place.block_number {
+        write_u64(line, u64::from(number));
+    }
+    line.push(b',');
+    write_csv_field(line, &place.file);
+    line.push(b',');
+    write_u64(line, u64::from(place.line));
+    line.push(b',');
+    write_u64(line, u64::from(place.level));
+    line.push(b',');
+    write_u64(line, place.blocks);
 }
 
 /// A number as Rust's `{}` writes it (shortest text that reads back, no
