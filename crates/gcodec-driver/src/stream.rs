@@ -19,7 +19,7 @@ use gcodec_exec::program::{Program, SourcePage};
 use gcodec_profile::Profile;
 use gcodec_sema::{Definitions, LoweredChunk, ProgramKind, lower_chunks, outline_chunks};
 use gcodec_source::{Diagnostic, Diagnostics, SourceFile};
-use gcodec_stream::chunks_at;
+use gcodec_stream::{SpentBin, chunks_at};
 
 /// How a streamed run cuts its program.
 #[derive(Clone, Copy, Debug)]
@@ -46,6 +46,13 @@ impl Default for StreamOptions {
 /// the two threads not to wait on each other at every page.
 const PAGES_AHEAD: usize = 2;
 
+/// Programs of at most this many chunks are lowered whole on the calling
+/// thread before they run, their pages all held by the channel: starting
+/// a thread for pass 2 (its stack, its allocator arena, the hand-over of
+/// each page) cost more than lowering a short program takes, and most
+/// programs a shop runs are short (issue 20, docs/performance.md).
+const LOWERED_BEFORE_RUN: usize = 1;
+
 /// Runs the program in `file` (called `name`, started as `kind`:
 /// [`ProgramKind::Main`] but for a subprogram run on its own) streamed:
 /// `run` gets the [`Program`] while pass 2 still lowers it. Returns what
@@ -65,7 +72,15 @@ pub fn run_streamed<R>(
     let (outline, structure_diagnostics) =
         outline_chunks(file, kind, &chunks, options.workers, profile, definitions);
     let outline_diagnostics = outline.diagnostics();
-    let (sender, receiver) = sync_channel::<SourcePage>(PAGES_AHEAD);
+    let before_run = chunks.len() <= LOWERED_BEFORE_RUN;
+    // Before the run, the channel holds every page: pass 1's errors, the
+    // chunks' and the end's.
+    let capacity = if before_run {
+        chunks.len() + 2
+    } else {
+        PAGES_AHEAD
+    };
+    let (sender, receiver) = sync_channel::<SourcePage>(capacity);
     let program = Program::streamed(
         name,
         Arc::clone(file),
@@ -80,32 +95,44 @@ pub fn run_streamed<R>(
         file_name,
         structure_diagnostics.iter().chain(outline_diagnostics),
     );
-    let (result, lowered) = std::thread::scope(|scope| {
-        let pass2 = scope.spawn(|| {
-            let mut pages = Pages {
-                sender: Some(sender),
-                file,
-                name: file_name,
-                parse_diagnostics: Diagnostics::new(),
-                diagnostics: Diagnostics::new(),
-            };
-            // The errors pass 1 found go ahead of every page.
-            pages.send(SourcePage::new(Vec::new(), known_errors));
-            let workers = options.workers;
-            lower_chunks(file, &chunks, workers, &outline, profile, |lowered| {
-                pages.lowered(lowered);
-            });
-            (pages.parse_diagnostics, pages.diagnostics)
+    let pass2 = || {
+        let mut pages = Pages {
+            sender: Some(sender),
+            file,
+            name: file_name,
+            parse_diagnostics: Diagnostics::new(),
+            diagnostics: Diagnostics::new(),
+        };
+        // The errors pass 1 found go ahead of every page.
+        pages.send(SourcePage::new(Vec::new(), known_errors));
+        let workers = options.workers;
+        lower_chunks(file, &chunks, workers, &outline, profile, |lowered| {
+            pages.lowered(lowered);
         });
+        (pages.parse_diagnostics, pages.diagnostics)
+    };
+    let (result, lowered) = if before_run {
+        let lowered = pass2();
         let result = run(Arc::clone(&program));
-        // A run that stopped early leaves pages unread: pass 2 must not
-        // wait for it to take them.
         program.end_stream();
-        let lowered = pass2
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        // The pages the run gave back wait in this thread's bin, which
+        // lives as long as the thread: an embedder running program after
+        // program on it must not keep them all.
+        SpentBin::free_this_threads();
         (result, lowered)
-    });
+    } else {
+        std::thread::scope(|scope| {
+            let pass2 = scope.spawn(pass2);
+            let result = run(Arc::clone(&program));
+            // A run that stopped early leaves pages unread: pass 2 must
+            // not wait for it to take them.
+            program.end_stream();
+            let lowered = pass2
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+            (result, lowered)
+        })
+    };
     let (parse_diagnostics, lowering_diagnostics) = lowered;
     let diagnostics = in_program_order(
         src,

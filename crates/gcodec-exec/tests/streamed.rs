@@ -2,7 +2,10 @@
 //! the same events as a run of the program lowered whole, byte for byte,
 //! however the program is cut into pages: every golden fixture and every
 //! corpus main program, with pages of 1, 3 and 16,384 lines. The
-//! program's diagnostics are the same too.
+//! program's diagnostics are the same too. Pages of 16,384 lines make
+//! each program one chunk, lowered on the calling thread before it runs;
+//! the smaller pages make most programs several, lowered on a thread of
+//! their own while they run.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
