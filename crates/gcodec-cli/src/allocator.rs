@@ -1,5 +1,5 @@
 //! The global allocator: mimalloc, asked for alignment only when the
-//! layout needs more than every mimalloc block has.
+//! layout needs more than every mimalloc block has, and its options.
 //!
 //! `mimalloc::MiMalloc` passes every allocation to `mi_malloc_aligned`,
 //! whose quick path holds only for blocks up to 1 KiB whose free block
@@ -15,6 +15,42 @@ use std::alloc::{GlobalAlloc, Layout};
 use std::ffi::c_void;
 
 use libmimalloc_sys as mi;
+
+/// mimalloc's `mi_option_purge_delay` (`mimalloc.h`, the same in v2 and
+/// v3; `libmimalloc-sys` has no constant for it).
+const MI_OPTION_PURGE_DELAY: mi::mi_option_t = 15;
+
+/// mimalloc v3's `mi_option_arena_reserve` (`mimalloc.h`; no constant in
+/// `libmimalloc-sys` either), in KiB.
+const MI_OPTION_ARENA_RESERVE: mi::mi_option_t = 23;
+
+/// The first arena mimalloc reserves: 64 MiB instead of 1 GiB. An arena's
+/// bitmaps are sized for all of it and written at its creation: about 40
+/// page faults of a start for 1 GiB, a sixth of a short program's run
+/// (docs/performance.md, "Issue 20: a start's page faults"). Later arenas
+/// grow by themselves (mimalloc doubles the reserve every eight), and a
+/// large allocation gets an arena its size.
+const FIRST_ARENA_KIB: std::ffi::c_long = 64 * 1024;
+
+/// Sets mimalloc's options for a process that runs once and exits.
+pub extern "C" fn set_options() {
+    // Memory freed between stages is kept for reuse instead of being
+    // handed back to the OS and faulted in again, which cost a fifth of a
+    // large lowering.
+    // SAFETY: `mi_option_set` only stores the value, and may be called at
+    // any time, before mimalloc's own start too.
+    unsafe { mi::mi_option_set(MI_OPTION_PURGE_DELAY, -1) };
+    // SAFETY: as above.
+    unsafe { mi::mi_option_set(MI_OPTION_ARENA_RESERVE, FIRST_ARENA_KIB) };
+}
+
+/// On Linux the options are set before `main`: the standard library's
+/// start allocates (the main thread's information), and mimalloc reserves
+/// its first arena then. A function in `.init_array` runs before it.
+#[cfg(target_os = "linux")]
+#[used]
+#[unsafe(link_section = ".init_array")]
+static SET_OPTIONS_AT_LOAD: extern "C" fn() = set_options;
 
 /// The alignment of every block `mi_malloc` returns (`MI_INTPTR_SIZE`).
 const BLOCK_ALIGN: usize = std::mem::size_of::<usize>();

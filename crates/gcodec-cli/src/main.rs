@@ -29,17 +29,9 @@ use crate::exit::{EXIT_CLEAN, EXIT_USAGE};
 #[global_allocator]
 static ALLOCATOR: allocator::Mimalloc = allocator::Mimalloc;
 
-/// mimalloc's `mi_option_purge_delay` (`mimalloc.h`, the same in v2 and
-/// v3; `libmimalloc-sys` has no constant for it).
-const MI_OPTION_PURGE_DELAY: libmimalloc_sys::mi_option_t = 15;
-
 fn main() -> ExitCode {
-    // gcodec runs once and exits: memory freed between stages is kept for
-    // reuse instead of being handed back to the OS and faulted in again,
-    // which cost a fifth of a large lowering.
-    // SAFETY: `mi_option_set` only stores the value; mimalloc reads it
-    // atomically and it may be called at any time.
-    unsafe { libmimalloc_sys::mi_option_set(MI_OPTION_PURGE_DELAY, -1) };
+    #[cfg(not(target_os = "linux"))]
+    allocator::set_options();
     let exit = match commands::Cli::try_parse() {
         Ok(cli) => commands::run(cli),
         Err(usage) => print_usage(&usage),
