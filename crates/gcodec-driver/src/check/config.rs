@@ -308,9 +308,15 @@ fn glob_set(globs: &[Spanned<String>], problems: &mut Vec<Diagnostic>) -> GlobSe
         } else {
             format!("**/{text}")
         };
-        match GlobBuilder::new(&pattern).literal_separator(true).build() {
+        let built: Result<Vec<_>, _> = super::alternatives::spelt_out(&pattern)
+            .iter()
+            .map(|glob| GlobBuilder::new(glob).literal_separator(true).build())
+            .collect();
+        match built {
             Ok(built) => {
-                set.add(built);
+                for glob in built {
+                    set.add(glob);
+                }
             }
             Err(e) => problems.push(
                 Diagnostic::new(

@@ -19,6 +19,7 @@
 //!   levels; [`baseline`]: the findings a repository accepts, written
 //!   and applied to a [`CheckReport`].
 
+mod alternatives;
 pub mod baseline;
 mod config;
 mod gather;
