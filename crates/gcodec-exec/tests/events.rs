@@ -767,6 +767,32 @@ fn a_passed_over_last_block_is_written_as_the_trace_writes_it() {
     );
 }
 
+/// Each axis's cell follows its own value: an axis that did not move
+/// keeps its text while another changes, and `-0` is written as such.
+#[test]
+fn csv_position_cells_follow_each_axis() {
+    let at = |line: u32, x: f64, y: f64| BlockRow {
+        line,
+        blocks: u64::from(line),
+        positions: AxisMap::from([("X", x), ("Y", y)]),
+        ..row()
+    };
+    let cells: Vec<String> = csv_rows(
+        CsvRows::Changes,
+        &[
+            at(1, 1.5, 2.0),
+            at(2, 1.25, 2.0),
+            at(3, 1.25, -0.0),
+            at(4, 1.25, 0.0),
+            at(5, 3.0, 0.0),
+        ],
+    )
+    .iter()
+    .map(|row| row.split(',').skip(5).take(2).collect::<Vec<_>>().join(" "))
+    .collect();
+    assert_eq!(cells, ["1.5 2", "1.25 2", "1.25 -0", "1.25 0", "3 0"]);
+}
+
 /// A modal command is compared by its text, whether the registry's or
 /// owned: the same text is no change, another one is.
 #[test]

@@ -149,6 +149,8 @@ pub struct CsvWriter<W: Write> {
 struct RowPlace {
     block_number: Option<u32>,
     file: Arc<str>,
+    /// `file` as a CSV field: the same file in most rows, written once.
+    file_field: Vec<u8>,
     line: u32,
     level: u32,
     blocks: u64,
@@ -159,6 +161,8 @@ impl RowPlace {
         self.block_number = row.block_number;
         if !Arc::ptr_eq(&self.file, &row.file) {
             self.file = Arc::clone(&row.file);
+            self.file_field.clear();
+            write_csv_field(&mut self.file_field, &self.file);
         }
         self.line = row.line;
         self.level = row.level;
@@ -179,6 +183,8 @@ struct StateText {
     positions: Vec<Option<u64>>,
     /// The same for the row at hand, before it is compared.
     next_positions: Vec<Option<u64>>,
+    /// The text of each of `positions`: an axis that did not move keeps it.
+    position_cells: Vec<Vec<u8>>,
     positions_text: Vec<u8>,
     tool: Option<String>,
     edge: u32,
@@ -229,15 +235,22 @@ impl StateText {
     /// said which are the same, and remembers them.
     fn write(&mut self, line: &mut Vec<u8>, row: &BlockRow, (positions, rest): (bool, bool)) {
         if !positions {
-            std::mem::swap(&mut self.positions, &mut self.next_positions);
+            let cells = &mut self.position_cells;
+            cells.resize_with(self.next_positions.len(), Vec::new);
             let text = &mut self.positions_text;
             text.clear();
-            for bits in &self.positions {
-                text.push(b',');
-                if let Some(bits) = bits {
-                    write_f64_csv(text, f64::from_bits(*bits));
+            for (k, bits) in self.next_positions.iter().enumerate() {
+                let cell = &mut cells[k];
+                if self.positions.get(k) != Some(bits) {
+                    cell.clear();
+                    if let Some(bits) = bits {
+                        write_f64_csv(cell, f64::from_bits(*bits));
+                    }
                 }
+                text.push(b',');
+                text.extend_from_slice(cell);
             }
+            std::mem::swap(&mut self.positions, &mut self.next_positions);
         }
         line.extend_from_slice(&self.positions_text);
         if !rest {
@@ -369,10 +382,8 @@ impl<W: Write> CsvWriter<W> {
     }
 
     fn write(&mut self, row: &BlockRow, same: (bool, bool)) -> io::Result<()> {
-        let mut place = std::mem::take(&mut self.passed_over);
-        place.of(row);
-        write_place(&mut self.line, &place);
-        self.passed_over = place;
+        self.passed_over.of(row);
+        write_place(&mut self.line, &self.passed_over);
         self.state.write(&mut self.line, row, same);
         self.line.push(b'\n');
         self.out.write_all(&self.line)
@@ -411,7 +422,7 @@ fn write_place(line: &mut Vec<u8>, place: &RowPlace) {
         write_u64(line, u64::from(number));
     }
     line.push(b',');
-    write_csv_field(line, &place.file);
+    line.extend_from_slice(&place.file_field);
     line.push(b',');
     write_u64(line, u64::from(place.line));
     line.push(b',');
