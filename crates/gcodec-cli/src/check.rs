@@ -24,7 +24,7 @@ pub enum Denied {
     Warnings,
 }
 
-/// The options of `gcodec check`.
+// The options of `gcodec check`.
 #[derive(Debug, clap::Args)]
 #[command(
     after_help = "Every code in the output is explained by `gcodec explain CODE`; \

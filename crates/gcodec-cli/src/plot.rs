@@ -12,7 +12,7 @@ use crate::output::{Stdout, after_output};
 use crate::report::Reporter;
 use crate::run::{RunInputs, conclude, prepare, run_events, summary_to_stderr};
 
-/// The options of `gcodec plot`.
+// The options of `gcodec plot`.
 #[derive(Debug, clap::Args)]
 pub struct PlotArgs {
     #[command(flatten)]

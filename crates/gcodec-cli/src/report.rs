@@ -15,7 +15,7 @@ use crate::diagnostic_formats::{DiagnosticFormat, diagnostics_text};
 use crate::exit::EXIT_USAGE;
 use crate::output::to_stderr;
 
-/// How diagnostics are shown.
+// How diagnostics are shown.
 #[derive(Clone, Copy, Debug, clap::Args)]
 pub struct DiagnosticOptions {
     /// Show at most N diagnostics per file, then count the rest (0: all).
@@ -130,7 +130,7 @@ impl Reporter {
     }
 }
 
-/// The configuration a command that lowers or runs one program reads.
+// The configuration a command that lowers or runs one program reads.
 #[derive(Clone, Debug, clap::Args)]
 pub struct ConfigOption {
     /// The configuration (`gcodec.toml`, as `gcodec check` reads it);
@@ -206,7 +206,7 @@ pub fn load_config(path: &Path, reporter: &Reporter) -> Result<CheckConfig, u8> 
     })
 }
 
-/// The encoding of the files a command reads, where one is named.
+// The encoding of the files a command reads, where one is named.
 #[derive(Clone, Copy, Debug, clap::Args)]
 pub struct EncodingOption {
     /// Read every program and definition file in this encoding (a WHATWG

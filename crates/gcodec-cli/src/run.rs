@@ -54,7 +54,7 @@ impl From<CsvRowsOption> for CsvRows {
     }
 }
 
-/// The options of `gcodec run`.
+// The options of `gcodec run`.
 #[derive(Debug, clap::Args)]
 pub struct RunArgs {
     #[command(flatten)]
@@ -67,9 +67,9 @@ pub struct RunArgs {
     pub csv_rows: CsvRowsOption,
 }
 
-/// What a command that runs a program (`run`, `plot`) runs it with: the
-/// program, the machine, definitions, search paths, the configuration,
-/// the limits of the run and how diagnostics are shown.
+// What a command that runs a program (`run`, `plot`) runs it with: the
+// program, the machine, definitions, search paths, the configuration,
+// the limits of the run and how diagnostics are shown.
 #[derive(Debug, clap::Args)]
 pub struct RunInputs {
     /// The main program (`.mpf`).
