@@ -5,7 +5,7 @@
 //! relative relocations, and every page of `.data.rel.ro` they touch is
 //! copied on write. That was a fifth of the instructions and a fifth of
 //! the page faults of a short program's run (issue 20,
-//! docs/performance.md, "Issue 20: a start's page faults"). The code is
+//! docs/performance.md, "Issue 20: the third measurement"). The code is
 //! still compiled position-independent; the linker resolves those
 //! addresses once. The trade-off: the executable's own address is not
 //! randomised (its libraries, stack and heap still are), which matters

@@ -27,7 +27,7 @@ const MI_OPTION_ARENA_RESERVE: mi::mi_option_t = 23;
 /// The first arena mimalloc reserves: 64 MiB instead of 1 GiB. An arena's
 /// bitmaps are sized for all of it and written at its creation: about 40
 /// page faults of a start for 1 GiB, a sixth of a short program's run
-/// (docs/performance.md, "Issue 20: a start's page faults"). Later arenas
+/// (docs/performance.md, "Issue 20: the third measurement"). Later arenas
 /// grow by themselves (mimalloc doubles the reserve every eight), and a
 /// large allocation gets an arena its size.
 const FIRST_ARENA_KIB: std::ffi::c_long = 64 * 1024;

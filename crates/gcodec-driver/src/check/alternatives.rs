@@ -4,7 +4,7 @@
 //! extension alone, but one with alternatives (`**/{tool,edge}.mpf`)
 //! through a regular expression built when the configuration is read:
 //! about 150,000 instructions, an eighth of a short program's whole run
-//! (docs/performance.md, "Issue 20: a start's page faults"). A set of the
+//! (docs/performance.md, "Issue 20: the third measurement"). A set of the
 //! alternatives' globs matches the same paths and builds none.
 
 /// Globs at most a glob is spelt out into; one with more alternatives is
