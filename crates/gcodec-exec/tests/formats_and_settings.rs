@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use common::golden::{Output, golden};
 use common::runs::{RunSetup, compile_main, run_main};
-use common::setup::{Setup, at_repo_root, setup};
+use common::setup::{Setup, at_repo_root, run_fixtures, setup};
 use gcodec_driver::Definitions;
 use gcodec_driver::SearchPath;
 use gcodec_exec::channel::{BlockObserver, RunOptions};
@@ -105,12 +105,7 @@ impl BlockObserver for Unpromised<'_> {
 #[test]
 fn csv_rows_promised_unchanged_are_written_as_compared_rows() {
     at_repo_root();
-    let mut fixtures: Vec<PathBuf> = std::fs::read_dir(gcodec_testkit::fixtures::root("run"))
-        .expect("fixtures")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "mpf"))
-        .collect();
-    fixtures.sort();
+    let fixtures = run_fixtures();
     let mut promised = 0;
     for path in &fixtures {
         let fixture = Fixture::read("run", path);

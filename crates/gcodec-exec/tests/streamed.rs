@@ -23,7 +23,7 @@ use gcodec_testkit::corpus::{definitions, machine_profile};
 mod common;
 
 use common::runs::{RunSetup, compile_main, run_main};
-use common::setup::{Setup, at_repo_root, setup};
+use common::setup::{Setup, at_repo_root, run_fixtures, setup};
 
 struct Case<'a> {
     file: Arc<SourceFile>,
@@ -105,12 +105,7 @@ fn streamed_runs_write_the_events_of_whole_runs() {
     // The fixtures first, from the repository root; the corpus runs from
     // the corpus directory.
     at_repo_root();
-    let mut fixtures: Vec<PathBuf> = std::fs::read_dir(gcodec_testkit::fixtures::root("run"))
-        .expect("fixtures")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "mpf"))
-        .collect();
-    fixtures.sort();
+    let fixtures = run_fixtures();
     assert!(fixtures.len() >= 10);
     let no_search = SearchPath::new;
     for path in &fixtures {

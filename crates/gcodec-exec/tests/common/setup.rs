@@ -13,6 +13,18 @@ pub fn at_repo_root() {
     std::env::set_current_dir(root).expect("the repository root");
 }
 
+/// The golden run fixtures, `tests/fixtures/run/*.mpf`, in name order.
+pub fn run_fixtures() -> Vec<std::path::PathBuf> {
+    let mut fixtures: Vec<std::path::PathBuf> =
+        std::fs::read_dir(gcodec_testkit::fixtures::root("run"))
+            .expect("fixtures")
+            .map(|e| e.expect("entry").path())
+            .filter(|p| p.extension().is_some_and(|e| e == "mpf"))
+            .collect();
+    fixtures.sort();
+    fixtures
+}
+
 pub struct Setup {
     pub profile: std::sync::Arc<gcodec_profile::Profile>,
     pub options: RunOptions,
