@@ -182,6 +182,10 @@ impl<S: EventSink> EventSink for Diagnostics<'_, S> {
     fn finish(&mut self) -> io::Result<()> {
         self.inner.finish()
     }
+
+    fn takes_motions(&self) -> bool {
+        self.inner.takes_motions()
+    }
 }
 
 /// Events go nowhere (the CSV format writes rows, not events).
@@ -190,6 +194,10 @@ struct Discard;
 impl EventSink for Discard {
     fn event(&mut self, _: &Event) -> io::Result<()> {
         Ok(())
+    }
+
+    fn takes_motions(&self) -> bool {
+        false
     }
 }
 

@@ -12,7 +12,10 @@ use common::setup::{Setup, at_repo_root, run_fixtures, setup};
 use gcodec_driver::Definitions;
 use gcodec_driver::SearchPath;
 use gcodec_exec::channel::{BlockObserver, RunOptions};
-use gcodec_exec::event::{BlockRow, CountingSink, CsvRows, CsvWriter, ProgramEndReason};
+use gcodec_exec::event::{
+    BlockRow, CountingSink, CsvRows, CsvWriter, Event, EventKind, EventSink, ProgramEndReason,
+    VecSink,
+};
 use gcodec_source::SourceFile;
 use gcodec_testkit::Fixture;
 
@@ -159,4 +162,63 @@ fn csv_rows_promised_unchanged_are_written_as_compared_rows() {
         }
     }
     assert!(promised > 100, "only {promised} rows promised unchanged");
+}
+
+/// Keeps every event it is sent, and takes no motions.
+#[derive(Default)]
+struct NoMotions(VecSink);
+
+impl EventSink for NoMotions {
+    fn event(&mut self, event: &Event) -> std::io::Result<()> {
+        self.0.event(event)
+    }
+
+    fn takes_motions(&self) -> bool {
+        false
+    }
+}
+
+/// A sink that takes no motions gets every other event of the run, in
+/// the same order, and the run's figures are the same, for every run
+/// fixture (compensated ones included, whose motions the path stage
+/// builds all the same).
+#[test]
+fn a_sink_without_motions_gets_every_other_event() {
+    at_repo_root();
+    let mut compared = 0;
+    for path in &run_fixtures() {
+        let fixture = Fixture::read("run", path);
+        let Setup { profile, options } = setup(&fixture);
+        let file = Arc::new(fixture.file.clone());
+        let definitions = Arc::new(Definitions::new());
+        let main = compile_main(&file, &profile, &definitions);
+        if main.has_errors {
+            continue;
+        }
+        let run = || RunSetup {
+            profile: Arc::clone(&profile),
+            options: options.clone(),
+            definitions: Arc::clone(&definitions),
+            search: SearchPath::new(),
+        };
+        let mut all = VecSink::new();
+        let with = run_main(Arc::clone(&main.program), run(), &mut all, None);
+        let mut others = NoMotions::default();
+        let without = run_main(Arc::clone(&main.program), run(), &mut others, None);
+        let expected: Vec<&Event> = all
+            .events
+            .iter()
+            .filter(|e| !matches!(e.kind, EventKind::Motion(_)))
+            .collect();
+        let got: Vec<&Event> = others.0.events.iter().collect();
+        assert_eq!(got, expected, "{}", fixture.relative);
+        assert_eq!(
+            without.summary.to_string(),
+            with.summary.to_string(),
+            "{}",
+            fixture.relative
+        );
+        compared += usize::from(all.events.len() > expected.len());
+    }
+    assert!(compared >= 10, "only {compared} fixtures with motions");
 }

@@ -112,4 +112,9 @@ impl EventSink for DiagnosticsOnly {
         }
         Ok(())
     }
+
+    /// Only diagnostics are kept: the executor need not build motions.
+    fn takes_motions(&self) -> bool {
+        false
+    }
 }

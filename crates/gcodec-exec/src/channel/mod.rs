@@ -226,6 +226,8 @@ pub struct Channel<'r> {
     /// Asked of the sink when the run starts: it may want the run to
     /// hand over at the end of a block.
     sink_may_yield: bool,
+    /// The sink's [`EventSink::takes_motions`], asked when the run starts.
+    sink_takes_motions: bool,
     /// What the machine reports with an answer, emitted at once.
     machine_events: MachineEvents,
     /// The machine action the run waits for, and how to go on.
@@ -303,6 +305,7 @@ impl<'r> Channel<'r> {
             machine,
             machine_watches_blocks: false,
             sink_may_yield: false,
+            sink_takes_motions: true,
             machine_events: MachineEvents::new(),
             pending: None,
             paused_previous_line: None,
@@ -402,6 +405,7 @@ impl<'r> Channel<'r> {
             });
         }
         self.sink_may_yield = self.sink.may_yield();
+        self.sink_takes_motions = self.sink.takes_motions();
         self.stack.push(Level {
             program: Arc::clone(&main),
             pc: 0,

@@ -257,13 +257,18 @@ impl Channel<'_> {
             None if length > 0.0 => Some([end[0] - start[0], end[1] - start[1], end[2] - start[2]]),
             None => self.motion.last_tangent,
         };
-        self.fill_motion_event(program, instruction, kind, arc.as_ref(), arc_turns);
-        self.block.had_motion = true;
         let corner = self.corner_element(instruction)?;
+        let engaged = self.path_engaged(corner);
+        // The stage holds the event; a sink that takes no motions (the
+        // CSV's) needs none built.
+        if engaged || self.sink_takes_motions {
+            self.fill_motion_event(program, instruction, kind, arc.as_ref(), arc_turns);
+        }
+        self.block.had_motion = true;
         // The channel is at the programmed end point, held or not.
         self.state.machine.copy_from_slice(&self.motion.machine);
         self.state.note_traversed_frame();
-        if self.path_engaged(corner) {
+        if engaged {
             // Compensation or a corner element: the stage holds the
             // motion until the next element makes it final.
             return self.hold_motion(
@@ -286,8 +291,18 @@ impl Channel<'_> {
         };
         self.figures()
             .add_motion(kind == MotionKind::Rapid, length, time, extent);
-        super::send(&mut *self.sink, &mut self.output_error, &self.motion.event);
+        if self.sink_takes_motions {
+            super::send(&mut *self.sink, &mut self.output_error, &self.motion.event);
+        }
         Ok(())
+    }
+
+    /// Sends a motion event, unless the sink takes none
+    /// ([`crate::event::EventSink::takes_motions`]).
+    pub(super) fn send_motion(&mut self, event: &Event) {
+        if self.sink_takes_motions {
+            super::send(&mut *self.sink, &mut self.output_error, event);
+        }
     }
 
     /// Fills the scratch motion event from `scratch.wcs` to

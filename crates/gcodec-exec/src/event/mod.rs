@@ -751,6 +751,15 @@ pub trait EventSink {
     fn may_yield(&self) -> bool {
         false
     }
+
+    /// Whether the sink reads motion events: asked once, when the run
+    /// starts. A sink that answers `false` is sent none, and the executor
+    /// does not build them (the CSV writes rows, `check --run` keeps
+    /// diagnostics); every other event still comes, and the run's figures
+    /// are the same.
+    fn takes_motions(&self) -> bool {
+        true
+    }
 }
 
 impl<S: EventSink + ?Sized> EventSink for &mut S {
@@ -769,6 +778,10 @@ impl<S: EventSink + ?Sized> EventSink for &mut S {
     fn may_yield(&self) -> bool {
         (**self).may_yield()
     }
+
+    fn takes_motions(&self) -> bool {
+        (**self).takes_motions()
+    }
 }
 
 impl<S: EventSink + ?Sized> EventSink for Box<S> {
@@ -786,5 +799,9 @@ impl<S: EventSink + ?Sized> EventSink for Box<S> {
 
     fn may_yield(&self) -> bool {
         (**self).may_yield()
+    }
+
+    fn takes_motions(&self) -> bool {
+        (**self).takes_motions()
     }
 }
