@@ -257,6 +257,7 @@ impl Channel<'_> {
             None if length > 0.0 => Some([end[0] - start[0], end[1] - start[1], end[2] - start[2]]),
             None => self.motion.last_tangent,
         };
+        self.block.had_motion = true;
         let corner = self.corner_element(instruction)?;
         let engaged = self.path_engaged(corner);
         // The stage holds the event; a sink that takes no motions (the
@@ -264,7 +265,6 @@ impl Channel<'_> {
         if engaged || self.sink_takes_motions {
             self.fill_motion_event(program, instruction, kind, arc.as_ref(), arc_turns);
         }
-        self.block.had_motion = true;
         // The channel is at the programmed end point, held or not.
         self.state.machine.copy_from_slice(&self.motion.machine);
         self.state.note_traversed_frame();
