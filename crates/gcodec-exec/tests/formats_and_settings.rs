@@ -1,5 +1,6 @@
-//! A golden fixture in the other output formats, and the profile's
-//! `[program]` settings a run obeys.
+//! A golden fixture in the other output formats, the profile's
+//! `[program]` settings a run obeys, and what the CSV writer and a sink
+//! without motions get from every run fixture.
 
 mod common;
 
@@ -85,6 +86,55 @@ fn the_circle_tolerance_comes_from_the_profile() {
     );
 }
 
+/// A run fixture that lowers without errors, compiled, with what it
+/// runs on.
+struct RunnableFixture {
+    name: String,
+    profile: Arc<gcodec_profile::Profile>,
+    options: RunOptions,
+    definitions: Arc<Definitions>,
+    program: Arc<gcodec_exec::program::Program>,
+}
+
+impl RunnableFixture {
+    /// Every run fixture that lowers without errors.
+    fn all() -> Vec<Self> {
+        at_repo_root();
+        run_fixtures()
+            .iter()
+            .filter_map(|path| {
+                let fixture = Fixture::read("run", path);
+                let Setup { profile, options } = setup(&fixture);
+                let file = Arc::new(fixture.file.clone());
+                let definitions = Arc::new(Definitions::new());
+                let main = compile_main(&file, &profile, &definitions);
+                (!main.has_errors).then(|| Self {
+                    name: fixture.relative.clone(),
+                    profile,
+                    options,
+                    definitions,
+                    program: main.program,
+                })
+            })
+            .collect()
+    }
+
+    /// Runs it into `sink`, and `observer` if one.
+    fn run(
+        &self,
+        sink: &mut dyn EventSink,
+        observer: Option<&mut dyn BlockObserver>,
+    ) -> gcodec_exec::channel::RunOutcome {
+        let setup = RunSetup {
+            profile: Arc::clone(&self.profile),
+            options: self.options.clone(),
+            definitions: Arc::clone(&self.definitions),
+            search: SearchPath::new(),
+        };
+        run_main(Arc::clone(&self.program), setup, sink, observer)
+    }
+}
+
 /// Hands the CSV writer each row with its promise (`unchanged`) taken
 /// back, so the writer compares every row; counts the promises.
 struct Unpromised<'w> {
@@ -107,45 +157,24 @@ impl BlockObserver for Unpromised<'_> {
 /// fixture (loops, calls, frames, compensation with held rows).
 #[test]
 fn csv_rows_promised_unchanged_are_written_as_compared_rows() {
-    at_repo_root();
-    let fixtures = run_fixtures();
     let mut promised = 0;
-    for path in &fixtures {
-        let fixture = Fixture::read("run", path);
-        let Setup { profile, options } = setup(&fixture);
-        let file = Arc::new(fixture.file.clone());
-        let definitions = Arc::new(Definitions::new());
-        let main = compile_main(&file, &profile, &definitions);
-        if main.has_errors {
-            continue;
-        }
+    for fixture in RunnableFixture::all() {
         for rows in [CsvRows::Changes, CsvRows::EveryBlock] {
             let csv = |unpromised: bool| {
-                let run = RunSetup {
-                    profile: Arc::clone(&profile),
-                    options: options.clone(),
-                    definitions: Arc::clone(&definitions),
-                    search: SearchPath::new(),
-                };
-                let mut csv = CsvWriter::for_profile(Vec::new(), &profile)
+                let mut csv = CsvWriter::for_profile(Vec::new(), &fixture.profile)
                     .expect("header")
                     .with_rows(rows);
                 let mut count = 0;
-                let program = Arc::clone(&main.program);
+                let mut events = CountingSink::default();
                 if unpromised {
                     let mut observer = Unpromised {
                         csv: &mut csv,
                         promised: 0,
                     };
-                    run_main(
-                        program,
-                        run,
-                        &mut CountingSink::default(),
-                        Some(&mut observer),
-                    );
+                    fixture.run(&mut events, Some(&mut observer));
                     count = observer.promised;
                 } else {
-                    run_main(program, run, &mut CountingSink::default(), Some(&mut csv));
+                    fixture.run(&mut events, Some(&mut csv));
                 }
                 (csv.into_inner().expect("rows"), count)
             };
@@ -154,7 +183,7 @@ fn csv_rows_promised_unchanged_are_written_as_compared_rows() {
             assert!(
                 as_promised == compared,
                 "{} ({rows:?}): the promised rows differ\n{}\n---\n{}",
-                fixture.relative,
+                fixture.name,
                 String::from_utf8_lossy(&as_promised),
                 String::from_utf8_lossy(&compared)
             );
@@ -184,39 +213,24 @@ impl EventSink for NoMotions {
 /// builds all the same).
 #[test]
 fn a_sink_without_motions_gets_every_other_event() {
-    at_repo_root();
     let mut compared = 0;
-    for path in &run_fixtures() {
-        let fixture = Fixture::read("run", path);
-        let Setup { profile, options } = setup(&fixture);
-        let file = Arc::new(fixture.file.clone());
-        let definitions = Arc::new(Definitions::new());
-        let main = compile_main(&file, &profile, &definitions);
-        if main.has_errors {
-            continue;
-        }
-        let run = || RunSetup {
-            profile: Arc::clone(&profile),
-            options: options.clone(),
-            definitions: Arc::clone(&definitions),
-            search: SearchPath::new(),
-        };
+    for fixture in RunnableFixture::all() {
         let mut all = VecSink::new();
-        let with = run_main(Arc::clone(&main.program), run(), &mut all, None);
+        let with = fixture.run(&mut all, None);
         let mut others = NoMotions::default();
-        let without = run_main(Arc::clone(&main.program), run(), &mut others, None);
+        let without = fixture.run(&mut others, None);
         let expected: Vec<&Event> = all
             .events
             .iter()
             .filter(|e| !matches!(e.kind, EventKind::Motion(_)))
             .collect();
         let got: Vec<&Event> = others.0.events.iter().collect();
-        assert_eq!(got, expected, "{}", fixture.relative);
+        assert_eq!(got, expected, "{}", fixture.name);
         assert_eq!(
             without.summary.to_string(),
             with.summary.to_string(),
             "{}",
-            fixture.relative
+            fixture.name
         );
         compared += usize::from(all.events.len() > expected.len());
     }
