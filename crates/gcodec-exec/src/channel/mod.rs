@@ -689,8 +689,7 @@ impl<'r> Channel<'r> {
         self.state.suppression = None;
         self.path_block_ended();
         if self.observer.is_some() {
-            let as_filled = self.path.is_idle();
-            self.fill_row(as_filled);
+            self.fill_row();
             if !self.hold_row()
                 && let Some(observer) = self.observer.as_mut()
                 && let Err(error) = observer.block(&self.row)
@@ -700,9 +699,20 @@ impl<'r> Channel<'r> {
         }
     }
 
-    /// Fills the row of the block just ended; `as_filled`: the row goes
-    /// to the observer as it is (the path stage does not hold it).
-    fn fill_row(&mut self, as_filled: bool) {
+    /// Sends `event` unless it is a motion and the sink takes none.
+    fn send_if_taken(&mut self, event: &Event) {
+        send_if_taken(
+            &mut *self.sink,
+            self.sink_takes_motions,
+            &mut self.output_error,
+            event,
+        );
+    }
+
+    /// Fills the row of the block just ended.
+    fn fill_row(&mut self) {
+        // The row goes to the observer as it is unless the stage holds it.
+        let as_filled = self.path.is_idle();
         let state = &self.state;
         let row = &mut self.row;
         row.block_number = self.block.number;
@@ -736,11 +746,10 @@ impl<'r> Channel<'r> {
             (Some(label), Some(tool)) => label.clone_from(&tool.label),
             (label, tool) => *label = tool.as_ref().map(|t| t.label.clone()),
         }
-        row.edge = state.edge;
-        row.feed = state.feed;
-        let master = state.master_spindle();
-        row.spindle_speed = master.map_or(0.0, |s| s.speed);
-        row.spindle = master.map(|s| s.state).unwrap_or_default();
+        row.edge = columns_from.edge;
+        row.feed = f64::from_bits(columns_from.feed);
+        row.spindle_speed = f64::from_bits(columns_from.spindle_speed);
+        row.spindle = columns_from.spindle;
         for (slot, column) in row.modal.iter_mut().zip(crate::event::MAIN_MODAL_GROUPS) {
             *slot = Cow::Borrowed(state.modal(column.group).unwrap_or(""));
         }
@@ -1195,6 +1204,19 @@ fn send(sink: &mut dyn EventSink, error: &mut Option<io::Error>, event: &Event) 
     }
     if let Err(e) = sink.event(event) {
         *error = Some(e);
+    }
+}
+
+/// [`send`], but a motion only to a sink that takes motions
+/// ([`EventSink::takes_motions`]).
+fn send_if_taken(
+    sink: &mut dyn EventSink,
+    takes_motions: bool,
+    error: &mut Option<io::Error>,
+    event: &Event,
+) {
+    if takes_motions || !matches!(event.kind, EventKind::Motion(_)) {
+        send(sink, error, event);
     }
 }
 

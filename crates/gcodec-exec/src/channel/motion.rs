@@ -291,18 +291,13 @@ impl Channel<'_> {
         };
         self.figures()
             .add_motion(kind == MotionKind::Rapid, length, time, extent);
-        if self.sink_takes_motions {
-            super::send(&mut *self.sink, &mut self.output_error, &self.motion.event);
-        }
+        super::send_if_taken(
+            &mut *self.sink,
+            self.sink_takes_motions,
+            &mut self.output_error,
+            &self.motion.event,
+        );
         Ok(())
-    }
-
-    /// Sends a motion event, unless the sink takes none
-    /// ([`crate::event::EventSink::takes_motions`]).
-    pub(super) fn send_motion(&mut self, event: &Event) {
-        if self.sink_takes_motions {
-            super::send(&mut *self.sink, &mut self.output_error, event);
-        }
     }
 
     /// Fills the scratch motion event from `scratch.wcs` to

@@ -377,11 +377,7 @@ impl Channel<'_> {
         }
         for held in ready.drain(..) {
             match held {
-                Held::Output(HeldOutput::Event(event)) => {
-                    if self.sink_takes_motions || !matches!(event.kind, EventKind::Motion(_)) {
-                        super::send(&mut *self.sink, &mut self.output_error, &event);
-                    }
-                }
+                Held::Output(HeldOutput::Event(event)) => self.send_if_taken(&event),
                 Held::Output(HeldOutput::Row(mut row)) => {
                     if let Some(tool) = self.last_tool_point.as_ref() {
                         for (i, info) in self.state.axes.iter().enumerate() {
@@ -453,7 +449,7 @@ impl Channel<'_> {
                 let path = piece.path.translated(tip);
                 self.add_element_figures(&place, &event, length, length * rate, &path, &tool_wcs);
                 self.last_tool_point = Some(tool_wcs);
-                self.send_motion(&event);
+                self.send_if_taken(&event);
                 self.path_event = Some(event);
             }
         }
@@ -477,7 +473,7 @@ impl Channel<'_> {
             };
             let end = place.wcs_end.clone();
             self.add_element_figures(&place, &event, place.length, place.time, &line, &end);
-            self.send_motion(&event);
+            self.send_if_taken(&event);
             self.path_event = Some(event);
             return;
         };
@@ -548,7 +544,7 @@ impl Channel<'_> {
         let end_point = tool_wcs.clone().unwrap_or_else(|| wcs_end.clone());
         self.add_element_figures(&place, &event, length, time, &traversed, &end_point);
         self.last_tool_point = tool_wcs;
-        self.send_motion(&event);
+        self.send_if_taken(&event);
         let source = event.source.clone();
         self.path_event = Some(event);
         if tool.as_ref().is_some_and(|t| t.left_out) {

@@ -231,9 +231,9 @@ impl StateText {
         (positions, rest)
     }
 
-    /// Writes the state columns of `row` after [`StateText::compare`]
-    /// said which are the same, and remembers them.
-    fn write(&mut self, line: &mut Vec<u8>, row: &BlockRow, (positions, rest): (bool, bool)) {
+    /// Remembers the state columns of `row`, and their text, after
+    /// [`StateText::compare`] said which are the same.
+    fn remember(&mut self, row: &BlockRow, (positions, rest): (bool, bool)) {
         if !positions {
             let cells = &mut self.position_cells;
             cells.resize_with(self.next_positions.len(), Vec::new);
@@ -252,7 +252,6 @@ impl StateText {
             }
             std::mem::swap(&mut self.positions, &mut self.next_positions);
         }
-        line.extend_from_slice(&self.positions_text);
         if !rest {
             self.tool.clone_from(&row.tool);
             self.edge = row.edge;
@@ -277,12 +276,11 @@ impl StateText {
                 write_csv_field(text, code);
             }
         }
-        line.extend_from_slice(&self.rest_text);
         self.written = true;
     }
 
-    /// Writes the state columns of the last row again.
-    fn write_again(&self, line: &mut Vec<u8>) {
+    /// Writes the state columns remembered last.
+    fn write(&self, line: &mut Vec<u8>) {
         line.extend_from_slice(&self.positions_text);
         line.extend_from_slice(&self.rest_text);
     }
@@ -384,7 +382,8 @@ impl<W: Write> CsvWriter<W> {
     fn write(&mut self, row: &BlockRow, same: (bool, bool)) -> io::Result<()> {
         self.passed_over.of(row);
         write_place(&mut self.line, &self.passed_over);
-        self.state.write(&mut self.line, row, same);
+        self.state.remember(row, same);
+        self.state.write(&mut self.line);
         self.line.push(b'\n');
         self.out.write_all(&self.line)
     }
@@ -400,7 +399,7 @@ impl<W: Write> CsvWriter<W> {
             return Ok(());
         }
         write_place(&mut self.line, &self.passed_over);
-        self.state.write_again(&mut self.line);
+        self.state.write(&mut self.line);
         self.line.push(b'\n');
         self.out.write_all(&self.line)
     }
