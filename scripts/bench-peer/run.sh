@@ -84,8 +84,8 @@ fi
 if [[ -n ${GCODEC:-} ]]; then
     gcodec=$GCODEC
 else
-    (cd "$repo" && CARGO_INCREMENTAL=0 cargo build --release -p gcodec-cli >&2)
-    gcodec=${CARGO_TARGET_DIR:-$repo/target}/release/gcodec
+    # The binary as shipped: static on GNU/Linux (scripts/build-release.sh).
+    gcodec=$(CARGO_INCREMENTAL=0 "$repo/scripts/build-release.sh")
 fi
 if [[ ! -x $gcodec ]]; then
     echo "run.sh: no gcodec binary at $gcodec" >&2
