@@ -18,7 +18,7 @@ use crate::grammar::{self, Ctx, Spanned, operators};
 use crate::macros::{Expanded, Macros};
 use crate::misspelt::Misspelt;
 use crate::{fast, structure};
-use gcodec_stream::{Chunk, map_chunks};
+use gcodec_stream::{Chunk, WorkerPriority, map_chunks};
 
 /// Deepest nesting of `(` and `[` accepted in one block. Deeper expressions
 /// are reported instead of parsed, which bounds the recursion of every stage.
@@ -319,7 +319,8 @@ pub fn skim_chunks(
     each: impl FnMut(ParsedChunk),
 ) {
     let skim = |chunk: &Chunk| skim_chunk(src, encoding, chunk, macros);
-    map_chunks(chunks, workers, skim, each);
+    // The outline waits for the skim: nothing else runs beside it.
+    map_chunks(chunks, workers, WorkerPriority::Normal, skim, each);
 }
 
 /// `slots` cut into consecutive runs, one per chunk of `chunks`, a slot

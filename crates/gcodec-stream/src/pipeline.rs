@@ -12,22 +12,23 @@
 use std::collections::VecDeque;
 use std::sync::{Condvar, Mutex, MutexGuard, PoisonError};
 
-use crate::Chunk;
+use crate::{Chunk, WorkerPriority};
 
 /// Results per worker that may wait for `each` (done or being worked on):
 /// enough to ride out chunks of uneven cost, few enough that memory does
 /// not grow with the program.
 const AHEAD_PER_WORKER: usize = 4;
 
-/// Does `work` on each of `chunks` on `workers` threads and hands the
-/// results to `each` in the chunks' order. At most
-/// `4 × workers` chunks are taken and not yet handed on, so memory does
-/// not grow with the program. On one worker (or one chunk) everything
-/// happens on this thread. A panic in `work` or `each` stops the other
-/// threads and is raised again here.
+/// Does `work` on each of `chunks` on `workers` threads, scheduled at
+/// `priority`, and hands the results to `each` in the chunks' order. At
+/// most `4 × workers` chunks are taken and not yet handed on, so memory
+/// does not grow with the program. On one worker (or one chunk)
+/// everything happens on this thread, at its priority. A panic in `work`
+/// or `each` stops the other threads and is raised again here.
 pub fn map_chunks<'c, T: Send>(
     chunks: &'c [Chunk],
     workers: usize,
+    priority: WorkerPriority,
     work: impl Fn(&'c Chunk) -> T + Sync,
     mut each: impl FnMut(T),
 ) {
@@ -51,6 +52,7 @@ pub fn map_chunks<'c, T: Send>(
     std::thread::scope(|scope| {
         for _ in 0..workers {
             scope.spawn(move || {
+                priority.apply_to_this_thread();
                 let _stop = StopOnDrop {
                     window,
                     only_when_panicking: true,
@@ -206,6 +208,7 @@ mod tests {
             map_chunks(
                 &chunks,
                 workers,
+                WorkerPriority::Normal,
                 |chunk| {
                     // Uneven work: later chunks of each ten are quicker.
                     let spin = (10 - chunk.first_block % 10) * 2_000;
@@ -228,6 +231,7 @@ mod tests {
         map_chunks(
             &chunks,
             2,
+            WorkerPriority::Normal,
             |chunk| {
                 started.fetch_add(1, Ordering::SeqCst);
                 chunk.first_block
@@ -243,6 +247,31 @@ mod tests {
         assert_eq!(taken, 100);
     }
 
+    /// Background workers run at a raised nice value (on Linux a
+    /// thread's own), normal ones at the caller's, and the caller's stays
+    /// as it was.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn background_workers_run_below_the_caller() {
+        use crate::BACKGROUND_NICE;
+        // SAFETY: `getpriority` takes integers and touches no memory.
+        let nice = || unsafe { libc::getpriority(libc::PRIO_PROCESS, 0) };
+        let caller = nice();
+        let chunks = chunk_list(8);
+        for (priority, expected) in [
+            (WorkerPriority::Normal, caller),
+            (
+                WorkerPriority::Background,
+                (caller + BACKGROUND_NICE).min(19),
+            ),
+        ] {
+            let mut seen = Vec::new();
+            map_chunks(&chunks, 2, priority, |_| nice(), |n| seen.push(n));
+            assert_eq!(seen, vec![expected; 8], "{priority:?}");
+        }
+        assert_eq!(nice(), caller);
+    }
+
     /// A panic in a worker reaches the caller instead of hanging it.
     #[test]
     fn a_panicking_worker_stops_the_pipeline() {
@@ -251,6 +280,7 @@ mod tests {
             map_chunks(
                 &chunks,
                 2,
+                WorkerPriority::Normal,
                 |chunk| {
                     assert!(chunk.first_block != 17, "chunk 17 fails");
                     chunk.first_block
@@ -269,6 +299,7 @@ mod tests {
             map_chunks(
                 &chunks,
                 2,
+                WorkerPriority::Background,
                 |chunk| chunk.first_block,
                 |index| assert!(index != 5, "consumer fails at 5"),
             );

@@ -29,8 +29,9 @@ use gcodec_stream::SpentBin;
 /// left out. Each chunk comes with its parse diagnostics, which pass 1,
 /// skimming, did not find.
 ///
-/// Each of `workers` threads parses and lowers its chunks
-/// ([`gcodec_stream::map_chunks`]; on one, this thread), each as a part
+/// Each of `workers` threads, scheduled below this one and the run
+/// ([`gcodec_stream::WorkerPriority::Background`]), parses and lowers its
+/// chunks ([`gcodec_stream::map_chunks`]; on one, this thread), each as a part
 /// that starts in the state the chunk before it ends in, as
 /// [`super::lower_in_parts`] lowers its parts; the part ledger takes
 /// them here in order, and a part it cannot fill in is lowered again
@@ -58,6 +59,10 @@ pub fn lower_chunks(
     gcodec_stream::map_chunks(
         chunks,
         workers,
+        // The run (or `lower`'s writer) takes what this pass makes, in
+        // order, and is the critical path: the workers fill the cores it
+        // leaves rather than share its core.
+        gcodec_stream::WorkerPriority::Background,
         |chunk| {
             // What the run is done with is freed here, where it was
             // allocated (see `spent.rs`).
