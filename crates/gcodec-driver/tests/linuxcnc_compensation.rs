@@ -226,10 +226,7 @@ fn motion_name(motion: &MotionEvent) -> String {
     match motion.inserted {
         Some(inserted) => inserted.name().to_owned(),
         // The name as the events spell it (`linear`, `arc_cw`).
-        None => serde_json::to_value(motion.motion)
-            .ok()
-            .and_then(|name| name.as_str().map(str::to_owned))
-            .unwrap_or_default(),
+        None => motion.motion.name().to_owned(),
     }
 }
 

@@ -49,6 +49,34 @@ pub enum MotionKind {
 }
 
 impl MotionKind {
+    /// The name serde gives the kind (`linear`, `arc_cw`), without the
+    /// allocation of going through serde: the JSON writers of motions and
+    /// instructions write it for most of what they write.
+    pub const fn name(self) -> &'static str {
+        match self {
+            MotionKind::Modal => "modal",
+            MotionKind::Rapid => "rapid",
+            MotionKind::Linear => "linear",
+            MotionKind::ArcCw => "arc_cw",
+            MotionKind::ArcCcw => "arc_ccw",
+            MotionKind::ArcThroughPoint => "arc_through_point",
+            MotionKind::ArcTangential => "arc_tangential",
+            MotionKind::Aspline => "aspline",
+            MotionKind::Bspline => "bspline",
+            MotionKind::Cspline => "cspline",
+            MotionKind::Poly => "poly",
+            MotionKind::Thread => "thread",
+            MotionKind::ThreadIncreasingLead => "thread_increasing_lead",
+            MotionKind::ThreadDecreasingLead => "thread_decreasing_lead",
+            MotionKind::Tapping => "tapping",
+            MotionKind::TappingRetract => "tapping_retract",
+            MotionKind::ThreadConvexCw => "thread_convex_cw",
+            MotionKind::ThreadConvexCcw => "thread_convex_ccw",
+            MotionKind::InvoluteCw => "involute_cw",
+            MotionKind::InvoluteCcw => "involute_ccw",
+        }
+    }
+
     /// The motion of the G command at `group` and 1-based `index` (as
     /// [`crate::ggroups::lookup`] gives them); `None` for a command of another
     /// group and for group 1's `OEMIPO1`/`OEMIPO2`, which make no motion
@@ -127,5 +155,35 @@ mod tests {
         assert_eq!(MotionKind::of_command(group, index), None);
         assert_eq!(MotionKind::of_command(1, 0), None);
         assert_eq!(MotionKind::of_command(1, 22), None);
+    }
+
+    /// `name` is what serde writes, for every kind.
+    #[test]
+    fn each_name_is_the_serde_name() {
+        for kind in [
+            MotionKind::Modal,
+            MotionKind::Rapid,
+            MotionKind::Linear,
+            MotionKind::ArcCw,
+            MotionKind::ArcCcw,
+            MotionKind::ArcThroughPoint,
+            MotionKind::ArcTangential,
+            MotionKind::Aspline,
+            MotionKind::Bspline,
+            MotionKind::Cspline,
+            MotionKind::Poly,
+            MotionKind::Thread,
+            MotionKind::ThreadIncreasingLead,
+            MotionKind::ThreadDecreasingLead,
+            MotionKind::Tapping,
+            MotionKind::TappingRetract,
+            MotionKind::ThreadConvexCw,
+            MotionKind::ThreadConvexCcw,
+            MotionKind::InvoluteCw,
+            MotionKind::InvoluteCcw,
+        ] {
+            let serde = serde_json::to_string(&kind).expect("serialises");
+            assert_eq!(serde, format!("\"{}\"", kind.name()));
+        }
     }
 }

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use super::numbers::{write_fixed_point, write_u64};
 use super::{
     AxisMap, AxisName, Event, EventKind, EventSink, EventSource, ModalChangeEvent, MotionEvent,
-    WorkOffsetContext, motion_name,
+    WorkOffsetContext,
 };
 use crate::geometry::Plane;
 
@@ -257,7 +257,7 @@ fn write_motion_json(
     last_settings: &mut MotionSettingsText,
 ) {
     out.extend_from_slice(b"{\"event\":\"motion\",\"motion\":\"");
-    out.extend_from_slice(motion_name(motion.motion).as_bytes());
+    out.extend_from_slice(motion.motion.name().as_bytes());
     out.extend_from_slice(b"\",\"from\":");
     last_to.write_if_same(out, &motion.from);
     out.extend_from_slice(b",\"to\":");
@@ -291,7 +291,7 @@ fn write_motion_json(
         write_f64_json(out, tool.tool_radius);
         if let Some(arc) = &tool.tool_arc {
             out.extend_from_slice(b",\"tool_arc\":{\"motion\":\"");
-            out.extend_from_slice(motion_name(arc.motion).as_bytes());
+            out.extend_from_slice(arc.motion.name().as_bytes());
             out.extend_from_slice(b"\",\"centre\":");
             write_axis_map_json(out, &arc.centre);
             out.extend_from_slice(b",\"radius\":");

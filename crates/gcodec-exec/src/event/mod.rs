@@ -691,34 +691,6 @@ impl DiagnosticEvent {
     }
 }
 
-/// The JSON name of a motion kind, for the JSONL and text writers,
-/// without the allocation of going through serde: motions are most of a
-/// trace.
-fn motion_name(motion: MotionKind) -> &'static str {
-    match motion {
-        MotionKind::Modal => "modal",
-        MotionKind::Rapid => "rapid",
-        MotionKind::Linear => "linear",
-        MotionKind::ArcCw => "arc_cw",
-        MotionKind::ArcCcw => "arc_ccw",
-        MotionKind::ArcThroughPoint => "arc_through_point",
-        MotionKind::ArcTangential => "arc_tangential",
-        MotionKind::Aspline => "aspline",
-        MotionKind::Bspline => "bspline",
-        MotionKind::Cspline => "cspline",
-        MotionKind::Poly => "poly",
-        MotionKind::Thread => "thread",
-        MotionKind::ThreadIncreasingLead => "thread_increasing_lead",
-        MotionKind::ThreadDecreasingLead => "thread_decreasing_lead",
-        MotionKind::Tapping => "tapping",
-        MotionKind::TappingRetract => "tapping_retract",
-        MotionKind::ThreadConvexCw => "thread_convex_cw",
-        MotionKind::ThreadConvexCcw => "thread_convex_ccw",
-        MotionKind::InvoluteCw => "involute_cw",
-        MotionKind::InvoluteCcw => "involute_ccw",
-    }
-}
-
 /// The JSON Schema of one event (a line of `jsonl` output), as checked in
 /// under `docs/schema/events.schema.json`.
 pub fn events_json_schema() -> String {

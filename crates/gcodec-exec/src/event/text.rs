@@ -8,7 +8,7 @@ use std::io::{self, BufWriter, Write};
 use serde::Serialize;
 
 use super::numbers::fraction_digits;
-use super::{AxisMap, Event, EventKind, EventSink, ToolchangerEdge, ToolchangerEvent, motion_name};
+use super::{AxisMap, Event, EventKind, EventSink, ToolchangerEdge, ToolchangerEvent};
 use crate::toolchanger::FaultReason;
 
 /// `--format text`: a readable trace, one line an event:
@@ -65,7 +65,7 @@ pub fn write_trace_line(out: &mut impl fmt::Write, event: &Event) -> fmt::Result
     )?;
     match &event.kind {
         EventKind::Motion(motion) => {
-            write!(out, " {}", motion_name(motion.motion))?;
+            write!(out, " {}", motion.motion.name())?;
             write_axes(out, &motion.to)?;
             if let Some(centre) = &motion.centre {
                 write!(out, " centre")?;
@@ -103,7 +103,7 @@ pub fn write_trace_line(out: &mut impl fmt::Write, event: &Event) -> fmt::Result
                 write_axes(out, &tool.tool_to)?;
                 write!(out, " tool_radius {}", Num(tool.tool_radius))?;
                 if let Some(arc) = &tool.tool_arc {
-                    write!(out, " tool_arc {}", motion_name(arc.motion))?;
+                    write!(out, " tool_arc {}", arc.motion.name())?;
                     write_axes(out, &arc.centre)?;
                     write!(out, " radius {}", Num(arc.radius))?;
                 }
