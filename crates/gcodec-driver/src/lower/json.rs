@@ -1,8 +1,9 @@
 //! The AIL document in JSON, written as its pages come: the bytes
 //! `serde_json::to_writer_pretty` writes of the whole `Document`, the
-//! instructions serialised with serde_json too, each indented as the
-//! pretty printer indents it inside the document, pages on several
-//! threads ([`super::rendered::write_rendered`]).
+//! commonest instructions by hand ([`super::hot_json`]), the others
+//! serialised with serde_json, each indented as the pretty printer
+//! indents it inside the document, pages on several threads
+//! ([`super::rendered::write_rendered`]).
 
 use std::io::{self, Write};
 
@@ -11,6 +12,7 @@ use serde::Serialize;
 use serde_json::ser::Formatter;
 
 use super::Page;
+use super::hot_json::{FileText, write_hot};
 use super::rendered::write_rendered;
 
 /// Writes `pages` as the AIL document in JSON, pretty-printed as
@@ -22,8 +24,9 @@ pub fn write_json(pages: impl Iterator<Item = Page>, out: &mut impl Write) -> io
         "{{\n  \"ail_version\": {AIL_VERSION},\n  \"instructions\": ["
     )?;
     let any = write_rendered(pages, out, |instructions, first, bytes| {
+        let mut file = FileText::default();
         for (k, instruction) in instructions.iter().enumerate() {
-            element(instruction, first && k == 0, bytes)?;
+            element(instruction, first && k == 0, &mut file, bytes)?;
         }
         Ok(())
     })?;
@@ -35,7 +38,20 @@ pub fn write_json(pages: impl Iterator<Item = Page>, out: &mut impl Write) -> io
 /// One element of the `instructions` sequence: the line break and the
 /// indentation before it, after a comma unless it is the `first`, and
 /// the instruction, two levels in.
-fn element(instruction: &Instruction, first: bool, bytes: &mut Vec<u8>) -> io::Result<()> {
+fn element(
+    instruction: &Instruction,
+    first: bool,
+    file: &mut FileText,
+    bytes: &mut Vec<u8>,
+) -> io::Result<()> {
+    if write_hot(instruction, first, file, bytes) {
+        return Ok(());
+    }
+    serde_element(instruction, first, bytes)
+}
+
+/// [`element`] through serde_json.
+fn serde_element(instruction: &Instruction, first: bool, bytes: &mut Vec<u8>) -> io::Result<()> {
     let mut formatter = Pretty {
         current_indent: ELEMENT_LEVEL,
         has_value: false,
@@ -217,6 +233,116 @@ mod tests {
                 String::from_utf8(expected).unwrap()
             );
         }
+    }
+
+    /// The instructions written by hand are the bytes serde writes: those
+    /// of programs with every hot shape and its near misses, and motions
+    /// with numbers, axis names and file names that need care.
+    #[test]
+    fn hot_instructions_are_written_as_serde_writes_them() {
+        use std::borrow::Cow;
+        use std::sync::Arc;
+
+        use gcodec_ail::{AxisValue, ByteRange, Op, Source, Value};
+        use gcodec_lang::MotionKind;
+
+        let program = "G0 X0 Y0 Z5\nG1 Z-1 F200\nX10 Y=AC(5) F=R1\nG2 X20 Y0 CR=5\n\
+                       G3 X0 Y0 I-10 J0 TURN=1\nG91 X1\nG90 G17 G64 F1.5 X-0.0001\n\
+                       R1=3 X=R1 Y=R1*2\nCIP X1 Y1 I1=0.5 J1=0.5\nG1 X1E3 Y.5\nM30\n";
+        let profile = gcodec_profile::builtin().unwrap();
+        let compiled = crate::compile_text(
+            "dir/part \"one\" \u{e9}.mpf",
+            program,
+            gcodec_sema::ProgramKind::Main,
+            &profile,
+            &gcodec_sema::Definitions::new(),
+        );
+        let mut instructions = compiled.document.instructions;
+        let numbers = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.5,
+            0.1,
+            1.0 / 3.0,
+            123.4567,
+            1e-7,
+            1e16,
+            1e300,
+            5e-324,
+            f64::MAX,
+            f64::NAN,
+            f64::INFINITY,
+        ];
+        let files = [
+            "plain.mpf",
+            "with space.mpf",
+            "back\\slash.mpf",
+            "tab\there.mpf",
+        ];
+        for (k, pair) in numbers.windows(2).enumerate() {
+            let target = |axis: Cow<'static, str>, value| AxisValue {
+                axis,
+                value: Value::Const(value),
+                mode: None,
+            };
+            instructions.push(Instruction {
+                op: Op::Motion {
+                    motion: [MotionKind::Linear, MotionKind::Rapid, MotionKind::Modal][k % 3],
+                    targets: vec![
+                        target(Cow::Borrowed("X"), pair[0]),
+                        target(Cow::Owned(format!("C\"{k}")), pair[1]),
+                    ],
+                    circle: None,
+                    details: None,
+                },
+                source: Source {
+                    file: Arc::from(files[k % files.len()]),
+                    line: k as u32,
+                    col: u32::MAX,
+                    span: ByteRange {
+                        start: 0,
+                        end: u32::MAX,
+                    },
+                },
+            });
+            let source = instructions[instructions.len() - 1].source.clone();
+            instructions.push(Instruction {
+                op: Op::Feed {
+                    value: Value::Const(pair[0]),
+                },
+                source,
+            });
+        }
+        let mut hot = 0;
+        // One file text for all, as for a page: file names change between
+        // the programs' instructions and the ones made here.
+        let mut file = FileText::default();
+        for instruction in &instructions {
+            for first in [true, false] {
+                let mut by_hand = Vec::new();
+                if !write_hot(instruction, first, &mut file, &mut by_hand) {
+                    assert!(by_hand.is_empty());
+                    continue;
+                }
+                hot += 1;
+                let mut by_serde = Vec::new();
+                serde_element(instruction, first, &mut by_serde).unwrap();
+                assert_eq!(
+                    String::from_utf8(by_hand).unwrap(),
+                    String::from_utf8(by_serde).unwrap(),
+                    "{instruction:?}"
+                );
+            }
+        }
+        // The programs' hot instructions and the 26 made here, twice each.
+        assert!(hot >= 2 * (26 + 12), "{hot} hot instructions");
+        // Near misses go through serde: an expression, AC, circle data.
+        let serde_only = instructions
+            .iter()
+            .filter(|i| !write_hot(i, true, &mut FileText::default(), &mut Vec::new()))
+            .count();
+        assert!(serde_only >= 5, "{serde_only} instructions through serde");
     }
 
     /// The document of no, one and several pages, some empty: the bytes

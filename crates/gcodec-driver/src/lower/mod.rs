@@ -34,6 +34,7 @@ use gcodec_stream::{Chunk, SpentBin, chunks_at};
 
 use crate::stream::StreamOptions;
 
+mod hot_json;
 mod json;
 mod listing;
 mod rendered;

@@ -1,0 +1,154 @@
+//! The commonest instructions in the JSON of `gcodec lower`, written by
+//! hand: a modal change, a constant feed, and a motion to constant end
+//! points without circle data or details. They are most of a program's
+//! instructions, and serde_json spent most of its time on them escaping
+//! every key byte by byte and going through the flattened, internally
+//! tagged enum's map (docs/performance.md, "Issue 20: the hot
+//! instructions written by hand"). The bytes are those serde_json's
+//! pretty printer writes, as an element of the document's `instructions`
+//! (tests compare them); every other instruction goes through serde.
+
+use std::sync::Arc;
+
+use gcodec_ail::{AxisValue, Instruction, Op, Source, Value};
+use serde_json::ser::{CompactFormatter, Formatter};
+
+/// Writes `instruction` as an element of the `instructions` sequence
+/// (after a comma unless `first`) if it is one of the hot kinds; false,
+/// writing nothing, otherwise.
+/// `file` keeps the text of the last file name written: every instruction
+/// names one, mostly the same.
+pub(super) fn write_hot(
+    instruction: &Instruction,
+    first: bool,
+    file: &mut FileText,
+    out: &mut Vec<u8>,
+) -> bool {
+    match &instruction.op {
+        Op::ModalChange { group, code } => {
+            begin(out, first, b"modal_change");
+            out.extend_from_slice(b",\n      \"group\": ");
+            write_u32(out, u32::from(*group));
+            out.extend_from_slice(b",\n      \"code\": ");
+            write_str(out, code.name());
+        }
+        Op::Feed {
+            value: Value::Const(value),
+        } => {
+            begin(out, first, b"feed");
+            out.extend_from_slice(b",\n      \"value\": ");
+            write_f64(out, *value);
+        }
+        Op::Motion {
+            motion,
+            targets,
+            circle: None,
+            details: None,
+        } if !targets.is_empty() && targets.iter().all(constant_target) => {
+            begin(out, first, b"motion");
+            out.extend_from_slice(b",\n      \"motion\": ");
+            write_str(out, motion.name());
+            out.extend_from_slice(b",\n      \"targets\": [");
+            for (k, target) in targets.iter().enumerate() {
+                out.extend_from_slice(if k == 0 {
+                    b"\n        {\n          \"axis\": ".as_slice()
+                } else {
+                    b",\n        {\n          \"axis\": ".as_slice()
+                });
+                write_str(out, &target.axis);
+                out.extend_from_slice(b",\n          \"value\": ");
+                if let Value::Const(value) = target.value {
+                    write_f64(out, value);
+                }
+                out.extend_from_slice(b",\n          \"mode\": null\n        }");
+            }
+            out.extend_from_slice(b"\n      ],\n      \"circle\": null");
+        }
+        _ => return false,
+    }
+    write_source(out, &instruction.source, file);
+    true
+}
+
+/// A target the hand-written motion covers: a constant, no `AC`/`IC`.
+fn constant_target(target: &AxisValue) -> bool {
+    matches!(target.value, Value::Const(_)) && target.mode.is_none()
+}
+
+/// The element's line break and indentation, its `{` and its `kind`.
+fn begin(out: &mut Vec<u8>, first: bool, kind: &[u8]) {
+    if !first {
+        out.push(b',');
+    }
+    out.extend_from_slice(b"\n    {\n      \"kind\": \"");
+    out.extend_from_slice(kind);
+    out.push(b'"');
+}
+
+/// The `source` field and the element's closing brace.
+fn write_source(out: &mut Vec<u8>, source: &Source, file: &mut FileText) {
+    out.extend_from_slice(b",\n      \"source\": {\n        \"file\": ");
+    file.write(out, &source.file);
+    out.extend_from_slice(b",\n        \"line\": ");
+    write_u32(out, source.line);
+    out.extend_from_slice(b",\n        \"col\": ");
+    write_u32(out, source.col);
+    out.extend_from_slice(b",\n        \"span\": {\n          \"start\": ");
+    write_u32(out, source.span.start);
+    out.extend_from_slice(b",\n          \"end\": ");
+    write_u32(out, source.span.end);
+    out.extend_from_slice(b"\n        }\n      }\n    }");
+}
+
+/// A file name and its JSON text.
+#[derive(Default)]
+pub(super) struct FileText {
+    file: Option<Arc<str>>,
+    text: Vec<u8>,
+}
+
+impl FileText {
+    fn write(&mut self, out: &mut Vec<u8>, file: &Arc<str>) {
+        let same = self
+            .file
+            .as_ref()
+            .is_some_and(|last| Arc::ptr_eq(last, file) || **last == **file);
+        if !same {
+            self.text.clear();
+            write_str(&mut self.text, file);
+            self.file = Some(Arc::clone(file));
+        }
+        out.extend_from_slice(&self.text);
+    }
+}
+
+/// A JSON string: names and most file names need no escaping; anything
+/// else goes through serde_json's.
+fn write_str(out: &mut Vec<u8>, text: &str) {
+    let plain = text
+        .bytes()
+        .all(|b| (b.is_ascii_graphic() && b != b'"' && b != b'\\') || b == b' ');
+    if plain {
+        out.push(b'"');
+        out.extend_from_slice(text.as_bytes());
+        out.push(b'"');
+    } else if serde_json::to_writer(&mut *out, text).is_err() {
+        // Writing into a vector does not fail; keep the JSON valid anyway.
+        out.extend_from_slice(b"\"\"");
+    }
+}
+
+/// A number as serde_json writes an `f64`: `null` when not finite.
+fn write_f64(out: &mut Vec<u8>, value: f64) {
+    if value.is_finite() {
+        // Writing into a vector does not fail.
+        let _ = CompactFormatter.write_f64(out, value);
+    } else {
+        out.extend_from_slice(b"null");
+    }
+}
+
+fn write_u32(out: &mut Vec<u8>, value: u32) {
+    // Writing into a vector does not fail.
+    let _ = CompactFormatter.write_u32(out, value);
+}
