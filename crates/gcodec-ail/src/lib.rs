@@ -16,6 +16,7 @@
 //! them.
 
 mod expr;
+mod hot_listing;
 
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -658,6 +659,18 @@ pub fn write_listing(document: &Document, out: &mut impl std::fmt::Write) -> std
 /// Writes the line of [`write_listing`] for one instruction, newline
 /// included: a listing written as the instructions come.
 pub fn write_instruction_listing(
+    instruction: &Instruction,
+    out: &mut impl std::fmt::Write,
+) -> std::fmt::Result {
+    if let Some(written) = hot_listing::write_hot(instruction, out) {
+        return written;
+    }
+    write_general_listing(instruction, out)
+}
+
+/// [`write_instruction_listing`] of any instruction, through its JSON
+/// value.
+fn write_general_listing(
     instruction: &Instruction,
     out: &mut impl std::fmt::Write,
 ) -> std::fmt::Result {
