@@ -17,6 +17,7 @@
 
 mod expr;
 mod hot_listing;
+mod json_text;
 
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -25,6 +26,7 @@ pub use expr::{Callee, Expr, Value, VarKind, VarName};
 use gcodec_lang::addresses::{AddressScope, NamedAddress, TransitionKind};
 use gcodec_lang::ggroups::GCommand;
 use gcodec_lang::{DataType, DimensionMode, FrameOp, MClass, MotionKind, WorkOffsetCode};
+pub use json_text::write_json_string;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

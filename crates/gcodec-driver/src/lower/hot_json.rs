@@ -10,7 +10,7 @@
 
 use std::sync::Arc;
 
-use gcodec_ail::{AxisValue, Instruction, Op, Source, Value};
+use gcodec_ail::{AxisValue, Instruction, Op, Source, Value, write_json_string};
 use serde_json::ser::{CompactFormatter, Formatter};
 
 /// Writes `instruction` as an element of the `instructions` sequence
@@ -30,7 +30,7 @@ pub(super) fn write_hot(
             out.extend_from_slice(b",\n      \"group\": ");
             write_u32(out, u32::from(*group));
             out.extend_from_slice(b",\n      \"code\": ");
-            write_str(out, code.name());
+            write_json_string(out, code.name());
         }
         Op::Feed {
             value: Value::Const(value),
@@ -47,7 +47,7 @@ pub(super) fn write_hot(
         } if !targets.is_empty() && targets.iter().all(constant_target) => {
             begin(out, first, b"motion");
             out.extend_from_slice(b",\n      \"motion\": ");
-            write_str(out, motion.name());
+            write_json_string(out, motion.name());
             out.extend_from_slice(b",\n      \"targets\": [");
             for (k, target) in targets.iter().enumerate() {
                 out.extend_from_slice(if k == 0 {
@@ -55,7 +55,7 @@ pub(super) fn write_hot(
                 } else {
                     b",\n        {\n          \"axis\": ".as_slice()
                 });
-                write_str(out, &target.axis);
+                write_json_string(out, &target.axis);
                 out.extend_from_slice(b",\n          \"value\": ");
                 if let Value::Const(value) = target.value {
                     write_f64(out, value);
@@ -115,26 +115,10 @@ impl FileText {
             .is_some_and(|last| Arc::ptr_eq(last, file) || **last == **file);
         if !same {
             self.text.clear();
-            write_str(&mut self.text, file);
+            write_json_string(&mut self.text, file);
             self.file = Some(Arc::clone(file));
         }
         out.extend_from_slice(&self.text);
-    }
-}
-
-/// A JSON string: names and most file names need no escaping; anything
-/// else goes through serde_json's.
-fn write_str(out: &mut Vec<u8>, text: &str) {
-    let plain = text
-        .bytes()
-        .all(|b| (b.is_ascii_graphic() && b != b'"' && b != b'\\') || b == b' ');
-    if plain {
-        out.push(b'"');
-        out.extend_from_slice(text.as_bytes());
-        out.push(b'"');
-    } else if serde_json::to_writer(&mut *out, text).is_err() {
-        // Writing into a vector does not fail; keep the JSON valid anyway.
-        out.extend_from_slice(b"\"\"");
     }
 }
 

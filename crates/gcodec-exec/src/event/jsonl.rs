@@ -11,6 +11,7 @@ use super::{
     WorkOffsetContext,
 };
 use crate::geometry::Plane;
+use gcodec_ail::write_json_string;
 
 /// `--format jsonl`: one JSON object a line, buffered.
 ///
@@ -70,7 +71,7 @@ fn write_motion_settings_json(out: &mut Vec<u8>, motion: &MotionEvent) {
         None => out.extend_from_slice(b"null"),
     }
     out.extend_from_slice(b",\"feed_mode\":");
-    write_str_json(out, &motion.feed_mode);
+    write_json_string(out, &motion.feed_mode);
     out.extend_from_slice(b",\"plane\":\"");
     out.extend_from_slice(motion.plane.code().as_bytes());
     let context = &motion.work_offset;
@@ -99,7 +100,7 @@ impl FileText {
     fn write(&mut self, out: &mut Vec<u8>, file: &Arc<str>) {
         if !self.file.as_ref().is_some_and(|f| Arc::ptr_eq(f, file)) {
             self.text.clear();
-            write_str_json(&mut self.text, file);
+            write_json_string(&mut self.text, file);
             self.file = Some(Arc::clone(file));
         }
         out.extend_from_slice(&self.text);
@@ -307,10 +308,10 @@ fn write_modal_change_json(out: &mut Vec<u8>, change: &ModalChangeEvent) {
     out.extend_from_slice(b"{\"event\":\"modal_change\",\"group\":");
     write_u64(out, u64::from(change.group));
     out.extend_from_slice(b",\"code\":");
-    write_str_json(out, &change.code);
+    write_json_string(out, &change.code);
     out.extend_from_slice(b",\"previous\":");
     match &change.previous {
-        Some(previous) => write_str_json(out, previous),
+        Some(previous) => write_json_string(out, previous),
         None => out.extend_from_slice(b"null"),
     }
 }
@@ -334,27 +335,11 @@ fn write_axis_map_json(out: &mut Vec<u8>, axes: &AxisMap) {
         if index > 0 {
             out.push(b',');
         }
-        write_str_json(out, axis);
+        write_json_string(out, axis);
         out.push(b':');
         write_f64_json(out, value);
     }
     out.push(b'}');
-}
-
-/// A JSON string. Names (axes, G codes, files) are plain almost always;
-/// anything else goes through serde_json's escaping.
-fn write_str_json(out: &mut Vec<u8>, text: &str) {
-    let plain = text
-        .bytes()
-        .all(|b| b.is_ascii_graphic() && b != b'"' && b != b'\\');
-    if plain {
-        out.push(b'"');
-        out.extend_from_slice(text.as_bytes());
-        out.push(b'"');
-    } else if serde_json::to_writer(&mut *out, text).is_err() {
-        // Writing into a vector does not fail; keep the line valid anyway.
-        out.extend_from_slice(b"\"\"");
-    }
 }
 
 /// A number as serde_json writes an `f64`: `null` when not finite,
