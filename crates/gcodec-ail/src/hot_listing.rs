@@ -127,7 +127,7 @@ mod tests {
 
     /// Every hot line is the general path's, and what is not hot is left
     /// to it: numbers whole and not, tiny, huge, signed zero, not finite;
-    /// plain and quoted axis names; every motion kind; modal changes of
+    /// plain and quoted axis names; several motion kinds; modal changes of
     /// several groups; near misses (an `AC`, circle data, an expression).
     #[test]
     fn hot_lines_are_the_general_paths() {
