@@ -11,6 +11,7 @@ use std::io::Cursor;
 
 use serde_json::ser::{CompactFormatter, Formatter};
 
+use crate::json_text::needs_no_escape;
 use crate::{AxisValue, Instruction, Op, Value};
 
 /// Writes the listing line of `instruction`, newline included, if it is
@@ -78,10 +79,7 @@ fn write_line(instruction: &Instruction, out: &mut impl Write) -> fmt::Result {
 
 /// A string as compact JSON: quoted, escaped where it must be.
 fn write_string(out: &mut impl Write, text: &str) -> fmt::Result {
-    let plain = text
-        .bytes()
-        .all(|b| (b.is_ascii_graphic() && b != b'"' && b != b'\\') || b == b' ');
-    if plain {
+    if needs_no_escape(text) {
         out.write_char('"')?;
         out.write_str(text)?;
         out.write_char('"')

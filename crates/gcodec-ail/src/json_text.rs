@@ -2,20 +2,52 @@
 //! instructions, the executor's JSONL events), which write the bytes
 //! serde_json would.
 
-/// Writes `text` as serde_json writes a string. Names (axes, G codes,
-/// files) need no escaping almost always and are copied as they are;
-/// anything else goes through serde_json's escaping.
+use std::sync::Arc;
+
+/// Whether serde_json writes `text` as it is, between quotes: printable
+/// ASCII but a quote or a backslash. Names (axes, G codes, files) almost
+/// always are.
+pub(crate) fn needs_no_escape(text: &str) -> bool {
+    text.bytes()
+        .all(|b| (b.is_ascii_graphic() && b != b'"' && b != b'\\') || b == b' ')
+}
+
+/// Writes `text` as serde_json writes a string: a plain one
+/// ([`needs_no_escape`]) copied as it is, anything else through
+/// serde_json's escaping.
 pub fn write_json_string(out: &mut Vec<u8>, text: &str) {
-    let plain = text
-        .bytes()
-        .all(|b| (b.is_ascii_graphic() && b != b'"' && b != b'\\') || b == b' ');
-    if plain {
+    if needs_no_escape(text) {
         out.push(b'"');
         out.extend_from_slice(text.as_bytes());
         out.push(b'"');
     } else if serde_json::to_writer(&mut *out, text).is_err() {
         // Writing into a vector does not fail; keep the JSON valid anyway.
         out.extend_from_slice(b"\"\"");
+    }
+}
+
+/// A file name and its JSON text: every event and instruction names its
+/// file, mostly the same one, whose text is written once.
+#[derive(Debug, Default)]
+pub struct FileJsonText {
+    file: Option<Arc<str>>,
+    text: Vec<u8>,
+}
+
+impl FileJsonText {
+    /// Writes `file` as [`write_json_string`] does, from the text kept
+    /// when it is the file written last.
+    pub fn write(&mut self, out: &mut Vec<u8>, file: &Arc<str>) {
+        let same = self
+            .file
+            .as_ref()
+            .is_some_and(|last| Arc::ptr_eq(last, file) || **last == **file);
+        if !same {
+            self.text.clear();
+            write_json_string(&mut self.text, file);
+            self.file = Some(Arc::clone(file));
+        }
+        out.extend_from_slice(&self.text);
     }
 }
 

@@ -26,7 +26,7 @@ pub use expr::{Callee, Expr, Value, VarKind, VarName};
 use gcodec_lang::addresses::{AddressScope, NamedAddress, TransitionKind};
 use gcodec_lang::ggroups::GCommand;
 use gcodec_lang::{DataType, DimensionMode, FrameOp, MClass, MotionKind, WorkOffsetCode};
-pub use json_text::write_json_string;
+pub use json_text::{FileJsonText, write_json_string};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

@@ -8,9 +8,7 @@
 //! pretty printer writes, as an element of the document's `instructions`
 //! (tests compare them); every other instruction goes through serde.
 
-use std::sync::Arc;
-
-use gcodec_ail::{AxisValue, Instruction, Op, Source, Value, write_json_string};
+use gcodec_ail::{AxisValue, FileJsonText, Instruction, Op, Source, Value, write_json_string};
 use serde_json::ser::{CompactFormatter, Formatter};
 
 /// Writes `instruction` as an element of the `instructions` sequence
@@ -21,7 +19,7 @@ use serde_json::ser::{CompactFormatter, Formatter};
 pub(super) fn write_hot(
     instruction: &Instruction,
     first: bool,
-    file: &mut FileText,
+    file: &mut FileJsonText,
     out: &mut Vec<u8>,
 ) -> bool {
     match &instruction.op {
@@ -86,7 +84,7 @@ fn begin(out: &mut Vec<u8>, first: bool, kind: &[u8]) {
 }
 
 /// The `source` field and the element's closing brace.
-fn write_source(out: &mut Vec<u8>, source: &Source, file: &mut FileText) {
+fn write_source(out: &mut Vec<u8>, source: &Source, file: &mut FileJsonText) {
     out.extend_from_slice(b",\n      \"source\": {\n        \"file\": ");
     file.write(out, &source.file);
     out.extend_from_slice(b",\n        \"line\": ");
@@ -98,28 +96,6 @@ fn write_source(out: &mut Vec<u8>, source: &Source, file: &mut FileText) {
     out.extend_from_slice(b",\n          \"end\": ");
     write_u32(out, source.span.end);
     out.extend_from_slice(b"\n        }\n      }\n    }");
-}
-
-/// A file name and its JSON text.
-#[derive(Default)]
-pub(super) struct FileText {
-    file: Option<Arc<str>>,
-    text: Vec<u8>,
-}
-
-impl FileText {
-    fn write(&mut self, out: &mut Vec<u8>, file: &Arc<str>) {
-        let same = self
-            .file
-            .as_ref()
-            .is_some_and(|last| Arc::ptr_eq(last, file) || **last == **file);
-        if !same {
-            self.text.clear();
-            write_json_string(&mut self.text, file);
-            self.file = Some(Arc::clone(file));
-        }
-        out.extend_from_slice(&self.text);
-    }
 }
 
 /// A number as serde_json writes an `f64`: `null` when not finite.

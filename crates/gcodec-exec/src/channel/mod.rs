@@ -736,7 +736,8 @@ impl<'r> Channel<'r> {
         let tool = state.active_tool.as_ref().map(|t| t.label.as_str());
         let columns_same =
             self.row_columns_from == Some(columns_from) && row.tool.as_deref() == tool;
-        row.unchanged = columns_same && !positions_changed && self.row_went_as_filled && as_filled;
+        row.columns_unchanged = columns_same && self.row_went_as_filled && as_filled;
+        row.unchanged = row.columns_unchanged && !positions_changed;
         self.row_went_as_filled = as_filled;
         if columns_same {
             return;

@@ -102,6 +102,10 @@ pub struct BlockRow {
     /// those of the row before, handed to the same writer: the writer
     /// then compares nothing. `false` promises nothing.
     pub unchanged: bool,
+    /// The same promise for the state columns but the positions (tool to
+    /// modal commands), which a motion leaves as they were: the writer
+    /// then compares the positions only. Implied by `unchanged`.
+    pub columns_unchanged: bool,
 }
 
 impl BlockRow {
@@ -222,12 +226,13 @@ impl StateText {
             return (false, false);
         }
         let positions = self.next_positions == self.positions;
-        let rest = self.edge == row.edge
-            && self.feed == row.feed.to_bits()
-            && self.spindle_speed == row.spindle_speed.to_bits()
-            && self.spindle == row.spindle
-            && self.tool == row.tool
-            && same_modal(&self.modal, &row.modal);
+        let rest = row.columns_unchanged
+            || self.edge == row.edge
+                && self.feed == row.feed.to_bits()
+                && self.spindle_speed == row.spindle_speed.to_bits()
+                && self.spindle == row.spindle
+                && self.tool == row.tool
+                && same_modal(&self.modal, &row.modal);
         (positions, rest)
     }
 

@@ -3,7 +3,6 @@
 
 use std::borrow::Cow;
 use std::io::{self, Write};
-use std::sync::Arc;
 
 use super::numbers::{write_fixed_point, write_u64};
 use super::{
@@ -11,7 +10,7 @@ use super::{
     WorkOffsetContext,
 };
 use crate::geometry::Plane;
-use gcodec_ail::write_json_string;
+use gcodec_ail::{FileJsonText, write_json_string};
 
 /// `--format jsonl`: one JSON object a line, buffered.
 ///
@@ -30,7 +29,7 @@ pub struct JsonlSink<W: Write> {
     /// The last motion's `to`, as written.
     last_to: AxisMapText,
     /// The last event's file, as written.
-    last_file: FileText,
+    last_file: FileJsonText,
     /// The last motion's feed, plane and work-offset fields, as written.
     last_settings: MotionSettingsText,
 }
@@ -86,25 +85,6 @@ fn write_motion_settings_json(out: &mut Vec<u8>, motion: &MotionEvent) {
     out.extend_from_slice(b",\"effective_suppression_mask\":\"");
     out.extend_from_slice(context.effective_suppression_mask.name().as_bytes());
     out.push(b'"');
-}
-
-/// A file name and its JSON text: every event names its file, mostly the
-/// same one.
-#[derive(Default)]
-struct FileText {
-    file: Option<Arc<str>>,
-    text: Vec<u8>,
-}
-
-impl FileText {
-    fn write(&mut self, out: &mut Vec<u8>, file: &Arc<str>) {
-        if !self.file.as_ref().is_some_and(|f| Arc::ptr_eq(f, file)) {
-            self.text.clear();
-            write_json_string(&mut self.text, file);
-            self.file = Some(Arc::clone(file));
-        }
-        out.extend_from_slice(&self.text);
-    }
 }
 
 /// An axis map and its JSON text. A motion's `from` is the last motion's
@@ -180,7 +160,7 @@ impl<W: Write> JsonlSink<W> {
             out: Some(writer),
             buffer: Vec::with_capacity(JSONL_BLOCK + 4096),
             last_to: AxisMapText::default(),
-            last_file: FileText::default(),
+            last_file: FileJsonText::default(),
             last_settings: MotionSettingsText::default(),
         }
     }
@@ -317,7 +297,7 @@ fn write_modal_change_json(out: &mut Vec<u8>, change: &ModalChangeEvent) {
 }
 
 /// `,"source":{…}}`: the event's source and the event's closing brace.
-fn write_source_json(out: &mut Vec<u8>, source: &EventSource, last_file: &mut FileText) {
+fn write_source_json(out: &mut Vec<u8>, source: &EventSource, last_file: &mut FileJsonText) {
     out.extend_from_slice(b",\"source\":{\"file\":");
     last_file.write(out, &source.file);
     out.extend_from_slice(b",\"line\":");
