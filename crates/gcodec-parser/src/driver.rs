@@ -17,7 +17,7 @@ use crate::error::SyntaxError;
 use crate::grammar::{self, Ctx, Spanned, operators};
 use crate::macros::{Expanded, Macros};
 use crate::misspelt::Misspelt;
-use crate::{fast, structure};
+use crate::{fast, structure, word_line};
 use gcodec_stream::{Chunk, WorkerPriority, map_chunks};
 
 /// Deepest nesting of `(` and `[` accepted in one block. Deeper expressions
@@ -458,6 +458,9 @@ struct Line {
     header: Option<(u32, u32)>,
     /// A lexical problem already reported: the grammar is not run.
     broken: bool,
+    /// The block, where the line was read from its bytes
+    /// ([`word_line`]) rather than lexed.
+    read: Option<Block>,
 }
 
 /// How the driver reads each line.
@@ -582,15 +585,67 @@ impl<'s> Driver<'s, '_> {
 
     /// Parses the lines of `bytes`.
     fn run(&mut self, bytes: Range<usize>) {
+        // Macros may stand for anything, even a letter's word.
+        if self.reading == Reading::Whole && self.macros.is_empty() {
+            self.read_word_lines(bytes);
+        } else {
+            self.lex_lines(bytes);
+        }
+        self.flush();
+    }
+
+    /// Reads the lines of `bytes` that hold only constant DIN words
+    /// straight from their bytes ([`word_line`]) and lexes the others, a
+    /// run of them at a time; the lines wait for the flush in order.
+    fn read_word_lines(&mut self, bytes: Range<usize>) {
+        let src = self.src;
+        let mut start = bytes.start;
+        let mut unlexed = start;
+        while start < bytes.end {
+            let end =
+                memchr::memchr(b'\n', &src[start..bytes.end]).map_or(bytes.end, |p| start + p + 1);
+            let text_end = if src[end - 1] == b'\n' { end - 1 } else { end };
+            if let Some(block) = word_line::read(src, start, text_end) {
+                if unlexed < start {
+                    self.lex_lines(unlexed..start);
+                }
+                self.lines.push(Line {
+                    tokens: self.tokens.len()..self.tokens.len(),
+                    start: start as u32,
+                    end: text_end as u32,
+                    comment: None,
+                    header: None,
+                    broken: false,
+                    read: Some(block),
+                });
+                if self.lines.len() >= FLUSH_LINES {
+                    self.flush();
+                }
+                unlexed = end;
+            }
+            start = end;
+        }
+        if unlexed < bytes.end {
+            self.lex_lines(unlexed..bytes.end);
+        }
+    }
+
+    /// Lexes the lines of `bytes` into the waiting lines, flushing them
+    /// when there are [`FLUSH_LINES`].
+    fn lex_lines(&mut self, bytes: Range<usize>) {
         let src = self.src;
         let base = bytes.start as u32;
+        // Lines read from their bytes may wait before these: the tokens
+        // are appended to the buffer as it is.
+        let first_token = self.tokens.len();
         let mut line = Line {
-            tokens: 0..0,
+            tokens: first_token..first_token,
             start: base,
             end: base,
             comment: None,
             header: None,
             broken: false,
+            read: None,
         };
         for mut tok in Lexer::new(&src[bytes.start..bytes.end]) {
             tok.start += base;
@@ -610,6 +665,7 @@ impl<'s> Driver<'s, '_> {
                         comment: None,
                         header: None,
                         broken: false,
+                        read: None,
                     };
                     self.lines.push(std::mem::replace(&mut line, next));
                     if self.lines.len() >= FLUSH_LINES {
@@ -646,7 +702,6 @@ impl<'s> Driver<'s, '_> {
         if line.start < line.end {
             self.lines.push(line);
         }
-        self.flush();
     }
 
     /// Parses the buffered lines and empties the buffers.
@@ -658,16 +713,28 @@ impl<'s> Driver<'s, '_> {
             // Built only when a block needs it: most take the fast path,
             // and a skim flushes line by line.
             let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
-            for line in &lines {
+            for line in &mut lines {
                 let line_tokens = &tokens[line.tokens.clone()];
-                let expanded = (!line.broken)
-                    .then(|| {
-                        Expanded::line(self.src, (line.start, line.end), line_tokens, self.macros)
-                    })
-                    .flatten();
-                let block = match expanded {
-                    None => self.parse_line(line, line_tokens, &ctx, &parser, line.end as usize),
-                    Some(expanded) => self.parse_expanded_line(line, line_tokens, expanded),
+                let block = match line.read.take() {
+                    Some(block) => block,
+                    None => {
+                        let expanded = (!line.broken)
+                            .then(|| {
+                                Expanded::line(
+                                    self.src,
+                                    (line.start, line.end),
+                                    line_tokens,
+                                    self.macros,
+                                )
+                            })
+                            .flatten();
+                        match expanded {
+                            None => {
+                                self.parse_line(line, line_tokens, &ctx, &parser, line.end as usize)
+                            }
+                            Some(expanded) => self.parse_expanded_line(line, line_tokens, expanded),
+                        }
+                    }
                 };
                 self.content_seen |=
                     !block.statements.is_empty() || block.label.is_some() || block.number.is_some();
@@ -710,6 +777,7 @@ impl<'s> Driver<'s, '_> {
                 let broken = Line {
                     tokens: line.tokens.clone(),
                     broken: true,
+                    read: None,
                     ..*line
                 };
                 let ctx = self.ctx();
@@ -736,6 +804,7 @@ impl<'s> Driver<'s, '_> {
         let this = Line {
             tokens: line.tokens.clone(),
             broken,
+            read: None,
             ..*line
         };
         let mut eoi = expanded.bytes.len();

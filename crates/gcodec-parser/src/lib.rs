@@ -22,6 +22,7 @@ mod macros;
 mod misspelt;
 mod structure;
 mod tree;
+mod word_line;
 
 pub use driver::{
     MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, ParsedChunk, parse, parse_bytes,

@@ -314,3 +314,112 @@ proptest! {
         prop_assert_eq!(fast.diagnostics, grammar.diagnostics, "{:?}", line);
     }
 }
+
+/// Lines of constant words are read from their bytes (`word_line.rs`):
+/// each of these, alone and among lines that are lexed, gives the
+/// grammar's blocks.
+#[test]
+fn constant_word_lines_parse_the_same_either_way() {
+    let lines = [
+        "G1 X100.037 Y200.053 F1000",
+        "N10 G1 X-1.5 Y+2 Z.5 F200",
+        "n10 g1 x-.5 y5.",
+        "N10G1X1Y2",
+        "G0X1Y2Z3",
+        "  N10  G1\tX1  ",
+        "G1 X1\r",
+        "X1\r Y2",
+        "X-0 Y+0 Z0.0",
+        "X.",
+        "X-",
+        "X- 5",
+        "X--5",
+        "X1.2.3",
+        "X1EX2",
+        "X1E5",
+        "X1.5ex-3",
+        "X1EXY",
+        "N10.5 X1",
+        "N10",
+        "N10 ",
+        "N10=5",
+        "N10X",
+        "G1 X1 L5",
+        "R1 X1",
+        "G1 X1 N20",
+        "X1Y",
+        "XY1",
+        "X_1",
+        "X1_",
+        "X1 ; c",
+        "X1;c",
+        "X1&Y2",
+        "X1 =5",
+        "X1=5",
+        "X1(2)",
+        "X1[2]",
+        "X1\"s\"",
+        "X1'H1F'",
+        "X1 %",
+        "X99999999999999999999999",
+        "X1234567890123456.5",
+        "X123456789012345.5",
+        "X0.00000000000000000000001",
+        "X0.0000000000000000000001",
+        "N99999999999999999999999 X1",
+        "G1 X1 Y2 Z3 A4 B5 C6 U7 V8 W9 F10 S11 T12 D13 M14 H15 E16",
+        "G1 X1 Y2 Z3 A4 B5 C6 U7 V8 W9 F10 S11 T12 D13 M14 H15 E16 I17",
+        "X\u{e4}1",
+    ];
+    for line in lines {
+        assert_same(line, line.as_bytes());
+        let among = format!("G1 X1\n{line}\nIF R1==1\nX2\n{line}\nENDIF\n{line}");
+        assert_same(line, among.as_bytes());
+    }
+}
+
+fn constant_word() -> impl Strategy<Value = String> {
+    (
+        prop::sample::select(vec!["G", "g", "X", "y", "Z", "F", "M", "S", "A", "T", "E"]),
+        prop::sample::select(vec!["", "", "-", "+"]),
+        prop::sample::select(vec![
+            "1",
+            "0",
+            "-0",
+            "100.037",
+            ".5",
+            "5.",
+            "007",
+            "123456789012345",
+            "1234567890123456",
+            "0.1234567890123456789",
+            "1EX2",
+        ]),
+        prop::sample::select(vec![" ", "", "  ", "\t", " ; c", "=1"]),
+    )
+        .prop_map(|(a, s, n, t)| format!("{a}{s}{n}{t}"))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+    #[test]
+    fn generated_constant_word_programs_parse_the_same_either_way(
+        lines in prop::collection::vec(
+            (
+                prop::sample::select(vec!["", "", "N10 ", "N20", "  ", "/ "]),
+                prop::collection::vec(constant_word(), 0..6),
+                prop::sample::select(vec!["\n", "\n", "\r\n", "\nENDIF\n", "\nR1=2\n"]),
+            ),
+            1..12,
+        ),
+    ) {
+        let src: String = lines
+            .iter()
+            .map(|(number, words, end)| format!("{number}{}{end}", words.concat()))
+            .collect();
+        let fast = parse_bytes("gen", src.as_bytes());
+        let grammar = parse_bytes_with_grammar_only("gen", src.as_bytes());
+        prop_assert_eq!(fast.program, grammar.program, "{:?}", src);
+        prop_assert_eq!(fast.diagnostics, grammar.diagnostics, "{:?}", src);
+    }
+}

@@ -29,7 +29,7 @@ use std::borrow::Cow;
 use gcodec_source::{Encoding, Span, codes};
 
 pub(crate) use control::structure_keyword;
-pub(crate) use numbers::number_bytes_value;
+pub(crate) use numbers::{number_bytes_value, short_decimal_value};
 
 use crate::ast::*;
 use crate::error::SyntaxError;

@@ -58,8 +58,15 @@ fn short_decimal(text: &[u8]) -> Option<Option<f64>> {
         return Some(None);
     }
     let fraction = point.map_or(0, |p| text.len() - p - 1);
+    Some(Some(short_decimal_value(mantissa, fraction)?))
+}
+
+/// The value of a decimal of at most 15 digits, `mantissa`, of which
+/// `fraction` follow the point; `None` beyond 22 after the point (see
+/// [`short_decimal`]).
+pub(crate) fn short_decimal_value(mantissa: u64, fraction: usize) -> Option<f64> {
     let power = EXACT_POWERS_OF_TEN.get(fraction)?;
-    Some(Some(mantissa as f64 / power))
+    Some(mantissa as f64 / power)
 }
 
 #[cfg(test)]

@@ -1,0 +1,273 @@
+//! Lines of constant DIN words read straight from their bytes:
+//! `G1 X100.037 Y-200.5 F1000`, `N20 G0 Z.5`.
+//!
+//! Most lines of large programs (CAM output) have exactly this shape, and
+//! lexing them token by token, then reading the tokens ([`crate::fast`]),
+//! costs several times what one pass over the bytes costs. This module
+//! accepts only lines whose tokens are beyond doubt: an optional block
+//! number `N<digits>` first, then words of one address letter, an
+//! optional sign touching it and a plain decimal number touching that
+//! (`5`, `5.`, `.5`, `1.5`), separated by blanks or touching
+//! (`G0X1Y2`). It builds the block the fast path builds from the same
+//! line's tokens. Anything else — a comment, a skip mark, a name, an `L`,
+//! `N` or `R` word, an exponent, `=`, a bracket, a byte beyond ASCII —
+//! returns `None`, and the line is lexed and parsed as before. The blocks
+//! are checked against the grammar's by `tests/fast_path.rs` (through
+//! [`crate::parse_bytes`], which reads lines this way).
+
+use gcodec_lang::addresses::letter_str;
+use gcodec_source::Span;
+
+use crate::ast::{Block, BlockNumber, NumberLit, Statement, StatementKind, Word, WordValue};
+use crate::fast::whole_number;
+use crate::grammar::number_bytes_value;
+
+/// Most words a line may hold here; a longer line is lexed.
+const MAX_WORDS: usize = 16;
+
+/// The block of the line `src[start..end]` (without its line end), if
+/// the line holds only a block number and constant DIN words.
+pub(crate) fn read(src: &[u8], start: usize, end: usize) -> Option<Block> {
+    let line = src.get(start..end)?;
+    // A CR before the line end is no part of the block.
+    let line = line.strip_suffix(b"\r").unwrap_or(line);
+    let mut scan = Scan { line, at: 0 };
+    scan.blanks();
+    let mut number = None;
+    if matches!(scan.peek(), Some(b'N' | b'n')) {
+        let letter = scan.at;
+        scan.at += 1;
+        let digits = scan.at;
+        while scan.peek().is_some_and(|b| b.is_ascii_digit()) {
+            scan.at += 1;
+        }
+        // `N10=…` is an assignment; `N10.5` no block number.
+        if !scan.ends_word() {
+            return None;
+        }
+        let value = whole_number(&line[digits..scan.at])?;
+        number = Some(BlockNumber {
+            span: span(start, letter, scan.at),
+            main: false,
+            value,
+        });
+        scan.blanks();
+    }
+    let mut words = [WordAt::default(); MAX_WORDS];
+    let mut count = 0;
+    while scan.at < line.len() {
+        *words.get_mut(count)? = scan.word()?;
+        count += 1;
+        scan.blanks();
+    }
+    if count == 0 && number.is_none() {
+        return None;
+    }
+    let statements = words[..count]
+        .iter()
+        .map(|word| word.statement(line, start))
+        .collect();
+    Some(Block {
+        span: span(start, 0, line.len()),
+        skip: None,
+        number,
+        label: None,
+        statements,
+        comment: None,
+        depth: 0,
+    })
+}
+
+/// The span of `from..to` in the line starting at `start`.
+fn span(start: usize, from: usize, to: usize) -> Span {
+    Span::new((start + from) as u32, (start + to) as u32)
+}
+
+/// A position in a line.
+struct Scan<'a> {
+    line: &'a [u8],
+    at: usize,
+}
+
+/// A constant word read: where its letter, value (sign included) and
+/// end are, and its value.
+#[derive(Clone, Copy, Default)]
+struct WordAt {
+    letter: usize,
+    value_start: usize,
+    end: usize,
+    value: f64,
+    integer: bool,
+}
+
+impl Scan<'_> {
+    fn peek(&self) -> Option<u8> {
+        self.line.get(self.at).copied()
+    }
+
+    /// Steps over the blanks the lexer skips here.
+    fn blanks(&mut self) {
+        while matches!(self.peek(), Some(b' ' | b'\t')) {
+            self.at += 1;
+        }
+    }
+
+    /// Whether a number ending here ends its word as the lexer reads
+    /// it: at a blank, the line's end, or a letter that starts the next
+    /// word (a letter touching a letter would make a name, `EX` an
+    /// exponent).
+    fn ends_word(&self) -> bool {
+        match self.peek() {
+            None | Some(b' ' | b'\t') => true,
+            Some(b) if b.is_ascii_alphabetic() => matches!(
+                self.line.get(self.at + 1),
+                Some(b'0'..=b'9' | b'.' | b'+' | b'-')
+            ),
+            _ => false,
+        }
+    }
+
+    /// The word here: a letter other than `L`, `N` or `R`, an optional
+    /// sign and a plain decimal number (`5`, `5.`, `.5`, `1.5`), all
+    /// touching, ending its word.
+    fn word(&mut self) -> Option<WordAt> {
+        let letter = self.at;
+        let address = self.peek()?;
+        if !address.is_ascii_alphabetic()
+            || matches!(address.to_ascii_uppercase(), b'L' | b'N' | b'R')
+        {
+            return None;
+        }
+        self.at += 1;
+        let value_start = self.at;
+        let negative = self.peek() == Some(b'-');
+        if matches!(self.peek(), Some(b'+' | b'-')) {
+            self.at += 1;
+        }
+        let digits_start = self.at;
+        let mut mantissa = 0u64;
+        let mut digits = 0;
+        let mut fraction = None;
+        loop {
+            match self.peek() {
+                Some(b @ b'0'..=b'9') => {
+                    mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b - b'0'));
+                    digits += 1;
+                    fraction = fraction.map(|f: usize| f + 1);
+                }
+                Some(b'.') if fraction.is_none() => fraction = Some(0),
+                _ => break,
+            }
+            self.at += 1;
+        }
+        if digits == 0 || !self.ends_word() {
+            return None;
+        }
+        let text = &self.line[digits_start..self.at];
+        // Beyond 15 digits the mantissa may not be exact: the general
+        // reading rounds it.
+        let value = if digits <= 15 {
+            crate::grammar::short_decimal_value(mantissa, fraction.unwrap_or(0))
+        } else {
+            None
+        };
+        let value = match value {
+            Some(value) => value,
+            None => number_bytes_value(text)?,
+        };
+        Some(WordAt {
+            letter,
+            value_start,
+            end: self.at,
+            value: if negative { -value } else { value },
+            integer: fraction.is_none(),
+        })
+    }
+}
+
+impl WordAt {
+    /// The statement of this word of `line`, which starts at `start`, as
+    /// the fast path builds it.
+    fn statement(&self, line: &[u8], start: usize) -> Statement {
+        let word_span = span(start, self.letter, self.end);
+        let address = letter_str(line[self.letter].to_ascii_uppercase());
+        Statement {
+            span: word_span,
+            kind: StatementKind::Word(Word::new(
+                word_span,
+                address,
+                span(start, self.letter, self.letter + 1),
+                None,
+                WordValue::Constant(NumberLit {
+                    span: span(start, self.value_start, self.end),
+                    value: self.value,
+                    integer: self.integer,
+                }),
+            )),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::read;
+
+    fn reads(line: &str) -> bool {
+        read(line.as_bytes(), 0, line.len()).is_some()
+    }
+
+    /// The lines this path is for are read here, not lexed (the
+    /// comparison with the grammar, in `tests/fast_path.rs`, covers
+    /// what they read as).
+    #[test]
+    fn constant_word_lines_are_read() {
+        for line in [
+            "G1 X100.037 Y200.053 F1000",
+            "N10 G1 X-1.5 Y+2 Z.5 F200",
+            "n10 g1 x-.5 y5.",
+            "N10G1X1Y2",
+            "  N10  G1\tX1  ",
+            "G1 X1\r",
+            "N10",
+            "X99999999999999999999999",
+        ] {
+            assert!(reads(line), "{line:?}");
+        }
+    }
+
+    /// Anything whose tokens need the lexer to judge is left to it.
+    #[test]
+    fn other_lines_are_left_to_the_lexer() {
+        for line in [
+            "",
+            "  ",
+            "X.",
+            "X-",
+            "X- 5",
+            "X--5",
+            "X1.2.3",
+            "X1EX2",
+            "X1EXY",
+            "N10.5 X1",
+            "N10=5",
+            "N10X",
+            "G1 X1 L5",
+            "R1 X1",
+            "G1 X1 N20",
+            "X1Y",
+            "XY1",
+            "X_1",
+            "X1 ; c",
+            "X1&Y2",
+            "X1 =5",
+            "X1(2)",
+            "/ X1",
+            "X1\r Y2",
+            "X\u{e4}1",
+            "N99999999999999999999999 X1",
+            "G1 X1 Y2 Z3 A4 B5 C6 U7 V8 W9 F10 S11 T12 D13 M14 H15 E16 I17",
+        ] {
+            assert!(!reads(line), "{line:?}");
+        }
+    }
+}
