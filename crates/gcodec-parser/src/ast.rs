@@ -341,6 +341,20 @@ impl Word {
         }
     }
 
+    /// The upper-case letter, value and wholeness of a word written as a
+    /// letter with a constant touching it (`X10`, `g1`, `F200.5`); `None`
+    /// for any other word.
+    pub fn letter_constant(&self) -> Option<(u8, f64, bool)> {
+        match self.0 {
+            WordRepr::Letter {
+                letter,
+                integer,
+                value,
+            } => Some((letter, value, integer)),
+            WordRepr::Parts(_) => None,
+        }
+    }
+
     /// Where the address is written, given the span of the word.
     pub fn address_span(&self, span: Span) -> Span {
         match &self.0 {

@@ -42,5 +42,8 @@ mod values;
 pub use definitions::Definitions;
 pub use lower::outline::{Outline, OutlineBuilder, ProgramKind, outline, outline_chunks};
 pub use lower::stream::{ChunkLowering, LoweredChunk, lower_chunks};
-pub use lower::{Lowered, lower, lower_in_parts, lower_program, lower_with, resolve_from_dataflow};
+pub use lower::{
+    Lowered, lower, lower_by_the_general_path, lower_in_parts, lower_program, lower_with,
+    resolve_from_dataflow,
+};
 pub use profile_check::check_profile;

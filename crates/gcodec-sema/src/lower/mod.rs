@@ -36,6 +36,7 @@ use parts::{Entry, OpenEntry};
 mod addresses;
 mod axis_commands;
 mod calls;
+mod constant_words;
 mod control;
 mod frames;
 mod interrupts;
@@ -92,7 +93,7 @@ pub fn lower_program(
     const BLOCKS_PER_PART: usize = 50_000;
     let parts = (program.blocks.len() / BLOCKS_PER_PART).clamp(1, threads);
     let outline = outline::outline(program, kind, profile, definitions);
-    lower_outlined(program, profile, &outline, parts)
+    lower_outlined(program, profile, &outline, parts, true)
 }
 
 /// [`lower_with`], the blocks split into `parts` runs lowered on threads of
@@ -107,15 +108,31 @@ pub fn lower_in_parts(
 ) -> Lowered {
     let kind = ProgramKind::of_file(&program.file);
     let outline = outline::outline(program, kind, profile, definitions);
-    lower_outlined(program, profile, &outline, parts)
+    lower_outlined(program, profile, &outline, parts, true)
 }
 
-/// [`lower_in_parts`] with the program's `outline` built.
+/// [`lower_with`] in one part, every block by the general path: the
+/// reference the direct lowering of constant-word blocks is tested
+/// against (`constant_words.rs`). Public for that test only.
+#[doc(hidden)]
+pub fn lower_by_the_general_path(
+    program: &Program,
+    profile: &Profile,
+    definitions: &Definitions,
+) -> Lowered {
+    let kind = ProgramKind::of_file(&program.file);
+    let outline = outline::outline(program, kind, profile, definitions);
+    lower_outlined(program, profile, &outline, 1, false)
+}
+
+/// [`lower_in_parts`] with the program's `outline` built; `direct`:
+/// whether blocks of constant words are lowered directly.
 fn lower_outlined(
     program: &Program,
     profile: &Profile,
     outline: &Outline<'_>,
     parts: usize,
+    direct: bool,
 ) -> Lowered {
     let mut diagnostics = outline.diagnostics().clone();
     let subprogram = outline.subprogram;
@@ -144,6 +161,7 @@ fn lower_outlined(
             Entry::AfterOpenPart
         };
         let mut lowering = Lowering::new(outline, profile, program.source.bytes(), reserve, entry);
+        lowering.direct_constant_words = direct;
         for index in range {
             lowering.block(index, &program.blocks[index]);
         }
@@ -179,7 +197,7 @@ fn lower_outlined(
         // A case the ledger cannot fill in (a modal call in
         // force across a boundary, an inherited thread or OEM command):
         // lower in one run.
-        return lower_outlined(program, profile, outline, 1);
+        return lower_outlined(program, profile, outline, 1, direct);
     }
     let mut parts = lowered.into_iter();
     let Some(mut first) = parts.next() else {
@@ -384,6 +402,10 @@ struct Lowering<'a> {
     /// Where in the flow facts (`Flow::blocks`) the next block's are, at
     /// the earliest: blocks are lowered in order.
     flow_at: usize,
+    /// Blocks of constant words for a straight motion are lowered
+    /// directly ([`Self::constant_word_block`]); off only to test that
+    /// path against the general one.
+    direct_constant_words: bool,
 }
 
 /// An `S` word: spindle number, computed spindle number (`S[SPINU]=`),
@@ -582,6 +604,7 @@ impl<'a> Lowering<'a> {
             group8_supported: profile.work_offsets.supported_group8(),
             plan: None,
             flow_at: 0,
+            direct_constant_words: true,
         }
     }
 
@@ -671,9 +694,12 @@ impl<'a> Lowering<'a> {
                 .with_help("split the block; the limit is `max_block_length` in the profile"),
             );
         }
-        let mut plan = self.plan.take().unwrap_or_default();
         // Most blocks play no part in control flow: one lookup says so.
         let facts = self.block_flow(index);
+        if facts.is_none() && self.direct_constant_words && self.constant_word_block(index, block) {
+            return;
+        }
+        let mut plan = self.plan.take().unwrap_or_default();
         if let Some(facts) = facts {
             self.check_structure_block(facts, block);
             self.structure_parts(facts, block, &mut plan);

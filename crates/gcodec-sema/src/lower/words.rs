@@ -363,7 +363,7 @@ impl Lowering<'_> {
 
     /// The Group 8 code a legacy alias (`legacy_aliases`, per the work-offset
     /// design) stands for, if `G<n>` is one.
-    fn legacy_alias(&self, n: f64) -> Option<String> {
+    pub(super) fn legacy_alias(&self, n: f64) -> Option<String> {
         let aliases = &self.profile.work_offsets.legacy_aliases;
         if aliases.is_empty() {
             return None;

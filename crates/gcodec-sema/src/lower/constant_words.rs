@@ -1,0 +1,152 @@
+//! The commonest block of large programs lowered directly: `G1 X… Y… F…`,
+//! constant words for a straight motion and nothing else.
+//!
+//! The general path collects every word of a block into a [`BlockPlan`]
+//! and then walks all of the plan's parts to emit the block's
+//! instructions, which costs several times the three instructions such a
+//! block makes. [`Lowering::constant_word_block`] takes a block only when
+//! everything the general path would do with it is plain to see: no
+//! control flow, skip mark or label; only compactly written constant
+//! words; at most one `G`, and that one `G0` or `G1` the machine has with
+//! no legacy alias; at most one `F`; each of the machine's single-letter
+//! axes at most once, and at least one; the motion command straight
+//! (`G0`, `G1`, or not known from the text). It emits what the general
+//! path emits, in its order: the modal change, the feed, the motion.
+//! Every other block, and every block with anything to report, is left to
+//! the general path. `tests/constant_words.rs` holds the two to the same
+//! instructions and diagnostics on every fixture and corpus program and on
+//! generated blocks.
+
+use std::borrow::Cow;
+
+use gcodec_ail::{AxisValue, Op, Value};
+use gcodec_lang::MotionKind;
+use gcodec_lang::addresses::letter_str;
+use gcodec_lang::ggroups::{self, GCommand};
+use gcodec_parser::ast::{Block, StatementKind};
+use gcodec_source::Span;
+
+use super::{Lowering, motion_of};
+
+/// Most axes a block lowered here may move; more go the general way.
+const MAX_TARGETS: usize = 10;
+
+/// What a block of constant words says, read before anything is emitted.
+#[derive(Default)]
+struct ConstantWords {
+    g: Option<(GCommand, Span)>,
+    feed: Option<(f64, Span)>,
+    targets: [Option<(&'static str, f64, Span)>; MAX_TARGETS],
+    count: usize,
+}
+
+impl Lowering<'_> {
+    /// Lowers `block` (the program's block `index`, with no control-flow
+    /// facts) if it is a straight motion of constant words; `false`, with
+    /// nothing emitted or changed, if the general path must lower it.
+    pub(super) fn constant_word_block(&mut self, index: usize, block: &Block) -> bool {
+        if block.skip.is_some() || block.label.is_some() {
+            return false;
+        }
+        let Some(words) = self.read_constant_words(block) else {
+            return false;
+        };
+        let motion_command = words.g.map_or(self.modal[0], |(g, _)| Some(g.name()));
+        let motion = match motion_command {
+            None => MotionKind::Modal,
+            Some(code) => match motion_of(code) {
+                Some(kind @ (MotionKind::Rapid | MotionKind::Linear)) => kind,
+                _ => return false,
+            },
+        };
+        if let Some((command, span)) = words.g {
+            self.modal[0] = Some(command.name());
+            self.open.set_group1();
+            self.emit(
+                index,
+                span,
+                Op::ModalChange {
+                    group: command.group(),
+                    code: command,
+                },
+            );
+        }
+        if let Some((value, span)) = words.feed {
+            self.emit(
+                index,
+                span,
+                Op::Feed {
+                    value: Value::Const(value),
+                },
+            );
+        }
+        let targets: Vec<AxisValue> = words.targets[..words.count]
+            .iter()
+            .flatten()
+            .map(|&(axis, value, _)| AxisValue {
+                axis: Cow::Borrowed(axis),
+                value: Value::Const(value),
+                mode: None,
+            })
+            .collect();
+        let first = words.targets[0].map_or(block.span, |(_, _, span)| span);
+        if motion == MotionKind::Modal && self.open.group1_is_entry() {
+            self.open.read_by_motion(self.document.instructions.len());
+        }
+        self.emit(
+            index,
+            first,
+            Op::Motion {
+                motion,
+                targets,
+                circle: None,
+                details: None,
+            },
+        );
+        true
+    }
+
+    /// The words of `block` if it holds only constant words of the kinds
+    /// [`Self::constant_word_block`] lowers, each as often as it may.
+    fn read_constant_words(&self, block: &Block) -> Option<ConstantWords> {
+        let mut words = ConstantWords::default();
+        for statement in &block.statements {
+            let StatementKind::Word(word) = &statement.kind else {
+                return None;
+            };
+            let (letter, value, integer) = word.letter_constant()?;
+            let span = statement.span;
+            match letter {
+                b'G' if words.g.is_none() && integer && (value == 0.0 || value == 1.0) => {
+                    words.g = Some((self.straight_motion_command(value)?, span));
+                }
+                b'F' if words.feed.is_none() => words.feed = Some((value, span)),
+                b'A' | b'B' | b'C' | b'Q' | b'U' | b'V' | b'W' | b'X' | b'Y' | b'Z' => {
+                    let axis = letter_str(letter);
+                    let repeated = words.targets[..words.count]
+                        .iter()
+                        .flatten()
+                        .any(|(a, _, _)| *a == axis);
+                    if repeated || !self.is_axis(axis) {
+                        return None;
+                    }
+                    *words.targets.get_mut(words.count)? = Some((axis, value, span));
+                    words.count += 1;
+                }
+                _ => return None,
+            }
+        }
+        (words.count > 0).then_some(words)
+    }
+
+    /// `G0` or `G1` (`value`), where the machine has it under that name:
+    /// no legacy alias stands for it and the profile does not rule it out.
+    fn straight_motion_command(&self, value: f64) -> Option<GCommand> {
+        if self.legacy_alias(value).is_some() {
+            return None;
+        }
+        let (group, index) = ggroups::lookup_g(value as u64)?;
+        let command = GCommand::new(group, index)?;
+        (group == 1 && self.g_unsupported(group, command.name()).is_none()).then_some(command)
+    }
+}
