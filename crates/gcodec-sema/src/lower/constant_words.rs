@@ -26,7 +26,7 @@ use gcodec_lang::ggroups::{self, GCommand};
 use gcodec_parser::ast::{Block, StatementKind};
 use gcodec_source::Span;
 
-use super::{Lowering, motion_of};
+use super::Lowering;
 
 /// Most axes a block lowered here may move; more go the general way.
 const MAX_TARGETS: usize = 10;
@@ -52,12 +52,8 @@ impl Lowering<'_> {
             return false;
         };
         let motion_command = words.g.map_or(self.modal[0], |(g, _)| Some(g.name()));
-        let motion = match motion_command {
-            None => MotionKind::Modal,
-            Some(code) => match motion_of(code) {
-                Some(kind @ (MotionKind::Rapid | MotionKind::Linear)) => kind,
-                _ => return false,
-            },
+        let Some(motion) = straight_motion(motion_command) else {
+            return false;
         };
         if let Some((command, span)) = words.g {
             self.modal[0] = Some(command.name());
@@ -148,5 +144,34 @@ impl Lowering<'_> {
         let (group, index) = ggroups::lookup_g(value as u64)?;
         let command = GCommand::new(group, index)?;
         (group == 1 && self.g_unsupported(group, command.name()).is_none()).then_some(command)
+    }
+}
+
+/// The motion under the motion command `code` as the text knows it, if
+/// straight: `G0`, `G1`, or not known (`modal`). Names compared, not
+/// looked up: the per-block lookup cost a tenth of this path.
+fn straight_motion(code: Option<&str>) -> Option<MotionKind> {
+    match code {
+        None => Some(MotionKind::Modal),
+        Some("G0") => Some(MotionKind::Rapid),
+        Some("G1") => Some(MotionKind::Linear),
+        Some(_) => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::straight_motion;
+    use crate::lower::motion_of;
+
+    /// The names compared are the commands the general path looks up.
+    #[test]
+    fn straight_motions_are_the_general_paths() {
+        for code in ["G0", "G1"] {
+            assert_eq!(straight_motion(Some(code)), motion_of(code), "{code}");
+        }
+        for code in ["G2", "G3", "G33", "ASPLINE", "CIP", "G01"] {
+            assert_eq!(straight_motion(Some(code)), None, "{code}");
+        }
     }
 }
