@@ -1023,10 +1023,11 @@ fn repeated_motion_settings_are_written_as_serde_writes_them() {
 }
 
 /// The JSONL sink copies the text of a motion's `from` and `to_machine`
-/// when they are the last `to`, and of a file it just wrote: a run of
-/// motions whose maps and files are now the same, now not (another
-/// value, `-0.0` for `0.0`, another axis, an owned name, another file)
-/// must still be written exactly as serde writes each.
+/// when they are the last `to`, of each axis of `to` whose value stays,
+/// and of a file, column and level it just wrote: a run of motions whose
+/// maps and sources are now the same, now not (another value, `-0.0` for
+/// `0.0`, another axis, an owned or quoted name, another file, column or
+/// level) must still be written exactly as serde writes each.
 #[test]
 fn repeated_maps_and_files_are_written_as_serde_writes_them() {
     let files = [
@@ -1052,8 +1053,9 @@ fn repeated_maps_and_files_are_written_as_serde_writes_them() {
             1 => -0.0,
             _ => value,
         };
-        to = match pick(44, 6) {
+        to = match pick(44, 7) {
             0 => AxisMap::from([("X", x), ("Y", 1.5)]),
+            6 => AxisMap::from([("X", x), ("C\"1", 1.5), ("Z", -2.0)]),
             1 => {
                 let mut map = AxisMap::from([("X", x), ("Y", 1.5)]);
                 map.insert(Cow::Owned("Z".into()), -2.0);
@@ -1072,8 +1074,8 @@ fn repeated_maps_and_files_are_written_as_serde_writes_them() {
             source: EventSource {
                 file: Arc::clone(&files[(pick(55, 7) == 0) as usize]),
                 line: index,
-                col: 1,
-                level: 0,
+                col: 1 + (pick(58, 5) == 0) as u32 * 10,
+                level: (pick(61, 9) == 0) as u32,
             },
         };
         events.push(event);

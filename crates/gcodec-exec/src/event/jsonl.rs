@@ -28,8 +28,8 @@ pub struct JsonlSink<W: Write> {
     buffer: Vec<u8>,
     /// The last motion's `to`, as written.
     last_to: AxisMapText,
-    /// The last event's file, as written.
-    last_file: FileJsonText,
+    /// The last event's source, as written.
+    last_source: SourceText,
     /// The last motion's feed, plane and work-offset fields, as written.
     last_settings: MotionSettingsText,
 }
@@ -90,48 +90,84 @@ fn write_motion_settings_json(out: &mut Vec<u8>, motion: &MotionEvent) {
 /// An axis map and its JSON text. A motion's `from` is the last motion's
 /// `to`, and its `to_machine` is its `to` while no offset or frame is
 /// active: their text is copied rather than written again (the numbers
-/// were most of the time spent writing motions).
+/// were most of the time spent writing motions). Each axis's `"X":value`
+/// is kept too: from one `to` to the next the names stay and some values
+/// do (an axis the block does not move), and their text is copied.
 #[derive(Default)]
 struct AxisMapText {
-    /// The axes and the bits of their values.
-    axes: Vec<(AxisName, u64)>,
+    /// One per axis, in the map's order.
+    cells: Vec<AxisCell>,
     text: Vec<u8>,
 }
 
+/// One axis of an [`AxisMapText`]: its name, the bits of its value and
+/// `"name":value` as written (`-0.0` is not `0.0`: their text differs).
+struct AxisCell {
+    name: AxisName,
+    bits: u64,
+    /// The length of `"name":`, which stays while the value changes.
+    key_len: usize,
+    text: Vec<u8>,
+}
+
+impl AxisCell {
+    fn new(name: &AxisName, value: f64) -> Self {
+        let mut text = Vec::new();
+        write_json_string(&mut text, name);
+        text.push(b':');
+        let key_len = text.len();
+        write_f64_json(&mut text, value);
+        Self {
+            name: name.clone(),
+            bits: value.to_bits(),
+            key_len,
+            text,
+        }
+    }
+
+    /// Makes this the cell of `value` on the same axis.
+    fn set_value(&mut self, value: f64) {
+        if self.bits != value.to_bits() {
+            self.bits = value.to_bits();
+            self.text.truncate(self.key_len);
+            write_f64_json(&mut self.text, value);
+        }
+    }
+}
+
 impl AxisMapText {
-    /// Whether `map` holds the same axes and the same values, bit for bit
-    /// (`-0.0` is not `0.0`: their text differs).
+    /// Whether `map` holds the same axes and the same values, bit for bit.
     fn holds(&self, map: &AxisMap) -> bool {
-        self.axes.len() == map.entries.len()
+        self.cells.len() == map.entries.len()
             && self
-                .axes
+                .cells
                 .iter()
                 .zip(&map.entries)
-                .all(|((axis, bits), (other, value))| {
-                    *bits == value.to_bits() && same_name(axis, other)
+                .all(|(cell, (name, value))| {
+                    cell.bits == value.to_bits() && same_name(&cell.name, name)
                 })
     }
 
     /// Writes `map` to `out` and remembers it.
     fn write(&mut self, out: &mut Vec<u8>, map: &AxisMap) {
-        let start = out.len();
-        write_axis_map_json(out, map);
-        self.text.clear();
-        self.text.extend_from_slice(&out[start..]);
-        // The names are the same from motion to motion: cloning an owned
-        // one each time would allocate.
-        self.axes.truncate(map.entries.len());
-        for (index, (axis, value)) in map.entries.iter().enumerate() {
-            match self.axes.get_mut(index) {
-                Some(slot) => {
-                    if !same_name(&slot.0, axis) {
-                        slot.0 = axis.clone();
-                    }
-                    slot.1 = value.to_bits();
-                }
-                None => self.axes.push((axis.clone(), value.to_bits())),
+        self.cells.truncate(map.entries.len());
+        for (index, (name, value)) in map.entries.iter().enumerate() {
+            match self.cells.get_mut(index) {
+                Some(cell) if same_name(&cell.name, name) => cell.set_value(*value),
+                Some(cell) => *cell = AxisCell::new(name, *value),
+                None => self.cells.push(AxisCell::new(name, *value)),
             }
         }
+        self.text.clear();
+        self.text.push(b'{');
+        for (index, cell) in self.cells.iter().enumerate() {
+            if index > 0 {
+                self.text.push(b',');
+            }
+            self.text.extend_from_slice(&cell.text);
+        }
+        self.text.push(b'}');
+        out.extend_from_slice(&self.text);
     }
 
     /// Writes `map` to `out`, copying the remembered text if it is the
@@ -160,7 +196,7 @@ impl<W: Write> JsonlSink<W> {
             out: Some(writer),
             buffer: Vec::with_capacity(JSONL_BLOCK + 4096),
             last_to: AxisMapText::default(),
-            last_file: FileJsonText::default(),
+            last_source: SourceText::default(),
             last_settings: MotionSettingsText::default(),
         }
     }
@@ -207,11 +243,11 @@ impl<W: Write> EventSink for JsonlSink<W> {
                     &mut self.last_to,
                     &mut self.last_settings,
                 );
-                write_source_json(&mut self.buffer, &event.source, &mut self.last_file);
+                self.last_source.write(&mut self.buffer, &event.source);
             }
             EventKind::ModalChange(change) => {
                 write_modal_change_json(&mut self.buffer, change);
-                write_source_json(&mut self.buffer, &event.source, &mut self.last_file);
+                self.last_source.write(&mut self.buffer, &event.source);
             }
             _ => serde_json::to_writer(&mut self.buffer, event)?,
         }
@@ -296,17 +332,37 @@ fn write_modal_change_json(out: &mut Vec<u8>, change: &ModalChangeEvent) {
     }
 }
 
-/// `,"source":{…}}`: the event's source and the event's closing brace.
-fn write_source_json(out: &mut Vec<u8>, source: &EventSource, last_file: &mut FileJsonText) {
-    out.extend_from_slice(b",\"source\":{\"file\":");
-    last_file.write(out, &source.file);
-    out.extend_from_slice(b",\"line\":");
-    write_u64(out, u64::from(source.line));
-    out.extend_from_slice(b",\"col\":");
-    write_u64(out, u64::from(source.col));
-    out.extend_from_slice(b",\"level\":");
-    write_u64(out, u64::from(source.level));
-    out.extend_from_slice(b"}}");
+/// The text of the last event's source. The file, the column (a block's
+/// first word) and the level mostly stay from event to event; the line
+/// is the only part written anew.
+#[derive(Default)]
+struct SourceText {
+    file: FileJsonText,
+    /// The column and level `tail` was written for.
+    tail_key: Option<(u32, u32)>,
+    /// `,"col":…,"level":…}}`.
+    tail: Vec<u8>,
+}
+
+impl SourceText {
+    /// `,"source":{…}}`: the event's source and the event's closing brace.
+    fn write(&mut self, out: &mut Vec<u8>, source: &EventSource) {
+        out.extend_from_slice(b",\"source\":{\"file\":");
+        self.file.write(out, &source.file);
+        out.extend_from_slice(b",\"line\":");
+        write_u64(out, u64::from(source.line));
+        let key = (source.col, source.level);
+        if self.tail_key != Some(key) {
+            self.tail_key = Some(key);
+            self.tail.clear();
+            self.tail.extend_from_slice(b",\"col\":");
+            write_u64(&mut self.tail, u64::from(source.col));
+            self.tail.extend_from_slice(b",\"level\":");
+            write_u64(&mut self.tail, u64::from(source.level));
+            self.tail.extend_from_slice(b"}}");
+        }
+        out.extend_from_slice(&self.tail);
+    }
 }
 
 fn write_axis_map_json(out: &mut Vec<u8>, axes: &AxisMap) {
