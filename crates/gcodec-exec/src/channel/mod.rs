@@ -1006,6 +1006,12 @@ impl<'r> Channel<'r> {
                 "`KONTC`: the curvature-continuous approach and retraction is not simulated: the tool approaches and leaves on a tangent circle as under `KONTT`".into()
             });
         }
+        // The command in force programmed again (the `G1` of every block
+        // of a flood): the same index is the same command, known without
+        // looking up the name in force.
+        if self.state.modal_index(group) == Some(index) {
+            return;
+        }
         let previous = self.state.modal(group);
         if previous == Some(code) {
             return;

@@ -123,6 +123,45 @@ pub struct MachineState {
     /// Per Group 8 index whether the machine has that settable offset
     /// (`work_offsets.supported_group8_offsets`).
     supported_group8: [bool; 100],
+    /// Per letter `A`…`Z` the axis it names ([`Self::axis_index_by_name`]):
+    /// a motion's targets are mostly single letters, found without
+    /// comparing names.
+    letter_axes: [Option<usize>; 26],
+    codes: ModalCodes,
+}
+
+/// The registry indices of the commands the queries of every motion test
+/// for ([`MachineState::plane`], [`MachineState::inch`], …): comparing an
+/// index costs less than looking up the command's name and comparing it.
+/// `None` for a command the registry lacks (no index matches it).
+#[derive(Clone, Copy, Debug)]
+struct ModalCodes {
+    g18: Option<u8>,
+    g19: Option<u8>,
+    g70: Option<u8>,
+    g700: Option<u8>,
+    g91: Option<u8>,
+    diamon: Option<u8>,
+    diam90: Option<u8>,
+}
+
+impl ModalCodes {
+    fn new() -> Self {
+        let index = |group: u8, code: &str| {
+            ggroups::lookup(code)
+                .filter(|&(found, _)| found == group)
+                .map(|(_, index)| index)
+        };
+        Self {
+            g18: index(6, "G18"),
+            g19: index(6, "G19"),
+            g70: index(13, "G70"),
+            g700: index(13, "G700"),
+            g91: index(14, "G91"),
+            diamon: index(29, "DIAMON"),
+            diam90: index(29, "DIAM90"),
+        }
+    }
 }
 
 struct FrameCache {
@@ -192,6 +231,11 @@ impl MachineState {
             })
             .collect();
         let neutral = Frame::neutral(&frame_axes);
+        let letter_axes = std::array::from_fn(|i| {
+            let letter = [b'A' + i as u8];
+            let name = std::str::from_utf8(&letter).unwrap_or("");
+            axis_index_by_name(&frame_axes, axes.len(), name)
+        });
         Self {
             machine: vec![0.0; axes.len()],
             programmable: neutral.clone(),
@@ -231,6 +275,8 @@ impl MachineState {
             frame_axes,
             scratch: RefCell::new(Vec::new()),
             supported_group8: profile.work_offsets.supported_group8(),
+            letter_axes,
+            codes: ModalCodes::new(),
             profile,
         }
     }
@@ -249,9 +295,15 @@ impl MachineState {
 
     /// The axis named `name` (any case).
     pub fn axis_index(&self, name: &str) -> Option<usize> {
-        self.frame_axes
-            .index_of(name)
-            .or_else(|| machine_axis_number(name, self.axes.len()))
+        match name.as_bytes() {
+            [letter @ b'A'..=b'Z'] => self.letter_axes[usize::from(letter - b'A')],
+            _ => self.axis_index_by_name(name),
+        }
+    }
+
+    /// [`Self::axis_index`] by comparing names.
+    fn axis_index_by_name(&self, name: &str) -> Option<usize> {
+        axis_index_by_name(&self.frame_axes, self.axes.len(), name)
     }
 
     /// The command in force of group `group`.
@@ -268,31 +320,40 @@ impl MachineState {
             .filter(|&index| index != 0)
     }
 
+    /// Whether `code` (an index of [`ModalCodes`]) of `group` is in force.
+    fn in_force(&self, group: u8, code: Option<u8>) -> bool {
+        code.is_some() && self.modal_index(group) == code
+    }
+
     pub fn plane(&self) -> Plane {
-        match self.modal(6) {
-            Some("G18") => Plane::G18,
-            Some("G19") => Plane::G19,
-            _ => Plane::G17,
+        if self.in_force(6, self.codes.g18) {
+            Plane::G18
+        } else if self.in_force(6, self.codes.g19) {
+            Plane::G19
+        } else {
+            Plane::G17
         }
     }
 
     /// G70/G700: programmed lengths are inches.
     pub fn inch(&self) -> bool {
-        matches!(self.modal(13), Some("G70" | "G700"))
+        self.in_force(13, self.codes.g70) || self.in_force(13, self.codes.g700)
     }
 
     /// G91: incremental unless a value says otherwise.
     pub fn incremental(&self) -> bool {
-        self.modal(14) == Some("G91")
+        self.in_force(14, self.codes.g91)
     }
 
     /// How the diameter axis reads values (group 29): (absolute values are
     /// diameters, incremental values are diameters).
     pub fn diameter_mode(&self) -> (bool, bool) {
-        match self.modal(29) {
-            Some("DIAMON") => (true, true),
-            Some("DIAM90") => (true, false),
-            _ => (false, false),
+        if self.in_force(29, self.codes.diamon) {
+            (true, true)
+        } else if self.in_force(29, self.codes.diam90) {
+            (true, false)
+        } else {
+            (false, false)
         }
     }
 
@@ -462,6 +523,14 @@ pub struct ContourSettings {
     pub rndm: f64,
     /// `DISC=`: the transition circle's overshoot, 0…100.
     pub disc: f64,
+}
+
+/// The axis named `name` (any case) among `frame_axes`, or by its machine
+/// axis number (`AX2`) among `count` axes.
+fn axis_index_by_name(frame_axes: &FrameAxes, count: usize, name: &str) -> Option<usize> {
+    frame_axes
+        .index_of(name)
+        .or_else(|| machine_axis_number(name, count))
 }
 
 fn settable_frame(profile: &Profile, frame_axes: &FrameAxes, index: usize) -> Frame {
@@ -678,5 +747,73 @@ mod tests {
         assert_eq!(state.spindles.len(), 1);
         assert_eq!(state.spindle(Some(0)).map(|s| s.number), Ok(1));
         assert_eq!(state.spindle(None).map(|s| s.number), Ok(1));
+    }
+
+    /// The machines of the repository's profiles: a built-in mill, a
+    /// lathe (a diameter axis) and a five-axis mill.
+    fn states() -> Vec<MachineState> {
+        let mut profiles = vec![gcodec_profile::builtin().expect("the built-in profile")];
+        for text in [
+            include_str!("../../../../profiles/lathe_828d.toml"),
+            include_str!("../../../../profiles/mill_5axis.toml"),
+        ] {
+            profiles.push(gcodec_profile::load(text).expect("a valid profile"));
+        }
+        profiles
+            .into_iter()
+            .map(|p| MachineState::new(Arc::new(p)))
+            .collect()
+    }
+
+    /// The queries compare registry indices: they answer as the names of
+    /// the commands would, for every index of their groups.
+    #[test]
+    fn modal_queries_by_index_answer_as_by_name() {
+        let mut state = MachineState::new(Arc::new(
+            gcodec_profile::builtin().expect("the built-in profile"),
+        ));
+        for index in 0..=u8::MAX {
+            for group in [6u8, 13, 14, 29] {
+                state.modal[usize::from(group) - 1] = index;
+            }
+            let plane = match state.modal(6) {
+                Some("G18") => Plane::G18,
+                Some("G19") => Plane::G19,
+                _ => Plane::G17,
+            };
+            assert_eq!(state.plane(), plane, "index {index}");
+            let inch = matches!(state.modal(13), Some("G70" | "G700"));
+            assert_eq!(state.inch(), inch, "index {index}");
+            assert_eq!(
+                state.incremental(),
+                state.modal(14) == Some("G91"),
+                "index {index}"
+            );
+            let diameter = match state.modal(29) {
+                Some("DIAMON") => (true, true),
+                Some("DIAM90") => (true, false),
+                _ => (false, false),
+            };
+            assert_eq!(state.diameter_mode(), diameter, "index {index}");
+        }
+    }
+
+    /// A single capital letter is found in a table made when the state
+    /// is: the same axis as by comparing names, on every machine.
+    #[test]
+    fn letters_name_the_axes_the_names_do() {
+        for state in states() {
+            for letter in b'A'..=b'Z' {
+                let name = char::from(letter).to_string();
+                assert_eq!(
+                    state.axis_index(&name),
+                    state.axis_index_by_name(&name),
+                    "{name}"
+                );
+            }
+            for name in ["x", "AX1", "ax2", "C1", "", "XX"] {
+                assert_eq!(state.axis_index(name), state.axis_index_by_name(name));
+            }
+        }
     }
 }
