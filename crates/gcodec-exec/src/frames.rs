@@ -553,6 +553,15 @@ impl Frame {
     pub fn to_inner(&self, point: &[f64], out: &mut [f64]) {
         let len = point.len().min(out.len());
         let n = self.axes.len().min(len);
+        if self.axes_exactly_neutral() {
+            self.rotation_to_inner(point, out, len, n);
+        } else {
+            self.general_to_inner(point, out, len, n);
+        }
+    }
+
+    /// [`to_inner`](Self::to_inner) of any frame.
+    fn general_to_inner(&self, point: &[f64], out: &mut [f64], len: usize, n: usize) {
         let mut g = [0.0; 3];
         for (s, i) in self.geometry().filter(|&(_, i)| i < n) {
             g[s] = point[i] - self.axes[i].offset();
@@ -566,6 +575,38 @@ impl Frame {
             out[i] = g[s] / self.axes[i].factor();
         }
         out[n..len].copy_from_slice(&point[n..len]);
+    }
+
+    /// Whether no axis translates, scales or mirrors, bit for bit: `+0.0`
+    /// translations and scales of exactly 1 (a `-0.0` translation is not
+    /// neutral here: subtracting it turns `-0` into `+0`). Most blocks run
+    /// in such a frame (no work offset, no programmable frame).
+    fn axes_exactly_neutral(&self) -> bool {
+        self.axes.iter().all(|a| {
+            a.coarse.to_bits() == 0
+                && a.fine.to_bits() == 0
+                && a.scale.to_bits() == 1f64.to_bits()
+                && !a.mirror
+        })
+    }
+
+    /// [`to_inner`](Self::to_inner) of a frame whose axes are exactly
+    /// neutral: `p − (+0)` and `p / 1` are `p`, bit for bit, so only the
+    /// rotation is computed, as in the general path: the identity still
+    /// adds `0 × v` of the other slots, which decides the sign of a zero
+    /// (the JSONL writes `-0.0`). (The way back, `to_outer`, has no such
+    /// path: `0 + p` turns `-0` into `+0` and must stay, and the test of
+    /// the axes cost what skipping the scales saved.)
+    fn rotation_to_inner(&self, point: &[f64], out: &mut [f64], len: usize, n: usize) {
+        let mut g = [0.0; 3];
+        for (s, i) in self.geometry().filter(|&(_, i)| i < n) {
+            g[s] = point[i];
+        }
+        let g = self.rotation.apply_inverse(g);
+        out[..len].copy_from_slice(&point[..len]);
+        for (s, i) in self.geometry().filter(|&(_, i)| i < n) {
+            out[i] = g[s];
+        }
     }
 
     /// The chained frame `self : inner` (`inner` acts inside `self`), as the
@@ -1098,6 +1139,59 @@ mod tests {
             .unwrap();
         assert!(!moved.same_as(&clone) && moved.id != clone.id);
         assert!(!Frame::neutral(&axes).same_as(&shifted));
+    }
+
+    /// Frames whose axes are exactly neutral take the short way into the
+    /// frame: it gives the general path's bits, zeros' signs included,
+    /// with and without a rotation, on a machine with an axis past the
+    /// frame's. Frames that translate (by `-0.0` too), scale or mirror
+    /// take the general path.
+    #[test]
+    fn the_neutral_path_gives_the_general_paths_bits() {
+        let axes = FrameAxes::new([("X", true), ("Y", true), ("Z", true), ("A", false)]);
+        let plane = Plane::G17;
+        let framed = |op: FrameOp, values: &[(usize, f64)]| {
+            let mut frame = Frame::neutral(&axes);
+            frame.apply(&axes, op, values, None, plane).unwrap();
+            frame
+        };
+        let mut rotated = framed(FrameOp::Rot, &[(2, 90.0)]);
+        rotated.rotation = Rotation::from_angles([0.0, 0.0, 0.0]);
+        let neutral = [
+            Frame::neutral(&axes),
+            framed(FrameOp::Rot, &[(2, 30.0)]),
+            rotated,
+            framed(FrameOp::Trans, &[(0, 0.0)]),
+        ];
+        let not_neutral = [
+            framed(FrameOp::Trans, &[(0, -0.0)]),
+            framed(FrameOp::Trans, &[(1, 5.0), (3, -2.0)]),
+            framed(FrameOp::Scale, &[(0, 2.0)]),
+            framed(FrameOp::Mirror, &[(1, 0.0)]),
+        ];
+        for frame in &neutral {
+            assert!(frame.axes_exactly_neutral(), "{frame:?}");
+        }
+        for frame in &not_neutral {
+            assert!(!frame.axes_exactly_neutral(), "{frame:?}");
+        }
+        let values = [0.0, -0.0, 1.5, -2.25, 1e-300, f64::MAX, -7.0];
+        for frame in neutral.iter().chain(&not_neutral) {
+            for x in values {
+                for y in values {
+                    for (z, a) in [(0.0, -0.0), (-0.0, 3.0), (-1.0, -0.0)] {
+                        let point = [x, y, z, a, -0.0];
+                        for len in [5, 4, 2] {
+                            let (mut fast, mut general) = ([9.0; 5], [9.0; 5]);
+                            let n = frame.axes.len().min(len);
+                            frame.to_inner(&point[..len], &mut fast);
+                            frame.general_to_inner(&point[..len], &mut general, len, n);
+                            assert_eq!(fast.map(f64::to_bits), general.map(f64::to_bits));
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -610,6 +610,9 @@ fn distance(a: Point3, b: Point3) -> f64 {
 /// Refills an axis map with every axis of the channel: as programmed
 /// (`programmed`: inches, diameters) or in mm.
 pub(super) fn fill_map(map: &mut AxisMap, state: &MachineState, values: &[f64], programmed: bool) {
+    // Under G71 without diameter programming a position is written as it
+    // is: asking per axis costs more than the copy.
+    let programmed = programmed && (state.inch() || state.diameter_mode().0);
     if map.len() != state.axes.len() {
         map.clear();
         for (i, info) in state.axes.iter().enumerate() {
