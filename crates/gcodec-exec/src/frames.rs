@@ -532,6 +532,15 @@ impl Frame {
     pub fn to_outer(&self, point: &[f64], out: &mut [f64]) {
         let len = point.len().min(out.len());
         let n = self.axes.len().min(len);
+        if self.is_identity() && point[..n].iter().all(|v| v.is_finite()) {
+            self.identity_to_outer(point, out, len, n);
+        } else {
+            self.general_to_outer(point, out, len, n);
+        }
+    }
+
+    /// [`to_outer`](Self::to_outer) of any frame.
+    fn general_to_outer(&self, point: &[f64], out: &mut [f64], len: usize, n: usize) {
         let mut g = [0.0; 3];
         for (s, i) in self.geometry().filter(|&(_, i)| i < n) {
             g[s] = self.axes[i].factor() * point[i];
@@ -590,13 +599,32 @@ impl Frame {
         })
     }
 
+    /// Whether the frame changes no value: its axes exactly neutral and
+    /// its rotation matrix the identity (ones on the diagonal, zeros of
+    /// either sign elsewhere).
+    fn is_identity(&self) -> bool {
+        self.rotation.m == IDENTITY && self.axes_exactly_neutral()
+    }
+
+    /// [`to_outer`](Self::to_outer) of an identity frame and a finite
+    /// point: `0 + p` for every axis, as the general path gives it bit
+    /// for bit. `1 × p` is `p`; the rotation adds `0 × v` of the other
+    /// slots, signed zeros that leave a non-zero `p` as it is and can
+    /// only change a zero's sign, which the translation's `0 +` then makes
+    /// `+0` anyway. (An infinite coordinate would make `0 × v` a NaN: such
+    /// a point takes the general path.)
+    fn identity_to_outer(&self, point: &[f64], out: &mut [f64], len: usize, n: usize) {
+        for (o, p) in out[..n].iter_mut().zip(&point[..n]) {
+            *o = 0.0 + p;
+        }
+        out[n..len].copy_from_slice(&point[n..len]);
+    }
+
     /// [`to_inner`](Self::to_inner) of a frame whose axes are exactly
     /// neutral: `p − (+0)` and `p / 1` are `p`, bit for bit, so only the
     /// rotation is computed, as in the general path: the identity still
     /// adds `0 × v` of the other slots, which decides the sign of a zero
-    /// (the JSONL writes `-0.0`). (The way back, `to_outer`, has no such
-    /// path: `0 + p` turns `-0` into `+0` and must stay, and the test of
-    /// the axes cost what skipping the scales saved.)
+    /// (the JSONL writes `-0.0`), and no `0 +` follows here.
     fn rotation_to_inner(&self, point: &[f64], out: &mut [f64], len: usize, n: usize) {
         let mut g = [0.0; 3];
         for (s, i) in self.geometry().filter(|&(_, i)| i < n) {
@@ -1142,10 +1170,11 @@ mod tests {
     }
 
     /// Frames whose axes are exactly neutral take the short way into the
-    /// frame: it gives the general path's bits, zeros' signs included,
-    /// with and without a rotation, on a machine with an axis past the
-    /// frame's. Frames that translate (by `-0.0` too), scale or mirror
-    /// take the general path.
+    /// frame, identity frames the short way out: they give the general
+    /// paths' bits, zeros' signs included, with and without a rotation
+    /// (one of zero angles too), on a machine with an axis past the
+    /// frame's, for infinite and NaN coordinates too. Frames that
+    /// translate (by `-0.0` too), scale or mirror take the general paths.
     #[test]
     fn the_neutral_path_gives_the_general_paths_bits() {
         let axes = FrameAxes::new([("X", true), ("Y", true), ("Z", true), ("A", false)]);
@@ -1172,10 +1201,12 @@ mod tests {
         for frame in &neutral {
             assert!(frame.axes_exactly_neutral(), "{frame:?}");
         }
+        assert!(neutral[0].is_identity() && neutral[2].is_identity());
+        assert!(!neutral[1].is_identity());
         for frame in &not_neutral {
             assert!(!frame.axes_exactly_neutral(), "{frame:?}");
         }
-        let values = [0.0, -0.0, 1.5, -2.25, 1e-300, f64::MAX, -7.0];
+        let values = [0.0, -0.0, 1.5, -2.25, 1e-300, f64::MAX, -7.0, f64::INFINITY, f64::NAN];
         for frame in neutral.iter().chain(&not_neutral) {
             for x in values {
                 for y in values {
@@ -1184,6 +1215,9 @@ mod tests {
                         for len in [5, 4, 2] {
                             let (mut fast, mut general) = ([9.0; 5], [9.0; 5]);
                             let n = frame.axes.len().min(len);
+                            frame.to_outer(&point[..len], &mut fast);
+                            frame.general_to_outer(&point[..len], &mut general, len, n);
+                            assert_eq!(fast.map(f64::to_bits), general.map(f64::to_bits));
                             frame.to_inner(&point[..len], &mut fast);
                             frame.general_to_inner(&point[..len], &mut general, len, n);
                             assert_eq!(fast.map(f64::to_bits), general.map(f64::to_bits));
