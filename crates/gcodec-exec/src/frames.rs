@@ -1206,7 +1206,17 @@ mod tests {
         for frame in &not_neutral {
             assert!(!frame.axes_exactly_neutral(), "{frame:?}");
         }
-        let values = [0.0, -0.0, 1.5, -2.25, 1e-300, f64::MAX, -7.0, f64::INFINITY, f64::NAN];
+        let values = [
+            0.0,
+            -0.0,
+            1.5,
+            -2.25,
+            1e-300,
+            f64::MAX,
+            -7.0,
+            f64::INFINITY,
+            f64::NAN,
+        ];
         for frame in neutral.iter().chain(&not_neutral) {
             for x in values {
                 for y in values {

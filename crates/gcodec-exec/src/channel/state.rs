@@ -439,12 +439,16 @@ impl MachineState {
     /// Workpiece coordinates (mm, radius) of the machine position `machine`
     /// under `frame`.
     pub fn to_workpiece(&self, frame: &Frame, machine: &[f64], out: &mut [f64]) {
+        let axis = match self.infeed_axis() {
+            // `x − (+0)` is `x`, bit for bit: without a tool length (or an
+            // infeed axis) the position goes into the frame as it is.
+            Some(axis) if self.tool_length.to_bits() != 0 => axis,
+            _ => return frame.to_inner(machine, out),
+        };
         let mut shifted = self.scratch.borrow_mut();
         shifted.clear();
         shifted.extend_from_slice(machine);
-        if let Some(axis) = self.infeed_axis() {
-            shifted[axis] -= self.tool_length;
-        }
+        shifted[axis] -= self.tool_length;
         frame.to_inner(&shifted, out);
     }
 
