@@ -60,7 +60,7 @@ def main():
             continue
         med = {side: median(wall[program, side]) for side in SIDES}
         cells = [
-            f"{med[side]:.2f} s" + (" (failed)" if (program, side) in failed else "")
+            f"{med[side]:.3f} s" + (" (failed)" if (program, side) in failed else "")
             for side in SIDES
         ]
         print(
