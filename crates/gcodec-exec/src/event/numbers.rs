@@ -85,3 +85,118 @@ fn fraction_digit_bytes(fraction: u64, buffer: &mut [u8; 4]) -> &[u8] {
 pub(super) fn write_u64(out: &mut Vec<u8>, value: u64) {
     out.extend_from_slice(itoa::Buffer::new().format(value).as_bytes());
 }
+
+#[cfg(test)]
+mod tests {
+    use super::write_fixed_point;
+    use proptest::prelude::*;
+
+    /// What `write_fixed_point` writes, or `None` where it declines.
+    fn fixed(value: f64, point_zero: bool) -> Option<String> {
+        let mut out = b"<".to_vec();
+        let written = write_fixed_point(&mut out, value, point_zero);
+        let text = String::from_utf8(out).expect("ASCII");
+        let text = text.strip_prefix('<').expect("kept what was there");
+        if written {
+            Some(text.to_owned())
+        } else {
+            assert_eq!(text, "", "declined, but wrote something");
+            None
+        }
+    }
+
+    /// The text the general writers give: Rust's `{}` for CSV, serde_json
+    /// for JSON.
+    fn general(value: f64, point_zero: bool) -> String {
+        if point_zero {
+            serde_json::to_string(&value).expect("finite")
+        } else {
+            format!("{value}")
+        }
+    }
+
+    /// Whether `value`'s shortest text has at most 4 decimals and it is
+    /// below 1e9: the numbers the fixed-point writer must take.
+    fn must_take(value: f64) -> bool {
+        let text = format!("{value}");
+        let decimals = text.split_once('.').map_or(0, |(_, f)| f.len());
+        value.abs() < 1e9 && decimals <= 4
+    }
+
+    /// The fixed-point text is the general writers' wherever it is
+    /// written, and it is written wherever it can be.
+    fn check(value: f64) {
+        for point_zero in [false, true] {
+            match fixed(value, point_zero) {
+                Some(text) => assert_eq!(text, general(value, point_zero), "{value:?}"),
+                None => assert!(!must_take(value), "declined {value:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn edge_numbers_are_written_as_the_general_writers_write_them() {
+        let edges = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            -0.5,
+            0.0001,
+            -0.0001,
+            0.00005,
+            0.1,
+            0.25,
+            1.5,
+            10.0,
+            100.037,
+            -100.037,
+            1000.0,
+            9.9999,
+            99_999.999_9,
+            123_456_789.0,
+            999_999_999.999_9,
+            1e9,
+            -1e9,
+            1e8,
+            1e-5,
+            1e-300,
+            2.0f64.powi(52),
+            0.1 + 0.2,
+            1.0 / 3.0,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+        ];
+        for value in edges {
+            check(value);
+        }
+        assert_eq!(fixed(f64::NAN, true), None);
+        assert_eq!(fixed(f64::INFINITY, false), None);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(20_000))]
+
+        #[test]
+        fn decimals_are_written_as_the_general_writers_write_them(
+            units in -9_999_999_999_999i64..9_999_999_999_999i64,
+            shift in 0i32..=6,
+        ) {
+            // Decimals of up to 4 places (taken) and of 5 and 6 (declined),
+            // whole numbers and fractions of every length.
+            check(units as f64 / 10f64.powi(shift));
+        }
+
+        #[test]
+        fn any_number_is_written_as_the_general_writers_write_it(bits in any::<u64>()) {
+            let value = f64::from_bits(bits);
+            if value.is_finite() {
+                check(value);
+            } else {
+                prop_assert_eq!(fixed(value, true), None);
+            }
+        }
+    }
+}
