@@ -3,9 +3,10 @@
 //! what the columns show ([`CsvRows`]).
 
 use std::borrow::Cow;
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 use std::sync::Arc;
 
+use super::line_buffer::LineBuffer;
 use super::numbers::{write_fixed_point, write_u64};
 use super::{AxisMap, AxisName, SpindleState, axis_names};
 
@@ -132,7 +133,8 @@ impl BlockRow {
 /// a line break are quoted (RFC 4180). [`CsvWriter::finish`] writes the
 /// last block's row if it was passed over.
 pub struct CsvWriter<W: Write> {
-    out: BufWriter<W>,
+    /// Rows are written straight into it.
+    out: LineBuffer<W>,
     axes: Vec<AxisName>,
     rows: CsvRows,
     /// Where the last row passed over stands: its state columns are
@@ -141,8 +143,6 @@ pub struct CsvWriter<W: Write> {
     /// Whether `passed_over` is the last block's: [`CsvWriter::finish`]
     /// writes it then.
     last_passed_over: bool,
-    /// The row being built, reused.
-    line: Vec<u8>,
     /// The state columns of the last row written, and their text.
     state: StateText,
 }
@@ -329,15 +329,14 @@ impl<W: Write> CsvWriter<W> {
     /// Writes the header for the channel's `axes`.
     pub fn new(writer: W, axes: impl IntoIterator<Item = AxisName>) -> io::Result<Self> {
         let mut csv = Self {
-            out: BufWriter::with_capacity(1 << 16, writer),
+            out: LineBuffer::new(writer),
             axes: axes.into_iter().collect(),
             rows: CsvRows::default(),
             passed_over: RowPlace::default(),
             last_passed_over: false,
-            line: Vec::with_capacity(256),
             state: StateText::default(),
         };
-        let header = &mut csv.line;
+        let header = &mut csv.out.lines;
         header.extend_from_slice(b"block,file,line,level,blocks");
         for axis in &csv.axes {
             header.push(b',');
@@ -349,7 +348,7 @@ impl<W: Write> CsvWriter<W> {
             header.extend_from_slice(column.column.as_bytes());
         }
         header.push(b'\n');
-        csv.out.write_all(header)?;
+        csv.out.line_done()?;
         Ok(csv)
     }
 
@@ -386,11 +385,12 @@ impl<W: Write> CsvWriter<W> {
 
     fn write(&mut self, row: &BlockRow, same: (bool, bool)) -> io::Result<()> {
         self.passed_over.of(row);
-        write_place(&mut self.line, &self.passed_over);
+        let line = &mut self.out.lines;
+        write_place(line, &self.passed_over);
         self.state.remember(row, same);
-        self.state.write(&mut self.line);
-        self.line.push(b'\n');
-        self.out.write_all(&self.line)
+        self.state.write(line);
+        line.push(b'\n');
+        self.out.line_done()
     }
 
     /// Writes the last block's row if it was passed over, and flushes.
@@ -403,25 +403,23 @@ impl<W: Write> CsvWriter<W> {
         if !std::mem::take(&mut self.last_passed_over) {
             return Ok(());
         }
-        write_place(&mut self.line, &self.passed_over);
-        self.state.write(&mut self.line);
-        self.line.push(b'\n');
-        self.out.write_all(&self.line)
+        let line = &mut self.out.lines;
+        write_place(line, &self.passed_over);
+        self.state.write(line);
+        line.push(b'\n');
+        self.out.line_done()
     }
 
     /// Writes the last block's row if it was passed over, flushes, and
     /// gives the writer back.
     pub fn into_inner(mut self) -> io::Result<W> {
         self.write_passed_over()?;
-        self.out
-            .into_inner()
-            .map_err(io::IntoInnerError::into_error)
+        self.out.into_inner()
     }
 }
 
-/// Starts `line` with the columns `block,file,line,level,blocks`.
+/// Starts a row with the columns `block,file,line,level,blocks`.
 fn write_place(line: &mut Vec<u8>, place: &RowPlace) {
-    line.clear();
     if let Some(number) = place.block_number {
         write_u64(line, u64::from(number));
     }

@@ -4,6 +4,7 @@
 use std::borrow::Cow;
 use std::io::{self, Write};
 
+use super::line_buffer::LineBuffer;
 use super::numbers::{write_fixed_point, write_u64};
 use super::{
     AxisMap, AxisName, Event, EventKind, EventSink, EventSource, ModalChangeEvent, MotionEvent,
@@ -18,14 +19,10 @@ use gcodec_ail::{FileJsonText, write_json_string};
 /// rather than through serde: the derived path (a flattened, internally
 /// tagged enum) costs about 1 µs an event, several times the hand-written
 /// one. The bytes are the same; tests compare them. Lines are built
-/// straight into the output buffer, which goes to the writer in blocks of
-/// about 64 KiB; [`EventSink::finish`], [`JsonlSink::into_inner`] or
-/// dropping the sink writes the rest.
+/// straight into a [`LineBuffer`]; [`EventSink::finish`],
+/// [`JsonlSink::into_inner`] or dropping the sink writes the rest.
 pub struct JsonlSink<W: Write> {
-    /// `None` only after [`JsonlSink::into_inner`].
-    out: Option<W>,
-    /// Lines not yet written.
-    buffer: Vec<u8>,
+    out: LineBuffer<W>,
     /// The last motion's `to`, as written.
     last_to: AxisMapText,
     /// The last event's source, as written.
@@ -187,14 +184,10 @@ fn same_name(a: &str, b: &str) -> bool {
     std::ptr::eq(a, b) || a == b
 }
 
-/// The size at which [`JsonlSink`] hands its lines to the writer.
-const JSONL_BLOCK: usize = 1 << 16;
-
 impl<W: Write> JsonlSink<W> {
     pub fn new(writer: W) -> Self {
         Self {
-            out: Some(writer),
-            buffer: Vec::with_capacity(JSONL_BLOCK + 4096),
+            out: LineBuffer::new(writer),
             last_to: AxisMapText::default(),
             last_source: SourceText::default(),
             last_settings: MotionSettingsText::default(),
@@ -202,65 +195,31 @@ impl<W: Write> JsonlSink<W> {
     }
 
     /// Flushes and gives the writer back.
-    pub fn into_inner(mut self) -> io::Result<W> {
-        self.write_buffer()?;
-        let mut out = self.out.take().ok_or_else(taken)?;
-        out.flush()?;
-        Ok(out)
-    }
-
-    /// Hands the buffered lines to the writer.
-    fn write_buffer(&mut self) -> io::Result<()> {
-        if self.buffer.is_empty() {
-            return Ok(());
-        }
-        let out = self.out.as_mut().ok_or_else(taken)?;
-        let result = out.write_all(&self.buffer);
-        self.buffer.clear();
-        result
-    }
-}
-
-/// The writer was given back (not reachable through the public API).
-fn taken() -> io::Error {
-    io::Error::other("the JSONL sink has no writer any more")
-}
-
-impl<W: Write> Drop for JsonlSink<W> {
-    /// Writes what is buffered, as a `BufWriter` does when dropped.
-    fn drop(&mut self) {
-        let _ = self.write_buffer();
+    pub fn into_inner(self) -> io::Result<W> {
+        self.out.into_inner()
     }
 }
 
 impl<W: Write> EventSink for JsonlSink<W> {
     fn event(&mut self, event: &Event) -> io::Result<()> {
+        let lines = &mut self.out.lines;
         match &event.kind {
             EventKind::Motion(motion) => {
-                write_motion_json(
-                    &mut self.buffer,
-                    motion,
-                    &mut self.last_to,
-                    &mut self.last_settings,
-                );
-                self.last_source.write(&mut self.buffer, &event.source);
+                write_motion_json(lines, motion, &mut self.last_to, &mut self.last_settings);
+                self.last_source.write(lines, &event.source);
             }
             EventKind::ModalChange(change) => {
-                write_modal_change_json(&mut self.buffer, change);
-                self.last_source.write(&mut self.buffer, &event.source);
+                write_modal_change_json(lines, change);
+                self.last_source.write(lines, &event.source);
             }
-            _ => serde_json::to_writer(&mut self.buffer, event)?,
+            _ => serde_json::to_writer(&mut *lines, event)?,
         }
-        self.buffer.push(b'\n');
-        if self.buffer.len() >= JSONL_BLOCK {
-            self.write_buffer()?;
-        }
-        Ok(())
+        lines.push(b'\n');
+        self.out.line_done()
     }
 
     fn finish(&mut self) -> io::Result<()> {
-        self.write_buffer()?;
-        self.out.as_mut().ok_or_else(taken)?.flush()
+        self.out.flush()
     }
 }
 

@@ -34,6 +34,7 @@
 mod axis_map;
 mod csv;
 mod jsonl;
+mod line_buffer;
 mod numbers;
 mod sinks;
 mod text;
