@@ -33,34 +33,59 @@ pub(super) fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool)
         return false;
     }
     // The whole text is built on the stack and copied once: several small
-    // copies per number cost more than the digits.
+    // copies per number cost more than the digits. Digits go in pairs
+    // from a table, and every copy into `text` has a fixed size: a copy
+    // of a length known only at run time is a call.
     let mut text = [0u8; 24];
-    let mut len = 0;
-    if rounded < 0 {
-        text[0] = b'-';
-        len = 1;
-    }
+    let mut len = usize::from(rounded < 0);
+    text[0] = b'-';
     let magnitude = rounded.unsigned_abs();
-    let mut whole = itoa::Buffer::new();
-    let whole = whole.format(magnitude / 10_000).as_bytes();
-    text[len..len + whole.len()].copy_from_slice(whole);
-    len += whole.len();
-    match fraction_digit_bytes(magnitude % 10_000, &mut [0; 4]) {
-        b"" if point_zero => {
-            text[len..len + 2].copy_from_slice(b".0");
-            len += 2;
-        }
-        b"" => {}
-        fraction => {
-            text[len] = b'.';
-            text[len + 1..len + 1 + fraction.len()].copy_from_slice(fraction);
-            len += 1 + fraction.len();
-        }
+    // Below 1e9 (tested above): nine digits at most.
+    let mut whole = (magnitude / 10_000) as u32;
+    let whole_len = whole.checked_ilog10().map_or(1, |log| log as usize + 1);
+    len += whole_len;
+    let mut at = len;
+    while whole >= 100 {
+        at -= 2;
+        text[at..at + 2].copy_from_slice(digit_pair(whole % 100));
+        whole /= 100;
+    }
+    if whole >= 10 {
+        text[at - 2..at].copy_from_slice(digit_pair(whole));
+    } else {
+        text[at - 1] = b'0' + whole as u8;
+    }
+    let fraction = (magnitude % 10_000) as u32;
+    if fraction != 0 {
+        let mut digits = [0u8; 4];
+        digits[..2].copy_from_slice(digit_pair(fraction / 100));
+        digits[2..].copy_from_slice(digit_pair(fraction % 100));
+        // The trailing `0` digits are the high bytes of the little-endian
+        // word: those that become zero bytes.
+        let trailing_zeros = (u32::from_le_bytes(digits) ^ 0x3030_3030).leading_zeros() / 8;
+        text[len] = b'.';
+        text[len + 1..len + 5].copy_from_slice(&digits);
+        len += 5 - trailing_zeros as usize;
+    } else if point_zero {
+        text[len..len + 2].copy_from_slice(b".0");
+        len += 2;
     }
     // A copy of a fixed size is inlined; one of `len` bytes is a call.
     out.extend_from_slice(&text);
     out.truncate(out.len() - text.len() + len);
     true
+}
+
+/// The two digits of `n` (0…99).
+fn digit_pair(n: u32) -> &'static [u8] {
+    const PAIRS: &[u8; 200] = b"\
+        0001020304050607080910111213141516171819\
+        2021222324252627282930313233343536373839\
+        4041424344454647484950515253545556575859\
+        6061626364656667686970717273747576777879\
+        8081828384858687888990919293949596979899";
+    let at = n as usize * 2;
+    &PAIRS[at..at + 2]
 }
 
 /// `fraction` (0…9999) as 4 decimals without trailing zeros; empty for
