@@ -17,7 +17,7 @@ use std::sync::Arc;
 use compact_str::CompactString;
 use gcodec_lang::addresses::letter_str;
 use gcodec_lang::{BinaryOp, DimensionMode, FrameOp, UnaryOp};
-use gcodec_source::Span;
+use gcodec_source::{SourceBytes, Span};
 use serde::Serialize;
 
 /// A name as written (case kept).
@@ -47,16 +47,16 @@ pub struct Program {
 /// The bytes a program was parsed from, shared: a clone of the program
 /// does not copy them. Its `Debug` form gives their count, not every byte.
 #[derive(Clone, Default, PartialEq)]
-pub struct SourceText(Arc<Vec<u8>>);
+pub struct SourceText(Arc<SourceBytes>);
 
 impl SourceText {
     /// A copy of `bytes`.
     pub fn new(bytes: &[u8]) -> Self {
-        Self(Arc::new(bytes.to_vec()))
+        Self(Arc::new(bytes.to_vec().into()))
     }
 
     /// Bytes already shared, such as a [`gcodec_source::SourceFile`]'s.
-    pub fn shared(bytes: Arc<Vec<u8>>) -> Self {
+    pub fn shared(bytes: Arc<SourceBytes>) -> Self {
         Self(bytes)
     }
 

@@ -6,6 +6,7 @@
 //! file's line table, and JSON dumps write them next to the offsets so that
 //! a consumer never has to re-read the file to point at a construct.
 
+mod bytes;
 pub mod codes;
 mod diagnostic;
 mod encoding;
@@ -19,6 +20,7 @@ mod render;
 mod source;
 mod span;
 
+pub use bytes::SourceBytes;
 pub use codes::Code;
 pub use diagnostic::{Diagnostic, Label, Severity};
 pub use encoding::{Encoding, TextEncoding};

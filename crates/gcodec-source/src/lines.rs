@@ -2,13 +2,16 @@
 //!
 //! Reading the file and finding its lines are the steps of a run before
 //! any other thread starts (a streamed run cuts its chunks from the line
-//! table), so on large files both are split over two threads: each reads
-//! its half of the file and finds the lines in it.
+//! table), so a large file is mapped rather than read (on Unix), and its
+//! lines are found on two threads, each in its half of the file.
 
 #[cfg(unix)]
 use std::fs::File;
 #[cfg(unix)]
 use std::io;
+
+#[cfg(unix)]
+use crate::SourceBytes;
 
 /// Files larger than this cannot be addressed by 32-bit spans.
 pub const MAX_SOURCE_LEN: usize = u32::MAX as usize - 1;
@@ -42,41 +45,24 @@ pub fn line_starts(bytes: &[u8]) -> Vec<u32> {
     starts
 }
 
-/// Reads the bytes of `file` from `offset` to `len`, each half on its own
-/// thread, finding the lines as it goes; `None` for fewer bytes than are
-/// worth two threads, or if the file grew meanwhile (the caller then
-/// reads it in one go).
+/// The bytes of `file` from `offset` to `len`, mapped rather than read
+/// ([`SourceBytes`]), and their line table, found on two threads; `None`
+/// for fewer bytes than are worth it (the caller then reads the file).
 #[cfg(unix)]
-pub(crate) fn read_large(
+pub(crate) fn map_large(
     file: &File,
     offset: u64,
     len: u64,
-) -> io::Result<Option<(Vec<u8>, Vec<u32>)>> {
-    use std::os::unix::fs::FileExt;
-    let Ok(count) = usize::try_from(len.saturating_sub(offset)) else {
+) -> io::Result<Option<(SourceBytes, Vec<u32>)>> {
+    let (Ok(offset), Ok(len)) = (usize::try_from(offset), usize::try_from(len)) else {
         return Ok(None);
     };
-    if count < PARALLEL_FROM {
+    if len.saturating_sub(offset) < PARALLEL_FROM {
         return Ok(None);
     }
-    let mut bytes = vec![0; count];
-    let middle = count / 2;
-    let (first, second) = bytes.split_at_mut(middle);
-    let starts = in_halves::<io::Error>(
-        |starts| {
-            file.read_exact_at(first, offset)?;
-            push_line_starts(first, 0, starts);
-            Ok(())
-        },
-        |starts| {
-            file.read_exact_at(second, offset + middle as u64)?;
-            push_line_starts(second, middle, starts);
-            Ok(())
-        },
-        count,
-    )?;
-    let grew = file.read_at(&mut [0], len)? > 0;
-    Ok((!grew).then_some((bytes, starts)))
+    let bytes = SourceBytes::mapped(file, offset, len)?;
+    let starts = line_starts(&bytes);
+    Ok(Some((bytes, starts)))
 }
 
 /// The line table of a source of `len` bytes from its two halves: `first`

@@ -13,6 +13,7 @@ use std::fs::{self, File, Metadata};
 use std::io::{self, Read};
 use std::path::Path;
 
+use crate::SourceBytes;
 use crate::lines::{MAX_SOURCE_LEN, line_starts};
 use crate::{Code, codes};
 
@@ -118,9 +119,12 @@ impl From<io::Error> for ReadError {
 }
 
 /// The bytes of the regular file at `path` without a leading UTF-8
-/// byte-order mark, and their line table; at most `max_len` bytes in the
+/// byte-order mark (mapped if the file is large), and their line table; at most `max_len` bytes in the
 /// file (and never more than [`MAX_SOURCE_LEN`], the spans' limit).
-pub(crate) fn read_program(path: &Path, max_len: u64) -> Result<(Vec<u8>, Vec<u32>), ReadError> {
+pub(crate) fn read_program(
+    path: &Path,
+    max_len: u64,
+) -> Result<(SourceBytes, Vec<u32>), ReadError> {
     let max_len = max_len.min(MAX_SOURCE_LEN as u64);
     // The path first, so that a device is not even opened…
     regular(&fs::metadata(path)?)?;
@@ -226,10 +230,12 @@ fn read_rest(
     skip: usize,
     len: u64,
     max_len: u64,
-) -> Result<(Vec<u8>, Vec<u32>), ReadError> {
+) -> Result<(SourceBytes, Vec<u32>), ReadError> {
     #[cfg(unix)]
-    if let Some(read) = crate::lines::read_large(file, skip as u64, len)? {
-        return Ok(read);
+    if len <= max_len
+        && let Some(mapped) = crate::lines::map_large(file, skip as u64, len)?
+    {
+        return Ok(mapped);
     }
     let mut bytes = Vec::with_capacity(usize::try_from(len).unwrap_or(0));
     bytes.extend_from_slice(&head[skip..]);
@@ -244,7 +250,7 @@ fn read_rest(
         });
     }
     let starts = line_starts(&bytes);
-    Ok((bytes, starts))
+    Ok((bytes.into(), starts))
 }
 
 /// The byte order a UTF-16 byte-order mark at the start of `head` gives.
@@ -316,10 +322,10 @@ mod tests {
         }
     }
 
-    /// A large file read in halves has its bytes and the table of one
-    /// scan, with or without a byte-order mark, a line end just before, at
-    /// or after the middle where it is split; a file over the limit is
-    /// refused.
+    /// A large file (mapped on Unix, its lines found in halves) has its
+    /// bytes and the table of one scan, with or without a byte-order mark,
+    /// a line end just before, at or after the middle where it is split; a
+    /// file over the limit is refused.
     #[test]
     fn a_large_file_is_read_whole_with_its_lines() {
         let temp = TempDir::new("large");
@@ -328,7 +334,9 @@ mod tests {
                 let stored = [bom, &text].concat();
                 let path = temp.file(&format!("large{i}.mpf"), &stored);
                 let (read, starts) = read_program(&path, u64::MAX).unwrap();
-                assert!(read == text, "the bytes of {}", path.display());
+                assert!(*read == *text, "the bytes of {}", path.display());
+                #[cfg(unix)]
+                assert!(format!("{read:?}").ends_with("mapped)"), "{read:?}");
                 assert_eq!(starts, one_scan(&text));
                 let limit = stored.len() as u64 - 1;
                 let refused = read_program(&path, limit).unwrap_err();
@@ -362,7 +370,11 @@ mod tests {
             (b"G", b"G"),
         ] {
             let path = temp.file("short.mpf", stored);
-            assert_eq!(read_program(&path, 100).unwrap().0, expected, "{stored:?}");
+            assert_eq!(
+                *read_program(&path, 100).unwrap().0,
+                *expected,
+                "{stored:?}"
+            );
         }
         let program = "G0 X1\r\nM30\r\n";
         for (stored, order, bom) in [

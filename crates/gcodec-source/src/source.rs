@@ -1,10 +1,10 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use crate::Span;
 use crate::encoding::{Encoding, TextEncoding};
 use crate::lines::{MAX_SOURCE_LEN, line_starts};
 use crate::read::{DEFAULT_MAX_FILE_SIZE, ReadError, UTF8_BOM, read_program};
+use crate::{SourceBytes, Span};
 
 /// One part program as read from disk: its name and its bytes (after a
 /// UTF-8 byte-order mark, which is not part of the program: spans count
@@ -15,7 +15,7 @@ pub struct SourceFile {
     path: Option<PathBuf>,
     /// Shared with the parsed program that quotes from it
     /// ([`SourceFile::shared_bytes`]), so the file is held once.
-    bytes: Arc<Vec<u8>>,
+    bytes: Arc<SourceBytes>,
     line_starts: Vec<u32>,
     /// Whether the bytes are valid UTF-8, found once when the file is
     /// made: every choice of [`TextEncoding`] starts from it.
@@ -43,7 +43,7 @@ impl SourceFile {
             bytes.truncate(MAX_SOURCE_LEN);
         }
         let line_starts = line_starts(&bytes);
-        Self::of_bytes(name.into(), None, bytes, line_starts)
+        Self::of_bytes(name.into(), None, bytes.into(), line_starts)
     }
 
     /// A file of `bytes` (a byte-order mark dropped), read as UTF-8 where
@@ -51,7 +51,7 @@ impl SourceFile {
     fn of_bytes(
         name: String,
         path: Option<PathBuf>,
-        bytes: Vec<u8>,
+        bytes: SourceBytes,
         line_starts: Vec<u32>,
     ) -> Self {
         let valid_utf8 = std::str::from_utf8(&bytes).is_ok();
@@ -123,7 +123,7 @@ impl SourceFile {
     }
 
     /// The bytes as stored, shared rather than copied.
-    pub fn shared_bytes(&self) -> Arc<Vec<u8>> {
+    pub fn shared_bytes(&self) -> Arc<SourceBytes> {
         Arc::clone(&self.bytes)
     }
 
