@@ -86,19 +86,7 @@ impl Lowering<'_> {
             })
             .collect();
         let first = words.targets[0].map_or(block.span, |(_, _, span)| span);
-        if motion == MotionKind::Modal && self.open.group1_is_entry() {
-            self.open.read_by_motion(self.document.instructions.len());
-        }
-        self.emit(
-            index,
-            first,
-            Op::Motion {
-                motion,
-                targets,
-                circle: None,
-                details: None,
-            },
-        );
+        self.emit_motion_op(index, first, motion, targets, None, None);
         true
     }
 

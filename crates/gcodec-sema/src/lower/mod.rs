@@ -1064,6 +1064,25 @@ impl<'a> Lowering<'a> {
             transition: plan.transition.take().map(|(t, _)| t),
         };
         let details = (!details.is_empty()).then(|| Box::new(details));
+        // Exactly as long as needed: the plan's vector grew to room for
+        // four axes, and a large program keeps hundreds of thousands of
+        // these.
+        let targets = plan.targets.drain(..).collect();
+        self.emit_motion_op(index, first, motion, targets, circle, details);
+    }
+
+    /// Emits a block's motion; one of the modal motion command (`motion`
+    /// is [`MotionKind::Modal`]) reads the group-1 command the block
+    /// entered with.
+    fn emit_motion_op(
+        &mut self,
+        index: usize,
+        first: Span,
+        motion: MotionKind,
+        targets: Vec<AxisValue>,
+        circle: Option<Box<gcodec_ail::Circle>>,
+        details: Option<Box<gcodec_ail::MotionDetails>>,
+    ) {
         if motion == MotionKind::Modal && self.open.group1_is_entry() {
             self.open.read_by_motion(self.document.instructions.len());
         }
@@ -1072,10 +1091,7 @@ impl<'a> Lowering<'a> {
             first,
             Op::Motion {
                 motion,
-                // Exactly as long as needed: the plan's vector grew
-                // to room for four axes, and a large program keeps
-                // hundreds of thousands of these.
-                targets: plan.targets.drain(..).collect(),
+                targets,
                 circle,
                 details,
             },
