@@ -321,6 +321,9 @@ proptest! {
 #[test]
 fn constant_word_lines_parse_the_same_either_way() {
     let lines = [
+        "",
+        "  ",
+        "/ X1",
         "G1 X100.037 Y200.053 F1000",
         "N10 G1 X-1.5 Y+2 Z.5 F200",
         "n10 g1 x-.5 y5.",
