@@ -7,7 +7,8 @@ use std::ops::Deref;
 ///
 /// A file read into a fresh buffer costs the kernel's copy and a page
 /// fault for every 4 KiB of the buffer, which on the benchmark machine
-/// (docs/performance.md, "Issue 20: large programs mapped") took 25 ms
+/// (docs/performance.md, "Issue 20: writers, numbers and mapped files")
+/// took 25 ms
 /// for a 27 MB program, before any other thread starts; mapped, the
 /// page cache's pages are the bytes: 2.5 ms. The mapping is private and
 /// read-only. A mapped file that another process shortens while gcodec
@@ -32,15 +33,16 @@ impl SourceBytes {
     /// was opened), mapped.
     #[cfg(unix)]
     pub(crate) fn mapped(file: &std::fs::File, start: usize, len: usize) -> std::io::Result<Self> {
-        // SAFETY: the map is private and read-only, and gcodec never
-        // writes the file. Another process may: a file shortened while
-        // mapped is a `SIGBUS`, not undefined behaviour of this process's
-        // own making (SPEC §1 documents it); programs are not edited
-        // while a run reads them.
+        // SAFETY: a mapping is unsafe because the file may change under
+        // it. gcodec maps it private and read-only and never writes it;
+        // what another process's change does is documented (SPEC §1):
+        // rewritten bytes are read as they then are (every reader takes
+        // the bytes as bytes and checks UTF-8 where it needs text), and a
+        // read past a new end is `SIGBUS`.
         let map = unsafe { memmap2::MmapOptions::new().len(len).map(file)? };
-        // The bytes are read front to back, twice (the line table, then
-        // pass 1 and pass 2).
-        let _ = map.advise(memmap2::Advice::Sequential);
+        // A file not in the page cache yet is read ahead whole: its bytes
+        // are read three times (the line table, pass 1, pass 2).
+        let _ = map.advise(memmap2::Advice::WillNeed);
         Ok(Self {
             storage: Storage::Mapped { map, start },
         })
