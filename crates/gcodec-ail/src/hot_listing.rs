@@ -12,7 +12,7 @@ use std::io::Cursor;
 use serde_json::ser::{CompactFormatter, Formatter};
 
 use crate::json_text::needs_no_escape;
-use crate::{AxisValue, Instruction, Op, Value};
+use crate::{Instruction, Op, Value};
 
 /// Writes the listing line of `instruction`, newline included, if it is
 /// one of the hot kinds with finite numbers; `None`, writing nothing,
@@ -28,15 +28,15 @@ pub(crate) fn write_hot(instruction: &Instruction, out: &mut impl Write) -> Opti
             circle: None,
             details: None,
             ..
-        } => !targets.is_empty() && targets.iter().all(finite_target),
+        } => {
+            !targets.is_empty()
+                && targets
+                    .iter()
+                    .all(|target| target.plain_constant().is_some_and(f64::is_finite))
+        }
         _ => false,
     };
     hot.then(|| write_line(instruction, out))
-}
-
-/// A target the hot motion line covers: a finite constant, no `AC`/`IC`.
-fn finite_target(target: &AxisValue) -> bool {
-    matches!(target.value, Value::Const(v) if v.is_finite()) && target.mode.is_none()
 }
 
 fn write_line(instruction: &Instruction, out: &mut impl Write) -> fmt::Result {
@@ -65,7 +65,7 @@ fn write_line(instruction: &Instruction, out: &mut impl Write) -> fmt::Result {
                 out.write_str(if k == 0 { "{axis=" } else { ", {axis=" })?;
                 write_string(out, &target.axis)?;
                 out.write_str(" value=")?;
-                if let Value::Const(value) = target.value {
+                if let Some(value) = target.plain_constant() {
                     write_number(out, value)?;
                 }
                 out.write_char('}')?;
@@ -112,7 +112,7 @@ mod tests {
     use gcodec_lang::{DimensionMode, MotionKind};
 
     use super::*;
-    use crate::{ByteRange, Circle, Source, write_general_listing};
+    use crate::{AxisValue, ByteRange, Circle, Source, write_general_listing};
 
     fn source(k: usize) -> Source {
         Source {

@@ -18,6 +18,7 @@
 mod expr;
 mod hot_listing;
 mod json_text;
+mod number_text;
 
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -27,6 +28,7 @@ use gcodec_lang::addresses::{AddressScope, NamedAddress, TransitionKind};
 use gcodec_lang::ggroups::GCommand;
 use gcodec_lang::{DataType, DimensionMode, FrameOp, MClass, MotionKind, WorkOffsetCode};
 pub use json_text::{FileJsonText, write_json_string};
+pub use number_text::{write_fixed_point, write_json_f64};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -422,6 +424,18 @@ pub struct AxisValue {
     pub value: Value,
     /// `AC(…)`, `IC(…)`, … when written; otherwise the modal G90/G91 holds.
     pub mode: Option<DimensionMode>,
+}
+
+impl AxisValue {
+    /// The value of a target written as a plain constant, with no `AC`,
+    /// `IC` or other mode: the targets the hand-written listing and JSON
+    /// lines cover.
+    pub fn plain_constant(&self) -> Option<f64> {
+        match (&self.value, self.mode) {
+            (Value::Const(value), None) => Some(*value),
+            _ => None,
+        }
+    }
 }
 
 /// The data of an arc, in the form it was programmed.

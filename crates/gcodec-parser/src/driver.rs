@@ -336,6 +336,22 @@ fn runs<'a, T>(mut slots: &'a mut [T], chunks: &[Chunk]) -> Vec<&'a mut [T]> {
         .collect()
 }
 
+/// The lines of `src[bytes]`: each one's start, its end before the line
+/// end, and where the next starts.
+fn lines_of(src: &[u8], bytes: Range<usize>) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
+    let mut start = bytes.start;
+    std::iter::from_fn(move || {
+        (start < bytes.end).then(|| {
+            let end =
+                memchr::memchr(b'\n', &src[start..bytes.end]).map_or(bytes.end, |p| start + p + 1);
+            let text_end = if src[end - 1] == b'\n' { end - 1 } else { end };
+            let line = (start, text_end, end);
+            start = end;
+            line
+        })
+    })
+}
+
 /// Lines of `src`, counting a last line without a line end.
 fn line_count(src: &[u8]) -> usize {
     memchr::memchr_iter(b'\n', src).count() + usize::from(src.last().is_some_and(|&b| b != b'\n'))
@@ -518,11 +534,7 @@ impl<'s> Driver<'s, '_> {
     /// the next is read.
     fn run_skim(&mut self, bytes: Range<usize>) {
         let src = self.src;
-        let mut start = bytes.start;
-        while start < bytes.end {
-            let end =
-                memchr::memchr(b'\n', &src[start..bytes.end]).map_or(bytes.end, |p| start + p + 1);
-            let text_end = if src[end - 1] == b'\n' { end - 1 } else { end };
+        for (start, text_end, end) in lines_of(src, bytes) {
             let skimmable = self.plain_lines_skimmable && self.macros.is_empty();
             let left_out = (skimmable && is_plain(&src[start..text_end]))
                 .then(|| self.plain_block(start, text_end))
@@ -538,7 +550,6 @@ impl<'s> Driver<'s, '_> {
                 }
                 None => self.run(start..end),
             }
-            start = end;
         }
     }
 
@@ -599,12 +610,8 @@ impl<'s> Driver<'s, '_> {
     /// run of them at a time; the lines wait for the flush in order.
     fn read_word_lines(&mut self, bytes: Range<usize>) {
         let src = self.src;
-        let mut start = bytes.start;
-        let mut unlexed = start;
-        while start < bytes.end {
-            let end =
-                memchr::memchr(b'\n', &src[start..bytes.end]).map_or(bytes.end, |p| start + p + 1);
-            let text_end = if src[end - 1] == b'\n' { end - 1 } else { end };
+        let mut unlexed = bytes.start;
+        for (start, text_end, end) in lines_of(src, bytes.clone()) {
             if let Some(block) = word_line::read(src, start, text_end) {
                 if unlexed < start {
                     self.lex_lines(unlexed..start);
@@ -623,7 +630,6 @@ impl<'s> Driver<'s, '_> {
                 }
                 unlexed = end;
             }
-            start = end;
         }
         if unlexed < bytes.end {
             self.lex_lines(unlexed..bytes.end);
@@ -704,6 +710,19 @@ impl<'s> Driver<'s, '_> {
         }
     }
 
+    /// The expansion of the macros in a lexed line, if it uses any (a
+    /// line with a lexical problem is not expanded).
+    fn expansion(
+        &self,
+        line: &Line,
+        line_tokens: &[Spanned],
+    ) -> Option<Result<Expanded, crate::macros::ExpansionError>> {
+        if line.broken {
+            return None;
+        }
+        Expanded::line(self.src, (line.start, line.end), line_tokens, self.macros)
+    }
+
     /// Parses the buffered lines and empties the buffers.
     fn flush(&mut self) {
         let mut lines = std::mem::take(&mut self.lines);
@@ -715,26 +734,12 @@ impl<'s> Driver<'s, '_> {
             let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
             for line in &mut lines {
                 let line_tokens = &tokens[line.tokens.clone()];
-                let block = match line.read.take() {
-                    Some(block) => block,
-                    None => {
-                        let expanded = (!line.broken)
-                            .then(|| {
-                                Expanded::line(
-                                    self.src,
-                                    (line.start, line.end),
-                                    line_tokens,
-                                    self.macros,
-                                )
-                            })
-                            .flatten();
-                        match expanded {
-                            None => {
-                                self.parse_line(line, line_tokens, &ctx, &parser, line.end as usize)
-                            }
-                            Some(expanded) => self.parse_expanded_line(line, line_tokens, expanded),
-                        }
-                    }
+                let block = if let Some(block) = line.read.take() {
+                    block
+                } else if let Some(expanded) = self.expansion(line, line_tokens) {
+                    self.parse_expanded_line(line, line_tokens, expanded)
+                } else {
+                    self.parse_line(line, line_tokens, &ctx, &parser, line.end as usize)
                 };
                 self.content_seen |=
                     !block.statements.is_empty() || block.label.is_some() || block.number.is_some();

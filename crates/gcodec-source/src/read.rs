@@ -231,10 +231,9 @@ fn read_rest(
     len: u64,
     max_len: u64,
 ) -> Result<(SourceBytes, Vec<u32>), ReadError> {
+    // `len` is within `max_len`: `read_program` checked it at the open.
     #[cfg(unix)]
-    if len <= max_len
-        && let Some(mapped) = crate::lines::map_large(file, skip as u64, len)?
-    {
+    if let Some(mapped) = crate::lines::map_large(file, skip as u64, len)? {
         return Ok(mapped);
     }
     let mut bytes = Vec::with_capacity(usize::try_from(len).unwrap_or(0));

@@ -8,7 +8,7 @@
 //! pretty printer writes, as an element of the document's `instructions`
 //! (tests compare them); every other instruction goes through serde.
 
-use gcodec_ail::{AxisValue, FileJsonText, Instruction, Op, Source, Value, write_json_string};
+use gcodec_ail::{FileJsonText, Instruction, Op, Source, Value, write_json_f64, write_json_string};
 use serde_json::ser::{CompactFormatter, Formatter};
 
 /// Writes `instruction` as an element of the `instructions` sequence
@@ -35,14 +35,14 @@ pub(super) fn write_hot(
         } => {
             begin(out, first, b"feed");
             out.extend_from_slice(b",\n      \"value\": ");
-            write_f64(out, *value);
+            write_json_f64(out, *value);
         }
         Op::Motion {
             motion,
             targets,
             circle: None,
             details: None,
-        } if !targets.is_empty() && targets.iter().all(constant_target) => {
+        } if !targets.is_empty() && targets.iter().all(|t| t.plain_constant().is_some()) => {
             begin(out, first, b"motion");
             out.extend_from_slice(b",\n      \"motion\": ");
             write_json_string(out, motion.name());
@@ -55,8 +55,8 @@ pub(super) fn write_hot(
                 });
                 write_json_string(out, &target.axis);
                 out.extend_from_slice(b",\n          \"value\": ");
-                if let Value::Const(value) = target.value {
-                    write_f64(out, value);
+                if let Some(value) = target.plain_constant() {
+                    write_json_f64(out, value);
                 }
                 out.extend_from_slice(b",\n          \"mode\": null\n        }");
             }
@@ -66,11 +66,6 @@ pub(super) fn write_hot(
     }
     write_source(out, &instruction.source, file);
     true
-}
-
-/// A target the hand-written motion covers: a constant, no `AC`/`IC`.
-fn constant_target(target: &AxisValue) -> bool {
-    matches!(target.value, Value::Const(_)) && target.mode.is_none()
 }
 
 /// The element's line break and indentation, its `{` and its `kind`.
@@ -96,16 +91,6 @@ fn write_source(out: &mut Vec<u8>, source: &Source, file: &mut FileJsonText) {
     out.extend_from_slice(b",\n          \"end\": ");
     write_u32(out, source.span.end);
     out.extend_from_slice(b"\n        }\n      }\n    }");
-}
-
-/// A number as serde_json writes an `f64`: `null` when not finite.
-fn write_f64(out: &mut Vec<u8>, value: f64) {
-    if value.is_finite() {
-        // Writing into a vector does not fail.
-        let _ = CompactFormatter.write_f64(out, value);
-    } else {
-        out.extend_from_slice(b"null");
-    }
 }
 
 fn write_u32(out: &mut Vec<u8>, value: u32) {

@@ -7,8 +7,9 @@ use std::io::{self, Write};
 use std::sync::Arc;
 
 use super::line_buffer::LineBuffer;
-use super::numbers::{write_fixed_point, write_u64};
+use super::numbers::write_u64;
 use super::{AxisMap, AxisName, SpindleState, axis_names};
+use gcodec_ail::write_fixed_point;
 
 /// A modal group shown as a CSV column.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

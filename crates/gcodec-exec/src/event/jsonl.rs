@@ -5,13 +5,13 @@ use std::borrow::Cow;
 use std::io::{self, Write};
 
 use super::line_buffer::LineBuffer;
-use super::numbers::{write_fixed_point, write_u64};
+use super::numbers::write_u64;
 use super::{
     AxisMap, AxisName, Event, EventKind, EventSink, EventSource, ModalChangeEvent, MotionEvent,
     WorkOffsetContext,
 };
 use crate::geometry::Plane;
-use gcodec_ail::{FileJsonText, write_json_string};
+use gcodec_ail::{FileJsonText, write_json_f64, write_json_string};
 
 /// `--format jsonl`: one JSON object a line, buffered.
 ///
@@ -63,7 +63,7 @@ impl MotionSettingsText {
 fn write_motion_settings_json(out: &mut Vec<u8>, motion: &MotionEvent) {
     out.extend_from_slice(b",\"feed\":");
     match motion.feed {
-        Some(feed) => write_f64_json(out, feed),
+        Some(feed) => write_json_f64(out, feed),
         None => out.extend_from_slice(b"null"),
     }
     out.extend_from_slice(b",\"feed_mode\":");
@@ -113,7 +113,7 @@ impl AxisCell {
         write_json_string(&mut text, name);
         text.push(b':');
         let key_len = text.len();
-        write_f64_json(&mut text, value);
+        write_json_f64(&mut text, value);
         Self {
             name: name.clone(),
             bits: value.to_bits(),
@@ -127,7 +127,7 @@ impl AxisCell {
         if self.bits != value.to_bits() {
             self.bits = value.to_bits();
             self.text.truncate(self.key_len);
-            write_f64_json(&mut self.text, value);
+            write_json_f64(&mut self.text, value);
         }
     }
 }
@@ -246,7 +246,7 @@ fn write_motion_json(
     }
     if let Some(radius) = motion.radius {
         out.extend_from_slice(b",\"radius\":");
-        write_f64_json(out, radius);
+        write_json_f64(out, radius);
     }
     if motion.turns != 0 {
         out.extend_from_slice(b",\"turns\":");
@@ -264,14 +264,14 @@ fn write_motion_json(
         out.extend_from_slice(b",\"tool_to_machine\":");
         write_axis_map_json(out, &tool.tool_to_machine);
         out.extend_from_slice(b",\"tool_radius\":");
-        write_f64_json(out, tool.tool_radius);
+        write_json_f64(out, tool.tool_radius);
         if let Some(arc) = &tool.tool_arc {
             out.extend_from_slice(b",\"tool_arc\":{\"motion\":\"");
             out.extend_from_slice(arc.motion.name().as_bytes());
             out.extend_from_slice(b"\",\"centre\":");
             write_axis_map_json(out, &arc.centre);
             out.extend_from_slice(b",\"radius\":");
-            write_f64_json(out, arc.radius);
+            write_json_f64(out, arc.radius);
             out.push(b'}');
         }
     }
@@ -332,20 +332,7 @@ fn write_axis_map_json(out: &mut Vec<u8>, axes: &AxisMap) {
         }
         write_json_string(out, axis);
         out.push(b':');
-        write_f64_json(out, value);
+        write_json_f64(out, value);
     }
     out.push(b'}');
-}
-
-/// A number as serde_json writes an `f64`: `null` when not finite,
-/// otherwise the shortest text that reads back as the same value, with
-/// `.0` on whole numbers.
-fn write_f64_json(out: &mut Vec<u8>, value: f64) {
-    use serde_json::ser::Formatter;
-    if !value.is_finite() {
-        out.extend_from_slice(b"null");
-    } else if !write_fixed_point(out, value, true) {
-        // Writing into a vector does not fail.
-        let _ = serde_json::ser::CompactFormatter.write_f64(out, value);
-    }
 }

@@ -36,7 +36,8 @@ const MAX_TARGETS: usize = 10;
 struct ConstantWords {
     g: Option<(GCommand, Span)>,
     feed: Option<(f64, Span)>,
-    targets: [Option<(&'static str, f64, Span)>; MAX_TARGETS],
+    /// The axes' targets, the first `count` of them.
+    targets: [(&'static str, f64, Span); MAX_TARGETS],
     count: usize,
 }
 
@@ -56,16 +57,7 @@ impl Lowering<'_> {
             return false;
         };
         if let Some((command, span)) = words.g {
-            self.modal[0] = Some(command.name());
-            self.open.set_group1();
-            self.emit(
-                index,
-                span,
-                Op::ModalChange {
-                    group: command.group(),
-                    code: command,
-                },
-            );
+            self.emit_modal_change(index, command, span);
         }
         if let Some((value, span)) = words.feed {
             self.emit(
@@ -76,16 +68,16 @@ impl Lowering<'_> {
                 },
             );
         }
-        let targets: Vec<AxisValue> = words.targets[..words.count]
+        let targets = &words.targets[..words.count];
+        let first = targets.first().map_or(block.span, |&(_, _, span)| span);
+        let targets: Vec<AxisValue> = targets
             .iter()
-            .flatten()
             .map(|&(axis, value, _)| AxisValue {
                 axis: Cow::Borrowed(axis),
                 value: Value::Const(value),
                 mode: None,
             })
             .collect();
-        let first = words.targets[0].map_or(block.span, |(_, _, span)| span);
         self.emit_motion_op(index, first, motion, targets, None, None);
         true
     }
@@ -109,12 +101,11 @@ impl Lowering<'_> {
                     let axis = letter_str(letter);
                     let repeated = words.targets[..words.count]
                         .iter()
-                        .flatten()
                         .any(|(a, _, _)| *a == axis);
                     if repeated || !self.is_axis(axis) {
                         return None;
                     }
-                    *words.targets.get_mut(words.count)? = Some((axis, value, span));
+                    *words.targets.get_mut(words.count)? = (axis, value, span);
                     words.count += 1;
                 }
                 _ => return None,

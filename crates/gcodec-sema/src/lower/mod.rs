@@ -879,21 +879,7 @@ impl<'a> Lowering<'a> {
             if self.emit_axis_command(index, command, span, plan) {
                 continue;
             }
-            let modal = ggroups::is_modal(group);
-            if modal {
-                self.modal[usize::from(group) - 1] = Some(code);
-                if group == 1 {
-                    self.open.set_group1();
-                }
-            }
-            self.emit(
-                index,
-                span,
-                Op::ModalChange {
-                    group,
-                    code: command,
-                },
-            );
+            self.emit_modal_change(index, command, span);
         }
         plan.g_codes = g_codes;
         self.unknown_machine_axes(plan);
@@ -1069,6 +1055,26 @@ impl<'a> Lowering<'a> {
         // these.
         let targets = plan.targets.drain(..).collect();
         self.emit_motion_op(index, first, motion, targets, circle, details);
+    }
+
+    /// Emits the change to the G command `command`, which the state known
+    /// from the text then holds if its group is modal.
+    fn emit_modal_change(&mut self, index: usize, command: GCommand, span: Span) {
+        let group = command.group();
+        if ggroups::is_modal(group) {
+            self.modal[usize::from(group) - 1] = Some(command.name());
+            if group == 1 {
+                self.open.set_group1();
+            }
+        }
+        self.emit(
+            index,
+            span,
+            Op::ModalChange {
+                group,
+                code: command,
+            },
+        );
     }
 
     /// Emits a block's motion; one of the modal motion command (`motion`

@@ -1,0 +1,219 @@
+//! Numbers as text, written by hand for the hand-written JSON and CSV
+//! writers (`gcodec lower`'s instructions, the executor's JSONL and CSV):
+//! the bytes serde_json and Rust's `{}` write, faster for the numbers
+//! programs are made of.
+
+use serde_json::ser::{CompactFormatter, Formatter};
+
+/// Writes a number as serde_json writes an `f64`: `null` when not finite,
+/// otherwise the shortest text that reads back as the same value, with
+/// `.0` on whole numbers ([`write_fixed_point`] where it applies).
+pub fn write_json_f64(out: &mut Vec<u8>, value: f64) {
+    if !value.is_finite() {
+        out.extend_from_slice(b"null");
+    } else if !write_fixed_point(out, value, true) {
+        // Writing into a vector does not fail.
+        let _ = CompactFormatter.write_f64(out, value);
+    }
+}
+
+/// Writes `value` with at most 4 decimals when that is its shortest text,
+/// a whole number (zero too) as `1.0` if `point_zero` (JSON) or `1`
+/// (Rust's `{}`); false, writing nothing, when it is no such number.
+///
+/// Positions and feeds mostly have at most 4 decimals. When `n / 10^4`
+/// reads back as `value` (IEEE division rounds correctly, so this is
+/// exactly the round-trip test), that decimal is the shortest text: below
+/// 1e9 an f64's spacing is far under 1e-4, so no other multiple of 1e-4
+/// reads back as the same value.
+pub fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> bool {
+    if value == 0.0 {
+        // Zero is in most rows (an axis at 0, a stopped spindle): `-0` keeps
+        // its sign, as `{}` and serde_json write it.
+        if value.is_sign_negative() {
+            out.push(b'-');
+        }
+        out.extend_from_slice(if point_zero { b"0.0" } else { b"0" });
+        return true;
+    }
+    let scaled = value * 1e4;
+    if value.is_nan() || value.abs() >= 1e9 {
+        return false;
+    }
+    // |scaled| < 1e13: exact in i64. Rounding half away from zero by hand
+    // (`f64::round` is a library call here); whatever it gives, the test
+    // below only lets an exact text through.
+    let rounded = (scaled + 0.5f64.copysign(scaled)) as i64;
+    if rounded as f64 / 1e4 != value {
+        return false;
+    }
+    // The whole text is built on the stack and copied once: several small
+    // copies per number cost more than the digits. Digits go in pairs
+    // from a table, and every copy into `text` has a fixed size: a copy
+    // of a length known only at run time is a call.
+    let mut text = [0u8; 24];
+    let mut len = usize::from(rounded < 0);
+    text[0] = b'-';
+    let magnitude = rounded.unsigned_abs();
+    // Below 1e9 (tested above): nine digits at most.
+    let mut whole = (magnitude / 10_000) as u32;
+    let whole_len = whole.checked_ilog10().map_or(1, |log| log as usize + 1);
+    len += whole_len;
+    let mut at = len;
+    while whole >= 100 {
+        at -= 2;
+        text[at..at + 2].copy_from_slice(digit_pair(whole % 100));
+        whole /= 100;
+    }
+    if whole >= 10 {
+        text[at - 2..at].copy_from_slice(digit_pair(whole));
+    } else {
+        text[at - 1] = b'0' + whole as u8;
+    }
+    let fraction = (magnitude % 10_000) as u32;
+    if fraction != 0 {
+        let mut digits = [0u8; 4];
+        digits[..2].copy_from_slice(digit_pair(fraction / 100));
+        digits[2..].copy_from_slice(digit_pair(fraction % 100));
+        // The trailing `0` digits are the high bytes of the little-endian
+        // word: those that become zero bytes.
+        let trailing_zeros = (u32::from_le_bytes(digits) ^ 0x3030_3030).leading_zeros() / 8;
+        text[len] = b'.';
+        text[len + 1..len + 5].copy_from_slice(&digits);
+        len += 5 - trailing_zeros as usize;
+    } else if point_zero {
+        text[len..len + 2].copy_from_slice(b".0");
+        len += 2;
+    }
+    // A copy of a fixed size is inlined; one of `len` bytes is a call.
+    out.extend_from_slice(&text);
+    out.truncate(out.len() - text.len() + len);
+    true
+}
+
+/// The two digits of `n` (0…99).
+fn digit_pair(n: u32) -> &'static [u8] {
+    const PAIRS: &[u8; 200] = b"\
+        0001020304050607080910111213141516171819\
+        2021222324252627282930313233343536373839\
+        4041424344454647484950515253545556575859\
+        6061626364656667686970717273747576777879\
+        8081828384858687888990919293949596979899";
+    let at = n as usize * 2;
+    &PAIRS[at..at + 2]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::write_fixed_point;
+    use proptest::prelude::*;
+
+    /// What `write_fixed_point` writes, or `None` where it declines.
+    fn fixed(value: f64, point_zero: bool) -> Option<String> {
+        let mut out = b"<".to_vec();
+        let written = write_fixed_point(&mut out, value, point_zero);
+        let text = String::from_utf8(out).expect("ASCII");
+        let text = text.strip_prefix('<').expect("kept what was there");
+        if written {
+            Some(text.to_owned())
+        } else {
+            assert_eq!(text, "", "declined, but wrote something");
+            None
+        }
+    }
+
+    /// The text the general writers give: Rust's `{}` for CSV, serde_json
+    /// for JSON.
+    fn general(value: f64, point_zero: bool) -> String {
+        if point_zero {
+            serde_json::to_string(&value).expect("finite")
+        } else {
+            format!("{value}")
+        }
+    }
+
+    /// Whether `value`'s shortest text has at most 4 decimals and it is
+    /// below 1e9: the numbers the fixed-point writer must take.
+    fn must_take(value: f64) -> bool {
+        let text = format!("{value}");
+        let decimals = text.split_once('.').map_or(0, |(_, f)| f.len());
+        value.abs() < 1e9 && decimals <= 4
+    }
+
+    /// The fixed-point text is the general writers' wherever it is
+    /// written, and it is written wherever it can be.
+    fn check(value: f64) {
+        for point_zero in [false, true] {
+            match fixed(value, point_zero) {
+                Some(text) => assert_eq!(text, general(value, point_zero), "{value:?}"),
+                None => assert!(!must_take(value), "declined {value:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn edge_numbers_are_written_as_the_general_writers_write_them() {
+        let edges = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            -0.5,
+            0.0001,
+            -0.0001,
+            0.00005,
+            0.1,
+            0.25,
+            1.5,
+            10.0,
+            100.037,
+            -100.037,
+            1000.0,
+            9.9999,
+            99_999.999_9,
+            123_456_789.0,
+            999_999_999.999_9,
+            1e9,
+            -1e9,
+            1e8,
+            1e-5,
+            1e-300,
+            2.0f64.powi(52),
+            0.1 + 0.2,
+            1.0 / 3.0,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+        ];
+        for value in edges {
+            check(value);
+        }
+        assert_eq!(fixed(f64::NAN, true), None);
+        assert_eq!(fixed(f64::INFINITY, false), None);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(20_000))]
+
+        #[test]
+        fn decimals_are_written_as_the_general_writers_write_them(
+            units in -9_999_999_999_999i64..9_999_999_999_999i64,
+            shift in 0i32..=6,
+        ) {
+            // Decimals of up to 4 places (taken) and of 5 and 6 (declined),
+            // whole numbers and fractions of every length.
+            check(units as f64 / 10f64.powi(shift));
+        }
+
+        #[test]
+        fn any_number_is_written_as_the_general_writers_write_it(bits in any::<u64>()) {
+            let value = f64::from_bits(bits);
+            if value.is_finite() {
+                check(value);
+            } else {
+                prop_assert_eq!(fixed(value, true), None);
+            }
+        }
+    }
+}
