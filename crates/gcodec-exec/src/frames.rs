@@ -601,8 +601,9 @@ impl Frame {
 
     /// Whether the frame changes no value: its axes exactly neutral and
     /// its rotation matrix the identity (ones on the diagonal, zeros of
-    /// either sign elsewhere).
-    fn is_identity(&self) -> bool {
+    /// either sign elsewhere). Its arithmetic still turns a `-0.0` into
+    /// `+0.0`, and a point with an infinite coordinate into NaNs.
+    pub fn is_identity(&self) -> bool {
         self.rotation.m == IDENTITY && self.axes_exactly_neutral()
     }
 

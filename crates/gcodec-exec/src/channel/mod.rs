@@ -86,6 +86,11 @@ pub struct RunOptions {
     /// Set from another thread (Ctrl-C) to stop the run cleanly.
     pub interrupt: Option<Arc<AtomicBool>>,
     pub circle_tolerance: CircleTolerance,
+    /// Straight motions to constant end points in a plain state (no
+    /// frame, offset or tool length acting) skip the general path's
+    /// transforms ([`Channel`]'s direct path; on by default). `false`
+    /// runs every motion by the general path: tests hold the two equal.
+    pub direct_motions: bool,
 }
 
 impl RunOptions {
@@ -111,6 +116,7 @@ impl RunOptions {
                 absolute: *profile.program.circle_error_const.get_ref(),
                 relative: *profile.program.circle_error_factor.get_ref(),
             },
+            direct_motions: true,
         }
     }
 }

@@ -102,6 +102,9 @@ impl Channel<'_> {
             .modal_index(MOTION_GROUP)
             .and_then(|index| MotionKind::of_command(MOTION_GROUP, index))
             .unwrap_or(*motion);
+        if circle.is_none() && details.is_none() && self.direct_straight_motion(kind, targets) {
+            return self.finish_direct_straight_motion(program, instruction, kind);
+        }
         self.motion.workpiece_position(&self.state);
         self.motion.target.copy_from_slice(&self.motion.wcs);
         self.increment_start();
@@ -185,9 +188,7 @@ impl Channel<'_> {
             }
             None
         };
-        if kind != MotionKind::Rapid && self.state.feed <= 0.0 {
-            self.once(program, instruction, "no-feed", codes::run::NO_FEED, Severity::Warning, || "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into());
-        }
+        self.warn_if_no_feed(program, instruction, kind);
         let mut end = self.state.geometry_point(&self.motion.target);
         let is_arc = matches!(
             kind,
@@ -226,6 +227,84 @@ impl Channel<'_> {
                 .to_machine(&frame, &scratch.target, &mut scratch.machine);
         }
         self.finish_motion(program, instruction, kind, start, end, arc, arc_turns)
+    }
+
+    /// Sets up a straight motion (`G0`, `G1`) to constant end points in a
+    /// plain state ([`super::state::MachineState::positions_plain`]) the
+    /// direct way: the workpiece position is the machine position, the
+    /// end point the programmed values, the machine end point the end
+    /// point, with none of the general path's frame transforms,
+    /// evaluation, polar or contour-angle words. `false`, with nothing of
+    /// the channel changed but the motion's scratch buffers, when the
+    /// block or the state is not such a motion: the general path runs it,
+    /// and says what is wrong with it. Both paths give the same events and
+    /// summary, bit for bit (`tests/direct_motions.rs`).
+    fn direct_straight_motion(&mut self, kind: MotionKind, targets: &[AxisValue]) -> bool {
+        let state = &self.state;
+        if !self.options.direct_motions
+            || !kind_is_straight(kind)
+            || self.pending_contour.is_some()
+            || state.frame_axes.len() != state.machine.len()
+            || !state.positions_plain()
+        {
+            return false;
+        }
+        let scratch = &mut self.motion;
+        // The frame's arithmetic keeps every finite value but `-0.0`.
+        for (wcs, &machine) in scratch.wcs.iter_mut().zip(&state.machine) {
+            if !machine.is_finite() || machine.to_bits() == (-0.0f64).to_bits() {
+                return false;
+            }
+            *wcs = machine;
+        }
+        scratch.target.copy_from_slice(&scratch.wcs);
+        for target in targets {
+            // A single letter names an axis, never a polar word (`AP`,
+            // `RP`, `ANG`).
+            let (Some(value), [_]) = (target.plain_constant(), target.axis.as_bytes()) else {
+                return false;
+            };
+            let Some(axis) = self.state.axis_index(&target.axis) else {
+                return false;
+            };
+            let start = self.motion.wcs[axis];
+            let end = self.dimension(axis, value, None, start, start);
+            if !end.is_finite() {
+                return false;
+            }
+            self.motion.target[axis] = end;
+        }
+        let scratch = &mut self.motion;
+        for (machine, &target) in scratch.machine.iter_mut().zip(&scratch.target) {
+            // As the identity frame maps it out: `-0.0` becomes `+0.0`.
+            *machine = 0.0 + target;
+        }
+        true
+    }
+
+    /// The rest of a motion [`Self::direct_straight_motion`] set up.
+    fn finish_direct_straight_motion(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        kind: MotionKind,
+    ) -> Result<(), RunError> {
+        self.warn_if_no_feed(program, instruction, kind);
+        let start = self.state.geometry_point(&self.motion.wcs);
+        let end = self.state.geometry_point(&self.motion.target);
+        self.finish_motion(program, instruction, kind, start, end, None, 0)
+    }
+
+    /// A feed motion without a feed: warned of once.
+    fn warn_if_no_feed(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        kind: MotionKind,
+    ) {
+        if kind != MotionKind::Rapid && self.state.feed <= 0.0 {
+            self.once(program, instruction, "no-feed", codes::run::NO_FEED, Severity::Warning, || "a feed motion without a feed (`F`): the control stops with alarm 10860; the simulation goes on without a time for it".into());
+        }
     }
 
     /// The motion from `scratch.wcs` (the start point `start`) to

@@ -173,6 +173,8 @@ struct FrameCache {
     settable: Frame,
     programmable: Frame,
     total: Frame,
+    /// `total` changes no value ([`Frame::is_identity`]).
+    total_is_identity: bool,
 }
 
 /// The pole and the polar end point last programmed, in workpiece
@@ -270,6 +272,7 @@ impl MachineState {
                 settable: neutral.clone(),
                 programmable: neutral.clone(),
                 total: neutral.clone(),
+                total_is_identity: true,
             }),
             neutral,
             frame_axes,
@@ -397,6 +400,7 @@ impl MachineState {
                 suppressed,
                 settable: settable.clone(),
                 programmable: self.programmable.clone(),
+                total_is_identity: total.is_identity(),
                 total,
             };
         }
@@ -408,6 +412,25 @@ impl MachineState {
     pub fn total_frame_generation(&self) -> u64 {
         drop(self.total_frame());
         self.frame_cache.borrow().generation
+    }
+
+    /// Whether a motion now finds the workpiece position in the machine
+    /// position as it is, and the machine position in the end point as
+    /// it is: no block suppression, no tool length, a total frame that
+    /// changes no value and that the last motion ran in too (so that no
+    /// change of it is left for an increment to traverse). Positions that
+    /// are `-0.0` or not finite are the caller's to rule out: the frame's
+    /// arithmetic can change those.
+    pub fn positions_plain(&self) -> bool {
+        if self.suppression.is_some() || self.tool_length.to_bits() != 0 {
+            return false;
+        }
+        let total = self.total_frame();
+        self.frame_cache.borrow().total_is_identity
+            && self
+                .traversed_frame
+                .as_ref()
+                .is_some_and(|f| f.same_as(&total))
     }
 
     /// Keeps the total frame of the motion just made, for the increments
@@ -736,6 +759,48 @@ impl RuntimeInterface for MachineState {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The direct path of straight motions runs where this says yes: in
+    /// a neutral frame the last motion ran in, without a tool length or
+    /// a suppression.
+    #[test]
+    fn positions_are_plain_only_in_the_frame_of_the_last_motion_without_tool_length() {
+        let profile = gcodec_profile::builtin().expect("the built-in profile");
+        let mut state = MachineState::new(Arc::new(profile));
+        assert!(!state.positions_plain(), "before the first motion");
+        state.note_traversed_frame();
+        assert!(state.positions_plain());
+        state.tool_length = 25.0;
+        assert!(!state.positions_plain(), "a tool length");
+        state.tool_length = -0.0;
+        assert!(!state.positions_plain(), "a tool length of -0");
+        state.tool_length = 0.0;
+        state.suppression = Some(Suppression::G53);
+        assert!(!state.positions_plain(), "a suppressed block");
+        state.suppression = None;
+        let axes = state.frame_axes.clone();
+        let mut translated = Frame::neutral(&axes);
+        translated
+            .apply(
+                &axes,
+                gcodec_lang::FrameOp::Trans,
+                &[(0, 5.0)],
+                None,
+                Plane::G17,
+            )
+            .unwrap();
+        state.programmable = translated;
+        assert!(!state.positions_plain(), "a translation");
+        state.note_traversed_frame();
+        assert!(!state.positions_plain(), "a translation traversed");
+        state.programmable = Frame::neutral(&axes);
+        assert!(
+            !state.positions_plain(),
+            "a neutral frame after a translation, before a motion in it"
+        );
+        state.note_traversed_frame();
+        assert!(state.positions_plain());
+    }
 
     /// `S[CNT]=100` over many passes: each spindle the machine lacks is an
     /// error, and the table stays the profile's.
