@@ -424,7 +424,9 @@ impl Channel<'_> {
             event.plane = state.plane();
             event.work_offset = WorkOffsetContext::new(state.group8, state.suppression);
             event.inserted = None;
-            event.tool = None;
+            if event.tool.is_some() {
+                event.tool = None;
+            }
         }
         scratch.event.source = source;
     }
@@ -650,6 +652,10 @@ impl Channel<'_> {
                 .map(|(a, b)| (a - b).abs())
                 .fold(0.0, f64::max)
         };
+        // G94, the commonest, without comparing names.
+        if self.state.feeds_per_minute() {
+            return travel / feed * 60.0;
+        }
         let minutes = match self.state.modal(15) {
             Some("G93") => 1.0 / feed,
             Some(
@@ -688,27 +694,38 @@ fn distance(a: Point3, b: Point3) -> f64 {
 
 /// Refills an axis map with every axis of the channel: as programmed
 /// (`programmed`: inches, diameters) or in mm.
+// Inlined: the call cost as much as the copy.
+#[inline(always)]
 pub(super) fn fill_map(map: &mut AxisMap, state: &MachineState, values: &[f64], programmed: bool) {
     // Under G71 without diameter programming a position is written as it
     // is: asking per axis costs more than the copy.
-    let programmed = programmed && (state.inch() || state.diameter_mode().0);
+    let programmed = programmed && state.converts_programmed_positions();
+    if programmed || map.len() != state.axes.len() {
+        refill_map(map, state, values, programmed);
+        return;
+    }
+    for (slot, value) in map.values_mut().zip(values) {
+        *slot = *value;
+    }
+}
+
+/// [`fill_map`] of a map to be made anew or of positions to convert.
+fn refill_map(map: &mut AxisMap, state: &MachineState, values: &[f64], programmed: bool) {
+    let value = |i: usize| {
+        if programmed {
+            state.as_programmed(i, values[i])
+        } else {
+            values[i]
+        }
+    };
     if map.len() != state.axes.len() {
         map.clear();
         for (i, info) in state.axes.iter().enumerate() {
-            let v = if programmed {
-                state.as_programmed(i, values[i])
-            } else {
-                values[i]
-            };
-            map.insert(info.name.clone(), v);
+            map.insert(info.name.clone(), value(i));
         }
         return;
     }
     for (i, slot) in map.values_mut().enumerate() {
-        *slot = if programmed {
-            state.as_programmed(i, values[i])
-        } else {
-            values[i]
-        };
+        *slot = value(i);
     }
 }

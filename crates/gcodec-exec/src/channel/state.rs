@@ -141,6 +141,7 @@ struct ModalCodes {
     g70: Option<u8>,
     g700: Option<u8>,
     g91: Option<u8>,
+    g94: Option<u8>,
     diamon: Option<u8>,
     diam90: Option<u8>,
 }
@@ -158,6 +159,7 @@ impl ModalCodes {
             g70: index(13, "G70"),
             g700: index(13, "G700"),
             g91: index(14, "G91"),
+            g94: index(15, "G94"),
             diamon: index(29, "DIAMON"),
             diam90: index(29, "DIAM90"),
         }
@@ -346,6 +348,18 @@ impl MachineState {
     /// G91: incremental unless a value says otherwise.
     pub fn incremental(&self) -> bool {
         self.in_force(14, self.codes.g91)
+    }
+
+    /// G94: the feed is in mm (inch) per minute.
+    pub fn feeds_per_minute(&self) -> bool {
+        self.in_force(15, self.codes.g94)
+    }
+
+    /// Whether a position in mm (radius) is written otherwise in the
+    /// program: in inches (G70/G700) or as a diameter (DIAMON/DIAM90,
+    /// [`Self::as_programmed`]).
+    pub fn converts_programmed_positions(&self) -> bool {
+        self.inch() || self.diameter_mode().0
     }
 
     /// How the diameter axis reads values (group 29): (absolute values are
