@@ -94,7 +94,7 @@ impl Lowering<'_> {
             let span = statement.span;
             match letter {
                 b'G' if words.g.is_none() && integer && (value == 0.0 || value == 1.0) => {
-                    words.g = Some((self.straight_motion_command(value)?, span));
+                    words.g = Some((self.straight_commands[usize::from(value == 1.0)]?, span));
                 }
                 b'F' if words.feed.is_none() => words.feed = Some((value, span)),
                 b'A' | b'B' | b'C' | b'Q' | b'U' | b'V' | b'W' | b'X' | b'Y' | b'Z' => {
@@ -115,8 +115,9 @@ impl Lowering<'_> {
     }
 
     /// `G0` or `G1` (`value`), where the machine has it under that name:
-    /// no legacy alias stands for it and the profile does not rule it out.
-    fn straight_motion_command(&self, value: f64) -> Option<GCommand> {
+    /// no legacy alias stands for it and the profile does not rule it out
+    /// (kept in [`Lowering::straight_commands`]).
+    pub(super) fn straight_motion_command(&self, value: f64) -> Option<GCommand> {
         if self.legacy_alias(value).is_some() {
             return None;
         }

@@ -406,6 +406,10 @@ struct Lowering<'a> {
     /// directly ([`Self::constant_word_block`]); off only to test that
     /// path against the general one.
     direct_constant_words: bool,
+    /// `G0` and `G1` where the machine has them under those names
+    /// ([`Self::straight_motion_command`]), looked up once rather than
+    /// for every block that writes one.
+    straight_commands: [Option<GCommand>; 2],
 }
 
 /// An `S` word: spindle number, computed spindle number (`S[SPINU]=`),
@@ -586,7 +590,7 @@ impl<'a> Lowering<'a> {
                 modal_call = state.modal_call;
             }
         }
-        Self {
+        let mut lowering = Self {
             outline,
             profile,
             source,
@@ -605,7 +609,10 @@ impl<'a> Lowering<'a> {
             plan: None,
             flow_at: 0,
             direct_constant_words: true,
-        }
+            straight_commands: [None; 2],
+        };
+        lowering.straight_commands = [0.0, 1.0].map(|g| lowering.straight_motion_command(g));
+        lowering
     }
 
     /// What control flow says about block `index`, found from where the
