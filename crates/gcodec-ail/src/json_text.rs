@@ -27,16 +27,30 @@ pub fn write_json_string(out: &mut Vec<u8>, text: &str) {
 }
 
 /// A file name and its JSON text: every event and instruction names its
-/// file, mostly the same one, whose text is written once.
+/// file, mostly the same one, whose text is written once, with the fixed
+/// text around it if asked ([`FileJsonText::between`]).
 #[derive(Debug, Default)]
 pub struct FileJsonText {
     file: Option<Arc<str>>,
+    before: &'static [u8],
+    after: &'static [u8],
     text: Vec<u8>,
 }
 
 impl FileJsonText {
-    /// Writes `file` as [`write_json_string`] does, from the text kept
-    /// when it is the file written last.
+    /// Writes `before`, the file and `after` as one kept text: the key
+    /// before the name and the one after it copied with it.
+    pub fn between(before: &'static [u8], after: &'static [u8]) -> Self {
+        Self {
+            before,
+            after,
+            ..Self::default()
+        }
+    }
+
+    /// Writes `file` as [`write_json_string`] does, between the texts
+    /// given to [`FileJsonText::between`], from the text kept when it is
+    /// the file written last.
     pub fn write(&mut self, out: &mut Vec<u8>, file: &Arc<str>) {
         let same = self
             .file
@@ -44,7 +58,9 @@ impl FileJsonText {
             .is_some_and(|last| Arc::ptr_eq(last, file) || **last == **file);
         if !same {
             self.text.clear();
+            self.text.extend_from_slice(self.before);
             write_json_string(&mut self.text, file);
+            self.text.extend_from_slice(self.after);
             self.file = Some(Arc::clone(file));
         }
         out.extend_from_slice(&self.text);

@@ -78,11 +78,19 @@ fn begin(out: &mut Vec<u8>, first: bool, kind: &[u8]) {
     out.push(b'"');
 }
 
-/// The `source` field and the element's closing brace.
+/// The text around an instruction's file name: the key before it and
+/// the one after.
+pub(super) fn source_file_text() -> FileJsonText {
+    FileJsonText::between(
+        b",\n      \"source\": {\n        \"file\": ",
+        b",\n        \"line\": ",
+    )
+}
+
+/// The `source` field and the element's closing brace; `file` is
+/// [`source_file_text`]'s.
 fn write_source(out: &mut Vec<u8>, source: &Source, file: &mut FileJsonText) {
-    out.extend_from_slice(b",\n      \"source\": {\n        \"file\": ");
     file.write(out, &source.file);
-    out.extend_from_slice(b",\n        \"line\": ");
     write_u32(out, source.line);
     out.extend_from_slice(b",\n        \"col\": ");
     write_u32(out, source.col);

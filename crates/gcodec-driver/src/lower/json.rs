@@ -14,7 +14,7 @@ use serde_json::ser::Formatter;
 use super::Page;
 use gcodec_ail::FileJsonText;
 
-use super::hot_json::write_hot;
+use super::hot_json::{source_file_text, write_hot};
 use super::rendered::write_rendered;
 
 /// Writes `pages` as the AIL document in JSON, pretty-printed as
@@ -26,7 +26,7 @@ pub fn write_json(pages: impl Iterator<Item = Page>, out: &mut impl Write) -> io
         "{{\n  \"ail_version\": {AIL_VERSION},\n  \"instructions\": ["
     )?;
     let any = write_rendered(pages, out, |instructions, first, bytes| {
-        let mut file = FileJsonText::default();
+        let mut file = source_file_text();
         for (k, instruction) in instructions.iter().enumerate() {
             element(instruction, first && k == 0, &mut file, bytes)?;
         }
@@ -319,7 +319,7 @@ mod tests {
         let mut hot = 0;
         // One file text for all, as for a page: file names change between
         // the programs' instructions and the ones made here.
-        let mut file = FileJsonText::default();
+        let mut file = source_file_text();
         for instruction in &instructions {
             for first in [true, false] {
                 let mut by_hand = Vec::new();
@@ -342,7 +342,7 @@ mod tests {
         // Near misses go through serde: an expression, AC, circle data.
         let serde_only = instructions
             .iter()
-            .filter(|i| !write_hot(i, true, &mut FileJsonText::default(), &mut Vec::new()))
+            .filter(|i| !write_hot(i, true, &mut source_file_text(), &mut Vec::new()))
             .count();
         assert!(serde_only >= 5, "{serde_only} instructions through serde");
     }

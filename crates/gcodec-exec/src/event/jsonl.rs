@@ -12,6 +12,7 @@ use super::{
 };
 use crate::geometry::Plane;
 use gcodec_ail::{FileJsonText, write_json_f64, write_json_string};
+use gcodec_lang::MotionKind;
 
 /// `--format jsonl`: one JSON object a line, buffered.
 ///
@@ -23,12 +24,36 @@ use gcodec_ail::{FileJsonText, write_json_f64, write_json_string};
 /// [`JsonlSink::into_inner`] or dropping the sink writes the rest.
 pub struct JsonlSink<W: Write> {
     out: LineBuffer<W>,
+    /// The last motion's kind and its line's head, as written.
+    last_head: MotionHead,
     /// The last motion's `to`, as written.
     last_to: AxisMapText,
     /// The last event's source, as written.
     last_source: SourceText,
     /// The last motion's feed, plane and work-offset fields, as written.
     last_settings: MotionSettingsText,
+}
+
+/// `{"event":"motion","motion":"…","from":`: the same from motion to
+/// motion but where the kind changes.
+#[derive(Default)]
+struct MotionHead {
+    kind: Option<MotionKind>,
+    text: Vec<u8>,
+}
+
+impl MotionHead {
+    fn write(&mut self, out: &mut Vec<u8>, kind: MotionKind) {
+        if self.kind != Some(kind) {
+            self.kind = Some(kind);
+            self.text.clear();
+            self.text
+                .extend_from_slice(b"{\"event\":\"motion\",\"motion\":\"");
+            self.text.extend_from_slice(kind.name().as_bytes());
+            self.text.extend_from_slice(b"\",\"from\":");
+        }
+        out.extend_from_slice(&self.text);
+    }
 }
 
 /// A motion's `feed` … `effective_suppression_mask` fields and their
@@ -188,6 +213,7 @@ impl<W: Write> JsonlSink<W> {
     pub fn new(writer: W) -> Self {
         Self {
             out: LineBuffer::new(writer),
+            last_head: MotionHead::default(),
             last_to: AxisMapText::default(),
             last_source: SourceText::default(),
             last_settings: MotionSettingsText::default(),
@@ -205,6 +231,7 @@ impl<W: Write> EventSink for JsonlSink<W> {
         let lines = &mut self.out.lines;
         match &event.kind {
             EventKind::Motion(motion) => {
+                self.last_head.write(lines, motion.motion);
                 write_motion_json(lines, motion, &mut self.last_to, &mut self.last_settings);
                 self.last_source.write(lines, &event.source);
             }
@@ -224,17 +251,14 @@ impl<W: Write> EventSink for JsonlSink<W> {
 }
 
 /// A motion event as serde writes it: the same fields in the same order,
-/// numbers in the same shortest form.
-/// (without its source and closing brace).
+/// numbers in the same shortest form; from its `from` (after
+/// [`MotionHead`]) to before its source and closing brace.
 fn write_motion_json(
     out: &mut Vec<u8>,
     motion: &MotionEvent,
     last_to: &mut AxisMapText,
     last_settings: &mut MotionSettingsText,
 ) {
-    out.extend_from_slice(b"{\"event\":\"motion\",\"motion\":\"");
-    out.extend_from_slice(motion.motion.name().as_bytes());
-    out.extend_from_slice(b"\",\"from\":");
     last_to.write_if_same(out, &motion.from);
     out.extend_from_slice(b",\"to\":");
     last_to.write(out, &motion.to);
@@ -294,21 +318,29 @@ fn write_modal_change_json(out: &mut Vec<u8>, change: &ModalChangeEvent) {
 /// The text of the last event's source. The file, the column (a block's
 /// first word) and the level mostly stay from event to event; the line
 /// is the only part written anew.
-#[derive(Default)]
 struct SourceText {
-    file: FileJsonText,
+    /// `,"source":{"file":…,"line":`.
+    head: FileJsonText,
     /// The column and level `tail` was written for.
     tail_key: Option<(u32, u32)>,
     /// `,"col":…,"level":…}}`.
     tail: Vec<u8>,
 }
 
+impl Default for SourceText {
+    fn default() -> Self {
+        Self {
+            head: FileJsonText::between(b",\"source\":{\"file\":", b",\"line\":"),
+            tail_key: None,
+            tail: Vec::new(),
+        }
+    }
+}
+
 impl SourceText {
     /// `,"source":{…}}`: the event's source and the event's closing brace.
     fn write(&mut self, out: &mut Vec<u8>, source: &EventSource) {
-        out.extend_from_slice(b",\"source\":{\"file\":");
-        self.file.write(out, &source.file);
-        out.extend_from_slice(b",\"line\":");
+        self.head.write(out, &source.file);
         write_u64(out, u64::from(source.line));
         let key = (source.col, source.level);
         if self.tail_key != Some(key) {
