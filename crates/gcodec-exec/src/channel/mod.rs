@@ -88,8 +88,10 @@ pub struct RunOptions {
     pub circle_tolerance: CircleTolerance,
     /// Straight motions to constant end points in a plain state (no
     /// frame, offset or tool length acting) skip the general path's
-    /// transforms ([`Channel`]'s direct path; on by default). `false`
-    /// runs every motion by the general path: tests hold the two equal.
+    /// transforms ([`Channel`]'s direct path; on by default), and so do
+    /// the workpiece positions of CSV rows and motions in such a state.
+    /// `false` runs every motion by the general path: tests hold the two
+    /// equal.
     pub direct_motions: bool,
 }
 
@@ -301,7 +303,7 @@ impl<'r> Channel<'r> {
         let max_dummy_blocks = *profile.program.cutcom_max_dummy_blocks.get_ref();
         let max_check_blocks = *profile.program.cutcom_check_blocks.get_ref();
         let state = MachineState::new(profile);
-        let motion = motion::MotionScratch::new(&state);
+        let motion = motion::MotionScratch::new(&state, options.direct_motions);
         Self {
             state,
             vars,

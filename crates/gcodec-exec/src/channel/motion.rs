@@ -37,10 +37,13 @@ pub(super) struct MotionScratch {
     /// The block begins a contour definition at this angle (`ANG=` with
     /// no end point in the plane).
     pub(super) begins_contour: Option<f64>,
+    /// Positions are taken as they are where no frame or tool length
+    /// changes them ([`super::RunOptions::direct_motions`]).
+    direct: bool,
 }
 
 impl MotionScratch {
-    pub fn new(state: &MachineState) -> Self {
+    pub fn new(state: &MachineState, direct: bool) -> Self {
         let n = state.axes.len();
         let map = || AxisMap::with_capacity(n);
         Self {
@@ -73,13 +76,33 @@ impl MotionScratch {
             },
             last_tangent: None,
             begins_contour: None,
+            direct,
         }
     }
 
-    /// Fills `wcs` with the current position in workpiece coordinates.
+    /// Fills `wcs` with the current position in workpiece coordinates:
+    /// the machine position as it is where no frame or tool length
+    /// changes it.
     pub fn workpiece_position(&mut self, state: &MachineState) {
-        state.to_workpiece(&state.total_frame(), &state.machine, &mut self.wcs);
+        let as_is = self.direct && state.workpiece_is_machine();
+        if !(as_is && copy_kept_by_identity(&mut self.wcs, &state.machine)) {
+            state.to_workpiece(&state.total_frame(), &state.machine, &mut self.wcs);
+        }
     }
+}
+
+/// Copies `values` to `out` if the identity frame keeps each of them as
+/// it is ([`crate::frames::Frame::is_identity`]: finite, and not `-0.0`,
+/// which it turns into `+0.0`); `false`, with `out` partly written,
+/// otherwise.
+fn copy_kept_by_identity(out: &mut [f64], values: &[f64]) -> bool {
+    for (slot, &value) in out.iter_mut().zip(values) {
+        if !value.is_finite() || value.to_bits() == (-0.0f64).to_bits() {
+            return false;
+        }
+        *slot = value;
+    }
+    true
 }
 
 impl Channel<'_> {
@@ -250,12 +273,8 @@ impl Channel<'_> {
             return false;
         }
         let scratch = &mut self.motion;
-        // The frame's arithmetic keeps every finite value but `-0.0`.
-        for (wcs, &machine) in scratch.wcs.iter_mut().zip(&state.machine) {
-            if !machine.is_finite() || machine.to_bits() == (-0.0f64).to_bits() {
-                return false;
-            }
-            *wcs = machine;
+        if !copy_kept_by_identity(&mut scratch.wcs, &state.machine) {
+            return false;
         }
         scratch.target.copy_from_slice(&scratch.wcs);
         for target in targets {

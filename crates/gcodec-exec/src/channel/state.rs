@@ -436,15 +436,26 @@ impl MachineState {
     /// are `-0.0` or not finite are the caller's to rule out: the frame's
     /// arithmetic can change those.
     pub fn positions_plain(&self) -> bool {
-        if self.suppression.is_some() || self.tool_length.to_bits() != 0 {
-            return false;
-        }
+        self.suppression.is_none()
+            && self.tool_length.to_bits() == 0
+            && self.identity_total_frame().is_some_and(|total| {
+                self.traversed_frame
+                    .as_ref()
+                    .is_some_and(|f| f.same_as(&total))
+            })
+    }
+
+    /// Whether workpiece and machine coordinates are the same numbers
+    /// now: no tool length and a total frame that changes no value
+    /// (`-0.0` and values out of range aside, [`Frame::is_identity`]).
+    pub fn workpiece_is_machine(&self) -> bool {
+        self.tool_length.to_bits() == 0 && self.identity_total_frame().is_some()
+    }
+
+    /// The total frame, if it is the identity.
+    fn identity_total_frame(&self) -> Option<Ref<'_, Frame>> {
         let total = self.total_frame();
-        self.frame_cache.borrow().total_is_identity
-            && self
-                .traversed_frame
-                .as_ref()
-                .is_some_and(|f| f.same_as(&total))
+        self.frame_cache.borrow().total_is_identity.then_some(total)
     }
 
     /// Keeps the total frame of the motion just made, for the increments
@@ -782,15 +793,19 @@ mod tests {
         let profile = gcodec_profile::builtin().expect("the built-in profile");
         let mut state = MachineState::new(Arc::new(profile));
         assert!(!state.positions_plain(), "before the first motion");
+        assert!(state.workpiece_is_machine());
         state.note_traversed_frame();
         assert!(state.positions_plain());
         state.tool_length = 25.0;
         assert!(!state.positions_plain(), "a tool length");
+        assert!(!state.workpiece_is_machine(), "a tool length");
         state.tool_length = -0.0;
         assert!(!state.positions_plain(), "a tool length of -0");
+        assert!(!state.workpiece_is_machine(), "a tool length of -0");
         state.tool_length = 0.0;
         state.suppression = Some(Suppression::G53);
         assert!(!state.positions_plain(), "a suppressed block");
+        assert!(state.workpiece_is_machine(), "a suppressed block");
         state.suppression = None;
         let axes = state.frame_axes.clone();
         let mut translated = Frame::neutral(&axes);
@@ -805,6 +820,7 @@ mod tests {
             .unwrap();
         state.programmable = translated;
         assert!(!state.positions_plain(), "a translation");
+        assert!(!state.workpiece_is_machine(), "a translation");
         state.note_traversed_frame();
         assert!(!state.positions_plain(), "a translation traversed");
         state.programmable = Frame::neutral(&axes);
@@ -812,6 +828,7 @@ mod tests {
             !state.positions_plain(),
             "a neutral frame after a translation, before a motion in it"
         );
+        assert!(state.workpiece_is_machine());
         state.note_traversed_frame();
         assert!(state.positions_plain());
     }
