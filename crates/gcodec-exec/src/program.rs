@@ -527,45 +527,18 @@ impl Program {
     }
 
     /// The block number (`N20`, `:20`) the `line` starts with, after a
-    /// skip mark.
+    /// skip mark (asked for every block of a CSV trace: the label is not
+    /// looked for).
     pub fn block_number(&self, line: u32) -> Option<u32> {
-        self.line_head(line)?
-            .number
-            .and_then(|n| u32::try_from(n).ok())
+        let (number, _) = number_head(self.line_text(line)?);
+        number.and_then(|n| u32::try_from(n).ok())
     }
 
     /// The block number and label the `line` starts with, after a skip
     /// mark (`/1 N20 LBL: …`).
     fn line_head(&self, line: u32) -> Option<LineHead<'_>> {
         let rest = self.line_text(line)?;
-        let mut i = 0;
-        let skip_blanks = |i: &mut usize| {
-            while rest.get(*i).is_some_and(|b| *b == b' ' || *b == b'\t') {
-                *i += 1;
-            }
-        };
-        skip_blanks(&mut i);
-        if rest.get(i) == Some(&b'/') {
-            i += 1;
-            while rest.get(i).is_some_and(u8::is_ascii_digit) {
-                i += 1;
-            }
-            skip_blanks(&mut i);
-        }
-        let mut number = None;
-        if matches!(rest.get(i), Some(b'N' | b'n' | b':'))
-            && rest.get(i + 1).is_some_and(u8::is_ascii_digit)
-        {
-            let digits = rest[i + 1..]
-                .iter()
-                .take_while(|b| b.is_ascii_digit())
-                .count();
-            number = std::str::from_utf8(&rest[i + 1..i + 1 + digits])
-                .ok()
-                .and_then(|d| d.parse::<u64>().ok());
-            i += 1 + digits;
-            skip_blanks(&mut i);
-        }
+        let (number, i) = number_head(rest);
         // A label: a name and `:` (not `:=`, not a main-block number).
         let name_len = rest[i.min(rest.len())..]
             .iter()
@@ -657,6 +630,41 @@ pub fn written_label(name: &str) -> &str {
     name.split_once('@').map_or(name, |(written, _)| written)
 }
 
+/// The block number the line `rest` starts with after its skip mark,
+/// and where the text after them and their blanks starts.
+fn number_head(rest: &[u8]) -> (Option<u64>, usize) {
+    let mut i = 0;
+    let skip_blanks = |i: &mut usize| {
+        while rest.get(*i).is_some_and(|b| *b == b' ' || *b == b'\t') {
+            *i += 1;
+        }
+    };
+    skip_blanks(&mut i);
+    if rest.get(i) == Some(&b'/') {
+        i += 1;
+        while rest.get(i).is_some_and(u8::is_ascii_digit) {
+            i += 1;
+        }
+        skip_blanks(&mut i);
+    }
+    let mut number = None;
+    if matches!(rest.get(i), Some(b'N' | b'n' | b':'))
+        && rest.get(i + 1).is_some_and(u8::is_ascii_digit)
+    {
+        let digits = rest[i + 1..]
+            .iter()
+            .take_while(|b| b.is_ascii_digit())
+            .count();
+        // `None` past `u64::MAX`, as parsing the digits gives.
+        number = rest[i + 1..i + 1 + digits].iter().try_fold(0u64, |n, d| {
+            n.checked_mul(10)?.checked_add(u64::from(d - b'0'))
+        });
+        i += 1 + digits;
+        skip_blanks(&mut i);
+    }
+    (number, i)
+}
+
 /// What a line starts with.
 struct LineHead<'t> {
     number: Option<u64>,
@@ -667,6 +675,29 @@ struct LineHead<'t> {
 mod tests {
     use super::*;
     use gcodec_ail::ByteRange;
+
+    /// The block number as parsing its digits gives it, after skip marks
+    /// and blanks, and where the rest starts.
+    #[test]
+    fn block_numbers_read_from_the_line_head() {
+        for (line, number, rest) in [
+            ("N20 G1 X1", Some(20), "G1 X1"),
+            ("  /1  N20\tLBL: G0", Some(20), "LBL: G0"),
+            ("/ n7", Some(7), ""),
+            (":30 M30", Some(30), "M30"),
+            ("N18446744073709551615", Some(u64::MAX), ""),
+            ("N18446744073709551616 G1", None, "G1"),
+            ("N99999999999999999999999", None, ""),
+            ("N007", Some(7), ""),
+            ("N G1", None, "N G1"),
+            ("G1 N20", None, "G1 N20"),
+            ("", None, ""),
+        ] {
+            let (found, at) = number_head(line.as_bytes());
+            assert_eq!(found, number, "{line:?}");
+            assert_eq!(&line[at..], rest, "{line:?}");
+        }
+    }
 
     /// Pages of one instruction per line, lines `1..=lines`.
     struct Lines {

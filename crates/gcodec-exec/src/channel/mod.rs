@@ -634,6 +634,12 @@ impl<'r> Channel<'r> {
             return Some(self.alarm(program, instruction, error));
         }
         let level = self.program_level();
+        // The file stays from block to block: no count of its references
+        // changes.
+        let file = match self.block.file.take() {
+            Some(file) if Arc::ptr_eq(&file, &program.file) => Some(file),
+            _ => self.observer.is_some().then(|| program.file.clone()),
+        };
         self.block = BlockState {
             open: true,
             transferred: false,
@@ -641,7 +647,7 @@ impl<'r> Channel<'r> {
             had_motion: false,
             m_groups: 0,
             edge: None,
-            file: self.observer.is_some().then(|| program.file.clone()),
+            file,
             level,
             number: None,
             moved_in_plane: false,
@@ -724,7 +730,9 @@ impl<'r> Channel<'r> {
         let state = &self.state;
         let row = &mut self.row;
         row.block_number = self.block.number;
-        if let Some(file) = &self.block.file {
+        if let Some(file) = &self.block.file
+            && !Arc::ptr_eq(&row.file, file)
+        {
             row.file = file.clone();
         }
         row.line = self.block.line;
