@@ -408,9 +408,18 @@ impl Channel<'_> {
         arc: Option<&geometry::Arc>,
         arc_turns: u32,
     ) {
-        let source = self.source(program, instruction);
+        let level = self.program_level();
         let state = &self.state;
         let scratch = &mut self.motion;
+        // In place: the file mostly stays, and counting a reference to it
+        // and dropping one, every motion, costs more than the rest.
+        let source = &mut scratch.event.source;
+        if !Arc::ptr_eq(&source.file, &program.file) {
+            source.file = program.file.clone();
+        }
+        source.line = instruction.source.line;
+        source.col = instruction.source.col;
+        source.level = level;
         if let EventKind::Motion(event) = &mut scratch.event.kind {
             event.motion = kind;
             fill_map(&mut event.from, state, &scratch.wcs, true);
@@ -447,7 +456,6 @@ impl Channel<'_> {
                 event.tool = None;
             }
         }
-        scratch.event.source = source;
     }
 
     /// Where incremental values count from (SD42440,
