@@ -75,11 +75,7 @@ fn fixtures_and_corpus_lower_the_same_either_way() {
 
 #[test]
 fn fixtures_and_corpus_lower_the_same_either_way_on_every_machine() {
-    for (machine, profile) in machines() {
-        gcodec_testkit::each_program(|name, src| {
-            assert_same(&format!("{name} on {machine}"), src, &profile)
-        });
-    }
+    gcodec_testkit::each_program_on(&machines(), assert_same);
 }
 
 /// The pieces generated blocks are made of: the words the direct path

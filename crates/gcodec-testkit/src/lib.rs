@@ -27,6 +27,8 @@ pub mod schema;
 
 pub use compile::lower_clean;
 pub use fixtures::{Fixture, Header};
-pub use paths::{all_programs, corpus_dir, each_program, programs, reference_dir, repo, shown};
+pub use paths::{
+    all_programs, corpus_dir, each_program, each_program_on, programs, reference_dir, repo, shown,
+};
 pub use profiles::{machine, profile};
 pub use schema::assert_schema_current;

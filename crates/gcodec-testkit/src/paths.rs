@@ -82,6 +82,15 @@ pub fn each_program(mut check: impl FnMut(&str, &[u8])) {
     }
 }
 
+/// [`each_program`] on each of `machines` (a name and a profile): `check`
+/// gets the program's name with `on <machine>`, its bytes and the
+/// machine's profile.
+pub fn each_program_on<P>(machines: &[(&str, P)], mut check: impl FnMut(&str, &[u8], &P)) {
+    for (machine, profile) in machines {
+        each_program(|name, src| check(&format!("{name} on {machine}"), src, profile));
+    }
+}
+
 /// `path` as the corpus tests show it: relative to the corpus, with `/`.
 pub fn shown(corpus: &Path, path: &Path) -> String {
     path.strip_prefix(corpus)
