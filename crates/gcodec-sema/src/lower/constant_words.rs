@@ -34,7 +34,8 @@ const MAX_TARGETS: usize = 10;
 /// What a block of constant words says, read before anything is emitted.
 #[derive(Default)]
 struct ConstantWords {
-    g: Option<(GCommand, Span)>,
+    /// `G0` or `G1`, its name and where it is written.
+    g: Option<(GCommand, &'static str, Span)>,
     feed: Option<(f64, Span)>,
     /// The axes' targets, the first `count` of them.
     targets: [(&'static str, f64, Span); MAX_TARGETS],
@@ -52,12 +53,12 @@ impl Lowering<'_> {
         let Some(words) = self.read_constant_words(block) else {
             return false;
         };
-        let motion_command = words.g.map_or(self.modal[0], |(g, _)| Some(g.name()));
+        let motion_command = words.g.map_or(self.modal[0], |(_, name, _)| Some(name));
         let Some(motion) = straight_motion(motion_command) else {
             return false;
         };
-        if let Some((command, span)) = words.g {
-            self.emit_modal_change(index, command, span);
+        if let Some((command, name, span)) = words.g {
+            self.emit_named_modal_change(index, command, name, span);
         }
         if let Some((value, span)) = words.feed {
             self.emit(
@@ -94,7 +95,8 @@ impl Lowering<'_> {
             let span = statement.span;
             match letter {
                 b'G' if words.g.is_none() && integer && (value == 0.0 || value == 1.0) => {
-                    words.g = Some((self.straight_commands[usize::from(value == 1.0)]?, span));
+                    let (command, name) = self.straight_commands[usize::from(value == 1.0)]?;
+                    words.g = Some((command, name, span));
                 }
                 b'F' if words.feed.is_none() => words.feed = Some((value, span)),
                 b'A' | b'B' | b'C' | b'Q' | b'U' | b'V' | b'W' | b'X' | b'Y' | b'Z' => {

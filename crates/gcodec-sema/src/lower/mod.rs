@@ -406,10 +406,10 @@ struct Lowering<'a> {
     /// directly ([`Self::constant_word_block`]); off only to test that
     /// path against the general one.
     direct_constant_words: bool,
-    /// `G0` and `G1` where the machine has them under those names
-    /// ([`Self::straight_motion_command`]), looked up once rather than
-    /// for every block that writes one.
-    straight_commands: [Option<GCommand>; 2],
+    /// `G0` and `G1` with their names where the machine has them under
+    /// those names ([`Self::straight_motion_command`]), looked up once
+    /// rather than for every block that writes one.
+    straight_commands: [Option<(GCommand, &'static str)>; 2],
 }
 
 /// An `S` word: spindle number, computed spindle number (`S[SPINU]=`),
@@ -611,7 +611,11 @@ impl<'a> Lowering<'a> {
             direct_constant_words: true,
             straight_commands: [None; 2],
         };
-        lowering.straight_commands = [0.0, 1.0].map(|g| lowering.straight_motion_command(g));
+        lowering.straight_commands = [0.0, 1.0].map(|g| {
+            lowering
+                .straight_motion_command(g)
+                .map(|command| (command, command.name()))
+        });
         lowering
     }
 
@@ -1067,9 +1071,20 @@ impl<'a> Lowering<'a> {
     /// Emits the change to the G command `command`, which the state known
     /// from the text then holds if its group is modal.
     fn emit_modal_change(&mut self, index: usize, command: GCommand, span: Span) {
+        self.emit_named_modal_change(index, command, command.name(), span);
+    }
+
+    /// [`Self::emit_modal_change`] of a command whose `name` is known.
+    fn emit_named_modal_change(
+        &mut self,
+        index: usize,
+        command: GCommand,
+        name: &'static str,
+        span: Span,
+    ) {
         let group = command.group();
         if ggroups::is_modal(group) {
-            self.modal[usize::from(group) - 1] = Some(command.name());
+            self.modal[usize::from(group) - 1] = Some(name);
             if group == 1 {
                 self.open.set_group1();
             }
