@@ -11,6 +11,11 @@
 //!   (`crates/gcodec-parser/benches/program/`), 100,000 blocks: motions,
 //!   modal changes, structures; most blocks give an event.
 //!
+//! - `flood_100k`: 100,000 lines `G1 X… Y… F…` as the peer benchmark's
+//!   floods have them (`scripts/bench-peer/generate.py`), run by the
+//!   direct path of plain straight motions and, as `…_general`, with
+//!   `RunOptions::direct_motions` off.
+//!
 //! Each with events to `CountingSink` (the executor alone) and to
 //! `JsonlSink` over `io::sink()` (plus formatting the JSONL).
 
@@ -42,8 +47,30 @@ fn lowered(name: &str, src: &[u8], profile: &Profile) -> Arc<Program> {
     compiled.into_loaded("MAIN").program
 }
 
+/// `lines` blocks `G1 X… Y… F1000`, as the peer benchmark's generator
+/// (`scripts/bench-peer/generate.py`, `flood`) writes them.
+fn flood(lines: usize) -> Vec<u8> {
+    let mut src = String::new();
+    for i in 0..lines {
+        let x = 100.0 + (i * 37 % 100_000) as f64 / 1000.0;
+        let y = 200.0 + (i * 53 % 100_000) as f64 / 1000.0;
+        src.push_str(&format!("G1 X{x:.3} Y{y:.3} F1000\n"));
+    }
+    src.into_bytes()
+}
+
 /// One run of `program` to its end; the number of blocks executed.
 fn run(program: &Arc<Program>, profile: &Arc<Profile>, sink: &mut dyn EventSink) -> u64 {
+    run_with(program, profile, sink, true)
+}
+
+/// [`run`], by the direct path of plain motions or not.
+fn run_with(
+    program: &Arc<Program>,
+    profile: &Arc<Profile>,
+    sink: &mut dyn EventSink,
+    direct_motions: bool,
+) -> u64 {
     let mut loader = FileLoader::new(
         SearchPath::new(),
         Arc::clone(profile),
@@ -51,6 +78,7 @@ fn run(program: &Arc<Program>, profile: &Arc<Profile>, sink: &mut dyn EventSink)
     );
     let mut options = RunOptions::for_profile(profile);
     options.max_steps = u64::MAX;
+    options.direct_motions = direct_motions;
     let outcome = Channel::new(Arc::clone(profile), options, &mut loader, sink)
         .run(Arc::clone(program))
         .expect("no output error");
@@ -91,6 +119,29 @@ fn bench(c: &mut Criterion) {
         });
         group.finish();
     }
+    let flood = lowered("flood.mpf", &flood(100_000), &profile);
+    let mut group = c.benchmark_group("run/flood_100k");
+    group.throughput(Throughput::Elements(100_000));
+    group.sampling_mode(SamplingMode::Flat);
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(5));
+    for direct in [true, false] {
+        let path = if direct { "" } else { "_general" };
+        group.bench_function(format!("counting{path}"), |b| {
+            b.iter(|| {
+                let mut sink = CountingSink::default();
+                black_box(run_with(&flood, &profile, &mut sink, direct))
+            })
+        });
+        group.bench_function(format!("jsonl{path}"), |b| {
+            b.iter(|| {
+                let mut sink = JsonlSink::new(std::io::sink());
+                black_box(run_with(&flood, &profile, &mut sink, direct))
+            })
+        });
+    }
+    group.finish();
 }
 
 criterion_group!(benches, bench);
