@@ -17,6 +17,7 @@ use crate::error::SyntaxError;
 use crate::grammar::{self, Ctx, Spanned, operators};
 use crate::macros::{Expanded, Macros};
 use crate::misspelt::Misspelt;
+use crate::plain_glance::plain_at_a_glance;
 use crate::{fast, structure, word_line};
 use gcodec_stream::{Chunk, WorkerPriority, map_chunks};
 
@@ -536,7 +537,8 @@ impl<'s> Driver<'s, '_> {
         let src = self.src;
         for (start, text_end, end) in lines_of(src, bytes) {
             let skimmable = self.plain_lines_skimmable && self.macros.is_empty();
-            let left_out = (skimmable && is_plain(&src[start..text_end]))
+            let line = &src[start..text_end];
+            let left_out = (skimmable && (plain_at_a_glance(line) || is_plain(line)))
                 .then(|| self.plain_block(start, text_end))
                 .flatten();
             match left_out {

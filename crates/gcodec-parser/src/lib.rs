@@ -20,6 +20,7 @@ mod fast;
 mod grammar;
 mod macros;
 mod misspelt;
+mod plain_glance;
 mod structure;
 mod tree;
 mod word_line;
