@@ -352,6 +352,29 @@ impl PartialEq for Frame {
 }
 
 /// A fresh [`Frame::id`].
+/// What an identity frame maps the finite values `point` out to, into
+/// `out`: `0 + p` ([`Frame::to_outer`]), which is `p` but for `-0.0`,
+/// which becomes `+0.0`.
+pub(crate) fn identity_outward(point: &[f64], out: &mut [f64]) {
+    for (o, p) in out.iter_mut().zip(point) {
+        *o = 0.0 + p;
+    }
+}
+
+/// Copies `point` to `out` if an identity frame maps each of its values
+/// into itself as it is ([`Frame::to_inner`]: a finite value other than
+/// `-0.0`, whose sign the rotation's `0 × v` terms can change); `false`,
+/// with `out` partly written, otherwise.
+pub(crate) fn identity_inward_as_is(point: &[f64], out: &mut [f64]) -> bool {
+    for (o, &p) in out.iter_mut().zip(point) {
+        if !p.is_finite() || p.to_bits() == (-0.0f64).to_bits() {
+            return false;
+        }
+        *o = p;
+    }
+    true
+}
+
 fn frame_id() -> u64 {
     static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
     NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
@@ -615,9 +638,7 @@ impl Frame {
     /// `+0` anyway. (An infinite coordinate would make `0 × v` a NaN: such
     /// a point takes the general path.)
     fn identity_to_outer(&self, point: &[f64], out: &mut [f64], len: usize, n: usize) {
-        for (o, p) in out[..n].iter_mut().zip(&point[..n]) {
-            *o = 0.0 + p;
-        }
+        identity_outward(&point[..n], &mut out[..n]);
         out[n..len].copy_from_slice(&point[n..len]);
     }
 

@@ -16,32 +16,33 @@ use crate::SourceBytes;
 /// Files larger than this cannot be addressed by 32-bit spans.
 pub const MAX_SOURCE_LEN: usize = u32::MAX as usize - 1;
 
-/// Sources from this size on are read and have their lines found on two
-/// threads.
+/// Sources from this size on are mapped (on Unix) and have their lines
+/// found on two threads.
 const PARALLEL_FROM: usize = 1 << 22;
 
 /// The offset of every line's start: 0, then every offset after a `\n`
 /// (the table [`crate::SourceFile::line_starts`] holds).
 pub fn line_starts(bytes: &[u8]) -> Vec<u32> {
+    let mut starts = Vec::with_capacity(bytes.len() / 24 + 1);
+    starts.push(0);
     if bytes.len() < PARALLEL_FROM {
-        let mut starts = vec![0];
         push_line_starts(bytes, 0, &mut starts);
         return starts;
     }
+    // The second half's lines on another thread.
     let middle = bytes.len() / 2;
     let (first, second) = bytes.split_at(middle);
-    let found = in_halves::<std::convert::Infallible>(
-        |starts| {
-            push_line_starts(first, 0, starts);
-            Ok(())
-        },
-        |starts| {
-            push_line_starts(second, middle, starts);
-            Ok(())
-        },
-        bytes.len(),
-    );
-    let Ok(starts) = found;
+    let rest = std::thread::scope(|scope| {
+        let rest = scope.spawn(|| {
+            let mut rest = Vec::with_capacity(second.len() / 24 + 1);
+            push_line_starts(second, middle, &mut rest);
+            rest
+        });
+        push_line_starts(first, 0, &mut starts);
+        rest.join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    });
+    starts.extend_from_slice(&rest);
     starts
 }
 
@@ -63,31 +64,6 @@ pub(crate) fn map_large(
     let bytes = SourceBytes::mapped(file, offset, len)?;
     let starts = line_starts(&bytes);
     Ok(Some((bytes, starts)))
-}
-
-/// The line table of a source of `len` bytes from its two halves: `first`
-/// runs on this thread, `second` on another, each pushing the line
-/// starts of its half.
-fn in_halves<E: Send>(
-    first: impl FnOnce(&mut Vec<u32>) -> Result<(), E>,
-    second: impl FnOnce(&mut Vec<u32>) -> Result<(), E> + Send,
-    len: usize,
-) -> Result<Vec<u32>, E> {
-    let mut starts = Vec::with_capacity(len / 24 + 1);
-    starts.push(0);
-    let rest = std::thread::scope(|scope| {
-        let rest = scope.spawn(|| {
-            let mut rest = Vec::with_capacity(len / 48 + 1);
-            second(&mut rest).map(|()| rest)
-        });
-        let own = first(&mut starts);
-        let rest = rest
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-        own.and(rest)
-    })?;
-    starts.extend_from_slice(&rest);
-    Ok(starts)
 }
 
 /// Pushes the offset after each `\n` of `part`, which starts at `base`.

@@ -13,6 +13,7 @@ use gcodec_source::{Severity, codes};
 use super::Channel;
 use crate::eval;
 use crate::event::{AxisMap, Event, EventKind, MotionEvent, Plane, WorkOffsetContext};
+use crate::frames::{identity_inward_as_is, identity_outward};
 use crate::geometry::{self, ArcForm, BoundingBox, Direction, Point3};
 use crate::program::Program;
 use crate::value::{RtValue, RunError, finite_real};
@@ -85,24 +86,10 @@ impl MotionScratch {
     /// changes it.
     pub fn workpiece_position(&mut self, state: &MachineState) {
         let as_is = self.direct && state.workpiece_is_machine();
-        if !(as_is && copy_kept_by_identity(&mut self.wcs, &state.machine)) {
+        if !(as_is && identity_inward_as_is(&state.machine, &mut self.wcs)) {
             state.to_workpiece(&state.total_frame(), &state.machine, &mut self.wcs);
         }
     }
-}
-
-/// Copies `values` to `out` if the identity frame keeps each of them as
-/// it is ([`crate::frames::Frame::is_identity`]: finite, and not `-0.0`,
-/// which it turns into `+0.0`); `false`, with `out` partly written,
-/// otherwise.
-fn copy_kept_by_identity(out: &mut [f64], values: &[f64]) -> bool {
-    for (slot, &value) in out.iter_mut().zip(values) {
-        if !value.is_finite() || value.to_bits() == (-0.0f64).to_bits() {
-            return false;
-        }
-        *slot = value;
-    }
-    true
 }
 
 impl Channel<'_> {
@@ -273,7 +260,7 @@ impl Channel<'_> {
             return false;
         }
         let scratch = &mut self.motion;
-        if !copy_kept_by_identity(&mut scratch.wcs, &state.machine) {
+        if !identity_inward_as_is(&state.machine, &mut scratch.wcs) {
             return false;
         }
         scratch.target.copy_from_slice(&scratch.wcs);
@@ -294,10 +281,7 @@ impl Channel<'_> {
             self.motion.target[axis] = end;
         }
         let scratch = &mut self.motion;
-        for (machine, &target) in scratch.machine.iter_mut().zip(&scratch.target) {
-            // As the identity frame maps it out: `-0.0` becomes `+0.0`.
-            *machine = 0.0 + target;
-        }
+        identity_outward(&scratch.target, &mut scratch.machine);
         true
     }
 

@@ -6,6 +6,7 @@ use std::cell::{Ref, RefCell};
 use std::sync::Arc;
 
 use gcodec_lang::WorkOffsetCode;
+use gcodec_lang::addresses::letter_str;
 use gcodec_lang::functions::Function;
 use gcodec_lang::ggroups;
 use gcodec_lang::modal::GROUP_COUNT;
@@ -236,9 +237,7 @@ impl MachineState {
             .collect();
         let neutral = Frame::neutral(&frame_axes);
         let letter_axes = std::array::from_fn(|i| {
-            let letter = [b'A' + i as u8];
-            let name = std::str::from_utf8(&letter).unwrap_or("");
-            axis_index_by_name(&frame_axes, axes.len(), name)
+            axis_index_by_name(&frame_axes, axes.len(), letter_str(b'A' + i as u8))
         });
         Self {
             machine: vec![0.0; axes.len()],

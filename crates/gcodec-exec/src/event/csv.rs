@@ -386,9 +386,14 @@ impl<W: Write> CsvWriter<W> {
 
     fn write(&mut self, row: &BlockRow, same: (bool, bool)) -> io::Result<()> {
         self.passed_over.of(row);
+        self.state.remember(row, same);
+        self.write_row()
+    }
+
+    /// Writes the row of `passed_over` and the state columns remembered.
+    fn write_row(&mut self) -> io::Result<()> {
         let line = &mut self.out.lines;
         write_place(line, &self.passed_over);
-        self.state.remember(row, same);
         self.state.write(line);
         line.push(b'\n');
         self.out.line_done()
@@ -404,11 +409,7 @@ impl<W: Write> CsvWriter<W> {
         if !std::mem::take(&mut self.last_passed_over) {
             return Ok(());
         }
-        let line = &mut self.out.lines;
-        write_place(line, &self.passed_over);
-        self.state.write(line);
-        line.push(b'\n');
-        self.out.line_done()
+        self.write_row()
     }
 
     /// Writes the last block's row if it was passed over, flushes, and

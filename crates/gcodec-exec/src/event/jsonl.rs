@@ -24,8 +24,8 @@ use gcodec_lang::MotionKind;
 /// [`JsonlSink::into_inner`] or dropping the sink writes the rest.
 pub struct JsonlSink<W: Write> {
     out: LineBuffer<W>,
-    /// The last motion's kind and its line's head, as written.
-    last_head: MotionHead,
+    /// `{"event":"motion","motion":"…","from":` of the last motion's kind.
+    last_head: KeptText<MotionKind>,
     /// The last motion's `to`, as written.
     last_to: AxisMapText,
     /// The last event's source, as written.
@@ -34,23 +34,31 @@ pub struct JsonlSink<W: Write> {
     last_settings: MotionSettingsText,
 }
 
-/// `{"event":"motion","motion":"…","from":`: the same from motion to
-/// motion but where the kind changes.
-#[derive(Default)]
-struct MotionHead {
-    kind: Option<MotionKind>,
+/// A text that depends on a key alone, written again only when the key
+/// changes: a motion line's head on its kind, a source's tail on its
+/// column and level.
+struct KeptText<K> {
+    key: Option<K>,
     text: Vec<u8>,
 }
 
-impl MotionHead {
-    fn write(&mut self, out: &mut Vec<u8>, kind: MotionKind) {
-        if self.kind != Some(kind) {
-            self.kind = Some(kind);
+impl<K> Default for KeptText<K> {
+    fn default() -> Self {
+        Self {
+            key: None,
+            text: Vec::new(),
+        }
+    }
+}
+
+impl<K: PartialEq> KeptText<K> {
+    /// Copies the text of `key` to `out`, made by `make` if the key
+    /// changed.
+    fn write(&mut self, out: &mut Vec<u8>, key: K, make: impl FnOnce(&mut Vec<u8>)) {
+        if self.key.as_ref() != Some(&key) {
             self.text.clear();
-            self.text
-                .extend_from_slice(b"{\"event\":\"motion\",\"motion\":\"");
-            self.text.extend_from_slice(kind.name().as_bytes());
-            self.text.extend_from_slice(b"\",\"from\":");
+            make(&mut self.text);
+            self.key = Some(key);
         }
         out.extend_from_slice(&self.text);
     }
@@ -213,7 +221,7 @@ impl<W: Write> JsonlSink<W> {
     pub fn new(writer: W) -> Self {
         Self {
             out: LineBuffer::new(writer),
-            last_head: MotionHead::default(),
+            last_head: KeptText::default(),
             last_to: AxisMapText::default(),
             last_source: SourceText::default(),
             last_settings: MotionSettingsText::default(),
@@ -231,7 +239,11 @@ impl<W: Write> EventSink for JsonlSink<W> {
         let lines = &mut self.out.lines;
         match &event.kind {
             EventKind::Motion(motion) => {
-                self.last_head.write(lines, motion.motion);
+                self.last_head.write(lines, motion.motion, |head| {
+                    head.extend_from_slice(b"{\"event\":\"motion\",\"motion\":\"");
+                    head.extend_from_slice(motion.motion.name().as_bytes());
+                    head.extend_from_slice(b"\",\"from\":");
+                });
                 write_motion_json(lines, motion, &mut self.last_to, &mut self.last_settings);
                 self.last_source.write(lines, &event.source);
             }
@@ -251,8 +263,8 @@ impl<W: Write> EventSink for JsonlSink<W> {
 }
 
 /// A motion event as serde writes it: the same fields in the same order,
-/// numbers in the same shortest form; from its `from` (after
-/// [`MotionHead`]) to before its source and closing brace.
+/// numbers in the same shortest form; from its `from` (after its head)
+/// to before its source and closing brace.
 fn write_motion_json(
     out: &mut Vec<u8>,
     motion: &MotionEvent,
@@ -321,18 +333,15 @@ fn write_modal_change_json(out: &mut Vec<u8>, change: &ModalChangeEvent) {
 struct SourceText {
     /// `,"source":{"file":…,"line":`.
     head: FileJsonText,
-    /// The column and level `tail` was written for.
-    tail_key: Option<(u32, u32)>,
-    /// `,"col":…,"level":…}}`.
-    tail: Vec<u8>,
+    /// `,"col":…,"level":…}}` of a column and level.
+    tail: KeptText<(u32, u32)>,
 }
 
 impl Default for SourceText {
     fn default() -> Self {
         Self {
             head: FileJsonText::between(b",\"source\":{\"file\":", b",\"line\":"),
-            tail_key: None,
-            tail: Vec::new(),
+            tail: KeptText::default(),
         }
     }
 }
@@ -342,17 +351,13 @@ impl SourceText {
     fn write(&mut self, out: &mut Vec<u8>, source: &EventSource) {
         self.head.write(out, &source.file);
         write_u64(out, u64::from(source.line));
-        let key = (source.col, source.level);
-        if self.tail_key != Some(key) {
-            self.tail_key = Some(key);
-            self.tail.clear();
-            self.tail.extend_from_slice(b",\"col\":");
-            write_u64(&mut self.tail, u64::from(source.col));
-            self.tail.extend_from_slice(b",\"level\":");
-            write_u64(&mut self.tail, u64::from(source.level));
-            self.tail.extend_from_slice(b"}}");
-        }
-        out.extend_from_slice(&self.tail);
+        self.tail.write(out, (source.col, source.level), |tail| {
+            tail.extend_from_slice(b",\"col\":");
+            write_u64(tail, u64::from(source.col));
+            tail.extend_from_slice(b",\"level\":");
+            write_u64(tail, u64::from(source.level));
+            tail.extend_from_slice(b"}}");
+        });
     }
 }
 
