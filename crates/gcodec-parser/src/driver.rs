@@ -17,7 +17,7 @@ use crate::error::SyntaxError;
 use crate::grammar::{self, Ctx, Spanned, operators};
 use crate::macros::{Expanded, Macros};
 use crate::misspelt::Misspelt;
-use crate::plain_glance::plain_at_a_glance;
+use crate::plain_glance::plain_lines;
 use crate::{fast, structure, word_line};
 use gcodec_stream::{Chunk, WorkerPriority, map_chunks};
 
@@ -343,14 +343,19 @@ fn lines_of(src: &[u8], bytes: Range<usize>) -> impl Iterator<Item = (usize, usi
     let mut start = bytes.start;
     std::iter::from_fn(move || {
         (start < bytes.end).then(|| {
-            let end =
-                memchr::memchr(b'\n', &src[start..bytes.end]).map_or(bytes.end, |p| start + p + 1);
-            let text_end = if src[end - 1] == b'\n' { end - 1 } else { end };
-            let line = (start, text_end, end);
-            start = end;
+            let line = line_at(src, start, bytes.end);
+            start = line.2;
             line
         })
     })
+}
+
+/// The line of `src` starting at `start`, before `limit`: its start, its
+/// end before the line end, and where the next starts.
+fn line_at(src: &[u8], start: usize, limit: usize) -> (usize, usize, usize) {
+    let end = memchr::memchr(b'\n', &src[start..limit]).map_or(limit, |p| start + p + 1);
+    let text_end = if src[end - 1] == b'\n' { end - 1 } else { end };
+    (start, text_end, end)
 }
 
 /// Lines of `src`, counting a last line without a line end.
@@ -435,6 +440,7 @@ fn read_chunk_into(
         structure_blocks: Vec::new(),
         tokens: Vec::with_capacity(token_room(chunk, reading)),
         lines: Vec::with_capacity(FLUSH_LINES),
+        line_ends: Vec::new(),
     };
     if reading == Reading::Skim {
         driver.run_skim(chunk.bytes.clone());
@@ -520,6 +526,8 @@ struct Driver<'s, 'b> {
     structure_blocks: Vec<u32>,
     tokens: Vec<Spanned>,
     lines: Vec<Line>,
+    /// The line ends of a run of plain lines being skimmed.
+    line_ends: Vec<u32>,
 }
 
 impl<'s> Driver<'s, '_> {
@@ -535,23 +543,70 @@ impl<'s> Driver<'s, '_> {
     /// the next is read.
     fn run_skim(&mut self, bytes: Range<usize>) {
         let src = self.src;
-        for (start, text_end, end) in lines_of(src, bytes) {
+        let mut at = bytes.start;
+        while at < bytes.end {
             let skimmable = self.plain_lines_skimmable && self.macros.is_empty();
+            if skimmable {
+                // The lines up to the first that may not be plain are
+                // judged at once.
+                let mut line_ends = std::mem::take(&mut self.line_ends);
+                line_ends.clear();
+                let plain_end = at + plain_lines(&src[at..bytes.end], &mut line_ends);
+                let skimmed =
+                    (plain_end > at).then(|| self.skim_plain_lines(at, plain_end, &line_ends));
+                self.line_ends = line_ends;
+                if let Some(stopped) = skimmed {
+                    at = stopped;
+                    continue;
+                }
+            }
+            let (start, text_end, end) = line_at(src, at, bytes.end);
             let line = &src[start..text_end];
-            let left_out = (skimmable && (plain_at_a_glance(line) || is_plain(line)))
+            let left_out = (skimmable && is_plain(line))
                 .then(|| self.plain_block(start, text_end))
                 .flatten();
             match left_out {
-                Some(block) => {
-                    // A plain block leaves `plain_lines_skimmable` as it
-                    // was.
-                    if let Some(slot) = self.blocks.get_mut(self.filled) {
-                        slot.write(block);
-                        self.filled += 1;
-                    }
-                }
+                Some(block) => self.skimmed(block),
                 None => self.run(start..end),
             }
+            at = end;
+        }
+    }
+
+    /// Skims the lines from `start` to `end`, each plain, while plain
+    /// lines are skimmable; `line_ends` holds their line ends' offsets
+    /// from `start` (the last line may have none). Returns where it
+    /// stopped: `end`, or the end of a line whose skip mark or number was
+    /// not plain, parsed (which may leave the lines after it not
+    /// skimmable).
+    fn skim_plain_lines(&mut self, start: usize, end: usize, line_ends: &[u32]) -> usize {
+        let lines = line_ends.iter().map(|&line_end| {
+            let line_end = start + line_end as usize;
+            (line_end, line_end + 1)
+        });
+        // A last line without a line end.
+        let last = line_ends.last().map_or(start, |&e| start + e as usize + 1);
+        let last = (last < end).then_some((end, end));
+        let mut line_start = start;
+        for (text_end, next) in lines.chain(last) {
+            match self.plain_block(line_start, text_end) {
+                Some(block) => self.skimmed(block),
+                None => {
+                    self.run(line_start..next);
+                    return next;
+                }
+            }
+            line_start = next;
+        }
+        end
+    }
+
+    /// The next slot takes a skimmed block, which leaves
+    /// `plain_lines_skimmable` as it was.
+    fn skimmed(&mut self, block: Block) {
+        if let Some(slot) = self.blocks.get_mut(self.filled) {
+            slot.write(block);
+            self.filled += 1;
         }
     }
 

@@ -1,47 +1,109 @@
-//! A line of a flood (`G1 X100.037 Y200.053 F1000`) judged plain sixteen
+//! Lines of a flood (`G1 X100.037 Y200.053 F1000`) judged plain sixteen
 //! bytes at a time, for pass 1's skim: the byte-by-byte test
-//! ([`crate::driver::is_plain`]) was half of the skim's work.
+//! ([`crate::driver::is_plain`]) was half of the skim's work. A run of a
+//! chunk's lines is judged in one pass that finds their line ends too,
+//! rather than line by line after a search for each line's end.
 //!
-//! [`plain_at_a_glance`] says yes only where the exact test would: every
-//! byte a digit, a letter, a blank (`' '`), `.`, `-`, `+` or `=`; no two
-//! letters touching (a name or keyword); no `M` (an M function); every
-//! point touching a digit. Anything else — a tab, a comment, `_`, a
-//! byte beyond ASCII, a name — is left to the exact test, which decides.
+//! [`plain_at_a_glance`] (one line) and [`plain_lines`] (the lines of a
+//! run of text) say yes only where the exact test would: every byte a
+//! digit, a letter, a blank (`' '`, a tab, a carriage return), `.`, `-`,
+//! `+` or `=`; no two letters touching (a name or keyword); no `M` (an M
+//! function); every point touching a digit. Anything else — a comment,
+//! `_`, a byte beyond ASCII, a name — is left to the exact test, which
+//! decides.
 
-/// Whether `line` is certainly plain; `false` says nothing.
-pub(crate) fn plain_at_a_glance(line: &[u8]) -> bool {
+/// Whether `line` (without its line end) is certainly plain; `false`
+/// says nothing. The tests' measure of [`plain_lines`].
+#[cfg(test)]
+fn plain_at_a_glance(line: &[u8]) -> bool {
+    let mut glance = Glance::default();
     let mut at = 0;
-    // Whether the byte before the block is a letter or a digit.
-    let (mut letter_before, mut digit_before) = (false, false);
     while at < line.len() {
         let end = (at + LANES).min(line.len());
-        // A short last block is padded with blanks, which pass.
-        let mut block = [b' '; LANES];
-        block[..end - at].copy_from_slice(&line[at..end]);
-        let Some(classes) = classify(&block) else {
+        // A line holds no line end.
+        if glance.step(&padded(&line[at..end])) != Some(0) {
             return false;
+        }
+        at = end;
+    }
+    true
+}
+
+/// How many bytes at the start of `text` are whole lines that are each
+/// certainly plain: the lines before the first that may not be, each with
+/// its line end (`\n`; the last line of `text` may have none). The offset
+/// of each of their line ends is pushed to `line_ends`. Pass 1 judges a
+/// run of a chunk's lines at once this way, rather than finding each
+/// line's end and glancing at it alone.
+pub(crate) fn plain_lines(text: &[u8], line_ends: &mut Vec<u32>) -> usize {
+    let mut glance = Glance::default();
+    // Where the line holding the next block's first byte starts.
+    let mut line_start = 0;
+    let mut at = 0;
+    while at < text.len() {
+        let end = (at + LANES).min(text.len());
+        let bytes = &text[at..end];
+        let newlines = match bytes.try_into() {
+            Ok(full) => glance.step(full),
+            Err(_) => glance.step(&padded(bytes)),
         };
+        let Some(mut newlines) = newlines else {
+            // The lines that end in this block are left to the exact
+            // test too: which byte failed is not known.
+            return line_start;
+        };
+        while newlines != 0 {
+            let newline = at + newlines.trailing_zeros() as usize;
+            line_ends.push(newline as u32);
+            line_start = newline + 1;
+            newlines &= newlines - 1;
+        }
+        at = end;
+    }
+    text.len()
+}
+
+/// The bytes of a short last block, padded with blanks, which pass.
+fn padded(bytes: &[u8]) -> [u8; LANES] {
+    let mut block = [b' '; LANES];
+    block[..bytes.len()].copy_from_slice(bytes);
+    block
+}
+
+/// A glance along text, block by block.
+#[derive(Default)]
+struct Glance {
+    /// Whether the byte before the next block is a letter.
+    letter_before: bool,
+    /// Whether the byte before the next block is a digit.
+    digit_before: bool,
+}
+
+impl Glance {
+    /// Takes in the next block: the bits of its line ends (`\n`), or
+    /// `None` if it may not be plain.
+    fn step(&mut self, block: &[u8; LANES]) -> Option<u32> {
         let Classes {
             letters,
             digits,
             points,
-        } = classes;
-        if letters & (letters >> 1) != 0 || (letter_before && letters & 1 != 0) {
-            return false;
+            newlines,
+        } = classify(block)?;
+        if letters & (letters >> 1) != 0 || (self.letter_before && letters & 1 != 0) {
+            return None;
         }
         // Each point needs a digit before or after it; the byte after
         // the block's last is not known here: that point must have one
         // before.
-        let before = (digits << 1) | u32::from(digit_before);
+        let before = (digits << 1) | u32::from(self.digit_before);
         let after = digits >> 1;
         if points & !(before | after) != 0 {
-            return false;
+            return None;
         }
-        letter_before = letters & LAST != 0;
-        digit_before = digits & LAST != 0;
-        at = end;
+        self.letter_before = letters & LAST != 0;
+        self.digit_before = digits & LAST != 0;
+        Some(newlines)
     }
-    true
 }
 
 const LANES: usize = 16;
@@ -52,10 +114,11 @@ struct Classes {
     letters: u32,
     digits: u32,
     points: u32,
+    newlines: u32,
 }
 
 /// The classes of `block`'s bytes; `None` if a byte is none of those a
-/// glance accepts, or an `M`.
+/// glance accepts (a line end among them), or an `M`.
 #[cfg(target_arch = "x86_64")]
 fn classify(block: &[u8; LANES]) -> Option<Classes> {
     use std::arch::x86_64::{
@@ -81,15 +144,19 @@ fn classify(block: &[u8; LANES]) -> Option<Classes> {
         let letter = within(folded, b'a', b'z');
         let m = _mm_cmpeq_epi8(folded, splat(b'm'));
         let point = _mm_cmpeq_epi8(v, splat(b'.'));
-        let other = [b' ', b'-', b'+', b'='].into_iter().fold(point, |acc, b| {
-            _mm_or_si128(acc, _mm_cmpeq_epi8(v, splat(b)))
-        });
+        let newline = _mm_cmpeq_epi8(v, splat(b'\n'));
+        let other = [b' ', b'\t', b'\r', b'-', b'+', b'=']
+            .into_iter()
+            .fold(_mm_or_si128(point, newline), |acc, b| {
+                _mm_or_si128(acc, _mm_cmpeq_epi8(v, splat(b)))
+            });
         let allowed = _mm_or_si128(_mm_or_si128(digit, letter), other);
         let bits = |x: __m128i| _mm_movemask_epi8(x) as u32;
         (bits(allowed) == 0xFFFF && bits(m) == 0).then(|| Classes {
             letters: bits(letter),
             digits: bits(digit),
             points: bits(point),
+            newlines: bits(newline),
         })
     }
 }
@@ -101,6 +168,7 @@ fn classify(block: &[u8; LANES]) -> Option<Classes> {
         letters: 0,
         digits: 0,
         points: 0,
+        newlines: 0,
     };
     for (i, &b) in block.iter().enumerate() {
         let bit = 1 << i;
@@ -109,7 +177,8 @@ fn classify(block: &[u8; LANES]) -> Option<Classes> {
             b'M' | b'm' => return None,
             b'A'..=b'Z' | b'a'..=b'z' => classes.letters |= bit,
             b'.' => classes.points |= bit,
-            b' ' | b'-' | b'+' | b'=' => {}
+            b'\n' => classes.newlines |= bit,
+            b' ' | b'\t' | b'\r' | b'-' | b'+' | b'=' => {}
             _ => return None,
         }
     }
@@ -118,34 +187,85 @@ fn classify(block: &[u8; LANES]) -> Option<Classes> {
 
 #[cfg(test)]
 mod tests {
-    use super::plain_at_a_glance;
+    use super::{plain_at_a_glance, plain_lines};
     use crate::driver::is_plain;
 
     /// The bytes generated lines are made of: what a glance accepts, and
     /// what it must leave to the exact test.
-    const BYTES: &[u8] = b"0123456789GXYZFNAIJKgxyzMm .-+=_;:\t\"$'(*/,\xC3\xA9ENDIF";
+    const BYTES: &[u8] = b"0123456789GXYZFNAIJKgxyzMm .-+=_;:\t\r\"$'(*/,\xC3\xA9ENDIF";
+
+    /// A deterministic generator of numbers below `n`.
+    fn numbers() -> impl FnMut(usize) -> usize {
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        move |n: usize| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % n as u64) as usize
+        }
+    }
+
+    /// A line of up to `max` bytes of [`BYTES`], mostly flood bytes.
+    fn line(next: &mut impl FnMut(usize) -> usize, max: usize) -> Vec<u8> {
+        let len = next(max + 1);
+        // Most lines of few kinds of byte, so that runs of plain lines
+        // are common.
+        let kinds = if next(4) == 0 { BYTES.len() } else { 26 };
+        (0..len).map(|_| BYTES[next(kinds)]).collect()
+    }
 
     /// A glance never says yes where the exact test says no, over lines
     /// of every length up to three blocks, made of those bytes.
     #[test]
     fn a_glance_says_plain_only_where_the_exact_test_does() {
-        let mut state = 0x2545_F491_4F6C_DD1Du64;
-        let mut next = |n: usize| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % n as u64) as usize
-        };
+        let mut next = numbers();
         let mut glanced = 0;
         for _ in 0..200_000 {
-            let len = next(49);
-            let line: Vec<u8> = (0..len).map(|_| BYTES[next(BYTES.len())]).collect();
+            let line = line(&mut next, 48);
             if plain_at_a_glance(&line) {
                 glanced += 1;
                 assert!(is_plain(&line), "{:?}", String::from_utf8_lossy(&line));
             }
         }
-        assert!(glanced > 1_000, "only {glanced} lines taken at a glance");
+        assert!(glanced > 10_000, "only {glanced} lines taken at a glance");
+    }
+
+    /// The plain lines of a text end at a line's start, and every line
+    /// before it is plain by the exact test; a text of lines each plain at
+    /// a glance is plain to its end.
+    #[test]
+    fn plain_lines_are_whole_lines_the_exact_test_takes() {
+        let mut next = numbers();
+        let (mut texts_to_the_end, mut lines_taken) = (0, 0);
+        for _ in 0..20_000 {
+            let lines: Vec<Vec<u8>> = (0..next(8)).map(|_| line(&mut next, 40)).collect();
+            let mut text = lines.join(&b'\n');
+            if next(2) == 0 {
+                text.push(b'\n');
+            }
+            let mut line_ends = Vec::new();
+            let plain = plain_lines(&text, &mut line_ends);
+            assert!(plain <= text.len());
+            assert!(plain == 0 || text[plain - 1] == b'\n' || plain == text.len());
+            let newlines: Vec<u32> = (0..plain)
+                .filter(|&i| text[i] == b'\n')
+                .map(|i| i as u32)
+                .collect();
+            assert_eq!(line_ends, newlines);
+            for taken in text[..plain].split(|&b| b == b'\n') {
+                assert!(is_plain(taken), "{:?}", String::from_utf8_lossy(taken));
+                lines_taken += 1;
+            }
+            if lines.iter().all(|line| plain_at_a_glance(line)) {
+                assert_eq!(plain, text.len(), "{:?}", String::from_utf8_lossy(&text));
+                texts_to_the_end += 1;
+            }
+        }
+        assert!(
+            texts_to_the_end > 1_000,
+            "only {texts_to_the_end} whole texts"
+        );
+        assert!(lines_taken > 20_000, "only {lines_taken} lines taken");
     }
 
     /// The lines of a flood are taken at a glance, points and signs at
@@ -161,6 +281,8 @@ mod tests {
             "              5.",
             "123456789012345.6",
             "G1 X1 Y2 Z3 A4 B5 C6 U7 V8 W9 X10.5 Y11.5 Z12.5",
+            "G1\tX1",
+            "G1 X1\r",
         ] {
             assert!(plain_at_a_glance(line.as_bytes()), "{line:?}");
             assert!(is_plain(line.as_bytes()), "{line:?}");
@@ -170,8 +292,7 @@ mod tests {
             "G1 X. Y1",
             "GOTOF END",
             "G1 X1 ; comment",
-            "G1\tX1",
-            "G1 X1\r",
+            "G1 X1\n",
             "DEF REAL A",
             "               .X",
             "X1 Y_2",
