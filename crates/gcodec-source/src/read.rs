@@ -14,7 +14,7 @@ use std::io::{self, Read};
 use std::path::Path;
 
 use crate::SourceBytes;
-use crate::lines::{MAX_SOURCE_LEN, line_starts};
+use crate::lines::{LineTable, MAX_SOURCE_LEN, line_table};
 use crate::{Code, codes};
 
 /// The size above which a program's file is not read unless the profile
@@ -124,7 +124,7 @@ impl From<io::Error> for ReadError {
 pub(crate) fn read_program(
     path: &Path,
     max_len: u64,
-) -> Result<(SourceBytes, Vec<u32>), ReadError> {
+) -> Result<(SourceBytes, LineTable), ReadError> {
     let max_len = max_len.min(MAX_SOURCE_LEN as u64);
     // The path first, so that a device is not even opened…
     regular(&fs::metadata(path)?)?;
@@ -230,7 +230,7 @@ fn read_rest(
     skip: usize,
     len: u64,
     max_len: u64,
-) -> Result<(SourceBytes, Vec<u32>), ReadError> {
+) -> Result<(SourceBytes, LineTable), ReadError> {
     // `len` is within `max_len`: `read_program` checked it at the open.
     #[cfg(unix)]
     if let Some(mapped) = crate::lines::map_large(file, skip as u64, len)? {
@@ -248,8 +248,8 @@ fn read_rest(
             max_len,
         });
     }
-    let starts = line_starts(&bytes);
-    Ok((bytes.into(), starts))
+    let table = line_table(&bytes);
+    Ok((bytes.into(), table))
 }
 
 /// The byte order a UTF-16 byte-order mark at the start of `head` gives.
@@ -332,11 +332,12 @@ mod tests {
             for bom in [&b""[..], UTF8_BOM] {
                 let stored = [bom, &text].concat();
                 let path = temp.file(&format!("large{i}.mpf"), &stored);
-                let (read, starts) = read_program(&path, u64::MAX).unwrap();
+                let (read, table) = read_program(&path, u64::MAX).unwrap();
                 assert!(*read == *text, "the bytes of {}", path.display());
                 #[cfg(unix)]
                 assert!(format!("{read:?}").ends_with("mapped)"), "{read:?}");
-                assert_eq!(starts, one_scan(&text));
+                assert_eq!(table.starts, one_scan(&text));
+                assert!(table.ascii);
                 let limit = stored.len() as u64 - 1;
                 let refused = read_program(&path, limit).unwrap_err();
                 assert!(
@@ -352,9 +353,9 @@ mod tests {
     fn a_byte_order_mark_is_dropped_and_utf16_is_named() {
         let temp = TempDir::new("encoding");
         let path = temp.file("bom.mpf", b"\xEF\xBB\xBFG0 X1\nM30\n");
-        let (bytes, starts) = read_program(&path, 100).unwrap();
+        let (bytes, table) = read_program(&path, 100).unwrap();
         assert_eq!(
-            (&bytes[..], &starts[..]),
+            (&bytes[..], &table.starts[..]),
             (&b"G0 X1\nM30\n"[..], &[0, 6, 10][..])
         );
         // The cap counts the file as stored, the mark too.

@@ -2,7 +2,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use crate::encoding::{Encoding, TextEncoding};
-use crate::lines::{MAX_SOURCE_LEN, line_starts};
+use crate::lines::{LineTable, MAX_SOURCE_LEN, line_table};
 use crate::read::{DEFAULT_MAX_FILE_SIZE, ReadError, UTF8_BOM, read_program};
 use crate::{SourceBytes, Span};
 
@@ -42,26 +42,21 @@ impl SourceFile {
             // Spans are u32: keep the addressable prefix rather than wrap.
             bytes.truncate(MAX_SOURCE_LEN);
         }
-        let line_starts = line_starts(&bytes);
-        Self::of_bytes(name.into(), None, bytes.into(), line_starts)
+        let table = line_table(&bytes);
+        Self::of_bytes(name.into(), None, bytes.into(), table)
     }
 
     /// A file of `bytes` (a byte-order mark dropped), read as UTF-8 where
     /// they are valid UTF-8, else in Windows-1252.
-    fn of_bytes(
-        name: String,
-        path: Option<PathBuf>,
-        bytes: SourceBytes,
-        line_starts: Vec<u32>,
-    ) -> Self {
-        let valid_utf8 = std::str::from_utf8(&bytes).is_ok();
+    fn of_bytes(name: String, path: Option<PathBuf>, bytes: SourceBytes, table: LineTable) -> Self {
+        let valid_utf8 = table.ascii || std::str::from_utf8(&bytes).is_ok();
         Self {
             name,
             path,
             valid_utf8,
             encoding: TextEncoding::default().given(valid_utf8),
             bytes: Arc::new(bytes),
-            line_starts,
+            line_starts: table.starts,
         }
     }
 
@@ -77,14 +72,9 @@ impl SourceFile {
     /// more is read), not UTF-16 text; a leading UTF-8 byte-order mark is
     /// dropped.
     pub fn read_capped(path: &Path, max_len: u64) -> Result<Self, ReadError> {
-        let (bytes, line_starts) = read_program(path, max_len)?;
+        let (bytes, table) = read_program(path, max_len)?;
         let name = path.display().to_string();
-        Ok(Self::of_bytes(
-            name,
-            Some(path.to_path_buf()),
-            bytes,
-            line_starts,
-        ))
+        Ok(Self::of_bytes(name, Some(path.to_path_buf()), bytes, table))
     }
 
     /// The same file named by another path that leads to it (a symbolic
