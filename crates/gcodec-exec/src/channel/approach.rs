@@ -59,7 +59,16 @@ impl Channel<'_> {
         }
         let start = self.state.geometry_point(&self.motion.wcs);
         let end = self.state.geometry_point(&self.motion.target);
-        self.finish_motion(program, instruction, MotionKind::Rapid, start, end, None, 0)
+        self.finish_motion(
+            program,
+            instruction,
+            MotionKind::Rapid,
+            start,
+            end,
+            None,
+            0,
+            true,
+        )
     }
 
     /// `FP=`: 1…4 (MD30600 has four fixed points per axis).

@@ -791,14 +791,78 @@ impl<'r> Channel<'r> {
     }
 
     /// Runs one instruction.
+    ///
+    /// The three instructions of a flood's block (`G1 X… Y… F…`) are run
+    /// here, every other by [`Self::execute_op`]: entering the one large
+    /// function with its every case cost more than a small one's work.
     fn execute(&mut self, program: &Arc<Program>, pc: usize, instruction: &Instruction) -> Flow {
-        let flow = self.execute_op(program, pc, instruction);
+        let result = match &instruction.op {
+            Op::Motion { .. } => self.motion(program, instruction).map(|()| Flow::Next),
+            Op::ModalChange { group, code } => {
+                self.modal_change(program, instruction, *group, code.index());
+                Ok(Flow::Next)
+            }
+            Op::Feed { value } => self.feed(value),
+            _ => {
+                let flow = self.execute_op(program, pc, instruction);
+                return self.instruction_done(flow);
+            }
+        };
+        let flow = match result {
+            Ok(flow) => flow,
+            Err(error) => self.failed(program, pc, instruction, error),
+        };
+        self.instruction_done(flow)
+    }
+
+    /// The system variables read from the machine are forgotten after
+    /// each instruction that does not wait for one.
+    fn instruction_done(&mut self, flow: Flow) -> Flow {
         if !matches!(flow, Flow::Pending) {
             self.state.machine_reads.instruction_done();
         }
         flow
     }
 
+    /// `F…`: the feed.
+    fn feed(&mut self, value: &gcodec_ail::Value) -> Result<Flow, RunError> {
+        self.state.feed = eval::eval_real(&self.env(), value)?;
+        Ok(Flow::Next)
+    }
+
+    /// A modal command programmed: put in force if its group is modal.
+    fn modal_change(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        group: u8,
+        index: u8,
+    ) {
+        if ggroups::is_modal(group) {
+            self.set_modal(program, instruction, group, index);
+        }
+    }
+
+    /// What an instruction that failed with `error` leads to: the machine
+    /// asked for a system variable it answers, or an alarm.
+    #[cold]
+    fn failed(
+        &mut self,
+        program: &Arc<Program>,
+        pc: usize,
+        instruction: &Instruction,
+        error: RunError,
+    ) -> Flow {
+        if error.code == codes::run::SYSTEM_VARIABLE
+            && let Some(read) = self.state.machine_reads.take_unanswered()
+        {
+            return self.read_from_machine(program, pc, instruction, read, error);
+        }
+        Flow::End(self.alarm(program, instruction, error))
+    }
+
+    /// Runs an instruction other than [`Self::execute`]'s three.
+    #[inline(never)]
     fn execute_op(&mut self, program: &Arc<Program>, pc: usize, instruction: &Instruction) -> Flow {
         let result = match &instruction.op {
             Op::Label { .. } | Op::External(_) | Op::Procedure(_) => Ok(Flow::Next),
@@ -833,9 +897,7 @@ impl<'r> Channel<'r> {
                 None => Ok(Flow::Next),
             },
             Op::ModalChange { group, code } => {
-                if ggroups::is_modal(*group) {
-                    self.set_modal(program, instruction, *group, code.index());
-                }
+                self.modal_change(program, instruction, *group, code.index());
                 Ok(Flow::Next)
             }
             Op::ModalChangeIndirect { group, index } => {
@@ -858,10 +920,7 @@ impl<'r> Channel<'r> {
             Op::ApproachPoint(approach) => self
                 .approach_point(program, instruction, approach)
                 .map(|()| Flow::Next),
-            Op::Feed { value } => eval::eval_real(&self.env(), value).map(|f| {
-                self.state.feed = f;
-                Flow::Next
-            }),
+            Op::Feed { value } => self.feed(value),
             Op::SpindleSpeed {
                 spindle,
                 speed,
@@ -941,14 +1000,7 @@ impl<'r> Channel<'r> {
         };
         match result {
             Ok(flow) => flow,
-            Err(error) => {
-                if error.code == codes::run::SYSTEM_VARIABLE
-                    && let Some(read) = self.state.machine_reads.take_unanswered()
-                {
-                    return self.read_from_machine(program, pc, instruction, read, error);
-                }
-                Flow::End(self.alarm(program, instruction, error))
-            }
+            Err(error) => self.failed(program, pc, instruction, error),
         }
     }
 
@@ -1007,6 +1059,7 @@ impl<'r> Channel<'r> {
 
     /// Puts the command at `index` of `group` in force; an index the
     /// registry does not assign changes nothing.
+    #[inline]
     fn set_modal(
         &mut self,
         program: &Arc<Program>,
@@ -1014,6 +1067,25 @@ impl<'r> Channel<'r> {
         group: u8,
         index: u8,
     ) {
+        // The command in force programmed again (the `G1` of every block
+        // of a flood): the same index is the same command, and nothing
+        // changes, known without a call or a name (`KONTC`, which is
+        // warned of each time, aside).
+        if group != 17 && self.state.modal_index(group) == Some(index) {
+            return;
+        }
+        self.change_modal(program, instruction, group, index);
+    }
+
+    /// [`Self::set_modal`] of a command that may not be in force.
+    fn change_modal(
+        &mut self,
+        program: &Arc<Program>,
+        instruction: &Instruction,
+        group: u8,
+        index: u8,
+    ) {
+        let in_force = self.state.modal_index(group) == Some(index);
         let Some(code) = ggroups::member(group, index) else {
             return;
         };
@@ -1022,10 +1094,7 @@ impl<'r> Channel<'r> {
                 "`KONTC`: the curvature-continuous approach and retraction is not simulated: the tool approaches and leaves on a tangent circle as under `KONTT`".into()
             });
         }
-        // The command in force programmed again (the `G1` of every block
-        // of a flood): the same index is the same command, known without
-        // looking up the name in force.
-        if self.state.modal_index(group) == Some(index) {
+        if in_force {
             return;
         }
         let previous = self.state.modal(group);

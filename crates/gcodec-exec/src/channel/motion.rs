@@ -236,7 +236,7 @@ impl Channel<'_> {
             self.state
                 .to_machine(&frame, &scratch.target, &mut scratch.machine);
         }
-        self.finish_motion(program, instruction, kind, start, end, arc, arc_turns)
+        self.finish_motion(program, instruction, kind, start, end, arc, arc_turns, true)
     }
 
     /// Sets up a straight motion (`G0`, `G1`) to constant end points in a
@@ -264,6 +264,9 @@ impl Channel<'_> {
             return false;
         }
         scratch.target.copy_from_slice(&scratch.wcs);
+        // Under G71 and G90 a value is the end point itself on a linear
+        // axis that reads no diameters ([`Self::dimension`]).
+        let as_written = !state.inch() && !state.incremental();
         for target in targets {
             // A single letter names an axis, never a polar word (`AP`,
             // `RP`, `ANG`).
@@ -273,8 +276,13 @@ impl Channel<'_> {
             let Some(axis) = self.state.axis_index(&target.axis) else {
                 return false;
             };
+            let info = &self.state.axes[axis];
             let start = self.motion.wcs[axis];
-            let end = self.dimension(axis, value, None, start, start);
+            let end = if as_written && !info.rotary && !info.diameter {
+                value
+            } else {
+                self.dimension(axis, value, None, start, start)
+            };
             if !end.is_finite() {
                 return false;
             }
@@ -295,10 +303,13 @@ impl Channel<'_> {
         self.warn_if_no_feed(program, instruction, kind);
         let start = self.state.geometry_point(&self.motion.wcs);
         let end = self.state.geometry_point(&self.motion.target);
-        self.finish_motion(program, instruction, kind, start, end, None, 0)
+        // The motion runs in the frame the last one ran in
+        // (`positions_plain`): nothing to note.
+        self.finish_motion(program, instruction, kind, start, end, None, 0, false)
     }
 
     /// A feed motion without a feed: warned of once.
+    #[inline]
     fn warn_if_no_feed(
         &mut self,
         program: &Arc<Program>,
@@ -313,7 +324,9 @@ impl Channel<'_> {
     /// The motion from `scratch.wcs` (the start point `start`) to
     /// `scratch.target` (`end`; in machine coordinates `scratch.machine`),
     /// along `arc` if one: the summary's figures, the end tangent, the
-    /// event, the new position.
+    /// event, the new position, and the frame it ran in if
+    /// `note_frame` (a motion known to run in the frame of the last one
+    /// has none to note).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn finish_motion(
         &mut self,
@@ -324,6 +337,7 @@ impl Channel<'_> {
         end: Point3,
         arc: Option<geometry::Arc>,
         arc_turns: u32,
+        note_frame: bool,
     ) -> Result<(), RunError> {
         let length = match &arc {
             Some(a) => a.length,
@@ -349,7 +363,9 @@ impl Channel<'_> {
         }
         // The channel is at the programmed end point, held or not.
         self.state.machine.copy_from_slice(&self.motion.machine);
-        self.state.note_traversed_frame();
+        if note_frame {
+            self.state.note_traversed_frame();
+        }
         if engaged {
             // Compensation or a corner element: the stage holds the
             // motion until the next element makes it final.

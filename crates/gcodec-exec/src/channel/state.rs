@@ -138,6 +138,7 @@ pub struct MachineState {
 #[derive(Clone, Copy, Debug)]
 struct ModalCodes {
     g18: Option<u8>,
+    g40: Option<u8>,
     g19: Option<u8>,
     g70: Option<u8>,
     g700: Option<u8>,
@@ -156,6 +157,7 @@ impl ModalCodes {
         };
         Self {
             g18: index(6, "G18"),
+            g40: index(7, "G40"),
             g19: index(6, "G19"),
             g70: index(13, "G70"),
             g700: index(13, "G700"),
@@ -342,6 +344,13 @@ impl MachineState {
     /// G70/G700: programmed lengths are inches.
     pub fn inch(&self) -> bool {
         self.in_force(13, self.codes.g70) || self.in_force(13, self.codes.g700)
+    }
+
+    /// A command of group 7 other than G40 (G41, G42) is in force: tool
+    /// radius compensation is selected.
+    pub fn radius_compensation_selected(&self) -> bool {
+        self.modal_index(7)
+            .is_some_and(|index| Some(index) != self.codes.g40)
     }
 
     /// G91: incremental unless a value says otherwise.

@@ -155,7 +155,7 @@ impl Channel<'_> {
         !self.path.is_idle()
             || corner.is_some()
             || self.motion.begins_contour.is_some()
-            || self.state.modal(7).is_some_and(|c| c != "G40")
+            || self.state.radius_compensation_selected()
     }
 
     /// The second block of a contour definition (`X… Y… ANG=α2`, its end
