@@ -8,13 +8,20 @@ use serde_json::ser::{CompactFormatter, Formatter};
 /// Writes a number as serde_json writes an `f64`: `null` when not finite,
 /// otherwise the shortest text that reads back as the same value, with
 /// `.0` on whole numbers ([`write_fixed_point`] where it applies).
+#[inline]
 pub fn write_json_f64(out: &mut Vec<u8>, value: f64) {
     if !value.is_finite() {
         out.extend_from_slice(b"null");
     } else if !write_fixed_point(out, value, true) {
-        // Writing into a vector does not fail.
-        let _ = CompactFormatter.write_f64(out, value);
+        write_shortest(out, value);
     }
+}
+
+/// Writes a finite `value` as serde_json does, the general way.
+#[cold]
+fn write_shortest(out: &mut Vec<u8>, value: f64) {
+    // Writing into a vector does not fail.
+    let _ = CompactFormatter.write_f64(out, value);
 }
 
 /// Writes `value` with at most 4 decimals when that is its shortest text,

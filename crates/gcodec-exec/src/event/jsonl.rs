@@ -82,7 +82,7 @@ impl MotionSettingsText {
             motion.plane,
             motion.work_offset,
         );
-        if self.key != Some(key) || self.feed_mode != motion.feed_mode {
+        if self.key != Some(key) || !same_name(&self.feed_mode, &motion.feed_mode) {
             self.key = Some(key);
             self.feed_mode.clone_from(&motion.feed_mode);
             self.text.clear();
@@ -202,6 +202,7 @@ impl AxisMapText {
 
     /// Writes `map` to `out`, copying the remembered text if it is the
     /// same map.
+    #[inline]
     fn write_if_same(&self, out: &mut Vec<u8>, map: &AxisMap) {
         if self.holds(map) {
             out.extend_from_slice(&self.text);
@@ -211,8 +212,8 @@ impl AxisMapText {
     }
 }
 
-/// Axis names are mostly the same static strings: compare addresses
-/// first.
+/// Axis names and the feed mode are mostly the same static strings:
+/// compare addresses first.
 fn same_name(a: &str, b: &str) -> bool {
     std::ptr::eq(a, b) || a == b
 }
