@@ -437,11 +437,18 @@ fn write_place(line: &mut Vec<u8>, place: &RowPlace) {
 
 /// A number as Rust's `{}` writes it (shortest text that reads back, no
 /// exponent, no `.0`), through [`write_fixed_point`] where it applies.
+#[inline]
 fn write_f64_csv(out: &mut Vec<u8>, value: f64) {
     if !write_fixed_point(out, value, false) {
-        // Writing into a vector does not fail.
-        let _ = write!(out, "{value}");
+        write_f64_display(out, value);
     }
+}
+
+/// A number as Rust's `{}` writes it, the general way.
+#[cold]
+fn write_f64_display(out: &mut Vec<u8>, value: f64) {
+    // Writing into a vector does not fail.
+    let _ = write!(out, "{value}");
 }
 
 /// Writes `field`, quoted when it holds a comma, a quote or a line break
