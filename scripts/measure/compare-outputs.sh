@@ -8,10 +8,7 @@
 #   e.g. scripts/measure/compare-outputs.sh old/gcodec new/gcodec examples tests ../shared/corpus
 # Prints each run that differs and the counts; exit status 1 if any does.
 set -euo pipefail
-if [ $# -lt 3 ]; then
-    sed -n '2,9p' "$0" >&2
-    exit 2
-fi
+[ $# -ge 3 ] || { sed -n '2,9p' "$0" >&2; exit 2; }
 old=$1 new=$2
 shift 2
 profiles=$(cd "$(dirname "$0")/../../profiles" && pwd)

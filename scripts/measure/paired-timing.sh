@@ -7,10 +7,7 @@
 #   e.g. scripts/measure/paired-timing.sh old/gcodec new/gcodec 15 flood_1m.mpf run --format csv
 # Needs GNU time (/usr/bin/time). Output goes to /dev/null.
 set -euo pipefail
-if [ $# -lt 4 ]; then
-    sed -n '2,9p' "$0" >&2
-    exit 2
-fi
+[ $# -ge 4 ] || { sed -n '2,8p' "$0" >&2; exit 2; }
 old=$1 new=$2 rounds=$3 program=$4
 shift 4
 args=("$@")

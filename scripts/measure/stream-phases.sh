@@ -8,10 +8,7 @@
 #   e.g. scripts/measure/stream-phases.sh target/release/gcodec flood_1m.mpf run
 # Needs `perf sched` (linux-perf) and the right to record scheduler events.
 set -euo pipefail
-if [ $# -lt 2 ]; then
-    sed -n '2,9p' "$0" >&2
-    exit 2
-fi
+[ $# -ge 2 ] || { sed -n '2,9p' "$0" >&2; exit 2; }
 bin=$1 program=$2
 shift 2
 args=("$@")

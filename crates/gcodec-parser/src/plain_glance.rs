@@ -137,47 +137,64 @@ struct Classes {
     newlines: u32,
 }
 
-/// The classes of `block`'s bytes; `None` if a byte is none of those a
-/// glance accepts (a line end among them), or an `M`.
+/// The classes of the bytes of the vector `$v` (of type `$vector`, its
+/// lanes read with the intrinsics named after it): SSE2's sixteen and
+/// AVX2's thirty-two lanes are classified alike.
 #[cfg(target_arch = "x86_64")]
-fn classify(block: &[u8; LANES]) -> Option<Classes> {
-    use std::arch::x86_64::{
-        __m128i, _mm_and_si128, _mm_cmpeq_epi8, _mm_cmpgt_epi8, _mm_cmplt_epi8, _mm_loadu_si128,
-        _mm_movemask_epi8, _mm_or_si128, _mm_set1_epi8,
-    };
-    // SAFETY: SSE2 is part of every x86_64 target; the load reads the
-    // sixteen bytes of `block`, unaligned loads allowed.
-    unsafe {
-        let v = _mm_loadu_si128(block.as_ptr().cast::<__m128i>());
+macro_rules! classify_vector {
+    ($v:expr, $vector:ty, $set1:ident, $and:ident, $or:ident, $cmpeq:ident, $cmpgt:ident,
+     $movemask:ident, $all:expr) => {{
+        let v = $v;
         // Bytes beyond ASCII are negative as `i8`: none of the ranges
         // below holds them, so they fail `allowed`.
-        let splat = |b: u8| _mm_set1_epi8(b as i8);
-        let within = |x: __m128i, low: u8, high: u8| {
-            _mm_and_si128(
-                _mm_cmpgt_epi8(x, splat(low - 1)),
-                _mm_cmplt_epi8(x, splat(high + 1)),
-            )
+        let splat = |b: u8| $set1(b as i8);
+        let within = |x: $vector, low: u8, high: u8| {
+            $and($cmpgt(x, splat(low - 1)), $cmpgt(splat(high + 1), x))
         };
         let digit = within(v, b'0', b'9');
         // `b | 0x20` is a lower-case letter exactly for the letters.
-        let folded = _mm_or_si128(v, splat(0x20));
+        let folded = $or(v, splat(0x20));
         let letter = within(folded, b'a', b'z');
-        let m = _mm_cmpeq_epi8(folded, splat(b'm'));
-        let point = _mm_cmpeq_epi8(v, splat(b'.'));
-        let newline = _mm_cmpeq_epi8(v, splat(b'\n'));
+        let m = $cmpeq(folded, splat(b'm'));
+        let point = $cmpeq(v, splat(b'.'));
+        let newline = $cmpeq(v, splat(b'\n'));
         let other = [b' ', b'\t', b'\r', b'-', b'+', b'=']
             .into_iter()
-            .fold(_mm_or_si128(point, newline), |acc, b| {
-                _mm_or_si128(acc, _mm_cmpeq_epi8(v, splat(b)))
-            });
-        let allowed = _mm_or_si128(_mm_or_si128(digit, letter), other);
-        let bits = |x: __m128i| _mm_movemask_epi8(x) as u32;
-        (bits(allowed) == 0xFFFF && bits(m) == 0).then(|| Classes {
+            .fold($or(point, newline), |acc, b| $or(acc, $cmpeq(v, splat(b))));
+        let allowed = $or($or(digit, letter), other);
+        let bits = |x: $vector| $movemask(x) as u32;
+        (bits(allowed) == $all && bits(m) == 0).then(|| Classes {
             letters: bits(letter),
             digits: bits(digit),
             points: bits(point),
             newlines: bits(newline),
         })
+    }};
+}
+
+/// The classes of `block`'s bytes; `None` if a byte is none of those a
+/// glance accepts (a line end among them), or an `M`.
+#[cfg(target_arch = "x86_64")]
+fn classify(block: &[u8; LANES]) -> Option<Classes> {
+    use std::arch::x86_64::{
+        __m128i, _mm_and_si128, _mm_cmpeq_epi8, _mm_cmpgt_epi8, _mm_loadu_si128, _mm_movemask_epi8,
+        _mm_or_si128, _mm_set1_epi8,
+    };
+    // SAFETY: SSE2 is part of every x86_64 target; the load reads the
+    // sixteen bytes of `block`, unaligned loads allowed.
+    unsafe {
+        let v = _mm_loadu_si128(block.as_ptr().cast::<__m128i>());
+        classify_vector!(
+            v,
+            __m128i,
+            _mm_set1_epi8,
+            _mm_and_si128,
+            _mm_or_si128,
+            _mm_cmpeq_epi8,
+            _mm_cmpgt_epi8,
+            _mm_movemask_epi8,
+            0xFFFF
+        )
     }
 }
 
@@ -206,35 +223,17 @@ mod wide {
         // SAFETY: the load reads the thirty-two bytes of `block`,
         // unaligned loads allowed.
         let v = unsafe { _mm256_loadu_si256(block.as_ptr().cast::<__m256i>()) };
-        // Bytes beyond ASCII are negative as `i8`: none of the ranges
-        // below holds them, so they fail `allowed`.
-        let splat = |b: u8| _mm256_set1_epi8(b as i8);
-        let within = |x: __m256i, low: u8, high: u8| {
-            _mm256_and_si256(
-                _mm256_cmpgt_epi8(x, splat(low - 1)),
-                _mm256_cmpgt_epi8(splat(high + 1), x),
-            )
-        };
-        let digit = within(v, b'0', b'9');
-        // `b | 0x20` is a lower-case letter exactly for the letters.
-        let folded = _mm256_or_si256(v, splat(0x20));
-        let letter = within(folded, b'a', b'z');
-        let m = _mm256_cmpeq_epi8(folded, splat(b'm'));
-        let point = _mm256_cmpeq_epi8(v, splat(b'.'));
-        let newline = _mm256_cmpeq_epi8(v, splat(b'\n'));
-        let other = [b' ', b'\t', b'\r', b'-', b'+', b'=']
-            .into_iter()
-            .fold(_mm256_or_si256(point, newline), |acc, b| {
-                _mm256_or_si256(acc, _mm256_cmpeq_epi8(v, splat(b)))
-            });
-        let allowed = _mm256_or_si256(_mm256_or_si256(digit, letter), other);
-        let bits = |x: __m256i| _mm256_movemask_epi8(x) as u32;
-        (bits(allowed) == u32::MAX && bits(m) == 0).then(|| Classes {
-            letters: bits(letter),
-            digits: bits(digit),
-            points: bits(point),
-            newlines: bits(newline),
-        })
+        classify_vector!(
+            v,
+            __m256i,
+            _mm256_set1_epi8,
+            _mm256_and_si256,
+            _mm256_or_si256,
+            _mm256_cmpeq_epi8,
+            _mm256_cmpgt_epi8,
+            _mm256_movemask_epi8,
+            u32::MAX
+        )
     }
 }
 
