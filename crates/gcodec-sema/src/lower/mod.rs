@@ -651,6 +651,10 @@ impl<'a> Lowering<'a> {
         }
     }
 
+    /// Appends the instruction of `op`, written at `span` of block
+    /// `block`. Inlined: the constant-word path emits three a line, and
+    /// the match below folds away where the op is known.
+    #[inline]
     fn emit(&mut self, block: usize, span: Span, op: Op) {
         match &op {
             // A jump target, or a return from code that may change the
