@@ -351,7 +351,6 @@ impl PartialEq for Frame {
     }
 }
 
-/// A fresh [`Frame::id`].
 /// What an identity frame maps the finite values `point` out to, into
 /// `out`: `0 + p` ([`Frame::to_outer`]), which is `p` but for `-0.0`,
 /// which becomes `+0.0`.
@@ -375,6 +374,7 @@ pub(crate) fn identity_inward_as_is(point: &[f64], out: &mut [f64]) -> bool {
     true
 }
 
+/// A fresh [`Frame::id`].
 fn frame_id() -> u64 {
     static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
     NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)

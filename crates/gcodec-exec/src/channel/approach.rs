@@ -59,16 +59,8 @@ impl Channel<'_> {
         }
         let start = self.state.geometry_point(&self.motion.wcs);
         let end = self.state.geometry_point(&self.motion.target);
-        self.finish_motion(
-            program,
-            instruction,
-            MotionKind::Rapid,
-            start,
-            end,
-            None,
-            0,
-            true,
-        )
+        self.state.note_traversed_frame();
+        self.finish_motion(program, instruction, MotionKind::Rapid, start, end, None, 0)
     }
 
     /// `FP=`: 1…4 (MD30600 has four fixed points per axis).

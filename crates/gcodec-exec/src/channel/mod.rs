@@ -730,10 +730,8 @@ impl<'r> Channel<'r> {
         let state = &self.state;
         let row = &mut self.row;
         row.block_number = self.block.number;
-        if let Some(file) = &self.block.file
-            && !Arc::ptr_eq(&row.file, file)
-        {
-            row.file = file.clone();
+        if let Some(file) = &self.block.file {
+            keep_file(&mut row.file, file);
         }
         row.line = self.block.line;
         row.level = self.block.level;
@@ -1071,21 +1069,21 @@ impl<'r> Channel<'r> {
         // of a flood): the same index is the same command, and nothing
         // changes, known without a call or a name (`KONTC`, which is
         // warned of each time, aside).
-        if group != 17 && self.state.modal_index(group) == Some(index) {
-            return;
+        let in_force = self.state.modal_index(group) == Some(index);
+        if !in_force || group == 17 {
+            self.change_modal(program, instruction, group, index, in_force);
         }
-        self.change_modal(program, instruction, group, index);
     }
 
-    /// [`Self::set_modal`] of a command that may not be in force.
+    /// [`Self::set_modal`] of a command not in force, or of group 17.
     fn change_modal(
         &mut self,
         program: &Arc<Program>,
         instruction: &Instruction,
         group: u8,
         index: u8,
+        in_force: bool,
     ) {
-        let in_force = self.state.modal_index(group) == Some(index);
         let Some(code) = ggroups::member(group, index) else {
             return;
         };
@@ -1296,6 +1294,15 @@ fn send(sink: &mut dyn EventSink, error: &mut Option<io::Error>, event: &Event) 
     }
     if let Err(e) = sink.event(event) {
         *error = Some(e);
+    }
+}
+
+/// Makes `kept` name `file`, counting a reference only when it is
+/// another file: the file mostly stays from one block or motion to the
+/// next.
+fn keep_file(kept: &mut Arc<str>, file: &Arc<str>) {
+    if !Arc::ptr_eq(kept, file) {
+        *kept = Arc::clone(file);
     }
 }
 

@@ -236,7 +236,8 @@ impl Channel<'_> {
             self.state
                 .to_machine(&frame, &scratch.target, &mut scratch.machine);
         }
-        self.finish_motion(program, instruction, kind, start, end, arc, arc_turns, true)
+        self.state.note_traversed_frame();
+        self.finish_motion(program, instruction, kind, start, end, arc, arc_turns)
     }
 
     /// Sets up a straight motion (`G0`, `G1`) to constant end points in a
@@ -304,8 +305,8 @@ impl Channel<'_> {
         let start = self.state.geometry_point(&self.motion.wcs);
         let end = self.state.geometry_point(&self.motion.target);
         // The motion runs in the frame the last one ran in
-        // (`positions_plain`): nothing to note.
-        self.finish_motion(program, instruction, kind, start, end, None, 0, false)
+        // (`positions_plain`): no frame to note.
+        self.finish_motion(program, instruction, kind, start, end, None, 0)
     }
 
     /// A feed motion without a feed: warned of once.
@@ -324,9 +325,8 @@ impl Channel<'_> {
     /// The motion from `scratch.wcs` (the start point `start`) to
     /// `scratch.target` (`end`; in machine coordinates `scratch.machine`),
     /// along `arc` if one: the summary's figures, the end tangent, the
-    /// event, the new position, and the frame it ran in if
-    /// `note_frame` (a motion known to run in the frame of the last one
-    /// has none to note).
+    /// event, the new position. The caller notes the frame the motion
+    /// runs in (`note_traversed_frame`) where it may have changed.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn finish_motion(
         &mut self,
@@ -337,7 +337,6 @@ impl Channel<'_> {
         end: Point3,
         arc: Option<geometry::Arc>,
         arc_turns: u32,
-        note_frame: bool,
     ) -> Result<(), RunError> {
         let length = match &arc {
             Some(a) => a.length,
@@ -363,9 +362,6 @@ impl Channel<'_> {
         }
         // The channel is at the programmed end point, held or not.
         self.state.machine.copy_from_slice(&self.motion.machine);
-        if note_frame {
-            self.state.note_traversed_frame();
-        }
         if engaged {
             // Compensation or a corner element: the stage holds the
             // motion until the next element makes it final.
@@ -414,9 +410,7 @@ impl Channel<'_> {
         // In place: the file mostly stays, and counting a reference to it
         // and dropping one, every motion, costs more than the rest.
         let source = &mut scratch.event.source;
-        if !Arc::ptr_eq(&source.file, &program.file) {
-            source.file = program.file.clone();
-        }
+        super::keep_file(&mut source.file, &program.file);
         source.line = instruction.source.line;
         source.col = instruction.source.col;
         source.level = level;
@@ -679,11 +673,13 @@ impl Channel<'_> {
                 .map(|(a, b)| (a - b).abs())
                 .fold(0.0, f64::max)
         };
-        // G94, the commonest, without comparing names.
-        if self.state.feeds_per_minute() {
-            return travel / feed * 60.0;
-        }
-        let minutes = match self.state.modal(15) {
+        // G94, the commonest, is known without looking up the name.
+        let feed_mode = if self.state.feeds_per_minute() {
+            None
+        } else {
+            self.state.modal(15)
+        };
+        let minutes = match feed_mode {
             Some("G93") => 1.0 / feed,
             Some(
                 "G95" | "G96" | "G961" | "G97" | "G971" | "G942" | "G952" | "G962" | "G972"

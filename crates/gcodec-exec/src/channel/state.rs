@@ -138,8 +138,8 @@ pub struct MachineState {
 #[derive(Clone, Copy, Debug)]
 struct ModalCodes {
     g18: Option<u8>,
-    g40: Option<u8>,
     g19: Option<u8>,
+    g40: Option<u8>,
     g70: Option<u8>,
     g700: Option<u8>,
     g91: Option<u8>,
@@ -157,8 +157,8 @@ impl ModalCodes {
         };
         Self {
             g18: index(6, "G18"),
-            g40: index(7, "G40"),
             g19: index(6, "G19"),
+            g40: index(7, "G40"),
             g70: index(13, "G70"),
             g700: index(13, "G700"),
             g91: index(14, "G91"),
