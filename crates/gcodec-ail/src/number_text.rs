@@ -24,23 +24,77 @@ fn write_shortest(out: &mut Vec<u8>, value: f64) {
     let _ = CompactFormatter.write_f64(out, value);
 }
 
+/// A short text built on the stack (a number's), copied into an output
+/// with a copy of a fixed size: a copy of a length known only at run time
+/// is a call, and several such calls per number cost more than its
+/// digits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ShortNumberText {
+    /// The text, from the first byte; the bytes after `len` are spare.
+    pub bytes: [u8; SHORT_NUMBER_TEXT_SIZE],
+    pub len: usize,
+}
+
+/// The room of a [`ShortNumberText`]: `u64::MAX` has 20 digits, a
+/// fixed-point number at most 15 bytes.
+pub const SHORT_NUMBER_TEXT_SIZE: usize = 24;
+
+impl Default for ShortNumberText {
+    /// Empty.
+    fn default() -> Self {
+        Self {
+            bytes: [0; SHORT_NUMBER_TEXT_SIZE],
+            len: 0,
+        }
+    }
+}
+
+impl ShortNumberText {
+    pub fn as_bytes(&self) -> &[u8] {
+        &self.bytes[..self.len]
+    }
+
+    /// Appends the text to `out`.
+    #[inline]
+    pub fn write_to(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&self.bytes);
+        out.truncate(out.len() - SHORT_NUMBER_TEXT_SIZE + self.len);
+    }
+}
+
 /// Writes `value` with at most 4 decimals when that is its shortest text,
 /// a whole number (zero too) as `1.0` if `point_zero` (JSON) or `1`
-/// (Rust's `{}`); false, writing nothing, when it is no such number.
+/// (Rust's `{}`); false, writing nothing, when it is no such number
+/// ([`fixed_point_text`]).
+pub fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> bool {
+    let mut text = ShortNumberText::default();
+    if !fixed_point_text(&mut text, value, point_zero) {
+        return false;
+    }
+    text.write_to(out);
+    true
+}
+
+/// Makes `text` the text of `value` with at most 4 decimals when that is
+/// its shortest text, a whole number (zero too) as `1.0` if `point_zero`
+/// (JSON) or `1` (Rust's `{}`); false, leaving `text` in an unspecified
+/// state, when it is no such number.
 ///
 /// Positions and feeds mostly have at most 4 decimals. When `n / 10^4`
 /// reads back as `value` (IEEE division rounds correctly, so this is
 /// exactly the round-trip test), that decimal is the shortest text: below
 /// 1e9 an f64's spacing is far under 1e-4, so no other multiple of 1e-4
 /// reads back as the same value.
-pub fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> bool {
+#[inline]
+pub fn fixed_point_text(text: &mut ShortNumberText, value: f64, point_zero: bool) -> bool {
+    let bytes = &mut text.bytes;
     if value == 0.0 {
         // Zero is in most rows (an axis at 0, a stopped spindle): `-0` keeps
         // its sign, as `{}` and serde_json write it.
-        if value.is_sign_negative() {
-            out.push(b'-');
-        }
-        out.extend_from_slice(if point_zero { b"0.0" } else { b"0" });
+        let sign = usize::from(value.is_sign_negative());
+        bytes[0] = b'-';
+        bytes[sign..sign + 3].copy_from_slice(b"0.0");
+        text.len = sign + if point_zero { 3 } else { 1 };
         return true;
     }
     let scaled = value * 1e4;
@@ -54,13 +108,10 @@ pub fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> boo
     if rounded as f64 / 1e4 != value {
         return false;
     }
-    // The whole text is built on the stack and copied once: several small
-    // copies per number cost more than the digits. Digits go in pairs
-    // from a table, and every copy into `text` has a fixed size: a copy
-    // of a length known only at run time is a call.
-    let mut text = [0u8; 24];
+    // Digits go in pairs from a table, and every copy into `bytes` has a
+    // fixed size.
     let mut len = usize::from(rounded < 0);
-    text[0] = b'-';
+    bytes[0] = b'-';
     let magnitude = rounded.unsigned_abs();
     // Below 1e9 (tested above): nine digits at most.
     let mut whole = (magnitude / 10_000) as u32;
@@ -69,13 +120,13 @@ pub fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> boo
     let mut at = len;
     while whole >= 100 {
         at -= 2;
-        text[at..at + 2].copy_from_slice(digit_pair(whole % 100));
+        bytes[at..at + 2].copy_from_slice(digit_pair(whole % 100));
         whole /= 100;
     }
     if whole >= 10 {
-        text[at - 2..at].copy_from_slice(digit_pair(whole));
+        bytes[at - 2..at].copy_from_slice(digit_pair(whole));
     } else {
-        text[at - 1] = b'0' + whole as u8;
+        bytes[at - 1] = b'0' + whole as u8;
     }
     let fraction = (magnitude % 10_000) as u32;
     if fraction != 0 {
@@ -85,16 +136,14 @@ pub fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> boo
         // The trailing `0` digits are the high bytes of the little-endian
         // word: those that become zero bytes.
         let trailing_zeros = (u32::from_le_bytes(digits) ^ 0x3030_3030).leading_zeros() / 8;
-        text[len] = b'.';
-        text[len + 1..len + 5].copy_from_slice(&digits);
+        bytes[len] = b'.';
+        bytes[len + 1..len + 5].copy_from_slice(&digits);
         len += 5 - trailing_zeros as usize;
     } else if point_zero {
-        text[len..len + 2].copy_from_slice(b".0");
+        bytes[len..len + 2].copy_from_slice(b".0");
         len += 2;
     }
-    // A copy of a fixed size is inlined; one of `len` bytes is a call.
-    out.extend_from_slice(&text);
-    out.truncate(out.len() - text.len() + len);
+    text.len = len;
     true
 }
 

@@ -7,9 +7,9 @@ use std::io::{self, Write};
 use std::sync::Arc;
 
 use super::line_buffer::LineBuffer;
-use super::numbers::write_u64;
+use super::numbers::{CountText, write_u64};
 use super::{AxisMap, AxisName, SpindleState, axis_names};
-use gcodec_ail::write_fixed_point;
+use gcodec_ail::{ShortNumberText, fixed_point_text, write_fixed_point};
 
 /// A modal group shown as a CSV column.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -146,6 +146,7 @@ pub struct CsvWriter<W: Write> {
     last_passed_over: bool,
     /// The state columns of the last row written, and their text.
     state: StateText,
+    place_text: PlaceText,
 }
 
 /// The columns of a row that say which block it is: all a passed-over
@@ -177,20 +178,15 @@ impl RowPlace {
 
 /// The state columns of the last row written, as values and as text: a
 /// row whose state is the same is passed over ([`CsvRows::Changes`]), and
-/// a row whose positions or other state columns are the same copies
-/// their text (the feed, the tool and the modal commands seldom change).
+/// a row copies the text of each position and of the other state columns
+/// that are the same (the feed, the tool and the modal commands seldom
+/// change; an axis the block does not move keeps its text).
 #[derive(Default)]
 struct StateText {
     /// Whether a row was written: the first row has none before it.
     written: bool,
-    /// The bits of each header axis's value (`None`: the row had none):
-    /// `-0` is written otherwise than `0`.
-    positions: Vec<Option<u64>>,
-    /// The same for the row at hand, before it is compared.
-    next_positions: Vec<Option<u64>>,
-    /// The text of each of `positions`: an axis that did not move keeps it.
-    position_cells: Vec<Vec<u8>>,
-    positions_text: Vec<u8>,
+    /// One per header axis, in the header's order.
+    positions: Vec<PositionCell>,
     tool: Option<String>,
     edge: u32,
     feed: u64,
@@ -201,93 +197,153 @@ struct StateText {
     rest_text: Vec<u8>,
 }
 
-impl StateText {
-    /// Whether `row`'s positions on `axes`, and its other state columns,
-    /// are the last row's.
-    fn compare(&mut self, axes: &[AxisName], row: &BlockRow) -> (bool, bool) {
-        self.next_positions.clear();
+/// One header axis's position in the last row written.
+#[derive(Default)]
+struct PositionCell {
+    /// The value's bits (`-0` is written otherwise than `0`); `None`: the
+    /// row had no value for the axis, an empty cell.
+    bits: Option<u64>,
+    /// The cell as written: most numbers fit a short text, copied with a
+    /// copy of a fixed size; `long` holds the others.
+    text: ShortNumberText,
+    long: Option<Vec<u8>>,
+}
+
+impl PositionCell {
+    /// Makes this the cell of `bits`.
+    fn set(&mut self, bits: Option<u64>) {
+        self.bits = bits;
+        self.long = None;
+        self.text.len = 0;
+        if let Some(bits) = bits {
+            let value = f64::from_bits(bits);
+            if !fixed_point_text(&mut self.text, value, false) {
+                self.text.len = 0;
+                let mut long = Vec::new();
+                write_f64_display(&mut long, value);
+                self.long = Some(long);
+            }
+        }
+    }
+
+    fn write_to(&self, line: &mut Vec<u8>) {
+        match &self.long {
+            None => self.text.write_to(line),
+            Some(long) => line.extend_from_slice(long),
+        }
+    }
+}
+
+/// A row's positions in the header's order. The executor fills the map in
+/// that order, with the header's static names: then they are read in
+/// place, compared by address, with no search.
+struct HeaderPositions<'r> {
+    row: &'r BlockRow,
+    in_header_order: bool,
+}
+
+impl<'r> HeaderPositions<'r> {
+    fn of(axes: &[AxisName], row: &'r BlockRow) -> Self {
         let entries = &row.positions.entries;
-        // The executor fills the map in the header's order, with the same
-        // static names: compared by address, no search.
         let in_header_order = entries.len() == axes.len()
             && entries
                 .iter()
                 .zip(axes)
                 .all(|((name, _), axis)| std::ptr::eq(name.as_ref(), axis.as_ref()));
-        if in_header_order {
-            self.next_positions
-                .extend(entries.iter().map(|(_, value)| Some(value.to_bits())));
+        Self {
+            row,
+            in_header_order,
+        }
+    }
+
+    /// The bits of the value on the `index`th header axis, `axis`.
+    #[inline]
+    fn bits(&self, index: usize, axis: &AxisName) -> Option<u64> {
+        if self.in_header_order {
+            self.row
+                .positions
+                .entries
+                .get(index)
+                .map(|(_, v)| v.to_bits())
         } else {
-            self.next_positions.extend(
-                axes.iter()
-                    .map(|axis| row.positions.get(axis).map(f64::to_bits)),
-            );
+            self.row.positions.get(axis).map(f64::to_bits)
         }
-        if !self.written {
-            return (false, false);
-        }
-        let positions = self.next_positions == self.positions;
-        let rest = row.columns_unchanged
+    }
+}
+
+impl StateText {
+    /// Whether `row`'s positions on `axes` are the last row's.
+    fn same_positions(&self, axes: &[AxisName], row: &BlockRow) -> bool {
+        let values = HeaderPositions::of(axes, row);
+        self.positions.len() == axes.len()
+            && axes
+                .iter()
+                .zip(&self.positions)
+                .enumerate()
+                .all(|(index, (axis, cell))| cell.bits == values.bits(index, axis))
+    }
+
+    /// Whether `row`'s state columns but the positions are the last
+    /// row's.
+    fn same_rest(&self, row: &BlockRow) -> bool {
+        row.columns_unchanged
             || self.edge == row.edge
                 && self.feed == row.feed.to_bits()
                 && self.spindle_speed == row.spindle_speed.to_bits()
                 && self.spindle == row.spindle
                 && self.tool == row.tool
-                && same_modal(&self.modal, &row.modal);
-        (positions, rest)
+                && same_modal(&self.modal, &row.modal)
     }
 
-    /// Remembers the state columns of `row`, and their text, after
-    /// [`StateText::compare`] said which are the same.
-    fn remember(&mut self, row: &BlockRow, (positions, rest): (bool, bool)) {
-        if !positions {
-            let cells = &mut self.position_cells;
-            cells.resize_with(self.next_positions.len(), Vec::new);
-            let text = &mut self.positions_text;
-            text.clear();
-            for (k, bits) in self.next_positions.iter().enumerate() {
-                let cell = &mut cells[k];
-                if self.positions.get(k) != Some(bits) {
-                    cell.clear();
-                    if let Some(bits) = bits {
-                        write_f64_csv(cell, f64::from_bits(*bits));
-                    }
-                }
-                text.push(b',');
-                text.extend_from_slice(cell);
+    /// Writes `row`'s positions on `axes` to `line` and remembers them
+    /// (the text of an axis whose value is the last row's stays).
+    fn write_positions(&mut self, line: &mut Vec<u8>, axes: &[AxisName], row: &BlockRow) {
+        let values = HeaderPositions::of(axes, row);
+        self.positions
+            .resize_with(axes.len(), PositionCell::default);
+        for (index, (axis, cell)) in axes.iter().zip(&mut self.positions).enumerate() {
+            let bits = values.bits(index, axis);
+            if cell.bits != bits || !self.written {
+                cell.set(bits);
             }
-            std::mem::swap(&mut self.positions, &mut self.next_positions);
+            line.push(b',');
+            cell.write_to(line);
         }
-        if !rest {
-            self.tool.clone_from(&row.tool);
-            self.edge = row.edge;
-            self.feed = row.feed.to_bits();
-            self.spindle_speed = row.spindle_speed.to_bits();
-            self.spindle = row.spindle;
-            copy_modal(&mut self.modal, &row.modal);
-            let text = &mut self.rest_text;
-            text.clear();
+    }
+
+    /// Remembers the state columns of `row` but the positions, and their
+    /// text.
+    fn remember_rest(&mut self, row: &BlockRow) {
+        self.tool.clone_from(&row.tool);
+        self.edge = row.edge;
+        self.feed = row.feed.to_bits();
+        self.spindle_speed = row.spindle_speed.to_bits();
+        self.spindle = row.spindle;
+        copy_modal(&mut self.modal, &row.modal);
+        let text = &mut self.rest_text;
+        text.clear();
+        text.push(b',');
+        write_csv_field(text, row.tool.as_deref().unwrap_or(""));
+        text.push(b',');
+        write_u64(text, u64::from(row.edge));
+        text.push(b',');
+        write_f64_csv(text, row.feed);
+        text.push(b',');
+        write_f64_csv(text, row.spindle_speed);
+        text.push(b',');
+        text.extend_from_slice(row.spindle.name().as_bytes());
+        for code in &row.modal {
             text.push(b',');
-            write_csv_field(text, row.tool.as_deref().unwrap_or(""));
-            text.push(b',');
-            write_u64(text, u64::from(row.edge));
-            text.push(b',');
-            write_f64_csv(text, row.feed);
-            text.push(b',');
-            write_f64_csv(text, row.spindle_speed);
-            text.push(b',');
-            text.extend_from_slice(row.spindle.name().as_bytes());
-            for code in &row.modal {
-                text.push(b',');
-                write_csv_field(text, code);
-            }
+            write_csv_field(text, code);
         }
-        self.written = true;
     }
 
     /// Writes the state columns remembered last.
     fn write(&self, line: &mut Vec<u8>) {
-        line.extend_from_slice(&self.positions_text);
+        for cell in &self.positions {
+            line.push(b',');
+            cell.write_to(line);
+        }
         line.extend_from_slice(&self.rest_text);
     }
 }
@@ -336,6 +392,7 @@ impl<W: Write> CsvWriter<W> {
             passed_over: RowPlace::default(),
             last_passed_over: false,
             state: StateText::default(),
+            place_text: PlaceText::default(),
         };
         let header = &mut csv.out.lines;
         header.extend_from_slice(b"block,file,line,level,blocks");
@@ -367,33 +424,39 @@ impl<W: Write> CsvWriter<W> {
     /// Takes the row of the next executed block and writes it if
     /// [`CsvRows`] selects it.
     pub fn row(&mut self, row: &BlockRow) -> io::Result<()> {
+        let state = &mut self.state;
         // The row before was written or passed over as the same as the
         // last written: either way this one is the same as that.
-        let same = if row.unchanged && self.state.written {
-            (true, true)
-        } else {
-            self.state.compare(&self.axes, row)
-        };
-        if self.rows == CsvRows::Changes && !row.moved && same == (true, true) {
+        let unchanged = row.unchanged && state.written;
+        let same_rest = state.written && (unchanged || state.same_rest(row));
+        if self.rows == CsvRows::Changes
+            && !row.moved
+            && same_rest
+            && (unchanged || state.same_positions(&self.axes, row))
+        {
             // Kept in case it is the last block.
             self.passed_over.of(row);
             self.last_passed_over = true;
             return Ok(());
         }
         self.last_passed_over = false;
-        self.write(row, same)
-    }
-
-    fn write(&mut self, row: &BlockRow, same: (bool, bool)) -> io::Result<()> {
         self.passed_over.of(row);
-        self.state.remember(row, same);
-        self.write_row()
+        if !same_rest {
+            state.remember_rest(row);
+        }
+        let line = &mut self.out.lines;
+        self.place_text.write(line, &self.passed_over);
+        state.write_positions(line, &self.axes, row);
+        line.extend_from_slice(&state.rest_text);
+        line.push(b'\n');
+        state.written = true;
+        self.out.line_done()
     }
 
     /// Writes the row of `passed_over` and the state columns remembered.
     fn write_row(&mut self) -> io::Result<()> {
         let line = &mut self.out.lines;
-        write_place(line, &self.passed_over);
+        self.place_text.write(line, &self.passed_over);
         self.state.write(line);
         line.push(b'\n');
         self.out.line_done()
@@ -420,19 +483,31 @@ impl<W: Write> CsvWriter<W> {
     }
 }
 
-/// Starts a row with the columns `block,file,line,level,blocks`.
-fn write_place(line: &mut Vec<u8>, place: &RowPlace) {
-    if let Some(number) = place.block_number {
-        write_u64(line, u64::from(number));
+/// The text of a row's `block`, `line`, `level` and `blocks` columns,
+/// kept from row to row.
+#[derive(Default)]
+struct PlaceText {
+    block_number: CountText,
+    line: CountText,
+    level: CountText,
+    blocks: CountText,
+}
+
+impl PlaceText {
+    /// Starts a row with the columns `block,file,line,level,blocks`.
+    fn write(&mut self, line: &mut Vec<u8>, place: &RowPlace) {
+        if let Some(number) = place.block_number {
+            self.block_number.write(line, u64::from(number));
+        }
+        line.push(b',');
+        line.extend_from_slice(&place.file_field);
+        line.push(b',');
+        self.line.write(line, u64::from(place.line));
+        line.push(b',');
+        self.level.write(line, u64::from(place.level));
+        line.push(b',');
+        self.blocks.write(line, place.blocks);
     }
-    line.push(b',');
-    line.extend_from_slice(&place.file_field);
-    line.push(b',');
-    write_u64(line, u64::from(place.line));
-    line.push(b',');
-    write_u64(line, u64::from(place.level));
-    line.push(b',');
-    write_u64(line, place.blocks);
 }
 
 /// A number as Rust's `{}` writes it (shortest text that reads back, no
@@ -495,6 +570,91 @@ mod tests {
             .skip(1)
             .map(|l| l.splitn(12, ',').nth(11).unwrap_or("").to_owned())
             .collect()
+    }
+
+    /// The position cells of rows with `positions` on the axes `X`, `Y`
+    /// and `Z` (given in another order than the header's, or missing),
+    /// every block written.
+    fn position_cells(positions: &[&[(&'static str, f64)]]) -> Vec<String> {
+        let axes = ["X", "Y", "Z"].map(Cow::Borrowed);
+        let mut csv = CsvWriter::new(Vec::new(), axes)
+            .expect("header")
+            .with_rows(CsvRows::EveryBlock);
+        for (index, row_positions) in positions.iter().enumerate() {
+            let mut row = BlockRow {
+                blocks: index as u64 + 1,
+                ..BlockRow::default()
+            };
+            for (axis, value) in *row_positions {
+                row.positions.insert(Cow::Borrowed(axis), *value);
+            }
+            csv.row(&row).expect("row");
+        }
+        let text = String::from_utf8(csv.into_inner().expect("flushes")).expect("UTF-8");
+        text.lines()
+            .skip(1)
+            .map(|l| l.split(',').skip(5).take(3).collect::<Vec<_>>().join(","))
+            .collect()
+    }
+
+    #[test]
+    fn position_cells_follow_every_value_short_long_or_missing() {
+        let huge = 1.5e300;
+        let rows: [&[(&str, f64)]; 6] = [
+            &[("X", 1.0), ("Y", -0.0), ("Z", huge)],
+            &[("X", 1.0), ("Y", 0.0), ("Z", huge)],
+            &[("Z", 0.125), ("X", 1.0)],
+            &[("X", 100.037), ("Z", 0.125)],
+            &[("X", 1e-7), ("Y", huge), ("Z", 0.125)],
+            &[("X", 1e-7), ("Y", huge), ("Z", 0.125)],
+        ];
+        let long = format!("{huge}");
+        assert_eq!(
+            position_cells(&rows),
+            [
+                format!("1,-0,{long}"),
+                format!("1,0,{long}"),
+                "1,,0.125".to_owned(),
+                "100.037,,0.125".to_owned(),
+                format!("0.0000001,{long},0.125"),
+                format!("0.0000001,{long},0.125"),
+            ]
+        );
+    }
+
+    #[test]
+    fn place_columns_count_up_down_and_across_digits() {
+        let mut csv = CsvWriter::new(Vec::new(), [Cow::Borrowed("X")])
+            .expect("header")
+            .with_rows(CsvRows::EveryBlock);
+        let places = [(None, 1, 0, 1), (Some(10), 9, 0, 9), (Some(11), 10, 1, 10)];
+        let places = places.into_iter().chain([
+            (Some(99), 99, 1, 99),
+            (Some(100), 100, 0, 100),
+            (None, 7, 0, u64::MAX),
+            (Some(u32::MAX), u32::MAX, u32::MAX, 3),
+        ]);
+        let mut expected = Vec::new();
+        for (block_number, line, level, blocks) in places {
+            let row = BlockRow {
+                block_number,
+                line,
+                level,
+                blocks,
+                file: "a,b.mpf".into(),
+                ..BlockRow::default()
+            };
+            csv.row(&row).expect("row");
+            let number = block_number.map(|n| n.to_string()).unwrap_or_default();
+            expected.push(format!("{number},\"a,b.mpf\",{line},{level},{blocks}"));
+        }
+        let text = String::from_utf8(csv.into_inner().expect("flushes")).expect("UTF-8");
+        let rows: Vec<String> = text
+            .lines()
+            .skip(1)
+            .map(|l| l.splitn(7, ',').take(6).collect::<Vec<_>>().join(","))
+            .collect();
+        assert_eq!(rows, expected);
     }
 
     #[test]
