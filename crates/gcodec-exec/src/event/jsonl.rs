@@ -5,7 +5,7 @@ use std::borrow::Cow;
 use std::io::{self, Write};
 
 use super::line_buffer::LineBuffer;
-use super::numbers::write_u64;
+use super::numbers::{CountText, write_u64};
 use super::{
     AxisMap, AxisName, Event, EventKind, EventSink, EventSource, ModalChangeEvent, MotionEvent,
     WorkOffsetContext,
@@ -334,6 +334,8 @@ fn write_modal_change_json(out: &mut Vec<u8>, change: &ModalChangeEvent) {
 struct SourceText {
     /// `,"source":{"file":…,"line":`.
     head: FileJsonText,
+    /// The line: mostly the last event's or the next.
+    line: CountText,
     /// `,"col":…,"level":…}}` of a column and level.
     tail: KeptText<(u32, u32)>,
 }
@@ -342,6 +344,7 @@ impl Default for SourceText {
     fn default() -> Self {
         Self {
             head: FileJsonText::between(b",\"source\":{\"file\":", b",\"line\":"),
+            line: CountText::default(),
             tail: KeptText::default(),
         }
     }
@@ -351,7 +354,7 @@ impl SourceText {
     /// `,"source":{…}}`: the event's source and the event's closing brace.
     fn write(&mut self, out: &mut Vec<u8>, source: &EventSource) {
         self.head.write(out, &source.file);
-        write_u64(out, u64::from(source.line));
+        self.line.write(out, u64::from(source.line));
         self.tail.write(out, (source.col, source.level), |tail| {
             tail.extend_from_slice(b",\"col\":");
             write_u64(tail, u64::from(source.col));
