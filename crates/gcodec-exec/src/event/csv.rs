@@ -195,6 +195,28 @@ struct StateText {
     modal: ModalRow,
     /// `,tool,edge,feed,spindle_speed,spindle` and the modal columns.
     rest_text: Vec<u8>,
+    /// Where each of those columns' fields ends in `rest_text`.
+    rest_ends: [usize; REST_COLUMNS],
+    /// The fields after one being written again.
+    rest_tail: Vec<u8>,
+}
+
+/// The state columns after the positions: `tool`, `edge`, `feed`,
+/// `spindle_speed`, `spindle`, then [`MAIN_MODAL_GROUPS`].
+const REST_COLUMNS: usize = 5 + MAIN_MODAL_GROUPS.len();
+
+/// Writes `,` and `row`'s field of the `column`th column after the
+/// positions.
+fn write_rest_field(text: &mut Vec<u8>, row: &BlockRow, column: usize) {
+    text.push(b',');
+    match column {
+        0 => write_csv_field(text, row.tool.as_deref().unwrap_or("")),
+        1 => write_u64(text, u64::from(row.edge)),
+        2 => write_f64_csv(text, row.feed),
+        3 => write_f64_csv(text, row.spindle_speed),
+        4 => text.extend_from_slice(row.spindle.name().as_bytes()),
+        modal => write_csv_field(text, &row.modal[modal - 5]),
+    }
 }
 
 /// One header axis's position in the last row written.
@@ -312,29 +334,57 @@ impl StateText {
     }
 
     /// Remembers the state columns of `row` but the positions, and their
-    /// text.
+    /// text. Mostly one column changes (a feed, a modal command): only
+    /// its field is written again.
     fn remember_rest(&mut self, row: &BlockRow) {
+        if self.rest_text.is_empty() {
+            for column in 0..REST_COLUMNS {
+                write_rest_field(&mut self.rest_text, row, column);
+                self.rest_ends[column] = self.rest_text.len();
+            }
+        } else {
+            for column in 0..REST_COLUMNS {
+                if self.rest_differs(row, column) {
+                    self.replace_rest_field(row, column);
+                }
+            }
+        }
         self.tool.clone_from(&row.tool);
         self.edge = row.edge;
         self.feed = row.feed.to_bits();
         self.spindle_speed = row.spindle_speed.to_bits();
         self.spindle = row.spindle;
         copy_modal(&mut self.modal, &row.modal);
-        let text = &mut self.rest_text;
-        text.clear();
-        text.push(b',');
-        write_csv_field(text, row.tool.as_deref().unwrap_or(""));
-        text.push(b',');
-        write_u64(text, u64::from(row.edge));
-        text.push(b',');
-        write_f64_csv(text, row.feed);
-        text.push(b',');
-        write_f64_csv(text, row.spindle_speed);
-        text.push(b',');
-        text.extend_from_slice(row.spindle.name().as_bytes());
-        for code in &row.modal {
-            text.push(b',');
-            write_csv_field(text, code);
+    }
+
+    /// Whether `row` shows something else than the last row written in
+    /// the `column`th column after the positions.
+    fn rest_differs(&self, row: &BlockRow, column: usize) -> bool {
+        match column {
+            0 => self.tool != row.tool,
+            1 => self.edge != row.edge,
+            2 => self.feed != row.feed.to_bits(),
+            3 => self.spindle_speed != row.spindle_speed.to_bits(),
+            4 => self.spindle != row.spindle,
+            modal => !same_command(&self.modal[modal - 5], &row.modal[modal - 5]),
+        }
+    }
+
+    /// Writes `row`'s field of the `column`th column after the positions
+    /// in place of the last one's.
+    fn replace_rest_field(&mut self, row: &BlockRow, column: usize) {
+        let start = column
+            .checked_sub(1)
+            .map_or(0, |before| self.rest_ends[before]);
+        let end = self.rest_ends[column];
+        self.rest_tail.clear();
+        self.rest_tail.extend_from_slice(&self.rest_text[end..]);
+        self.rest_text.truncate(start);
+        write_rest_field(&mut self.rest_text, row, column);
+        let new_end = self.rest_text.len();
+        self.rest_text.extend_from_slice(&self.rest_tail);
+        for later_end in &mut self.rest_ends[column..] {
+            *later_end = *later_end - end + new_end;
         }
     }
 
@@ -620,6 +670,47 @@ mod tests {
                 format!("0.0000001,{long},0.125"),
             ]
         );
+    }
+
+    #[test]
+    fn state_columns_follow_changes_one_several_or_all_at_once() {
+        let mut csv = CsvWriter::new(Vec::new(), [Cow::Borrowed("X")])
+            .expect("header")
+            .with_rows(CsvRows::EveryBlock);
+        let mut row = BlockRow::default();
+        let mut expected = Vec::new();
+        let mut step = |row: &BlockRow, tail: &str| {
+            csv.row(row).expect("row");
+            expected.push(tail.to_owned());
+        };
+        step(&row, ",0,0,0,stopped,,,,,,,,");
+        row.feed = 1000.0;
+        step(&row, ",0,1000,0,stopped,,,,,,,,");
+        row.modal[0] = Cow::Borrowed("G1");
+        row.modal[7] = Cow::Borrowed("G94");
+        step(&row, ",0,1000,0,stopped,G1,,,,,,,G94");
+        row.tool = Some("DRILL, 8 MM".to_owned());
+        row.edge = 12;
+        row.spindle_speed = 2500.5;
+        row.spindle = SpindleState::Cw;
+        row.modal[3] = Cow::Owned("G54".to_owned());
+        step(&row, "\"DRILL, 8 MM\",12,1000,2500.5,cw,G1,,,G54,,,,G94");
+        row.tool = None;
+        row.modal[0] = Cow::Borrowed("G0");
+        step(&row, ",12,1000,2500.5,cw,G0,,,G54,,,,G94");
+        row.edge = 1;
+        row.feed = 0.25;
+        row.spindle_speed = 0.0;
+        row.spindle = SpindleState::Stopped;
+        row.modal = Default::default();
+        step(&row, ",1,0.25,0,stopped,,,,,,,,");
+        let text = String::from_utf8(csv.into_inner().expect("flushes")).expect("UTF-8");
+        let tails: Vec<&str> = text
+            .lines()
+            .skip(1)
+            .map(|l| l.splitn(7, ',').nth(6).unwrap_or(""))
+            .collect();
+        assert_eq!(tails, expected);
     }
 
     #[test]
