@@ -19,31 +19,14 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use criterion::{Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
-use gcodec_driver::{Definitions, FileLoader, ProgramKind, SearchPath, compile_text};
-use gcodec_exec::channel::{BlockObserver, Channel, RunOptions};
+use gcodec_exec::channel::BlockObserver;
 use gcodec_exec::event::{BlockRow, CsvWriter, Event, EventSink, JsonlSink, axis_names};
 use gcodec_profile::Profile;
 
-// The allocator of the `gcodec` binary, configured as it configures it
-// (crates/gcodec-cli/src/main.rs), so that the figure is what users get.
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-const MI_OPTION_PURGE_DELAY: libmimalloc_sys::mi_option_t = 15;
+mod common;
 
 #[path = "../../gcodec-parser/benches/program/mod.rs"]
 mod program;
-
-/// `lines` blocks `G1 X… Y… F1000`, as the peer benchmark's generator
-/// writes them.
-fn flood(lines: usize) -> Vec<u8> {
-    let mut src = String::new();
-    for i in 0..lines {
-        let x = 100.0 + (i * 37 % 100_000) as f64 / 1000.0;
-        let y = 200.0 + (i * 53 % 100_000) as f64 / 1000.0;
-        src.push_str(&format!("G1 X{x:.3} Y{y:.3} F1000\n"));
-    }
-    src.into_bytes()
-}
 
 /// Every event of a run.
 #[derive(Default)]
@@ -69,19 +52,10 @@ impl BlockObserver for Rows {
 
 /// The events and rows of a run of `src` to its end.
 fn record(name: &str, src: &[u8], profile: &Arc<Profile>) -> (Events, Rows) {
-    let definitions = Definitions::new();
-    let compiled = compile_text(name, src, ProgramKind::Main, profile, &definitions);
-    assert!(!compiled.has_errors(), "{:?}", compiled.diagnostics);
-    let program = compiled.into_loaded("MAIN").program;
-    let mut loader = FileLoader::new(
-        SearchPath::new(),
-        Arc::clone(profile),
-        Arc::new(Definitions::new()),
-    );
-    let mut options = RunOptions::for_profile(profile);
-    options.max_steps = u64::MAX;
+    let program = common::lowered(name, src, profile);
+    let mut loader = common::loader(profile);
     let (mut events, mut rows) = (Events::default(), Rows::default());
-    Channel::new(Arc::clone(profile), options, &mut loader, &mut events)
+    common::channel(profile, &mut loader, &mut events, true)
         .with_observer(&mut rows)
         .run(program)
         .expect("no output error");
@@ -120,11 +94,10 @@ fn write_csv<W: Write>(rows: &Rows, profile: &Profile, out: W) -> W {
 }
 
 fn bench(c: &mut Criterion) {
-    // SAFETY: `mi_option_set` only stores the value (see the CLI's main).
-    unsafe { libmimalloc_sys::mi_option_set(MI_OPTION_PURGE_DELAY, -1) };
+    common::configure_allocator();
     let profile = Arc::new(gcodec_profile::builtin().expect("built-in profile"));
     let programs = [
-        ("flood_100k", flood(100_000)),
+        ("flood_100k", common::flood(100_000)),
         ("program_100k", program::generate(100_000)),
     ];
     for (name, src) in programs {
