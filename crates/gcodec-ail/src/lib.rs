@@ -28,9 +28,7 @@ use gcodec_lang::addresses::{AddressScope, NamedAddress, TransitionKind};
 use gcodec_lang::ggroups::GCommand;
 use gcodec_lang::{DataType, DimensionMode, FrameOp, MClass, MotionKind, WorkOffsetCode};
 pub use json_text::{FileJsonText, write_json_string};
-pub use number_text::{
-    SHORT_NUMBER_TEXT_SIZE, ShortNumberText, fixed_point_text, write_fixed_point, write_json_f64,
-};
+pub use number_text::{ShortNumberText, fixed_point_text, write_fixed_point, write_json_f64};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

@@ -50,10 +50,6 @@ impl Default for ShortNumberText {
 }
 
 impl ShortNumberText {
-    pub fn as_bytes(&self) -> &[u8] {
-        &self.bytes[..self.len]
-    }
-
     /// Appends the text to `out`.
     #[inline]
     pub fn write_to(&self, out: &mut Vec<u8>) {

@@ -1,6 +1,6 @@
 //! The number texts the executor's writers share besides
 //! `gcodec_ail::write_fixed_point`: the 4-decimal fraction of the text
-//! trace, and unsigned integers.
+//! trace, unsigned integers, and counts kept as text ([`CountText`]).
 
 use gcodec_ail::ShortNumberText;
 
@@ -23,11 +23,11 @@ pub(super) fn write_u64(out: &mut Vec<u8>, value: u64) {
 }
 
 /// The decimal text of a count that mostly stays or goes up by one from
-/// row to row (a CSV row's line and executed blocks): the next value's
-/// text is the last one's with a digit carried, not written anew, and it
-/// is copied with a copy of a fixed size (with `itoa` and a copy of its
-/// text, the three counts of a row were a quarter of the CSV writer).
-#[derive(Clone)]
+/// row to row (a CSV row's line and executed blocks, a JSONL event's
+/// line): the next value's text is the last one's with a digit carried,
+/// not written anew, and it is copied with a copy of a fixed size (with
+/// `itoa` and a copy of its text, the three counts of a row were a
+/// quarter of the CSV writer).
 pub(super) struct CountText {
     value: u64,
     text: ShortNumberText,
