@@ -257,8 +257,9 @@ impl PositionCell {
 }
 
 /// A row's positions in the header's order. The executor fills the map in
-/// that order, with the header's static names: then they are read in
-/// place, compared by address, with no search.
+/// that order, with the header's names: then they are read in place with
+/// no search, the names compared by address (a single letter is one
+/// static text) or, for a longer name (`XV`), by its bytes.
 struct HeaderPositions<'r> {
     row: &'r BlockRow,
     in_header_order: bool,
@@ -268,10 +269,9 @@ impl<'r> HeaderPositions<'r> {
     fn of(axes: &[AxisName], row: &'r BlockRow) -> Self {
         let entries = &row.positions.entries;
         let in_header_order = entries.len() == axes.len()
-            && entries
-                .iter()
-                .zip(axes)
-                .all(|((name, _), axis)| std::ptr::eq(name.as_ref(), axis.as_ref()));
+            && entries.iter().zip(axes).all(|((name, _), axis)| {
+                std::ptr::eq(name.as_ref(), axis.as_ref()) || name == axis
+            });
         Self {
             row,
             in_header_order,
@@ -670,6 +670,37 @@ mod tests {
                 format!("0.0000001,{long},0.125"),
             ]
         );
+    }
+
+    #[test]
+    fn position_cells_of_longer_axis_names_in_or_out_of_the_headers_order() {
+        let header = [Cow::Borrowed("X"), Cow::Owned("XV".to_owned())];
+        let mut csv = CsvWriter::new(Vec::new(), header)
+            .expect("header")
+            .with_rows(CsvRows::EveryBlock);
+        for entries in [
+            [("X", 1.5), ("XV", 2.0)],
+            [("XV", 3.0), ("X", 1.5)],
+            [("X", 4.0), ("XV", 3.0)],
+        ] {
+            let mut row = BlockRow::default();
+            for (axis, value) in entries {
+                // A name of its own allocation, as a profile's would be.
+                let name = match axis {
+                    "X" => Cow::Borrowed("X"),
+                    other => Cow::Owned(other.to_owned()),
+                };
+                row.positions.insert(name, value);
+            }
+            csv.row(&row).expect("row");
+        }
+        let text = String::from_utf8(csv.into_inner().expect("flushes")).expect("UTF-8");
+        let cells: Vec<String> = text
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').skip(5).take(2).collect::<Vec<_>>().join(","))
+            .collect();
+        assert_eq!(cells, ["1.5,2", "1.5,3", "4,3"]);
     }
 
     #[test]
