@@ -944,6 +944,41 @@ fn hand_written_motion_json_is_what_serde_writes() {
     assert_written_as_serde_writes(&events);
 }
 
+/// The JSONL sink keeps the text of a motion's `to_machine` apart from
+/// its `to` while an offset sets them apart: motions whose `to_machine`
+/// is now their `to`, now offset (values changing, staying, on other
+/// axes), must still be written as serde writes each.
+#[test]
+fn machine_positions_apart_from_the_workpiece_are_written_as_serde_writes_them() {
+    let numbers = awkward_numbers();
+    let mut events = Vec::new();
+    for (index, chunk) in numbers.chunks(2).take(3_000).enumerate() {
+        let (x, y) = (chunk[0], chunk.get(1).copied().unwrap_or(0.0));
+        let mut motion = arc_motion();
+        motion.centre = None;
+        motion.radius = None;
+        motion.to = AxisMap::from([("X", x), ("Y", y), ("Z", 5.0)]);
+        motion.to_machine = match index % 4 {
+            // No offset: the same map.
+            0 => motion.to.clone(),
+            // An offset on X and Y; Z stays.
+            1 | 2 => AxisMap::from([("X", x - 412.5), ("Y", y - 20.0), ("Z", 5.0)]),
+            // Another axis set.
+            _ => AxisMap::from([("X", x - 412.5), ("Z", 0.0), ("B", y)]),
+        };
+        events.push(Event {
+            kind: EventKind::Motion(motion),
+            source: EventSource {
+                file: Arc::from("part.mpf"),
+                line: index as u32 + 1,
+                col: 1,
+                level: 0,
+            },
+        });
+    }
+    assert_written_as_serde_writes(&events);
+}
+
 /// The JSONL sink copies a motion's feed, plane and work-offset fields
 /// from the last motion's text while they are the same: motions that now
 /// keep them, now change one (the feed to `-0.0`, to none, the feed mode

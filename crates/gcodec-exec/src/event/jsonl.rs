@@ -28,6 +28,9 @@ pub struct JsonlSink<W: Write> {
     last_head: KeptText<MotionKind>,
     /// The last motion's `to`, as written.
     last_to: AxisMapText,
+    /// The last motion's `to_machine` where it was not its `to` (an
+    /// offset or frame active, as `G54` mostly is), as written.
+    last_to_machine: AxisMapText,
     /// The last event's source, as written.
     last_source: SourceText,
     /// The last motion's feed, plane and work-offset fields, as written.
@@ -224,6 +227,7 @@ impl<W: Write> JsonlSink<W> {
             out: LineBuffer::new(writer),
             last_head: KeptText::default(),
             last_to: AxisMapText::default(),
+            last_to_machine: AxisMapText::default(),
             last_source: SourceText::default(),
             last_settings: MotionSettingsText::default(),
         }
@@ -245,7 +249,11 @@ impl<W: Write> EventSink for JsonlSink<W> {
                     head.extend_from_slice(motion.motion.name().as_bytes());
                     head.extend_from_slice(b"\",\"from\":");
                 });
-                write_motion_json(lines, motion, &mut self.last_to, &mut self.last_settings);
+                let maps = MotionMapsText {
+                    to: &mut self.last_to,
+                    to_machine: &mut self.last_to_machine,
+                };
+                write_motion_json(lines, motion, maps, &mut self.last_settings);
                 self.last_source.write(lines, &event.source);
             }
             EventKind::ModalChange(change) => {
@@ -263,20 +271,33 @@ impl<W: Write> EventSink for JsonlSink<W> {
     }
 }
 
+/// The kept texts of a motion's maps: its `to` (its `from` is mostly the
+/// last one's, its `to_machine` the same while no offset or frame is
+/// active) and its `to_machine` where that differs.
+struct MotionMapsText<'a> {
+    to: &'a mut AxisMapText,
+    to_machine: &'a mut AxisMapText,
+}
+
 /// A motion event as serde writes it: the same fields in the same order,
 /// numbers in the same shortest form; from its `from` (after its head)
 /// to before its source and closing brace.
 fn write_motion_json(
     out: &mut Vec<u8>,
     motion: &MotionEvent,
-    last_to: &mut AxisMapText,
+    maps: MotionMapsText<'_>,
     last_settings: &mut MotionSettingsText,
 ) {
-    last_to.write_if_same(out, &motion.from);
+    let MotionMapsText { to, to_machine } = maps;
+    to.write_if_same(out, &motion.from);
     out.extend_from_slice(b",\"to\":");
-    last_to.write(out, &motion.to);
+    to.write(out, &motion.to);
     out.extend_from_slice(b",\"to_machine\":");
-    last_to.write_if_same(out, &motion.to_machine);
+    if to.holds(&motion.to_machine) {
+        out.extend_from_slice(&to.text);
+    } else {
+        to_machine.write(out, &motion.to_machine);
+    }
     if let Some(centre) = &motion.centre {
         out.extend_from_slice(b",\"centre\":");
         write_axis_map_json(out, centre);
