@@ -310,3 +310,28 @@ fn a_flood_of_plain_motions_runs_the_same_either_way() {
     let (direct, _) = outputs(&mill, "flood.mpf", program.as_bytes(), true);
     assert_eq!(direct.matches("\"event\":\"motion\"").count(), 200);
 }
+
+/// Floods under a frame the motions keep running in — a work offset (as
+/// real programs mostly run), a rotation, a scale and mirroring, a tool
+/// length — take the direct path with the frame's arithmetic: the same
+/// either way, signed zeros and increments included.
+#[test]
+fn floods_under_a_frame_they_keep_run_the_same_either_way() {
+    let heads = [
+        "G54 G1 F1000",
+        "TRANS X5 Y-2 Z-0\nG1 F1000",
+        "ROT Z30\nG1 F1000",
+        "SCALE X2 Y0.5\nMIRROR Y0\nG1 F1000",
+        "T=1 M6 D1\nG54 G1 F1000",
+        "G54 G91 G1 F1000",
+    ];
+    let machine = Arc::new(profile("mill_tool_management.toml"));
+    for head in heads {
+        let mut program = format!("{head}\n");
+        for i in 0..120 {
+            let z = if i % 5 == 0 { "-0" } else { "0.5" };
+            program.push_str(&format!("X{}.{} Y-{i} Z{z}\n", i / 3, i % 7));
+        }
+        assert_same(head, program.as_bytes(), &machine);
+    }
+}

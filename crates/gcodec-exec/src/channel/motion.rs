@@ -240,12 +240,16 @@ impl Channel<'_> {
         self.finish_motion(program, instruction, kind, start, end, arc, arc_turns)
     }
 
-    /// Sets up a straight motion (`G0`, `G1`) to constant end points in a
-    /// plain state ([`super::state::MachineState::positions_plain`]) the
-    /// direct way: the workpiece position is the machine position, the
-    /// end point the programmed values, the machine end point the end
-    /// point, with none of the general path's frame transforms,
-    /// evaluation, polar or contour-angle words. `false`, with nothing of
+    /// Sets up a straight motion (`G0`, `G1`) to constant end points the
+    /// direct way, in a plain state
+    /// ([`super::state::MachineState::positions_plain`]: the workpiece
+    /// position is the machine position, the machine end point the end
+    /// point) or in the frame the last motion ran in
+    /// ([`super::state::MachineState::frame_as_traversed`]: a work offset,
+    /// mostly; both go through the frame's arithmetic as the general
+    /// path's do): the end point the programmed values, with none of the
+    /// general path's evaluation, increments across a frame change, polar
+    /// or contour-angle words. `false`, with nothing of
     /// the channel changed but the motion's scratch buffers, when the
     /// block or the state is not such a motion: the general path runs it,
     /// and says what is wrong with it. Both paths give the same events and
@@ -256,14 +260,23 @@ impl Channel<'_> {
             || !kind_is_straight(kind)
             || self.pending_contour.is_some()
             || state.frame_axes.len() != state.machine.len()
-            || !state.positions_plain()
         {
             return false;
         }
-        let scratch = &mut self.motion;
-        if !identity_inward_as_is(&state.machine, &mut scratch.wcs) {
+        // In a plain state the positions are the machine's as they are; in
+        // a frame the last motion ran in too (a work offset, mostly) they
+        // go through the frame's arithmetic as the general path's do.
+        let plain = state.positions_plain();
+        if plain {
+            if !identity_inward_as_is(&state.machine, &mut self.motion.wcs) {
+                return false;
+            }
+        } else if state.frame_as_traversed() {
+            self.motion.workpiece_position(state);
+        } else {
             return false;
         }
+        let scratch = &mut self.motion;
         scratch.target.copy_from_slice(&scratch.wcs);
         // Under G71 and G90 a value is the end point itself on a linear
         // axis that reads no diameters ([`Self::dimension`]).
@@ -290,7 +303,13 @@ impl Channel<'_> {
             self.motion.target[axis] = end;
         }
         let scratch = &mut self.motion;
-        identity_outward(&scratch.target, &mut scratch.machine);
+        if plain {
+            identity_outward(&scratch.target, &mut scratch.machine);
+        } else {
+            let frame = self.state.total_frame();
+            self.state
+                .to_machine(&frame, &scratch.target, &mut scratch.machine);
+        }
         true
     }
 
@@ -305,7 +324,7 @@ impl Channel<'_> {
         let start = self.state.geometry_point(&self.motion.wcs);
         let end = self.state.geometry_point(&self.motion.target);
         // The motion runs in the frame the last one ran in
-        // (`positions_plain`): no frame to note.
+        // (`positions_plain`, `frame_as_traversed`): no frame to note.
         self.finish_motion(program, instruction, kind, start, end, None, 0)
     }
 

@@ -453,6 +453,18 @@ impl MachineState {
             })
     }
 
+    /// Whether a motion now runs in the frame the last motion ran in,
+    /// with no block suppression: no change of frame is left for an
+    /// increment to traverse, and the motion notes no new one
+    /// ([`Self::note_traversed_frame`] would change nothing).
+    pub fn frame_as_traversed(&self) -> bool {
+        self.suppression.is_none()
+            && self
+                .traversed_frame
+                .as_ref()
+                .is_some_and(|f| f.same_as(&self.total_frame()))
+    }
+
     /// Whether workpiece and machine coordinates are the same numbers
     /// now: no tool length and a total frame that changes no value
     /// (`-0.0` and values out of range aside, [`Frame::is_identity`]).
