@@ -271,10 +271,16 @@ impl Channel<'_> {
             if !identity_inward_as_is(&state.machine, &mut self.motion.wcs) {
                 return false;
             }
-        } else if state.frame_as_traversed() {
-            self.motion.workpiece_position(state);
         } else {
-            return false;
+            // Not plain but in the frame traversed: the frame changes
+            // values or a tool length acts, and the workpiece position is
+            // the frame's image of the machine's
+            // ([`MotionScratch::workpiece_position`] gives the same).
+            let frame = state.total_frame();
+            if !state.frame_as_traversed(&frame) {
+                return false;
+            }
+            state.to_workpiece(&frame, &state.machine, &mut self.motion.wcs);
         }
         let scratch = &mut self.motion;
         scratch.target.copy_from_slice(&scratch.wcs);

@@ -454,15 +454,16 @@ impl MachineState {
     }
 
     /// Whether a motion now runs in the frame the last motion ran in,
-    /// with no block suppression: no change of frame is left for an
-    /// increment to traverse, and the motion notes no new one
+    /// `total` ([`Self::total_frame`], which the caller has at hand), with
+    /// no block suppression: no change of frame is left for an increment
+    /// to traverse, and the motion notes no new one
     /// ([`Self::note_traversed_frame`] would change nothing).
-    pub fn frame_as_traversed(&self) -> bool {
+    pub fn frame_as_traversed(&self, total: &Frame) -> bool {
         self.suppression.is_none()
             && self
                 .traversed_frame
                 .as_ref()
-                .is_some_and(|f| f.same_as(&self.total_frame()))
+                .is_some_and(|f| f.same_as(total))
     }
 
     /// Whether workpiece and machine coordinates are the same numbers
