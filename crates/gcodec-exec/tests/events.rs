@@ -944,20 +944,41 @@ fn hand_written_motion_json_is_what_serde_writes() {
     assert_written_as_serde_writes(&events);
 }
 
-/// The JSONL sink keeps the text of a motion's `to_machine` apart from
-/// its `to` while an offset sets them apart: motions whose `to_machine`
-/// is now their `to`, now offset (values changing, staying, on other
+/// The JSONL sink keeps the text of a motion's `from` and `to_machine`
+/// apart from its `to` while a frame sets them apart: motions whose
+/// `from` is the last `to`, a bit off it or another map, and whose
+/// `to_machine` is their `to`, offset (values changing, staying, on other
 /// axes), must still be written as serde writes each.
 #[test]
 fn machine_positions_apart_from_the_workpiece_are_written_as_serde_writes_them() {
     let numbers = awkward_numbers();
     let mut events = Vec::new();
+    let mut last_to = AxisMap::from([("X", 0.0), ("Y", 0.0), ("Z", 5.0)]);
     for (index, chunk) in numbers.chunks(2).take(3_000).enumerate() {
         let (x, y) = (chunk[0], chunk.get(1).copied().unwrap_or(0.0));
         let mut motion = arc_motion();
         motion.centre = None;
         motion.radius = None;
+        // The last `to`; the same with X a bit off (computed back from the
+        // machine position under a frame); or a map of its own.
+        motion.from = match index % 3 {
+            0 => last_to.clone(),
+            1 => {
+                let mut off = AxisMap::from([("X", 0.0), ("Y", 0.0), ("Z", 5.0)]);
+                for (axis, value) in last_to.iter() {
+                    let value = if axis == "X" && value.is_finite() {
+                        f64::from_bits(value.to_bits() ^ 1)
+                    } else {
+                        value
+                    };
+                    off.insert(Cow::Owned(axis.to_owned()), value);
+                }
+                off
+            }
+            _ => motion.from,
+        };
         motion.to = AxisMap::from([("X", x), ("Y", y), ("Z", 5.0)]);
+        last_to = motion.to.clone();
         motion.to_machine = match index % 4 {
             // No offset: the same map.
             0 => motion.to.clone(),

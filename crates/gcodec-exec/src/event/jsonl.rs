@@ -31,6 +31,10 @@ pub struct JsonlSink<W: Write> {
     /// The last motion's `to_machine` where it was not its `to` (an
     /// offset or frame active, as `G54` mostly is), as written.
     last_to_machine: AxisMapText,
+    /// The last motion's `from` where it was not the motion before's
+    /// `to` (under a frame, the workpiece position computed back from the
+    /// machine's can differ from it in the last bit), as written.
+    last_from: AxisMapText,
     /// The last event's source, as written.
     last_source: SourceText,
     /// The last motion's feed, plane and work-offset fields, as written.
@@ -203,14 +207,14 @@ impl AxisMapText {
         out.extend_from_slice(&self.text);
     }
 
-    /// Writes `map` to `out`, copying the remembered text if it is the
-    /// same map.
+    /// Writes `map` to `out` as `kept`'s text if that is the same map, as
+    /// this one's otherwise (and keeps it).
     #[inline]
-    fn write_if_same(&self, out: &mut Vec<u8>, map: &AxisMap) {
-        if self.holds(map) {
-            out.extend_from_slice(&self.text);
+    fn write_unless_kept(&mut self, out: &mut Vec<u8>, map: &AxisMap, kept: &AxisMapText) {
+        if kept.holds(map) {
+            out.extend_from_slice(&kept.text);
         } else {
-            write_axis_map_json(out, map);
+            self.write(out, map);
         }
     }
 }
@@ -228,6 +232,7 @@ impl<W: Write> JsonlSink<W> {
             last_head: KeptText::default(),
             last_to: AxisMapText::default(),
             last_to_machine: AxisMapText::default(),
+            last_from: AxisMapText::default(),
             last_source: SourceText::default(),
             last_settings: MotionSettingsText::default(),
         }
@@ -250,6 +255,7 @@ impl<W: Write> EventSink for JsonlSink<W> {
                     head.extend_from_slice(b"\",\"from\":");
                 });
                 let maps = MotionMapsText {
+                    from: &mut self.last_from,
                     to: &mut self.last_to,
                     to_machine: &mut self.last_to_machine,
                 };
@@ -273,8 +279,9 @@ impl<W: Write> EventSink for JsonlSink<W> {
 
 /// The kept texts of a motion's maps: its `to` (its `from` is mostly the
 /// last one's, its `to_machine` the same while no offset or frame is
-/// active) and its `to_machine` where that differs.
+/// active), and its `from` and `to_machine` where they differ.
 struct MotionMapsText<'a> {
+    from: &'a mut AxisMapText,
     to: &'a mut AxisMapText,
     to_machine: &'a mut AxisMapText,
 }
@@ -288,16 +295,16 @@ fn write_motion_json(
     maps: MotionMapsText<'_>,
     last_settings: &mut MotionSettingsText,
 ) {
-    let MotionMapsText { to, to_machine } = maps;
-    to.write_if_same(out, &motion.from);
+    let MotionMapsText {
+        from,
+        to,
+        to_machine,
+    } = maps;
+    from.write_unless_kept(out, &motion.from, to);
     out.extend_from_slice(b",\"to\":");
     to.write(out, &motion.to);
     out.extend_from_slice(b",\"to_machine\":");
-    if to.holds(&motion.to_machine) {
-        out.extend_from_slice(&to.text);
-    } else {
-        to_machine.write(out, &motion.to_machine);
-    }
+    to_machine.write_unless_kept(out, &motion.to_machine, to);
     if let Some(centre) = &motion.centre {
         out.extend_from_slice(b",\"centre\":");
         write_axis_map_json(out, centre);
