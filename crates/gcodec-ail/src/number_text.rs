@@ -73,8 +73,8 @@ pub fn write_fixed_point(out: &mut Vec<u8>, value: f64, point_zero: bool) -> boo
 
 /// Makes `text` the text of `value` with at most 4 decimals when that is
 /// its shortest text, a whole number (zero too) as `1.0` if `point_zero`
-/// (JSON) or `1` (Rust's `{}`); false, leaving `text` in an unspecified
-/// state, when it is no such number.
+/// (JSON) or `1` (Rust's `{}`); false, leaving `text` as it was, when it
+/// is no such number.
 ///
 /// Positions and feeds mostly have at most 4 decimals. When `n / 10^4`
 /// reads back as `value` (IEEE division rounds correctly, so this is

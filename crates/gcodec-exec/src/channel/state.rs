@@ -444,13 +444,10 @@ impl MachineState {
     /// are `-0.0` or not finite are the caller's to rule out: the frame's
     /// arithmetic can change those.
     pub fn positions_plain(&self) -> bool {
-        self.suppression.is_none()
-            && self.tool_length.to_bits() == 0
-            && self.identity_total_frame().is_some_and(|total| {
-                self.traversed_frame
-                    .as_ref()
-                    .is_some_and(|f| f.same_as(&total))
-            })
+        self.tool_length.to_bits() == 0
+            && self
+                .identity_total_frame()
+                .is_some_and(|total| self.frame_as_traversed(&total))
     }
 
     /// Whether a motion now runs in the frame the last motion ran in,

@@ -240,7 +240,6 @@ impl PositionCell {
         if let Some(bits) = bits {
             let value = f64::from_bits(bits);
             if !fixed_point_text(&mut self.text, value, false) {
-                self.text.len = 0;
                 let mut long = Vec::new();
                 write_f64_display(&mut long, value);
                 self.long = Some(long);
@@ -308,28 +307,21 @@ impl StateText {
     /// Whether `row`'s state columns but the positions are the last
     /// row's.
     fn same_rest(&self, row: &BlockRow) -> bool {
-        row.columns_unchanged
-            || self.edge == row.edge
-                && self.feed == row.feed.to_bits()
-                && self.spindle_speed == row.spindle_speed.to_bits()
-                && self.spindle == row.spindle
-                && self.tool == row.tool
-                && same_modal(&self.modal, &row.modal)
+        row.columns_unchanged || !(0..REST_COLUMNS).any(|column| self.rest_differs(row, column))
     }
 
-    /// Writes `row`'s positions on `axes` to `line` and remembers them
-    /// (the text of an axis whose value is the last row's stays).
-    fn write_positions(&mut self, line: &mut Vec<u8>, axes: &[AxisName], row: &BlockRow) {
+    /// Remembers `row`'s positions on `axes`: the cell of an axis whose
+    /// value is the last row's stays (a cell not yet set is the empty one
+    /// of no value).
+    fn remember_positions(&mut self, axes: &[AxisName], row: &BlockRow) {
         let values = HeaderPositions::of(axes, row);
         self.positions
             .resize_with(axes.len(), PositionCell::default);
         for (index, (axis, cell)) in axes.iter().zip(&mut self.positions).enumerate() {
             let bits = values.bits(index, axis);
-            if cell.bits != bits || !self.written {
+            if cell.bits != bits {
                 cell.set(bits);
             }
-            line.push(b',');
-            cell.write_to(line);
         }
     }
 
@@ -337,7 +329,7 @@ impl StateText {
     /// text. Mostly one column changes (a feed, a modal command): only
     /// its field is written again.
     fn remember_rest(&mut self, row: &BlockRow) {
-        if self.rest_text.is_empty() {
+        if !self.written {
             for column in 0..REST_COLUMNS {
                 write_rest_field(&mut self.rest_text, row, column);
                 self.rest_ends[column] = self.rest_text.len();
@@ -389,6 +381,7 @@ impl StateText {
     }
 
     /// Writes the state columns remembered last.
+    #[inline]
     fn write(&self, line: &mut Vec<u8>) {
         for cell in &self.positions {
             line.push(b',');
@@ -409,11 +402,6 @@ fn copy_modal(to: &mut ModalRow, from: &ModalRow) {
             slot.clone_from(code);
         }
     }
-}
-
-/// Whether two rows' modal commands are the same.
-fn same_modal(a: &ModalRow, b: &ModalRow) -> bool {
-    a.iter().zip(b).all(|(a, b)| same_command(a, b))
 }
 
 /// Whether two modal commands are the same text. The registry's names are
@@ -474,6 +462,9 @@ impl<W: Write> CsvWriter<W> {
     /// Takes the row of the next executed block and writes it if
     /// [`CsvRows`] selects it.
     pub fn row(&mut self, row: &BlockRow) -> io::Result<()> {
+        // Written or passed over (and then kept in case it is the last
+        // block), the row stands here.
+        self.passed_over.of(row);
         let state = &mut self.state;
         // The row before was written or passed over as the same as the
         // last written: either way this one is the same as that.
@@ -484,23 +475,16 @@ impl<W: Write> CsvWriter<W> {
             && same_rest
             && (unchanged || state.same_positions(&self.axes, row))
         {
-            // Kept in case it is the last block.
-            self.passed_over.of(row);
             self.last_passed_over = true;
             return Ok(());
         }
         self.last_passed_over = false;
-        self.passed_over.of(row);
         if !same_rest {
             state.remember_rest(row);
         }
-        let line = &mut self.out.lines;
-        self.place_text.write(line, &self.passed_over);
-        state.write_positions(line, &self.axes, row);
-        line.extend_from_slice(&state.rest_text);
-        line.push(b'\n');
+        state.remember_positions(&self.axes, row);
         state.written = true;
-        self.out.line_done()
+        self.write_row()
     }
 
     /// Writes the row of `passed_over` and the state columns remembered.
