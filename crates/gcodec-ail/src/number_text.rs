@@ -104,34 +104,25 @@ pub fn fixed_point_text(text: &mut ShortNumberText, value: f64, point_zero: bool
     if rounded as f64 / 1e4 != value {
         return false;
     }
-    // Digits go in pairs from a table, and every copy into `bytes` has a
-    // fixed size.
-    let mut len = usize::from(rounded < 0);
+    // Digits go in fours from a table of pairs, and every copy into
+    // `bytes` has a fixed size.
+    let sign = usize::from(rounded < 0);
     bytes[0] = b'-';
     let magnitude = rounded.unsigned_abs();
     // Below 1e9 (tested above): nine digits at most.
-    let mut whole = (magnitude / 10_000) as u32;
-    let whole_len = whole.checked_ilog10().map_or(1, |log| log as usize + 1);
-    len += whole_len;
-    let mut at = len;
-    while whole >= 100 {
-        at -= 2;
-        bytes[at..at + 2].copy_from_slice(digit_pair(whole % 100));
-        whole /= 100;
-    }
-    if whole >= 10 {
-        bytes[at - 2..at].copy_from_slice(digit_pair(whole));
-    } else {
-        bytes[at - 1] = b'0' + whole as u8;
-    }
+    let whole = (magnitude / 10_000) as u32;
+    let mut len = sign
+        + if whole < 10_000 {
+            write_short_whole(bytes, sign, whole)
+        } else {
+            write_long_whole(bytes, sign, whole)
+        };
     let fraction = (magnitude % 10_000) as u32;
     if fraction != 0 {
-        let mut digits = [0u8; 4];
-        digits[..2].copy_from_slice(digit_pair(fraction / 100));
-        digits[2..].copy_from_slice(digit_pair(fraction % 100));
+        let digits = four_digits(fraction);
         // The trailing `0` digits are the high bytes of the little-endian
         // word: those that become zero bytes.
-        let trailing_zeros = (u32::from_le_bytes(digits) ^ 0x3030_3030).leading_zeros() / 8;
+        let trailing_zeros = (u32::from_le_bytes(digits) ^ ZEROS).leading_zeros() / 8;
         bytes[len] = b'.';
         bytes[len + 1..len + 5].copy_from_slice(&digits);
         len += 5 - trailing_zeros as usize;
@@ -141,6 +132,48 @@ pub fn fixed_point_text(text: &mut ShortNumberText, value: f64, point_zero: bool
     }
     text.len = len;
     true
+}
+
+/// Four `0` digits as a little-endian word.
+const ZEROS: u32 = u32::from_le_bytes(*b"0000");
+
+/// Writes `whole` (below 10,000, as positions mostly are) at `bytes[at..]`
+/// without leading zeros, as one copy of four bytes; gives its length.
+#[inline]
+fn write_short_whole(bytes: &mut [u8; SHORT_NUMBER_TEXT_SIZE], at: usize, whole: u32) -> usize {
+    let digits = u32::from_le_bytes(four_digits(whole));
+    // The leading `0` digits are the low bytes; one digit stays (`0.5`).
+    let leading_zeros = ((digits ^ ZEROS).trailing_zeros() / 8).min(3);
+    bytes[at..at + 4].copy_from_slice(&(digits >> (8 * leading_zeros)).to_le_bytes());
+    4 - leading_zeros as usize
+}
+
+/// Writes `whole` (10,000 or more, below 1e9) at `bytes[at..]`; gives its
+/// length.
+#[cold]
+fn write_long_whole(bytes: &mut [u8; SHORT_NUMBER_TEXT_SIZE], at: usize, mut whole: u32) -> usize {
+    let whole_len = whole.checked_ilog10().map_or(1, |log| log as usize + 1);
+    let mut end = at + whole_len;
+    while whole >= 100 {
+        end -= 2;
+        bytes[end..end + 2].copy_from_slice(digit_pair(whole % 100));
+        whole /= 100;
+    }
+    if whole >= 10 {
+        bytes[end - 2..end].copy_from_slice(digit_pair(whole));
+    } else {
+        bytes[end - 1] = b'0' + whole as u8;
+    }
+    whole_len
+}
+
+/// The four digits of `n` (0…9999), leading zeros included.
+#[inline]
+fn four_digits(n: u32) -> [u8; 4] {
+    let mut digits = [0u8; 4];
+    digits[..2].copy_from_slice(digit_pair(n / 100 % 100));
+    digits[2..].copy_from_slice(digit_pair(n % 100));
+    digits
 }
 
 /// The two digits of `n` (0…99).
