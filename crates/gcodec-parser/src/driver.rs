@@ -257,6 +257,25 @@ pub fn parse_chunk(src: &[u8], encoding: Encoding, chunk: &Chunk, macros: &Macro
     read_chunk(src, chunk, how)
 }
 
+/// [`parse_chunk`] of lines none of which [`WordLine::read`] reads (the
+/// caller has tried): the same blocks and diagnostics, without trying
+/// each line again.
+///
+/// [`WordLine::read`]: crate::WordLine::read
+pub fn parse_chunk_of_lexed_lines(
+    src: &[u8],
+    encoding: Encoding,
+    chunk: &Chunk,
+    macros: &Macros,
+) -> ParsedChunk {
+    let how = How {
+        reading: Reading::Lexed,
+        macros,
+        encoding,
+    };
+    read_chunk(src, chunk, how)
+}
+
 /// Reads the lines of `chunk` of `src` for lowering's `Outline` of the
 /// program (pass 1 of a streamed run), much faster than [`parse_chunk`]:
 /// each block is the one [`parse_chunk`] gives, except a *plain* block
@@ -339,7 +358,10 @@ fn runs<'a, T>(mut slots: &'a mut [T], chunks: &[Chunk]) -> Vec<&'a mut [T]> {
 
 /// The lines of `src[bytes]`: each one's start, its end before the line
 /// end, and where the next starts.
-fn lines_of(src: &[u8], bytes: Range<usize>) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
+pub fn lines_of(
+    src: &[u8],
+    bytes: Range<usize>,
+) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
     let mut start = bytes.start;
     std::iter::from_fn(move || {
         (start < bytes.end).then(|| {
@@ -439,7 +461,9 @@ fn read_chunk_into(
         diagnostics: Diagnostics::new(),
         structure_blocks: Vec::new(),
         tokens: Vec::with_capacity(token_room(chunk, reading)),
-        lines: Vec::with_capacity(FLUSH_LINES),
+        // A caller parsing a few lines at a time (`parse_chunk_of_lexed_lines`)
+        // makes no room for more.
+        lines: Vec::with_capacity(FLUSH_LINES.min(chunk.blocks)),
         line_ends: Vec::new(),
     };
     if reading == Reading::Skim {
@@ -494,6 +518,9 @@ enum Reading {
     GrammarOnly,
     /// With the fast path where it applies, else the grammar.
     Whole,
+    /// As [`Reading::Whole`], for lines known to be no word lines: every
+    /// line is lexed.
+    Lexed,
     /// As [`skim_chunk`] reads it: a plain line after a block that leaves
     /// the plain lines after it skimmable is not lexed beyond its skip
     /// mark and number.

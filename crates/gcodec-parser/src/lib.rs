@@ -26,10 +26,12 @@ mod tree;
 mod word_line;
 
 pub use driver::{
-    MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, ParsedChunk, parse, parse_bytes,
-    parse_bytes_in_chunks, parse_bytes_with_grammar_only, parse_chunk, parse_with_macros,
-    plain_lines_skimmable_after, skim_chunk, skim_chunks,
+    MAX_EXPRESSION_DEPTH, MAX_OPERATORS_PER_BLOCK, Parse, ParsedChunk, lines_of, parse,
+    parse_bytes, parse_bytes_in_chunks, parse_bytes_with_grammar_only, parse_chunk,
+    parse_chunk_of_lexed_lines, parse_with_macros, plain_lines_skimmable_after, skim_chunk,
+    skim_chunks,
 };
 pub use macros::{MAX_EXPANDED_BYTES, MAX_MACRO_DEPTH, Macro, Macros};
 pub use structure::Pairing;
 pub use tree::{write_expr, write_tree};
+pub use word_line::{ConstantWord, WordLine};

@@ -25,57 +25,123 @@ use crate::grammar::number_bytes_value;
 /// Most words a line may hold here; a longer line is lexed.
 const MAX_WORDS: usize = 16;
 
+/// A line of constant DIN words read from its bytes: what its block
+/// holds, without the block. Lowering takes most such lines as they are
+/// (`G1 X… Y… F…`); [`WordLine::block`] gives the block the parser gives
+/// for the others.
+#[derive(Clone, Debug)]
+pub struct WordLine {
+    /// The line without its line end (nor a CR before it).
+    span: Span,
+    number: Option<BlockNumber>,
+    words: [ConstantWord; MAX_WORDS],
+    count: usize,
+}
+
+impl Default for WordLine {
+    fn default() -> Self {
+        Self {
+            span: Span::new(0, 0),
+            number: None,
+            words: [ConstantWord::default(); MAX_WORDS],
+            count: 0,
+        }
+    }
+}
+
+/// A word of a [`WordLine`]: an address letter with a constant touching
+/// it (`X-1.5`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ConstantWord {
+    /// The address letter, in upper case.
+    pub letter: u8,
+    /// The constant, its sign applied.
+    pub value: f64,
+    /// Written without a point (`G1`, not `G1.`).
+    pub integer: bool,
+    /// The word, from its letter to its last digit.
+    pub span: Span,
+}
+
+impl WordLine {
+    /// Reads the line `src[start..end]` (without its line end) into this
+    /// one if it holds only a block number and constant DIN words;
+    /// `false`, leaving this one in no particular state, otherwise.
+    pub fn read(&mut self, src: &[u8], start: usize, end: usize) -> bool {
+        let Some(line) = src.get(start..end) else {
+            return false;
+        };
+        // A CR before the line end is no part of the block.
+        let line = line.strip_suffix(b"\r").unwrap_or(line);
+        let mut scan = Scan { line, at: 0 };
+        scan.blanks();
+        self.number = None;
+        if matches!(scan.peek(), Some(b'N' | b'n')) {
+            let letter = scan.at;
+            scan.at += 1;
+            let digits = scan.at;
+            while scan.peek().is_some_and(|b| b.is_ascii_digit()) {
+                scan.at += 1;
+            }
+            // `N10=…` is an assignment; `N10.5` no block number.
+            if !scan.ends_word() {
+                return false;
+            }
+            let Some(value) = whole_number(&line[digits..scan.at]) else {
+                return false;
+            };
+            self.number = Some(BlockNumber {
+                span: span(start, letter, scan.at),
+                main: false,
+                value,
+            });
+            scan.blanks();
+        }
+        self.count = 0;
+        while scan.at < line.len() {
+            let Some(slot) = self.words.get_mut(self.count) else {
+                return false;
+            };
+            let Some(word) = scan.word(start) else {
+                return false;
+            };
+            *slot = word;
+            self.count += 1;
+            scan.blanks();
+        }
+        self.span = span(start, 0, line.len());
+        self.count > 0 || self.number.is_some()
+    }
+
+    /// The line without its line end.
+    pub fn span(&self) -> Span {
+        self.span
+    }
+
+    /// The words, in the order written.
+    pub fn words(&self) -> &[ConstantWord] {
+        &self.words[..self.count]
+    }
+
+    /// The block of the line, as the parser gives it.
+    pub fn block(&self) -> Block {
+        Block {
+            span: self.span,
+            skip: None,
+            number: self.number.clone(),
+            label: None,
+            statements: self.words().iter().map(ConstantWord::statement).collect(),
+            comment: None,
+            depth: 0,
+        }
+    }
+}
+
 /// The block of the line `src[start..end]` (without its line end), if
 /// the line holds only a block number and constant DIN words.
 pub(crate) fn read(src: &[u8], start: usize, end: usize) -> Option<Block> {
-    let line = src.get(start..end)?;
-    // A CR before the line end is no part of the block.
-    let line = line.strip_suffix(b"\r").unwrap_or(line);
-    let mut scan = Scan { line, at: 0 };
-    scan.blanks();
-    let mut number = None;
-    if matches!(scan.peek(), Some(b'N' | b'n')) {
-        let letter = scan.at;
-        scan.at += 1;
-        let digits = scan.at;
-        while scan.peek().is_some_and(|b| b.is_ascii_digit()) {
-            scan.at += 1;
-        }
-        // `N10=…` is an assignment; `N10.5` no block number.
-        if !scan.ends_word() {
-            return None;
-        }
-        let value = whole_number(&line[digits..scan.at])?;
-        number = Some(BlockNumber {
-            span: span(start, letter, scan.at),
-            main: false,
-            value,
-        });
-        scan.blanks();
-    }
-    let mut words = [WordAt::default(); MAX_WORDS];
-    let mut count = 0;
-    while scan.at < line.len() {
-        *words.get_mut(count)? = scan.word()?;
-        count += 1;
-        scan.blanks();
-    }
-    if count == 0 && number.is_none() {
-        return None;
-    }
-    let statements = words[..count]
-        .iter()
-        .map(|word| word.statement(line, start))
-        .collect();
-    Some(Block {
-        span: span(start, 0, line.len()),
-        skip: None,
-        number,
-        label: None,
-        statements,
-        comment: None,
-        depth: 0,
-    })
+    let mut line = WordLine::default();
+    line.read(src, start, end).then(|| line.block())
 }
 
 /// The span of `from..to` in the line starting at `start`.
@@ -87,17 +153,6 @@ fn span(start: usize, from: usize, to: usize) -> Span {
 struct Scan<'a> {
     line: &'a [u8],
     at: usize,
-}
-
-/// A constant word read: where its letter, value (sign included) and
-/// end are, and its value.
-#[derive(Clone, Copy, Default)]
-struct WordAt {
-    letter: usize,
-    value_start: usize,
-    end: usize,
-    value: f64,
-    integer: bool,
 }
 
 impl Scan<'_> {
@@ -127,19 +182,16 @@ impl Scan<'_> {
         }
     }
 
-    /// The word here: a letter other than `L`, `N` or `R`, an optional
-    /// sign and a plain decimal number (`5`, `5.`, `.5`, `1.5`), all
-    /// touching, ending its word.
-    fn word(&mut self) -> Option<WordAt> {
+    /// The word here, of the line starting at `start`: a letter other
+    /// than `L`, `N` or `R`, an optional sign and a plain decimal number
+    /// (`5`, `5.`, `.5`, `1.5`), all touching, ending its word.
+    fn word(&mut self, start: usize) -> Option<ConstantWord> {
         let letter = self.at;
-        let address = self.peek()?;
-        if !address.is_ascii_alphabetic()
-            || matches!(address.to_ascii_uppercase(), b'L' | b'N' | b'R')
-        {
+        let address = self.peek()?.to_ascii_uppercase();
+        if !address.is_ascii_uppercase() || matches!(address, b'L' | b'N' | b'R') {
             return None;
         }
         self.at += 1;
-        let value_start = self.at;
         let negative = self.peek() == Some(b'-');
         if matches!(self.peek(), Some(b'+' | b'-')) {
             self.at += 1;
@@ -175,31 +227,29 @@ impl Scan<'_> {
             Some(value) => value,
             None => number_bytes_value(text)?,
         };
-        Some(WordAt {
-            letter,
-            value_start,
-            end: self.at,
+        Some(ConstantWord {
+            letter: address,
             value: if negative { -value } else { value },
             integer: fraction.is_none(),
+            span: span(start, letter, self.at),
         })
     }
 }
 
-impl WordAt {
-    /// The statement of this word of `line`, which starts at `start`, as
-    /// the fast path builds it.
-    fn statement(&self, line: &[u8], start: usize) -> Statement {
-        let word_span = span(start, self.letter, self.end);
-        let address = letter_str(line[self.letter].to_ascii_uppercase());
+impl ConstantWord {
+    /// The statement of this word, as the fast path builds it.
+    fn statement(&self) -> Statement {
+        let word_span = self.span;
+        let value_start = word_span.start + 1;
         Statement {
             span: word_span,
             kind: StatementKind::Word(Word::new(
                 word_span,
-                address,
-                span(start, self.letter, self.letter + 1),
+                letter_str(self.letter),
+                Span::new(word_span.start, value_start),
                 None,
                 WordValue::Constant(NumberLit {
-                    span: span(start, self.value_start, self.end),
+                    span: Span::new(value_start, word_span.end),
                     value: self.value,
                     integer: self.integer,
                 }),

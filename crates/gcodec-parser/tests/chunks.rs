@@ -3,7 +3,9 @@
 //! the chunks come: neither split may change the tree or the diagnostics.
 
 use gcodec_parser::ast::{Program, SourceText};
-use gcodec_parser::{Macros, Pairing, parse_bytes_in_chunks, parse_chunk};
+use gcodec_parser::{
+    Macros, Pairing, WordLine, parse_bytes_in_chunks, parse_chunk, parse_chunk_of_lexed_lines,
+};
 use gcodec_source::Encoding;
 use gcodec_stream::chunks;
 
@@ -139,4 +141,42 @@ fn chunks_cover_every_line_once() {
             assert_eq!(block, lines_in, "{src:?} by {lines}: every line");
         }
     }
+}
+
+/// A streamed run's lowering reads each line as a `WordLine` first: a
+/// line read so gives the block the parser gives, and a run of lines not
+/// read so parses with `parse_chunk_of_lexed_lines` as with
+/// `parse_chunk`, a line at a time. Gives how many lines were read and
+/// how many lexed.
+fn assert_word_lines_agree(name: &str, src: &[u8]) -> (usize, usize) {
+    let encoding = Encoding::detect(src, Encoding::WINDOWS_1252);
+    let macros = Macros::default();
+    let mut line = WordLine::default();
+    let (mut read, mut lexed) = (0, 0);
+    for chunk in chunks(src, 1) {
+        let parsed = parse_chunk(src, encoding, &chunk, &macros);
+        let (start, text_end, _) = gcodec_parser::lines_of(src, chunk.bytes.clone())
+            .next()
+            .expect("one line");
+        if line.read(src, start, text_end) {
+            assert_eq!(parsed.blocks, [line.block()], "{name}: {start}");
+            assert!(parsed.diagnostics.is_empty(), "{name}: {start}");
+            read += 1;
+        } else {
+            let again = parse_chunk_of_lexed_lines(src, encoding, &chunk, &macros);
+            assert_eq!(parsed.blocks, again.blocks, "{name}: {start}");
+            assert_eq!(parsed.diagnostics, again.diagnostics, "{name}: {start}");
+            lexed += 1;
+        }
+    }
+    (read, lexed)
+}
+
+#[test]
+fn word_lines_and_lexed_lines_parse_as_the_parser_parses_them() {
+    gcodec_testkit::each_program(|name, src| {
+        assert_word_lines_agree(name, src);
+    });
+    let src = b"N10 G1 X1.5 Y-2 F100\nG1 X1 ; cut\nn20 g0 z.5\r\nX1=2\nN30\n\nG1 X99999999999999999999\nG0X1Y2";
+    assert_eq!(assert_word_lines_agree("mixed.mpf", src), (5, 3));
 }

@@ -143,6 +143,31 @@ fn values_out_of_range_are_named_as_written_streamed() {
     );
 }
 
+/// Lines of constant words are lowered straight from their bytes in a
+/// streamed run; those lowering must see as blocks are handed back: one
+/// longer than the machine takes (reported), a jump's target (control-flow
+/// facts), words of no straight motion (`G2`, `M3`, an `L`), and word
+/// lines between lines that are parsed.
+#[test]
+fn constant_word_lines_handed_back_lower_the_same_streamed() {
+    let profile = gcodec_profile::builtin().unwrap();
+    let long = format!("G1 X1{}Y2 F100\n", " ".repeat(600));
+    let src = format!(
+        "G0 X0 Y0\n{long}N20 X3\nGOTOB N20\nG2 X1 Y1 I0.5 J0\nX2 Y2\nM3 S1000\n\
+         G1 X1 ; cut\nG1 X2\nR1=5\nG1 X=R1\nG1 Y4\nL100\nM30\n"
+    );
+    assert_streamed_agrees("handed_back.mpf", src.as_bytes(), &profile);
+    let parsed = gcodec_parser::parse_bytes("handed_back.mpf", src.as_bytes());
+    let definitions = Definitions::new();
+    let whole = lower_in_parts(&parsed.program, &profile, &definitions, 1);
+    let too_long = whole
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == gcodec_source::codes::lower::BLOCK_TOO_LONG)
+        .count();
+    assert_eq!(too_long, 1, "{:?}", whole.diagnostics);
+}
+
 #[test]
 fn the_generated_program_lowers_the_same_streamed() {
     let src = program::generate(3_000);

@@ -23,6 +23,7 @@ use gcodec_ail::{AxisValue, Op, Value};
 use gcodec_lang::MotionKind;
 use gcodec_lang::addresses::letter_str;
 use gcodec_lang::ggroups::{self, GCommand};
+use gcodec_parser::WordLine;
 use gcodec_parser::ast::{Block, StatementKind};
 use gcodec_source::Span;
 
@@ -50,13 +51,73 @@ impl Lowering<'_> {
         if block.skip.is_some() || block.label.is_some() {
             return false;
         }
-        let Some(words) = self.read_constant_words(block) else {
+        let words = block
+            .statements
+            .iter()
+            .map(|statement| match &statement.kind {
+                StatementKind::Word(word) => word
+                    .letter_constant()
+                    .map(|(letter, value, integer)| (letter, value, integer, statement.span)),
+                _ => None,
+            });
+        let mut read = ConstantWords::default();
+        let Some(motion) = self.straight_constant_words(words, &mut read) else {
             return false;
         };
+        self.emit_constant_words(index, &read, motion);
+        true
+    }
+
+    /// Lowers `line` (the program's block `index`) as
+    /// [`Self::constant_word_block`] lowers its block, without the block:
+    /// a streamed run reads most lines of large programs this way.
+    /// `false`, with nothing emitted or changed, if the line's block must
+    /// be lowered ([`Lowering::block`]): it has control-flow facts, is
+    /// longer than the machine takes, or is no straight motion of
+    /// constant words.
+    pub(super) fn word_line(&mut self, index: usize, line: &WordLine) -> bool {
+        let span = line.span();
+        if !self.direct_constant_words
+            || span.len() > *self.profile.program.max_block_length.get_ref()
+            || self.block_flow(index).is_some()
+        {
+            return false;
+        }
+        let words = line
+            .words()
+            .iter()
+            .map(|w| Some((w.letter, w.value, w.integer, w.span)));
+        let mut read = ConstantWords::default();
+        let Some(motion) = self.straight_constant_words(words, &mut read) else {
+            return false;
+        };
+        // What `Lowering::block` does first with every block.
+        self.block_start = span.start;
+        self.diagnostics.begin_block();
+        self.emit_constant_words(index, &read, motion);
+        true
+    }
+
+    /// Reads the constant words `(letter, value, integer, span)` of a
+    /// block into `words` (filled in place: moving them was a copy call
+    /// a line); their motion if they are a straight motion
+    /// [`Self::constant_word_block`] lowers (`None` stands for any other
+    /// statement).
+    fn straight_constant_words(
+        &self,
+        statements: impl Iterator<Item = Option<(u8, f64, bool, Span)>>,
+        words: &mut ConstantWords,
+    ) -> Option<MotionKind> {
+        if !self.read_constant_words(statements, words) {
+            return None;
+        }
         let motion_command = words.g.map_or(self.modal[0], |(_, name, _)| Some(name));
-        let Some(motion) = straight_motion(motion_command) else {
-            return false;
-        };
+        straight_motion(motion_command)
+    }
+
+    /// Emits the instructions of `words`, the block `index`'s, a
+    /// `motion`.
+    fn emit_constant_words(&mut self, index: usize, words: &ConstantWords, motion: MotionKind) {
         if let Some((command, name, span)) = words.g {
             self.emit_named_modal_change(index, command, name, span);
         }
@@ -70,7 +131,8 @@ impl Lowering<'_> {
             );
         }
         let targets = &words.targets[..words.count];
-        let first = targets.first().map_or(block.span, |&(_, _, span)| span);
+        // At least one target (`read_constant_words`).
+        let first = targets[0].2;
         let targets: Vec<AxisValue> = targets
             .iter()
             .map(|&(axis, value, _)| AxisValue {
@@ -80,22 +142,26 @@ impl Lowering<'_> {
             })
             .collect();
         self.emit_motion_op(index, first, motion, targets, None, None);
-        true
     }
 
-    /// The words of `block` if it holds only constant words of the kinds
+    /// Reads the constant words of a block into `words` (as they were
+    /// made); whether they are all of the kinds
     /// [`Self::constant_word_block`] lowers, each as often as it may.
-    fn read_constant_words(&self, block: &Block) -> Option<ConstantWords> {
-        let mut words = ConstantWords::default();
-        for statement in &block.statements {
-            let StatementKind::Word(word) = &statement.kind else {
-                return None;
+    fn read_constant_words(
+        &self,
+        statements: impl Iterator<Item = Option<(u8, f64, bool, Span)>>,
+        words: &mut ConstantWords,
+    ) -> bool {
+        for statement in statements {
+            let Some((letter, value, integer, span)) = statement else {
+                return false;
             };
-            let (letter, value, integer) = word.letter_constant()?;
-            let span = statement.span;
             match letter {
                 b'G' if words.g.is_none() && integer && (value == 0.0 || value == 1.0) => {
-                    let (command, name) = self.straight_commands[usize::from(value == 1.0)]?;
+                    let Some((command, name)) = self.straight_commands[usize::from(value == 1.0)]
+                    else {
+                        return false;
+                    };
                     words.g = Some((command, name, span));
                 }
                 b'F' if words.feed.is_none() => words.feed = Some((value, span)),
@@ -104,16 +170,19 @@ impl Lowering<'_> {
                     let repeated = words.targets[..words.count]
                         .iter()
                         .any(|(a, _, _)| *a == axis);
+                    let Some(slot) = words.targets.get_mut(words.count) else {
+                        return false;
+                    };
                     if repeated || !self.is_axis(axis) {
-                        return None;
+                        return false;
                     }
-                    *words.targets.get_mut(words.count)? = (axis, value, span);
+                    *slot = (axis, value, span);
                     words.count += 1;
                 }
-                _ => return None,
+                _ => return false,
             }
         }
-        (words.count > 0).then_some(words)
+        words.count > 0
     }
 
     /// `G0` or `G1` (`value`), where the machine has it under that name:

@@ -14,8 +14,9 @@ use std::sync::Arc;
 
 use gcodec_ail::Instruction;
 use gcodec_parser::ast::Block;
+use gcodec_parser::{Macros, WordLine};
 use gcodec_profile::Profile;
-use gcodec_source::{Diagnostics, SourceFile};
+use gcodec_source::{Diagnostics, Encoding, SourceFile};
 
 use super::outline::Outline;
 use super::parts::{Entry, PartLedger};
@@ -50,9 +51,19 @@ pub fn lower_chunks(
     // Parses `chunk` and lowers it with `lowering`; gives its parse
     // diagnostics.
     let lower_part = |chunk: &gcodec_stream::Chunk, lowering: &mut Lowering<'_>| {
-        let parsed = gcodec_parser::parse_chunk(src, file.encoding(), chunk, outline.macros());
-        lower_blocks(lowering, parsed.first_block, &parsed.blocks);
-        parsed.diagnostics
+        let lines = ChunkLines {
+            src,
+            encoding: file.encoding(),
+            macros: outline.macros(),
+        };
+        if lines.macros.is_empty() {
+            lines.lower(chunk, lowering)
+        } else {
+            // A macro may stand for any word: every line is parsed.
+            let parsed = gcodec_parser::parse_chunk(src, file.encoding(), chunk, lines.macros);
+            lower_blocks(lowering, parsed.first_block, &parsed.blocks);
+            parsed.diagnostics
+        }
     };
     let mut next = 0;
     let mut ledger = PartLedger::default();
@@ -107,6 +118,101 @@ pub fn lower_chunks(
         parse_diagnostics: Diagnostics::new(),
         spent: None,
     });
+}
+
+/// A chunk's lines are lowered from their words while runs of other
+/// lines come at most once in this many lines; past that, the rest of the
+/// chunk is parsed and lowered block by block.
+const LINES_A_RUN: usize = 32;
+
+/// The lines of a program's chunks, parsed and lowered.
+struct ChunkLines<'a> {
+    src: &'a [u8],
+    encoding: Encoding,
+    macros: &'a Macros,
+}
+
+impl ChunkLines<'_> {
+    /// Lowers the lines of `chunk` with no macros in force, and gives
+    /// their parse diagnostics. A line of constant words is lowered
+    /// straight from its bytes where lowering takes it so (most lines of
+    /// large programs: building, lowering and dropping their blocks was
+    /// half of a worker's time); its block, read from the same bytes,
+    /// where not. The other lines are parsed a run at a time, as
+    /// [`gcodec_parser::parse_chunk`] parses them; where such runs come
+    /// often ([`LINES_A_RUN`]), the rest of the chunk is parsed so.
+    fn lower(&self, chunk: &gcodec_stream::Chunk, lowering: &mut Lowering<'_>) -> Diagnostics {
+        // Room for a motion's three instructions a line, at once.
+        let reserve = capacity(chunk.blocks * 12 / 5);
+        lowering.document.instructions.reserve(reserve);
+        let mut diagnostics = Diagnostics::new();
+        let mut line = WordLine::default();
+        // The first byte and block of the lines not read as words since
+        // the last that was.
+        let mut unread = None;
+        let mut runs = 0;
+        let lines = gcodec_parser::lines_of(self.src, chunk.bytes.clone());
+        for (index, (start, text_end, _)) in (chunk.first_block..).zip(lines) {
+            if line.read(self.src, start, text_end) {
+                if let Some((from, first_block)) = unread.take() {
+                    let run = gcodec_stream::Chunk {
+                        bytes: from..start,
+                        first_block,
+                        blocks: index - first_block,
+                    };
+                    diagnostics.append(self.parse_and_lower(run, lowering, true));
+                }
+                if !lowering.word_line(index, &line) {
+                    lowering.block(index, &line.block());
+                }
+            } else if unread.is_none() {
+                if runs * LINES_A_RUN > index - chunk.first_block {
+                    // Word lines and others mixed (comments, assignments,
+                    // structures): parsed and lowered a run of a line or
+                    // two at a time, the two paths' code took turns on the
+                    // core and ran slower than the blocks of all lines in
+                    // turn (a tenth more time on the generated program
+                    // for the same instructions).
+                    let rest = gcodec_stream::Chunk {
+                        bytes: start..chunk.bytes.end,
+                        first_block: index,
+                        blocks: chunk.first_block + chunk.blocks - index,
+                    };
+                    diagnostics.append(self.parse_and_lower(rest, lowering, false));
+                    return diagnostics;
+                }
+                runs += 1;
+                unread = Some((start, index));
+            }
+        }
+        if let Some((from, first_block)) = unread {
+            let run = gcodec_stream::Chunk {
+                bytes: from..chunk.bytes.end,
+                first_block,
+                blocks: chunk.first_block + chunk.blocks - first_block,
+            };
+            diagnostics.append(self.parse_and_lower(run, lowering, true));
+        }
+        diagnostics
+    }
+
+    /// Parses the lines of `run` and lowers their blocks; gives their
+    /// parse diagnostics. `lexed`: none of the lines is a word line.
+    fn parse_and_lower(
+        &self,
+        run: gcodec_stream::Chunk,
+        lowering: &mut Lowering<'_>,
+        lexed: bool,
+    ) -> Diagnostics {
+        let parse = if lexed {
+            gcodec_parser::parse_chunk_of_lexed_lines
+        } else {
+            gcodec_parser::parse_chunk
+        };
+        let parsed = parse(self.src, self.encoding, &run, self.macros);
+        lower_blocks(lowering, parsed.first_block, &parsed.blocks);
+        parsed.diagnostics
+    }
 }
 
 /// Lowers `blocks`, the program's blocks from index `first` on, with
