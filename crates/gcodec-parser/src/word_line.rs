@@ -8,12 +8,15 @@
 //! number `N<digits>` first, then words of one address letter, an
 //! optional sign touching it and a plain decimal number touching that
 //! (`5`, `5.`, `.5`, `1.5`), separated by blanks or touching
-//! (`G0X1Y2`). It builds the block the fast path builds from the same
-//! line's tokens. Anything else — a comment, a skip mark, a name, an `L`,
-//! `N` or `R` word, an exponent, `=`, a bracket, a byte beyond ASCII —
-//! returns `None`, and the line is lexed and parsed as before. The blocks
-//! are checked against the grammar's by `tests/fast_path.rs` (through
-//! [`crate::parse_bytes`], which reads lines this way).
+//! (`G0X1Y2`), into a [`WordLine`], from which the block the fast path
+//! builds from the same line's tokens is made ([`WordLine::block`]); a
+//! streamed run's lowering takes most such lines without the block.
+//! Anything else — a comment, a skip mark, a name, an `L`, `N` or `R`
+//! word, an exponent, `=`, a bracket, a byte beyond ASCII — is not read,
+//! and the line is lexed and parsed as before. The blocks are checked
+//! against the grammar's by `tests/fast_path.rs` (through
+//! [`crate::parse_bytes`], which reads lines this way) and against
+//! [`crate::parse_chunk`]'s by `tests/chunks.rs`.
 
 use gcodec_lang::addresses::letter_str;
 use gcodec_source::Span;

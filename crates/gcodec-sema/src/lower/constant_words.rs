@@ -118,6 +118,11 @@ impl Lowering<'_> {
     /// Emits the instructions of `words`, the block `index`'s, a
     /// `motion`.
     fn emit_constant_words(&mut self, index: usize, words: &ConstantWords, motion: MotionKind) {
+        let targets = &words.targets[..words.count];
+        // At least one target (`read_constant_words`).
+        let Some(&(_, _, first)) = targets.first() else {
+            return;
+        };
         if let Some((command, name, span)) = words.g {
             self.emit_named_modal_change(index, command, name, span);
         }
@@ -130,9 +135,6 @@ impl Lowering<'_> {
                 },
             );
         }
-        let targets = &words.targets[..words.count];
-        // At least one target (`read_constant_words`).
-        let first = targets[0].2;
         let targets: Vec<AxisValue> = targets
             .iter()
             .map(|&(axis, value, _)| AxisValue {
