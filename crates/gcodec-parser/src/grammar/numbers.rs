@@ -65,8 +65,16 @@ fn short_decimal(text: &[u8]) -> Option<Option<f64>> {
 /// `fraction` follow the point; `None` beyond 22 after the point (see
 /// [`short_decimal`]).
 pub(crate) fn short_decimal_value(mantissa: u64, fraction: usize) -> Option<f64> {
+    debug_assert!(mantissa < 1 << 53, "at most 15 digits");
+    // Below 2^53, so exact as a signed integer too, which converts in one
+    // instruction (an unsigned one takes six).
+    let value = mantissa as i64 as f64;
+    if fraction == 0 {
+        // A whole number (`G1`, `F1000`): no division to wait for.
+        return Some(value);
+    }
     let power = EXACT_POWERS_OF_TEN.get(fraction)?;
-    Some(mantissa as f64 / power)
+    Some(value / power)
 }
 
 #[cfg(test)]
