@@ -50,19 +50,17 @@ pub fn lower_chunks(
     let src = file.bytes();
     // Parses `chunk` and lowers it with `lowering`; gives its parse
     // diagnostics.
+    let lines = ChunkLines {
+        src,
+        encoding: file.encoding(),
+        macros: outline.macros(),
+    };
     let lower_part = |chunk: &gcodec_stream::Chunk, lowering: &mut Lowering<'_>| {
-        let lines = ChunkLines {
-            src,
-            encoding: file.encoding(),
-            macros: outline.macros(),
-        };
         if lines.macros.is_empty() {
             lines.lower(chunk, lowering)
         } else {
             // A macro may stand for any word: every line is parsed.
-            let parsed = gcodec_parser::parse_chunk(src, file.encoding(), chunk, lines.macros);
-            lower_blocks(lowering, parsed.first_block, &parsed.blocks);
-            parsed.diagnostics
+            lines.parse_and_lower(chunk.clone(), lowering, false)
         }
     };
     let mut next = 0;
@@ -125,6 +123,24 @@ pub fn lower_chunks(
 /// chunk is parsed and lowered block by block.
 const LINES_A_RUN: usize = 32;
 
+/// Where a line starts: its first byte and its block.
+#[derive(Clone, Copy)]
+struct LinePlace {
+    byte: usize,
+    block: usize,
+}
+
+impl LinePlace {
+    /// The lines from this one up to `end` (not included), as a chunk.
+    fn lines_to(self, end: LinePlace) -> gcodec_stream::Chunk {
+        gcodec_stream::Chunk {
+            bytes: self.byte..end.byte,
+            first_block: self.block,
+            blocks: end.block - self.block,
+        }
+    }
+}
+
 /// The lines of a program's chunks, parsed and lowered.
 struct ChunkLines<'a> {
     src: &'a [u8],
@@ -147,19 +163,22 @@ impl ChunkLines<'_> {
         lowering.document.instructions.reserve(reserve);
         let mut diagnostics = Diagnostics::new();
         let mut line = WordLine::default();
-        // The first byte and block of the lines not read as words since
-        // the last that was.
-        let mut unread = None;
+        // Where the lines not read as words since the last that was start.
+        let mut unread: Option<LinePlace> = None;
         let mut runs = 0;
+        let chunk_end = LinePlace {
+            byte: chunk.bytes.end,
+            block: chunk.first_block + chunk.blocks,
+        };
         let lines = gcodec_parser::lines_of(self.src, chunk.bytes.clone());
         for (index, (start, text_end, _)) in (chunk.first_block..).zip(lines) {
+            let here = LinePlace {
+                byte: start,
+                block: index,
+            };
             if line.read(self.src, start, text_end) {
-                if let Some((from, first_block)) = unread.take() {
-                    let run = gcodec_stream::Chunk {
-                        bytes: from..start,
-                        first_block,
-                        blocks: index - first_block,
-                    };
+                if let Some(from) = unread.take() {
+                    let run = from.lines_to(here);
                     diagnostics.append(self.parse_and_lower(run, lowering, true));
                 }
                 if !lowering.word_line(index, &line) {
@@ -173,25 +192,16 @@ impl ChunkLines<'_> {
                     // core and ran slower than the blocks of all lines in
                     // turn (a tenth more time on the generated program
                     // for the same instructions).
-                    let rest = gcodec_stream::Chunk {
-                        bytes: start..chunk.bytes.end,
-                        first_block: index,
-                        blocks: chunk.first_block + chunk.blocks - index,
-                    };
+                    let rest = here.lines_to(chunk_end);
                     diagnostics.append(self.parse_and_lower(rest, lowering, false));
                     return diagnostics;
                 }
                 runs += 1;
-                unread = Some((start, index));
+                unread = Some(here);
             }
         }
-        if let Some((from, first_block)) = unread {
-            let run = gcodec_stream::Chunk {
-                bytes: from..chunk.bytes.end,
-                first_block,
-                blocks: chunk.first_block + chunk.blocks - first_block,
-            };
-            diagnostics.append(self.parse_and_lower(run, lowering, true));
+        if let Some(from) = unread {
+            diagnostics.append(self.parse_and_lower(from.lines_to(chunk_end), lowering, true));
         }
         diagnostics
     }
