@@ -89,7 +89,7 @@ impl AxisMap {
         for (index, (name, value)) in other.entries.iter().enumerate() {
             match self.entries.get_mut(index) {
                 Some(entry) => {
-                    if entry.0 != *name {
+                    if !same_name(&entry.0, name) {
                         entry.0.clone_from(name);
                     }
                     entry.1 = *value;
@@ -188,4 +188,11 @@ impl JsonSchema for AxisMap {
             "additionalProperties": {"type": "number"},
         })
     }
+}
+
+/// Axis names and the feed mode are mostly the same static strings:
+/// compare addresses first.
+#[inline]
+pub(super) fn same_name(a: &str, b: &str) -> bool {
+    std::ptr::eq(a, b) || a == b
 }

@@ -4,6 +4,7 @@
 use std::borrow::Cow;
 use std::io::{self, Write};
 
+use super::axis_map::same_name;
 use super::line_buffer::LineBuffer;
 use super::numbers::{CountText, write_u64};
 use super::{
@@ -217,12 +218,6 @@ impl AxisMapText {
             self.write(out, map);
         }
     }
-}
-
-/// Axis names and the feed mode are mostly the same static strings:
-/// compare addresses first.
-fn same_name(a: &str, b: &str) -> bool {
-    std::ptr::eq(a, b) || a == b
 }
 
 impl<W: Write> JsonlSink<W> {

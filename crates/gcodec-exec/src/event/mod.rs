@@ -274,7 +274,9 @@ impl MotionEvent {
         self.radius = other.radius;
         self.turns = other.turns;
         self.feed = other.feed;
-        self.feed_mode.clone_from(&other.feed_mode);
+        if !axis_map::same_name(&self.feed_mode, &other.feed_mode) {
+            self.feed_mode.clone_from(&other.feed_mode);
+        }
         self.plane = other.plane;
         self.work_offset = other.work_offset;
         self.inserted = other.inserted;
