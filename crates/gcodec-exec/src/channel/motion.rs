@@ -41,6 +41,12 @@ pub(super) struct MotionScratch {
     /// Positions are taken as they are where no frame or tool length
     /// changes them ([`super::RunOptions::direct_motions`]).
     direct: bool,
+    /// The motion being made goes to the machine position of its end
+    /// point as it is (a plain state, [`Channel::direct_straight_motion`]):
+    /// the machine position is the workpiece position after it, and no
+    /// end point need be kept ([`MachineState::keep_end_point`]). Taken by
+    /// [`Channel::finish_motion`].
+    end_is_machine: bool,
 }
 
 impl MotionScratch {
@@ -78,16 +84,22 @@ impl MotionScratch {
             last_tangent: None,
             begins_contour: None,
             direct,
+            end_is_machine: false,
         }
     }
 
-    /// Fills `wcs` with the current position in workpiece coordinates:
-    /// the machine position as it is where no frame or tool length
-    /// changes it.
+    /// Fills `wcs` with the current position in workpiece coordinates
+    /// ([`MachineState::workpiece_position`]): the machine position as it
+    /// is where no frame or tool length changes it.
     pub fn workpiece_position(&mut self, state: &MachineState) {
+        let frame = state.total_frame();
+        if let Some(kept) = state.kept_workpiece_position(&frame) {
+            self.wcs.copy_from_slice(kept);
+            return;
+        }
         let as_is = self.direct && state.workpiece_is_machine();
         if !(as_is && identity_inward_as_is(&state.machine, &mut self.wcs)) {
-            state.to_workpiece(&state.total_frame(), &state.machine, &mut self.wcs);
+            state.to_workpiece(&frame, &state.machine, &mut self.wcs);
         }
     }
 }
@@ -274,13 +286,13 @@ impl Channel<'_> {
         } else {
             // Not plain but in the frame traversed: the frame changes
             // values or a tool length acts, and the workpiece position is
-            // the frame's image of the machine's
+            // the last end point or the frame's image of the machine's
             // ([`MotionScratch::workpiece_position`] gives the same).
             let frame = state.total_frame();
             if !state.frame_as_traversed(&frame) {
                 return false;
             }
-            state.to_workpiece(&frame, &state.machine, &mut self.motion.wcs);
+            state.workpiece_position(&frame, &mut self.motion.wcs);
         }
         let scratch = &mut self.motion;
         scratch.target.copy_from_slice(&scratch.wcs);
@@ -311,6 +323,7 @@ impl Channel<'_> {
         let scratch = &mut self.motion;
         if plain {
             identity_outward(&scratch.target, &mut scratch.machine);
+            scratch.end_is_machine = true;
         } else {
             let frame = self.state.total_frame();
             self.state
@@ -363,6 +376,8 @@ impl Channel<'_> {
         arc: Option<geometry::Arc>,
         arc_turns: u32,
     ) -> Result<(), RunError> {
+        // Taken first: no later motion may find it set.
+        let end_is_machine = std::mem::take(&mut self.motion.end_is_machine);
         let length = match &arc {
             Some(a) => a.length,
             None => distance(start, end),
@@ -387,6 +402,11 @@ impl Channel<'_> {
         }
         // The channel is at the programmed end point, held or not.
         self.state.machine.copy_from_slice(&self.motion.machine);
+        if engaged || end_is_machine {
+            // The stage may move it to a corner of the tool-centre path;
+            // or the machine position is the workpiece position as it is.
+            self.state.forget_end_point();
+        }
         if engaged {
             // Compensation or a corner element: the stage holds the
             // motion until the next element makes it final.
@@ -400,6 +420,9 @@ impl Channel<'_> {
                 time,
                 corner,
             );
+        }
+        if !end_is_machine {
+            self.state.keep_end_point(&self.motion.target);
         }
         let extent = match &arc {
             Some(a) => a.bounding_box(),

@@ -67,8 +67,7 @@ pub struct MachineState {
     /// The tool reference point in machine coordinates, mm (the diameter
     /// axis as a radius), per axis.
     pub machine: Vec<f64>,
-    /// The programmed end points in workpiece coordinates as the frames
-    /// in force when they were reached saw them (for `$P_EP`).
+    /// The settable frames (`G54`…`G57`, `G505`…), by Group 8 index.
     pub settable: Vec<Frame>,
     /// The programmable frame (`TRANS`, `ROT`, …: `$P_PFRAME`).
     pub programmable: Frame,
@@ -110,6 +109,9 @@ pub struct MachineState {
     /// The total frame the last motion ran in (`None` before the first):
     /// an increment after a change traverses it (SD42440).
     pub traversed_frame: Option<Frame>,
+    /// The end point the last motion was programmed to, while it is the
+    /// workpiece position ([`Self::workpiece_position`]).
+    end_point: EndPoint,
     /// `SETINT`: the routine of each input.
     pub(super) interrupts: super::interrupts::Interrupts,
     /// The reads of system variables the machine answers.
@@ -129,6 +131,20 @@ pub struct MachineState {
     /// comparing names.
     letter_axes: [Option<usize>; 26],
     codes: ModalCodes,
+}
+
+/// The end point a motion was programmed to, in workpiece coordinates,
+/// with what made the machine position of it: it is the workpiece
+/// position while the frame, the tool length and the plane (whose infeed
+/// axis the length acts along) stay and nothing else moves the machine.
+#[derive(Debug, Default)]
+struct EndPoint {
+    /// `false` before the first motion and after a motion whose end point
+    /// is not the machine's image ([`MachineState::forget_end_point`]).
+    kept: bool,
+    wcs: Vec<f64>,
+    tool_length: u64,
+    plane: Plane,
 }
 
 /// The registry indices of the commands the queries of every motion test
@@ -265,6 +281,7 @@ impl MachineState {
             polar: Polar::default(),
             working_area: WorkingArea::default(),
             traversed_frame: None,
+            end_point: EndPoint::default(),
             interrupts: Default::default(),
             machine_reads: MachineReads::default(),
             // A group 8 code no block selects: the first motion fills it.
@@ -518,6 +535,70 @@ impl MachineState {
         frame.to_inner(&shifted, out);
     }
 
+    /// The workpiece position now, in the total frame `frame` (the one in
+    /// force, [`Self::total_frame`]): the end point the last motion was
+    /// programmed to where it is that ([`Self::kept_workpiece_position`]),
+    /// the frame's image of the machine position otherwise.
+    pub fn workpiece_position(&self, frame: &Frame, out: &mut [f64]) {
+        match self.kept_workpiece_position(frame) {
+            Some(wcs) => out.copy_from_slice(wcs),
+            None => self.to_workpiece(frame, &self.machine, out),
+        }
+    }
+
+    /// The end point the last motion was programmed to, bit for bit,
+    /// where that motion ran in `frame` (the total frame in force) with
+    /// this tool length along this infeed axis and nothing has moved the
+    /// machine since: the workpiece position. The control keeps the
+    /// programmed position; computed back from the machine position,
+    /// through the frame's arithmetic there and back, it could differ in
+    /// the last bit (`X100.037` under an offset read back as
+    /// `100.03700000000003`).
+    pub fn kept_workpiece_position(&self, frame: &Frame) -> Option<&[f64]> {
+        if self.frame_as_traversed(frame) {
+            self.end_point_in_traversed_frame()
+        } else {
+            None
+        }
+    }
+
+    /// [`Self::kept_workpiece_position`] where the caller knows the frame
+    /// in force is the one the last motion ran in
+    /// ([`Self::frame_as_traversed`]).
+    pub fn end_point_in_traversed_frame(&self) -> Option<&[f64]> {
+        let end = &self.end_point;
+        let holds =
+            end.kept && end.tool_length == self.tool_length.to_bits() && end.plane == self.plane();
+        holds.then_some(&end.wcs)
+    }
+
+    /// Keeps `wcs`, the end point of the motion that just set the machine
+    /// position (its image in the frame it ran in, which
+    /// [`Self::note_traversed_frame`] has noted), as the workpiece
+    /// position. A block with its frames suppressed (`G53`, `SUPA`)
+    /// programs machine positions: its end point is forgotten.
+    pub(super) fn keep_end_point(&mut self, wcs: &[f64]) {
+        let plane = self.plane();
+        let end = &mut self.end_point;
+        end.kept = self.suppression.is_none();
+        end.wcs.resize(wcs.len(), 0.0);
+        for (kept, value) in end.wcs.iter_mut().zip(wcs) {
+            // `-0` is kept as `0`, as any frame's arithmetic gives it:
+            // the machine position as it is says the same where a motion
+            // leaves nothing kept.
+            *kept = 0.0 + value;
+        }
+        end.tool_length = self.tool_length.to_bits();
+        end.plane = plane;
+    }
+
+    /// The machine position moved other than to a kept end point (a
+    /// corner of the tool-centre path): the workpiece position is its
+    /// image again.
+    pub(super) fn forget_end_point(&mut self) {
+        self.end_point.kept = false;
+    }
+
     /// Machine coordinates of the workpiece point `wcs`.
     pub fn to_machine(&self, frame: &Frame, wcs: &[f64], out: &mut [f64]) {
         frame.to_outer(wcs, out);
@@ -705,7 +786,12 @@ impl MachineState {
                     _ => &self.machine,
                 };
                 let mut wcs = vec![0.0; self.axes.len()];
-                self.to_workpiece(&self.total_frame(), machine, &mut wcs);
+                let frame = self.total_frame();
+                if std::ptr::eq(machine, &self.machine) {
+                    self.workpiece_position(&frame, &mut wcs);
+                } else {
+                    self.to_workpiece(&frame, machine, &mut wcs);
+                }
                 Ok(RtValue::Real(self.as_programmed(axis, wcs[axis])))
             }
             _ => match self.tool_data.read(id, indices) {

@@ -220,6 +220,7 @@ impl Channel<'_> {
             })
             .map_err(path_error)?;
         self.state.machine.copy_from_slice(&machine);
+        self.state.forget_end_point();
         self.motion.wcs.copy_from_slice(&wcs);
         Ok(())
     }
