@@ -8,11 +8,12 @@
 //! its arithmetic there and back `X100.037` comes back as
 //! `100.03700000000003`.
 
-use std::sync::Arc;
+mod common;
 
-use gcodec_driver::{RunSetup, run_main};
-use gcodec_exec::event::{EventKind, MotionEvent, VecSink};
-use gcodec_source::{Severity, SourceFile};
+use common::runs::events_of_text_with;
+use gcodec_driver::RunSetup;
+use gcodec_exec::event::{EventKind, MotionEvent};
+use gcodec_source::Severity;
 use gcodec_testkit::profile;
 
 /// The motions of `program` on the machining centre, run on the direct
@@ -20,16 +21,8 @@ use gcodec_testkit::profile;
 fn motions(program: &str, direct: bool) -> Vec<MotionEvent> {
     let mut setup = RunSetup::new(profile("mill_tool_management.toml"));
     setup.options.direct_motions = direct;
-    let file = Arc::new(SourceFile::new("POSITIONS.MPF", program));
-    let mut sink = VecSink::new();
-    let report = run_main(file, &setup, &mut sink, None);
-    assert!(
-        !report.diagnostics.iter().any(|d| d.is_error()),
-        "{program}: {:?}",
-        report.diagnostics
-    );
     let mut motions = Vec::new();
-    for event in sink.events {
+    for event in events_of_text_with(&setup, "POSITIONS.MPF", program) {
         match event.kind {
             EventKind::Motion(m) => motions.push(m),
             EventKind::Diagnostic(d) if d.severity == Severity::Error => {
