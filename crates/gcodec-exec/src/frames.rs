@@ -555,11 +555,41 @@ impl Frame {
     pub fn to_outer(&self, point: &[f64], out: &mut [f64]) {
         let len = point.len().min(out.len());
         let n = self.axes.len().min(len);
-        if self.is_identity() && point[..n].iter().all(|v| v.is_finite()) {
-            self.identity_to_outer(point, out, len, n);
+        let finite = point[..n].iter().all(|v| v.is_finite());
+        if finite && self.rotation.m == IDENTITY && self.axes_only_translate() {
+            if self.axes_exactly_neutral() {
+                self.identity_to_outer(point, out, len, n);
+            } else {
+                self.translation_to_outer(point, out, len, n);
+            }
         } else {
             self.general_to_outer(point, out, len, n);
         }
+    }
+
+    /// [`to_outer`](Self::to_outer) of a frame that only translates (a work
+    /// offset, mostly: [`Self::axes_only_translate`], the rotation the
+    /// identity) and a finite point: `T + p` for every axis, as the general
+    /// path gives it bit for bit. `1 × p` is `p`; the rotation adds `0 × v`
+    /// of the other slots, signed zeros that leave a non-zero `p` as it is
+    /// and change at most a zero's sign, and adding a translation that is
+    /// not `-0.0` gives the same sum for either sign of a zero.
+    fn translation_to_outer(&self, point: &[f64], out: &mut [f64], len: usize, n: usize) {
+        for ((o, p), axis) in out[..n].iter_mut().zip(&point[..n]).zip(&self.axes) {
+            *o = axis.offset() + p;
+        }
+        out[n..len].copy_from_slice(&point[n..len]);
+    }
+
+    /// Whether no axis scales or mirrors, bit for bit, and none translates
+    /// by `-0.0` (whose sum with a zero depends on the zero's sign):
+    /// [`Self::translation_to_outer`] applies.
+    fn axes_only_translate(&self) -> bool {
+        self.axes.iter().all(|a| {
+            a.scale.to_bits() == 1f64.to_bits()
+                && !a.mirror
+                && a.offset().to_bits() != (-0.0f64).to_bits()
+        })
     }
 
     /// [`to_outer`](Self::to_outer) of any frame.
@@ -1198,7 +1228,7 @@ mod tests {
     /// frame's, for infinite and NaN coordinates too. Frames that
     /// translate (by `-0.0` too), scale or mirror take the general paths.
     #[test]
-    fn the_neutral_path_gives_the_general_paths_bits() {
+    fn the_neutral_and_translation_paths_give_the_general_paths_bits() {
         let axes = FrameAxes::new([("X", true), ("Y", true), ("Z", true), ("A", false)]);
         let plane = Plane::G17;
         let framed = |op: FrameOp, values: &[(usize, f64)]| {
@@ -1214,9 +1244,25 @@ mod tests {
             rotated,
             framed(FrameOp::Trans, &[(0, 0.0)]),
         ];
+        let mut translated_and_rotated = framed(FrameOp::Trans, &[(0, 3.0), (2, -1.5)]);
+        translated_and_rotated.rotation = framed(FrameOp::Rot, &[(2, 30.0)]).rotation;
+        let mut translated_by_identity = framed(FrameOp::Trans, &[(0, 3.0), (1, 0.0)]);
+        translated_by_identity.rotation = Rotation::from_angles([0.0, 0.0, 0.0]);
+        // Coarse and fine both `-0.0`: a translation of `-0.0`.
+        let mut minus_zero = framed(FrameOp::Trans, &[(0, -0.0), (1, 2.0)]);
+        minus_zero.axes[0].fine = -0.0;
         let not_neutral = [
             framed(FrameOp::Trans, &[(0, -0.0)]),
             framed(FrameOp::Trans, &[(1, 5.0), (3, -2.0)]),
+            // A work offset: every axis translated, one by `+0.0`.
+            framed(
+                FrameOp::Trans,
+                &[(0, -412.5), (1, -220.0), (2, 0.0), (3, 515.3)],
+            ),
+            framed(FrameOp::Trans, &[(0, -0.0), (1, 2.0)]),
+            translated_and_rotated,
+            translated_by_identity,
+            minus_zero,
             framed(FrameOp::Scale, &[(0, 2.0)]),
             framed(FrameOp::Mirror, &[(1, 0.0)]),
         ];
