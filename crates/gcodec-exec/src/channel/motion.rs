@@ -275,24 +275,28 @@ impl Channel<'_> {
         {
             return false;
         }
-        // In a plain state the positions are the machine's as they are; in
-        // a frame the last motion ran in too (a work offset, mostly) they
-        // go through the frame's arithmetic as the general path's do.
-        let plain = state.positions_plain();
+        // The motion runs in the frame the last one ran in, fetched once:
+        // in a plain state the positions are the machine's as they are;
+        // otherwise (a work offset, mostly) they go through the frame's
+        // arithmetic as the general path's do.
+        let frame = state.total_frame();
+        if !state.frame_as_traversed(&frame) {
+            return false;
+        }
+        let plain = state.plain_in_traversed_frame();
         if plain {
             if !identity_inward_as_is(&state.machine, &mut self.motion.wcs) {
                 return false;
             }
         } else {
-            // Not plain but in the frame traversed: the frame changes
-            // values or a tool length acts, and the workpiece position is
-            // the last end point or the frame's image of the machine's
-            // ([`MotionScratch::workpiece_position`] gives the same).
-            let frame = state.total_frame();
-            if !state.frame_as_traversed(&frame) {
-                return false;
+            // The frame changes values or a tool length acts: the
+            // workpiece position is the last end point or the frame's
+            // image of the machine's ([`MotionScratch::workpiece_position`]
+            // gives the same).
+            match state.end_point_in_traversed_frame() {
+                Some(kept) => self.motion.wcs.copy_from_slice(kept),
+                None => state.to_workpiece(&frame, &state.machine, &mut self.motion.wcs),
             }
-            state.workpiece_position(&frame, &mut self.motion.wcs);
         }
         let scratch = &mut self.motion;
         scratch.target.copy_from_slice(&scratch.wcs);
@@ -325,7 +329,6 @@ impl Channel<'_> {
             identity_outward(&scratch.target, &mut scratch.machine);
             scratch.end_is_machine = true;
         } else {
-            let frame = self.state.total_frame();
             self.state
                 .to_machine(&frame, &scratch.target, &mut scratch.machine);
         }

@@ -461,10 +461,15 @@ impl MachineState {
     /// are `-0.0` or not finite are the caller's to rule out: the frame's
     /// arithmetic can change those.
     pub fn positions_plain(&self) -> bool {
-        self.tool_length.to_bits() == 0
-            && self
-                .identity_total_frame()
-                .is_some_and(|total| self.frame_as_traversed(&total))
+        let total = self.total_frame();
+        self.frame_as_traversed(&total) && self.plain_in_traversed_frame()
+    }
+
+    /// [`Self::positions_plain`] where the caller has checked
+    /// [`Self::frame_as_traversed`] of the total frame and holds it: no
+    /// tool length, and that frame changes no value.
+    pub fn plain_in_traversed_frame(&self) -> bool {
+        self.tool_length.to_bits() == 0 && self.frame_cache.borrow().total_is_identity
     }
 
     /// Whether a motion now runs in the frame the last motion ran in,
