@@ -588,9 +588,9 @@ impl MachineState {
         end.kept = self.suppression.is_none();
         end.wcs.resize(wcs.len(), 0.0);
         for (kept, value) in end.wcs.iter_mut().zip(wcs) {
-            // `-0` is kept as `0`, as any frame's arithmetic gives it:
-            // the machine position as it is says the same where a motion
-            // leaves nothing kept.
+            // `-0` is kept as `0`, as the frame's arithmetic there and
+            // back gives it, and as the machine position as it is says
+            // where a motion keeps nothing.
             *kept = 0.0 + value;
         }
         end.tool_length = self.tool_length.to_bits();
@@ -598,8 +598,10 @@ impl MachineState {
     }
 
     /// The machine position moved other than to a kept end point (a
-    /// corner of the tool-centre path): the workpiece position is its
-    /// image again.
+    /// corner of the tool-centre path), or to one that needs no keeping
+    /// (a motion in a plain state, whose machine position is its
+    /// workpiece position as it is): the workpiece position is the
+    /// machine position's image again.
     pub(super) fn forget_end_point(&mut self) {
         self.end_point.kept = false;
     }
