@@ -557,23 +557,21 @@ impl Frame {
         let n = self.axes.len().min(len);
         let finite = point[..n].iter().all(|v| v.is_finite());
         if finite && self.rotation.m == IDENTITY && self.axes_only_translate() {
-            if self.axes_exactly_neutral() {
-                self.identity_to_outer(point, out, len, n);
-            } else {
-                self.translation_to_outer(point, out, len, n);
-            }
+            self.translation_to_outer(point, out, len, n);
         } else {
             self.general_to_outer(point, out, len, n);
         }
     }
 
     /// [`to_outer`](Self::to_outer) of a frame that only translates (a work
-    /// offset, mostly: [`Self::axes_only_translate`], the rotation the
+    /// offset, or none: [`Self::axes_only_translate`], the rotation the
     /// identity) and a finite point: `T + p` for every axis, as the general
     /// path gives it bit for bit. `1 × p` is `p`; the rotation adds `0 × v`
     /// of the other slots, signed zeros that leave a non-zero `p` as it is
     /// and change at most a zero's sign, and adding a translation that is
-    /// not `-0.0` gives the same sum for either sign of a zero.
+    /// not `-0.0` gives the same sum for either sign of a zero (`+0.0` for
+    /// a zero under the identity). An infinite coordinate would make
+    /// `0 × v` a NaN: such a point takes the general path.
     fn translation_to_outer(&self, point: &[f64], out: &mut [f64], len: usize, n: usize) {
         for ((o, p), axis) in out[..n].iter_mut().zip(&point[..n]).zip(&self.axes) {
             *o = axis.offset() + p;
@@ -658,18 +656,6 @@ impl Frame {
     /// `+0.0`, and a point with an infinite coordinate into NaNs.
     pub fn is_identity(&self) -> bool {
         self.rotation.m == IDENTITY && self.axes_exactly_neutral()
-    }
-
-    /// [`to_outer`](Self::to_outer) of an identity frame and a finite
-    /// point: `0 + p` for every axis, as the general path gives it bit
-    /// for bit. `1 × p` is `p`; the rotation adds `0 × v` of the other
-    /// slots, signed zeros that leave a non-zero `p` as it is and can
-    /// only change a zero's sign, which the translation's `0 +` then makes
-    /// `+0` anyway. (An infinite coordinate would make `0 × v` a NaN: such
-    /// a point takes the general path.)
-    fn identity_to_outer(&self, point: &[f64], out: &mut [f64], len: usize, n: usize) {
-        identity_outward(&point[..n], &mut out[..n]);
-        out[n..len].copy_from_slice(&point[n..len]);
     }
 
     /// [`to_inner`](Self::to_inner) of a frame whose axes are exactly
@@ -1222,11 +1208,12 @@ mod tests {
     }
 
     /// Frames whose axes are exactly neutral take the short way into the
-    /// frame, identity frames the short way out: they give the general
-    /// paths' bits, zeros' signs included, with and without a rotation
-    /// (one of zero angles too), on a machine with an axis past the
-    /// frame's, for infinite and NaN coordinates too. Frames that
-    /// translate (by `-0.0` too), scale or mirror take the general paths.
+    /// frame, frames that only translate (identity frames too) the short
+    /// way out: they give the general paths' bits, zeros' signs included,
+    /// with and without a rotation (one of zero angles too), on a machine
+    /// with an axis past the frame's, for infinite and NaN coordinates
+    /// too. Frames that translate by `-0.0`, rotate, scale or mirror take
+    /// the general way out.
     #[test]
     fn the_neutral_and_translation_paths_give_the_general_paths_bits() {
         let axes = FrameAxes::new([("X", true), ("Y", true), ("Z", true), ("A", false)]);

@@ -92,14 +92,13 @@ impl MotionScratch {
     /// ([`MachineState::workpiece_position`]): the machine position as it
     /// is where no frame or tool length changes it.
     pub fn workpiece_position(&mut self, state: &MachineState) {
+        // Where the machine position is taken as it is, a kept end point
+        // says the same: a motion keeps `0 + v`, and an identity frame
+        // put the machine at `0 + v` too.
         let frame = state.total_frame();
-        if let Some(kept) = state.kept_workpiece_position(&frame) {
-            self.wcs.copy_from_slice(kept);
-            return;
-        }
-        let as_is = self.direct && state.workpiece_is_machine();
+        let as_is = self.direct && state.workpiece_is_machine_in(&frame);
         if !(as_is && identity_inward_as_is(&state.machine, &mut self.wcs)) {
-            state.to_workpiece(&frame, &state.machine, &mut self.wcs);
+            state.workpiece_position(&frame, &mut self.wcs);
         }
     }
 }
@@ -283,7 +282,7 @@ impl Channel<'_> {
         if !state.frame_as_traversed(&frame) {
             return false;
         }
-        let plain = state.plain_in_traversed_frame();
+        let plain = state.workpiece_is_machine_in(&frame);
         if plain {
             if !identity_inward_as_is(&state.machine, &mut self.motion.wcs) {
                 return false;
@@ -405,14 +404,11 @@ impl Channel<'_> {
         }
         // The channel is at the programmed end point, held or not.
         self.state.machine.copy_from_slice(&self.motion.machine);
-        if engaged || end_is_machine {
-            // The stage may move it to a corner of the tool-centre path;
-            // or the machine position is the workpiece position as it is.
-            self.state.forget_end_point();
-        }
         if engaged {
             // Compensation or a corner element: the stage holds the
-            // motion until the next element makes it final.
+            // motion until the next element makes it final, and may move
+            // the machine to a corner of the tool-centre path.
+            self.state.forget_end_point();
             return self.hold_motion(
                 program,
                 instruction,
@@ -424,7 +420,10 @@ impl Channel<'_> {
                 corner,
             );
         }
-        if !end_is_machine {
+        if end_is_machine {
+            // The machine position is the workpiece position as it is.
+            self.state.forget_end_point();
+        } else {
             self.state.keep_end_point(&self.motion.target);
         }
         let extent = match &arc {

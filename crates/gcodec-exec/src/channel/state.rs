@@ -462,14 +462,7 @@ impl MachineState {
     /// arithmetic can change those.
     pub fn positions_plain(&self) -> bool {
         let total = self.total_frame();
-        self.frame_as_traversed(&total) && self.plain_in_traversed_frame()
-    }
-
-    /// [`Self::positions_plain`] where the caller has checked
-    /// [`Self::frame_as_traversed`] of the total frame and holds it: no
-    /// tool length, and that frame changes no value.
-    pub fn plain_in_traversed_frame(&self) -> bool {
-        self.tool_length.to_bits() == 0 && self.frame_cache.borrow().total_is_identity
+        self.frame_as_traversed(&total) && self.workpiece_is_machine_in(&total)
     }
 
     /// Whether a motion now runs in the frame the last motion ran in,
@@ -489,13 +482,14 @@ impl MachineState {
     /// now: no tool length and a total frame that changes no value
     /// (`-0.0` and values out of range aside, [`Frame::is_identity`]).
     pub fn workpiece_is_machine(&self) -> bool {
-        self.tool_length.to_bits() == 0 && self.identity_total_frame().is_some()
+        self.workpiece_is_machine_in(&self.total_frame())
     }
 
-    /// The total frame, if it is the identity.
-    fn identity_total_frame(&self) -> Option<Ref<'_, Frame>> {
-        let total = self.total_frame();
-        self.frame_cache.borrow().total_is_identity.then_some(total)
+    /// [`Self::workpiece_is_machine`] where the caller holds the total
+    /// frame ([`Self::total_frame`]: while it is held, nothing it is made
+    /// of changes, and the cache's note of it stands).
+    pub(super) fn workpiece_is_machine_in(&self, _total: &Frame) -> bool {
+        self.tool_length.to_bits() == 0 && self.frame_cache.borrow().total_is_identity
     }
 
     /// Keeps the total frame of the motion just made, for the increments
@@ -542,35 +536,29 @@ impl MachineState {
 
     /// The workpiece position now, in the total frame `frame` (the one in
     /// force, [`Self::total_frame`]): the end point the last motion was
-    /// programmed to where it is that ([`Self::kept_workpiece_position`]),
-    /// the frame's image of the machine position otherwise.
+    /// programmed to, bit for bit, where that motion ran in this frame
+    /// with this tool length along this infeed axis and nothing has moved
+    /// the machine since; the frame's image of the machine position
+    /// otherwise. The control keeps the programmed position; computed
+    /// back from the machine position, through the frame's arithmetic
+    /// there and back, it could differ in the last bit (`X100.037` under
+    /// an offset read back as `100.03700000000003`).
     pub fn workpiece_position(&self, frame: &Frame, out: &mut [f64]) {
-        match self.kept_workpiece_position(frame) {
+        let kept = if self.frame_as_traversed(frame) {
+            self.end_point_in_traversed_frame()
+        } else {
+            None
+        };
+        match kept {
             Some(wcs) => out.copy_from_slice(wcs),
             None => self.to_workpiece(frame, &self.machine, out),
         }
     }
 
-    /// The end point the last motion was programmed to, bit for bit,
-    /// where that motion ran in `frame` (the total frame in force) with
-    /// this tool length along this infeed axis and nothing has moved the
-    /// machine since: the workpiece position. The control keeps the
-    /// programmed position; computed back from the machine position,
-    /// through the frame's arithmetic there and back, it could differ in
-    /// the last bit (`X100.037` under an offset read back as
-    /// `100.03700000000003`).
-    pub fn kept_workpiece_position(&self, frame: &Frame) -> Option<&[f64]> {
-        if self.frame_as_traversed(frame) {
-            self.end_point_in_traversed_frame()
-        } else {
-            None
-        }
-    }
-
-    /// [`Self::kept_workpiece_position`] where the caller knows the frame
-    /// in force is the one the last motion ran in
-    /// ([`Self::frame_as_traversed`]).
-    pub fn end_point_in_traversed_frame(&self) -> Option<&[f64]> {
+    /// The kept end point that [`Self::workpiece_position`] gives, where
+    /// the caller knows the frame in force is the one the last motion ran
+    /// in ([`Self::frame_as_traversed`]).
+    pub(super) fn end_point_in_traversed_frame(&self) -> Option<&[f64]> {
         let end = &self.end_point;
         let holds =
             end.kept && end.tool_length == self.tool_length.to_bits() && end.plane == self.plane();
@@ -788,16 +776,13 @@ impl MachineState {
             }
             (SysVarId::AA_IW | SysVarId::P_EP, _) => {
                 let axis = one_axis("the workpiece position")?;
-                let machine = match (id, &self.tool_centre) {
-                    (SysVarId::AA_IW, Some(actual)) => actual,
-                    _ => &self.machine,
-                };
                 let mut wcs = vec![0.0; self.axes.len()];
                 let frame = self.total_frame();
-                if std::ptr::eq(machine, &self.machine) {
-                    self.workpiece_position(&frame, &mut wcs);
-                } else {
-                    self.to_workpiece(&frame, machine, &mut wcs);
+                match (id, &self.tool_centre) {
+                    (SysVarId::AA_IW, Some(actual)) => {
+                        self.to_workpiece(&frame, actual, &mut wcs);
+                    }
+                    _ => self.workpiece_position(&frame, &mut wcs),
                 }
                 Ok(RtValue::Real(self.as_programmed(axis, wcs[axis])))
             }

@@ -23,8 +23,8 @@ use gcodec_ail::{AxisValue, Op, Value};
 use gcodec_lang::MotionKind;
 use gcodec_lang::addresses::letter_str;
 use gcodec_lang::ggroups::{self, GCommand};
-use gcodec_parser::WordLine;
 use gcodec_parser::ast::{Block, StatementKind};
+use gcodec_parser::{ConstantWord, WordLine};
 use gcodec_source::Span;
 
 use super::Lowering;
@@ -55,9 +55,15 @@ impl Lowering<'_> {
             .statements
             .iter()
             .map(|statement| match &statement.kind {
-                StatementKind::Word(word) => word
-                    .letter_constant()
-                    .map(|(letter, value, integer)| (letter, value, integer, statement.span)),
+                StatementKind::Word(word) => {
+                    word.letter_constant()
+                        .map(|(letter, value, integer)| ConstantWord {
+                            letter,
+                            value,
+                            integer,
+                            span: statement.span,
+                        })
+                }
                 _ => None,
             });
         let mut read = ConstantWords::default();
@@ -83,29 +89,23 @@ impl Lowering<'_> {
         {
             return false;
         }
-        let words = line
-            .words()
-            .iter()
-            .map(|w| Some((w.letter, w.value, w.integer, w.span)));
+        let words = line.words().iter().copied().map(Some);
         let mut read = ConstantWords::default();
         let Some(motion) = self.straight_constant_words(words, &mut read) else {
             return false;
         };
-        // What `Lowering::block` does first with every block.
-        self.block_start = span.start;
-        self.diagnostics.begin_block();
+        self.begin_block(span);
         self.emit_constant_words(index, &read, motion);
         true
     }
 
-    /// Reads the constant words `(letter, value, integer, span)` of a
-    /// block into `words` (filled in place: moving them was a copy call
-    /// a line); their motion if they are a straight motion
-    /// [`Self::constant_word_block`] lowers (`None` stands for any other
-    /// statement).
+    /// Reads the constant words of a block into `words` (filled in place:
+    /// moving them was a copy call a line); their motion if they are a
+    /// straight motion [`Self::constant_word_block`] lowers (`None` stands
+    /// for any other statement).
     fn straight_constant_words(
         &self,
-        statements: impl Iterator<Item = Option<(u8, f64, bool, Span)>>,
+        statements: impl Iterator<Item = Option<ConstantWord>>,
         words: &mut ConstantWords,
     ) -> Option<MotionKind> {
         if !self.read_constant_words(statements, words) {
@@ -151,11 +151,17 @@ impl Lowering<'_> {
     /// [`Self::constant_word_block`] lowers, each as often as it may.
     fn read_constant_words(
         &self,
-        statements: impl Iterator<Item = Option<(u8, f64, bool, Span)>>,
+        statements: impl Iterator<Item = Option<ConstantWord>>,
         words: &mut ConstantWords,
     ) -> bool {
         for statement in statements {
-            let Some((letter, value, integer, span)) = statement else {
+            let Some(ConstantWord {
+                letter,
+                value,
+                integer,
+                span,
+            }) = statement
+            else {
                 return false;
             };
             match letter {

@@ -639,6 +639,13 @@ impl<'a> Lowering<'a> {
             .map(|(_, f)| f)
     }
 
+    /// What every block's lowering starts with: columns count from the
+    /// block's start (`span`), and its diagnostics are its own.
+    fn begin_block(&mut self, span: Span) {
+        self.block_start = span.start;
+        self.diagnostics.begin_block();
+    }
+
     fn source_at(&self, block: usize, span: Span) -> Source {
         Source {
             file: Arc::clone(&self.file),
@@ -693,8 +700,7 @@ impl<'a> Lowering<'a> {
     }
 
     fn block(&mut self, index: usize, block: &Block) {
-        self.block_start = block.span.start;
-        self.diagnostics.begin_block();
+        self.begin_block(block.span);
         let max = *self.profile.program.max_block_length.get_ref();
         if block.span.len() > max {
             self.diagnostics.push(
