@@ -138,6 +138,35 @@ fn csv_positions_follow_frames_and_units_without_motion() {
     assert_eq!(rows, expected, "{text}");
 }
 
+/// A block that moves computes its row's positions without noting what
+/// they came from; a block without motion after it must not take them
+/// for those of an older row whose inputs it has again. Here the motion
+/// (`G70 G1 X1`: one inch, where the machine already is) changes only
+/// the units, and the `G71` after it brings back the machine position,
+/// frame and units of the `G71` row before it.
+#[test]
+fn csv_positions_after_a_motion_are_not_taken_for_older_ones() {
+    let program = "G71 G0 X25.4 Y0\nG71\nG70 G1 X1 F10\nG71\nM30\n";
+    let file = temp_file("run-csv-motion-units", "units.mpf", program);
+    let out = gcodec(["run", file.to_str().expect("path"), "--format", "csv"]);
+    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
+    let text = stdout(&out);
+    // line, X
+    let rows: Vec<(&str, &str)> = text
+        .lines()
+        .skip(1)
+        .map(|r| {
+            let cells: Vec<&str> = r.split(',').collect();
+            (cells[2], cells[5])
+        })
+        .collect();
+    assert_eq!(
+        rows,
+        [("1", "25.4"), ("3", "1"), ("4", "25.4"), ("5", "25.4")],
+        "{text}"
+    );
+}
+
 #[test]
 fn skip_levels_and_max_steps_and_no_stop() {
     let program = "N10 G0 X0\n/1 N20 X10\nN30 M0\nN40 LOOP\nN50 R1=R1+1\nN60 ENDLOOP\n";

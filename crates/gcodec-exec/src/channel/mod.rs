@@ -738,8 +738,17 @@ impl<'r> Channel<'r> {
         row.blocks = self.summary.blocks;
         row.moved = self.block.had_motion;
         // A block without motion mostly leaves them as they were: the
-        // frame transform is the costliest part of a row.
-        let positions_changed = self.row_positions_from.refresh(state);
+        // frame transform is the costliest part of a row. A block that
+        // moved mostly changed them: computing them is cheaper than
+        // asking whether what they come from changed (the writer compares
+        // the values anyway), and what they come from is forgotten, since
+        // it was not noted.
+        let positions_changed = if self.block.had_motion {
+            self.row_positions_from.forget();
+            true
+        } else {
+            self.row_positions_from.refresh(state)
+        };
         if positions_changed {
             self.motion.workpiece_position(state);
             motion::fill_map(&mut row.positions, state, &self.motion.wcs, true);
@@ -1360,6 +1369,13 @@ struct RowPositionsFrom {
 }
 
 impl RowPositionsFrom {
+    /// Makes the next [`RowPositionsFrom::refresh`] say the positions
+    /// must be computed again: the row's positions were computed from
+    /// inputs it did not note.
+    fn forget(&mut self) {
+        self.frame_generation = None;
+    }
+
     /// Whether the positions must be computed again for `state`; takes
     /// `state`'s inputs as the new ones.
     fn refresh(&mut self, state: &MachineState) -> bool {
