@@ -10,7 +10,6 @@ use gcodec_lang::MotionKind;
 use gcodec_source::codes;
 
 use super::Channel;
-use crate::eval;
 use crate::program::Program;
 use crate::value::RunError;
 
@@ -65,7 +64,7 @@ impl Channel<'_> {
 
     /// `FP=`: 1…4 (MD30600 has four fixed points per axis).
     fn fixed_point_number(&self, value: &gcodec_ail::Value) -> Result<usize, RunError> {
-        let n = eval::eval_real(&self.env(), value)?;
+        let n = self.real_of(value)?;
         if n.fract() == 0.0 && (1.0..=4.0).contains(&n) {
             return Ok(n as usize);
         }

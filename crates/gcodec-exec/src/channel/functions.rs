@@ -358,7 +358,7 @@ impl Channel<'_> {
     ) -> Result<(), RunError> {
         match address.address {
             NamedAddress::Spos | NamedAddress::Sposa => {
-                let value = eval::eval_real(&self.env(), &address.value)?;
+                let value = self.real_of(&address.value)?;
                 let number = self.extension(address.extension, address.extension_expr.as_ref())?;
                 let s = self.state.spindle(number)?;
                 s.state = SpindleState::Positioned;
@@ -366,7 +366,7 @@ impl Channel<'_> {
                 self.spindle_event(program, instruction, number)?;
             }
             NamedAddress::Offn | NamedAddress::Rndm | NamedAddress::Disc => {
-                let value = eval::eval_real(&self.env(), &address.value)?;
+                let value = self.real_of(&address.value)?;
                 let length = self.state.length_in_mm(value);
                 let contour = &mut self.state.contour;
                 match address.address {

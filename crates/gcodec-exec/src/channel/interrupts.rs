@@ -10,7 +10,6 @@ use gcodec_lang::interrupts::{self, INPUTS, PRIORITIES};
 use gcodec_source::codes;
 
 use super::Channel;
-use crate::eval;
 use crate::event::{EventKind, InterruptChange, InterruptEvent};
 use crate::program::Program;
 use crate::value::RunError;
@@ -100,7 +99,7 @@ impl Channel<'_> {
         value: &Value,
         range: &RangeInclusive<u32>,
     ) -> Result<u32, RunError> {
-        let n = eval::eval_real(&self.env(), value)?;
+        let n = self.real_of(value)?;
         interrupts::in_range(n, range).ok_or_else(|| {
             RunError::new(
                 codes::run::INTERRUPT,

@@ -833,7 +833,7 @@ impl<'r> Channel<'r> {
 
     /// `F…`: the feed.
     fn feed(&mut self, value: &gcodec_ail::Value) -> Result<Flow, RunError> {
-        self.state.feed = eval::eval_real(&self.env(), value)?;
+        self.state.feed = self.real_of(value)?;
         Ok(Flow::Next)
     }
 
@@ -1008,6 +1008,16 @@ impl<'r> Channel<'r> {
         match result {
             Ok(flow) => flow,
             Err(error) => self.failed(program, pc, instruction, error),
+        }
+    }
+
+    /// `value` evaluated to a REAL. A constant needs no environment to
+    /// evaluate in: making one was most of what a flood block's `F1000`
+    /// cost.
+    fn real_of(&self, value: &gcodec_ail::Value) -> Result<f64, RunError> {
+        match value {
+            gcodec_ail::Value::Const(n) => Ok(*n),
+            gcodec_ail::Value::Expr(_) => eval::eval_real(&self.env(), value),
         }
     }
 

@@ -542,7 +542,7 @@ impl Channel<'_> {
         value: &Value,
         mode: Option<DimensionMode>,
     ) -> Result<(), RunError> {
-        let value = eval::eval_real(&self.env(), value)?;
+        let value = self.real_of(value)?;
         let start = self.motion.wcs[axis];
         let increment_start = self.motion.increment_start[axis];
         let target = self.dimension(axis, value, mode, start, increment_start);

@@ -151,7 +151,7 @@ impl Channel<'_> {
         let Some(value) = words.contour_angle else {
             return Ok(ContourAngle::None);
         };
-        let angle = eval::eval_real(&self.env(), value)?;
+        let angle = self.real_of(value)?;
         if written == (false, false) {
             // The first block of a contour of two blocks: its end point
             // is where the next block's line meets it.

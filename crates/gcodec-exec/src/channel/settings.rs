@@ -8,7 +8,6 @@ use gcodec_source::codes;
 
 use super::Channel;
 use super::polar::PolarWords;
-use crate::eval;
 use crate::frames::TranslationPart;
 use crate::geometry::Point3;
 use crate::value::RunError;
@@ -44,7 +43,7 @@ impl Channel<'_> {
     /// inches under `G70`/`G700`.
     fn length_of(&self, value: &AxisValue) -> Result<(usize, f64), RunError> {
         let axis = self.axis(&value.axis)?;
-        let v = eval::eval_real(&self.env(), &value.value)?;
+        let v = self.real_of(&value.value)?;
         let inch = self.state.inch() && !self.state.axes[axis].rotary;
         Ok((axis, if inch { v * 25.4 } else { v }))
     }
@@ -63,7 +62,7 @@ impl Channel<'_> {
             side[axis] = Some(v);
         }
         for limit in &setting.spindle_limits {
-            let speed = eval::eval_real(&self.env(), &limit.speed)?;
+            let speed = self.real_of(&limit.speed)?;
             let spindle = self.state.spindle(limit.spindle)?;
             spindle.speed_limits[usize::from(upper)] = Some(speed);
         }

@@ -11,7 +11,6 @@ use gcodec_source::{Code, codes};
 
 use super::Channel;
 use super::motion::fill_map;
-use crate::eval;
 use crate::event::{BlockRow, Event, EventKind, EventSource, InsertedElement, ToolArc, ToolCentre};
 use crate::frames::Frame;
 use crate::geometry::{self, BoundingBox, Plane, Point3};
@@ -135,9 +134,7 @@ impl Channel<'_> {
             _ => None,
         };
         if let Some(t) = transition {
-            let value = self
-                .state
-                .length_in_mm(eval::eval_real(&self.env(), &t.value)?);
+            let value = self.state.length_in_mm(self.real_of(&t.value)?);
             return Ok(Some(match t.kind {
                 TransitionKind::Chamfer => CornerElement::ChamferLength(value),
                 TransitionKind::ChamferLeg => CornerElement::ChamferLeg(value),
