@@ -105,24 +105,34 @@ fn csv_has_a_row_per_change_or_per_block_on_request() {
     assert!(every_block.lines().any(|r| column(r, 0) == "200"));
 }
 
-/// A block without motion that moves the workpiece zero or changes the
-/// units changes the CSV's positions: its row shows them anew.
-#[test]
-fn csv_positions_follow_frames_and_units_without_motion() {
-    let program = "G0 X10 Y0 Z0\nR1=1\nTRANS X5\nG70\nR2=2\nTRANS\nG71\nM30\n";
-    let file = temp_file("run-csv-frames", "frames.mpf", program);
+/// The CSV `gcodec run` writes for `program`, as (line, X) of each row.
+fn csv_lines_and_x(name: &str, program: &str) -> Vec<(String, String)> {
+    let file = temp_file(name, "program.mpf", program);
     let out = gcodec(["run", file.to_str().expect("path"), "--format", "csv"]);
     assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
-    let text = stdout(&out);
-    // line, X
-    let rows: Vec<(String, String)> = text
+    stdout(&out)
         .lines()
         .skip(1)
         .map(|r| {
             let cells: Vec<&str> = r.split(',').collect();
             (cells[2].to_owned(), cells[5].to_owned())
         })
-        .collect();
+        .collect()
+}
+
+/// (line, X) pairs as [`csv_lines_and_x`] gives them.
+fn lines_and_x(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
+    pairs
+        .iter()
+        .map(|(l, x)| ((*l).to_owned(), (*x).to_owned()))
+        .collect()
+}
+
+/// A block without motion that moves the workpiece zero or changes the
+/// units changes the CSV's positions: its row shows them anew.
+#[test]
+fn csv_positions_follow_frames_and_units_without_motion() {
+    let program = "G0 X10 Y0 Z0\nR1=1\nTRANS X5\nG70\nR2=2\nTRANS\nG71\nM30\n";
     let expected = [
         ("1", "10"),
         ("3", "5"),
@@ -131,11 +141,10 @@ fn csv_positions_follow_frames_and_units_without_motion() {
         ("7", "10"),
         ("8", "10"),
     ];
-    let expected: Vec<(String, String)> = expected
-        .iter()
-        .map(|(l, x)| ((*l).to_owned(), (*x).to_owned()))
-        .collect();
-    assert_eq!(rows, expected, "{text}");
+    assert_eq!(
+        csv_lines_and_x("run-csv-frames", program),
+        lines_and_x(&expected)
+    );
 }
 
 /// A block that moves computes its row's positions without noting what
@@ -147,23 +156,10 @@ fn csv_positions_follow_frames_and_units_without_motion() {
 #[test]
 fn csv_positions_after_a_motion_are_not_taken_for_older_ones() {
     let program = "G71 G0 X25.4 Y0\nG71\nG70 G1 X1 F10\nG71\nM30\n";
-    let file = temp_file("run-csv-motion-units", "units.mpf", program);
-    let out = gcodec(["run", file.to_str().expect("path"), "--format", "csv"]);
-    assert_eq!(code(&out), EXIT_CLEAN, "{}", stderr(&out));
-    let text = stdout(&out);
-    // line, X
-    let rows: Vec<(&str, &str)> = text
-        .lines()
-        .skip(1)
-        .map(|r| {
-            let cells: Vec<&str> = r.split(',').collect();
-            (cells[2], cells[5])
-        })
-        .collect();
+    let expected = [("1", "25.4"), ("3", "1"), ("4", "25.4"), ("5", "25.4")];
     assert_eq!(
-        rows,
-        [("1", "25.4"), ("3", "1"), ("4", "25.4"), ("5", "25.4")],
-        "{text}"
+        csv_lines_and_x("run-csv-motion-units", program),
+        lines_and_x(&expected)
     );
 }
 
