@@ -290,12 +290,8 @@ impl Channel<'_> {
         } else {
             // The frame changes values or a tool length acts: the
             // workpiece position is the last end point or the frame's
-            // image of the machine's ([`MotionScratch::workpiece_position`]
-            // gives the same).
-            match state.end_point_in_traversed_frame() {
-                Some(kept) => self.motion.wcs.copy_from_slice(kept),
-                None => state.to_workpiece(&frame, &state.machine, &mut self.motion.wcs),
-            }
+            // image of the machine's.
+            state.workpiece_position_in_traversed_frame(&frame, &mut self.motion.wcs);
         }
         let scratch = &mut self.motion;
         scratch.target.copy_from_slice(&scratch.wcs);

@@ -544,25 +544,23 @@ impl MachineState {
     /// there and back, it could differ in the last bit (`X100.037` under
     /// an offset read back as `100.03700000000003`).
     pub fn workpiece_position(&self, frame: &Frame, out: &mut [f64]) {
-        let kept = if self.frame_as_traversed(frame) {
-            self.end_point_in_traversed_frame()
+        if self.frame_as_traversed(frame) {
+            self.workpiece_position_in_traversed_frame(frame, out);
         } else {
-            None
-        };
-        match kept {
-            Some(wcs) => out.copy_from_slice(wcs),
-            None => self.to_workpiece(frame, &self.machine, out),
+            self.to_workpiece(frame, &self.machine, out);
         }
     }
 
-    /// The kept end point that [`Self::workpiece_position`] gives, where
-    /// the caller knows the frame in force is the one the last motion ran
-    /// in ([`Self::frame_as_traversed`]).
-    pub(super) fn end_point_in_traversed_frame(&self) -> Option<&[f64]> {
+    /// [`Self::workpiece_position`] where the caller knows the frame in
+    /// force, `frame`, is the one the last motion ran in
+    /// ([`Self::frame_as_traversed`]).
+    pub(super) fn workpiece_position_in_traversed_frame(&self, frame: &Frame, out: &mut [f64]) {
         let end = &self.end_point;
-        let holds =
-            end.kept && end.tool_length == self.tool_length.to_bits() && end.plane == self.plane();
-        holds.then_some(&end.wcs)
+        if end.kept && end.tool_length == self.tool_length.to_bits() && end.plane == self.plane() {
+            out.copy_from_slice(&end.wcs);
+        } else {
+            self.to_workpiece(frame, &self.machine, out);
+        }
     }
 
     /// Keeps `wcs`, the end point of the motion that just set the machine
