@@ -380,6 +380,26 @@ fn line_at(src: &[u8], start: usize, limit: usize) -> (usize, usize, usize) {
     (start, text_end, end)
 }
 
+/// Whether every line of `src` is blank or a comment: nothing but blanks
+/// (the lexer's: space, tab, CR, VT, FF, `&`) before a line end or a `;`.
+/// A chunk asks this of the lines before it when it meets a header: the
+/// header is the file's only if nothing else came first, whichever chunk
+/// it falls in. The scan stops at the first other line, mostly the first.
+fn blank_or_comment_lines(src: &[u8]) -> bool {
+    let mut at = 0;
+    while at < src.len() {
+        match src[at] {
+            b' ' | b'\t' | b'\r' | 0x0b | 0x0c | b'&' | b'\n' => at += 1,
+            b';' => match memchr::memchr(b'\n', &src[at..]) {
+                Some(end) => at += end + 1,
+                None => return true,
+            },
+            _ => return false,
+        }
+    }
+    true
+}
+
 /// Lines of `src`, counting a last line without a line end.
 fn line_count(src: &[u8]) -> usize {
     memchr::memchr_iter(b'\n', src).count() + usize::from(src.last().is_some_and(|&b| b != b'\n'))
@@ -451,7 +471,7 @@ fn read_chunk_into(
         encoding,
         reading,
         plain_lines_skimmable: false,
-        first_chunk: chunk.bytes.start == 0,
+        chunk_start: chunk.bytes.start,
         first_block: chunk.first_block as u32,
         blocks,
         filled: 0,
@@ -537,15 +557,18 @@ struct Driver<'s, 'b> {
     /// The last block parsed leaves the plain lines after it skimmable
     /// ([`plain_lines_skimmable_after`]).
     plain_lines_skimmable: bool,
-    /// Only the chunk at the start of the file may hold the header.
-    first_chunk: bool,
+    /// Where the chunk starts in the file: a header in a later chunk is
+    /// the file's only if every line before the chunk is blank or a
+    /// comment, as in the first ([`blank_or_comment_lines`]).
+    chunk_start: usize,
     /// The index in the program of the chunk's first block.
     first_block: u32,
     /// Slots for this chunk's blocks, one per line, written in order:
     /// the first `filled` are initialised.
     blocks: &'b mut [MaybeUninit<Block>],
     filled: usize,
-    /// A block with statements, a label or a number has been seen.
+    /// A line other than a blank line or a comment has been seen: words,
+    /// a label, a skip mark, anything with an error.
     content_seen: bool,
     header: Option<Header>,
     path: Option<PathDirective>,
@@ -818,6 +841,9 @@ impl<'s> Driver<'s, '_> {
             let parser = std::cell::LazyCell::new(|| grammar::block(ctx));
             for line in &mut lines {
                 let line_tokens = &tokens[line.tokens.clone()];
+                // A header line is no content: a second header is
+                // misplaced because of the first.
+                self.content_seen |= line.read.is_some() || !line_tokens.is_empty() || line.broken;
                 let block = if let Some(block) = line.read.take() {
                     block
                 } else if let Some(expanded) = self.expansion(line, line_tokens) {
@@ -825,8 +851,6 @@ impl<'s> Driver<'s, '_> {
                 } else {
                     self.parse_line(line, line_tokens, &ctx, &parser, line.end as usize)
                 };
-                self.content_seen |=
-                    !block.statements.is_empty() || block.label.is_some() || block.number.is_some();
                 if block
                     .statements
                     .iter()
@@ -1015,7 +1039,10 @@ impl<'s> Driver<'s, '_> {
             .encoding
             .decode(&self.src[span.start as usize + 1..span.end as usize]);
         let text = text.trim_end();
-        if !self.first_chunk || self.header.is_some() || self.content_seen {
+        if self.header.is_some()
+            || self.content_seen
+            || !blank_or_comment_lines(&self.src[..self.chunk_start])
+        {
             self.diagnostics.push(
                 Diagnostic::new(
                     codes::parse::MISPLACED_HEADER,

@@ -110,6 +110,43 @@ fn structures_headers_and_errors_across_chunk_boundaries() {
     assert!(whole.program.header.is_some());
 }
 
+/// A `%` header may only open the file: blank lines and comments may come
+/// before it, nothing else, and the verdict does not depend on the chunk
+/// the header falls in (the fuzz target `lower_paths` found both: a header
+/// after a line with a syntax error, accepted by the whole parse and
+/// refused in chunks; a header after a comment, the other way round).
+#[test]
+fn a_header_opens_the_file_in_any_chunk() {
+    let misplaced = |src: &str| {
+        let whole = parse_bytes_in_chunks("header.mpf", src.as_bytes(), 1);
+        let codes = whole
+            .diagnostics
+            .iter()
+            .filter(|d| d.code.name() == "gcodec::parse::misplaced_header")
+            .count();
+        (codes, whole.program.header.is_some())
+    };
+    let cases: [(&str, (usize, bool)); 9] = [
+        ("%_N_T_MPF\nG1 X1\n", (0, true)),
+        ("; c\n%_N_T_MPF\nG1 X1\n", (0, true)),
+        (
+            "\n \t&\r\n;$PATH=/_N_MPF_DIR\n  %_N_T_MPF\nG1 X1\n",
+            (0, true),
+        ),
+        // The fuzz target's input: a syntax error first.
+        ("PROL AMOUNT, VAR REAL SUM)\n%_N_T,RET\n", (1, false)),
+        ("G1 X1\n%_N_T_MPF\n", (1, false)),
+        ("/\n%_N_T_MPF\n", (1, false)),
+        ("N10\n%_N_T_MPF\n", (1, false)),
+        ("LBL:\n%_N_T_MPF\n", (1, false)),
+        ("%_N_A_MPF\n; c\n%_N_B_MPF\n", (1, true)),
+    ];
+    for (src, expected) in cases {
+        assert_eq!(misplaced(src), expected, "{src:?}");
+        assert_split_invariant(src, src.as_bytes());
+    }
+}
+
 #[test]
 fn empty_and_tiny_inputs_in_many_chunks() {
     for src in ["", "\n", "G1", "G1\n", "\n\n\n", "IF 1\n"] {
