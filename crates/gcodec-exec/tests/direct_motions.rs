@@ -6,79 +6,16 @@
 //! and machine: the fixtures, the corpus, and generated programs that
 //! switch between plain and framed states block by block.
 
-use std::io;
 use std::sync::Arc;
 
-use gcodec_driver::RunSetup;
-use gcodec_exec::event::{CsvWriter, Event, EventSink, JsonlSink};
 use gcodec_profile::Profile;
 use gcodec_source::SourceFile;
+use gcodec_testkit::agreement::{assert_direct_motions_agree, run_outputs};
 use gcodec_testkit::{machine, profile};
 
-/// The JSONL of every event but the motions: the CSV run's events.
-struct AllButMotions(JsonlSink<Vec<u8>>);
-
-impl EventSink for AllButMotions {
-    fn event(&mut self, event: &Event) -> io::Result<()> {
-        self.0.event(event)
-    }
-
-    fn takes_motions(&self) -> bool {
-        false
-    }
-}
-
-/// A run's JSONL, and its CSV with the events besides it, as text with
-/// the outcome.
-fn outputs(profile: &Arc<Profile>, name: &str, src: &[u8], direct: bool) -> (String, String) {
-    let file = Arc::new(SourceFile::new(name, src));
-    let mut setup = RunSetup::new(Arc::clone(profile));
-    setup.options.max_steps = 20_000;
-    setup.options.direct_motions = direct;
-    let mut jsonl = JsonlSink::new(Vec::new());
-    let report = gcodec_driver::run_main(Arc::clone(&file), &setup, &mut jsonl, None);
-    let events = format!(
-        "{}{:?}",
-        String::from_utf8_lossy(&jsonl.into_inner().unwrap()),
-        report.outcome.map_err(|e| e.to_string())
-    );
-    let mut rows = CsvWriter::for_profile(Vec::new(), profile).unwrap();
-    let mut others = AllButMotions(JsonlSink::new(Vec::new()));
-    let report = gcodec_driver::run_main(file, &setup, &mut others, Some(&mut rows));
-    rows.finish().unwrap();
-    let csv = format!(
-        "{}{}{:?}",
-        String::from_utf8_lossy(&rows.into_inner().unwrap()),
-        String::from_utf8_lossy(&others.0.into_inner().unwrap()),
-        report.outcome.map_err(|e| e.to_string())
-    );
-    (events, csv)
-}
-
+/// Both paths agree on `src`, run to at most 20,000 blocks.
 fn assert_same(name: &str, src: &[u8], profile: &Arc<Profile>) {
-    let (direct_events, direct_csv) = outputs(profile, name, src, true);
-    let (general_events, general_csv) = outputs(profile, name, src, false);
-    let src = String::from_utf8_lossy(src);
-    assert_same_text(name, &src, "events", &direct_events, &general_events);
-    assert_same_text(name, &src, "CSV", &direct_csv, &general_csv);
-}
-
-fn assert_same_text(name: &str, src: &str, what: &str, direct: &str, general: &str) {
-    if direct == general {
-        return;
-    }
-    let (line, (a, b)) = direct
-        .lines()
-        .zip(general.lines())
-        .enumerate()
-        .find(|(_, (a, b))| a != b)
-        .unwrap_or((0, ("(a line more or less)", "")));
-    // A generated program is shown whole: it is in no file.
-    let shown = if src.len() < 4096 { src } else { "" };
-    panic!(
-        "{name}: the {what} differ at line {}\n direct:  {a}\n general: {b}\n{shown}",
-        line + 1
-    );
+    assert_direct_motions_agree(name, src, profile, 20_000);
 }
 
 /// The shipped machines a motion differs on: a mill, a lathe (diameter
@@ -307,7 +244,8 @@ fn a_flood_of_plain_motions_runs_the_same_either_way() {
     }
     let mill = Arc::new(profile("default.toml"));
     assert_same("flood.mpf", program.as_bytes(), &mill);
-    let (direct, _) = outputs(&mill, "flood.mpf", program.as_bytes(), true);
+    let file = Arc::new(SourceFile::new("flood.mpf", program.as_bytes()));
+    let (direct, _) = run_outputs(&mill, &file, 20_000, true);
     assert_eq!(direct.matches("\"event\":\"motion\"").count(), 200);
 }
 

@@ -5,41 +5,10 @@
 //! program and machine.
 
 use gcodec_profile::Profile;
-use gcodec_sema::{Definitions, lower_by_the_general_path, lower_in_parts};
+use gcodec_testkit::agreement::assert_direct_lowering_agrees;
 use gcodec_testkit::{machine, profile};
 
 mod common;
-
-fn assert_same(name: &str, src: &[u8], profile: &Profile) {
-    let parsed = gcodec_parser::parse_bytes(name, src);
-    let definitions = Definitions::new();
-    let direct = lower_in_parts(&parsed.program, profile, &definitions, 1);
-    let general = lower_by_the_general_path(&parsed.program, profile, &definitions);
-    assert_eq!(
-        direct.diagnostics, general.diagnostics,
-        "{name}: diagnostics differ"
-    );
-    assert!(
-        direct.document == general.document,
-        "{name}: instructions differ\n{}",
-        first_difference(&direct.document, &general.document)
-    );
-}
-
-/// The first instruction that differs, both ways, for the message.
-fn first_difference(a: &gcodec_ail::Document, b: &gcodec_ail::Document) -> String {
-    let json = |d: &gcodec_ail::Document, i: usize| {
-        d.instructions
-            .get(i)
-            .map_or("(none)".to_owned(), |x| serde_json::to_string(x).unwrap())
-    };
-    let n = a.instructions.len().max(b.instructions.len());
-    (0..n)
-        .find(|&i| a.instructions.get(i) != b.instructions.get(i))
-        .map_or("(same instructions)".to_owned(), |i| {
-            format!("#{i}\n direct:  {}\n general: {}", json(a, i), json(b, i))
-        })
-}
 
 /// The shipped profiles and machines that treat `G0`, `G1` and the axes
 /// differently: a legacy alias on `G1`, `G0` ruled out, no `Y` axis.
@@ -70,12 +39,12 @@ fn machines() -> Vec<(&'static str, Profile)> {
 #[test]
 fn fixtures_and_corpus_lower_the_same_either_way() {
     let builtin = gcodec_profile::builtin().unwrap();
-    gcodec_testkit::each_program(|name, src| assert_same(name, src, &builtin));
+    gcodec_testkit::each_program(|name, src| assert_direct_lowering_agrees(name, src, &builtin));
 }
 
 #[test]
 fn fixtures_and_corpus_lower_the_same_either_way_on_every_machine() {
-    gcodec_testkit::each_program_on(&machines(), assert_same);
+    gcodec_testkit::each_program_on(&machines(), assert_direct_lowering_agrees);
 }
 
 /// The pieces generated blocks are made of: the words the direct path
@@ -136,7 +105,7 @@ fn generated_programs_lower_the_same_either_way() {
             src.push('\n');
         }
         let (machine, profile) = &machines[next(machines.len())];
-        assert_same(
+        assert_direct_lowering_agrees(
             &format!("round {round} on {machine}:\n{src}"),
             src.as_bytes(),
             profile,

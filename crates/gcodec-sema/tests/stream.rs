@@ -4,103 +4,20 @@
 
 use gcodec_sema::{
     ChunkLowering, Definitions, ProgramKind, lower_chunks, lower_in_parts, outline_chunks,
-    resolve_from_dataflow,
 };
 use gcodec_source::SourceFile;
 use gcodec_stream::chunks;
+use gcodec_testkit::agreement::assert_streamed_lowering_agrees;
 
 mod common;
 
 #[path = "../../gcodec-parser/benches/program/mod.rs"]
 mod program;
 
+/// In chunks of one, three and 64 lines, on one thread and on three
+/// workers taking turns.
 fn assert_streamed_agrees(name: &str, src: &[u8], profile: &gcodec_profile::Profile) {
-    let parsed = gcodec_parser::parse_bytes(name, src);
-    let file = SourceFile::new(name, src);
-    let definitions = Definitions::new();
-    let whole = lower_in_parts(&parsed.program, profile, &definitions, 1);
-    for lines in [1, 3, 64] {
-        let chunks = chunks(src, lines);
-        // Chunks lowered as parts on one thread and on three workers
-        // taking turns: the instructions a `ChunkLowering` gives, in
-        // order, before the dataflow fills them in.
-        let in_order = in_order(name, src, &chunks, profile, &definitions);
-        for workers in [1, 3] {
-            // Pass 1: the outline, the chunks skimmed and their trees
-            // dropped chunk by chunk.
-            let (outline, structure_diagnostics) = outline_chunks(
-                &file,
-                ProgramKind::of_file(name),
-                &chunks,
-                workers,
-                profile,
-                &definitions,
-            );
-            let mut diagnostics = outline.diagnostics().to_vec();
-            // Pass 2: the chunks parsed and lowered, then the end.
-            let mut document = gcodec_ail::Document::new();
-            let mut parse_diagnostics = Vec::new();
-            let mut taken = 0;
-            lower_chunks(&file, &chunks, workers, &outline, profile, |mut lowered| {
-                taken += 1;
-                document.instructions.append(&mut lowered.instructions);
-                diagnostics.extend(lowered.diagnostics);
-                parse_diagnostics.extend(lowered.parse_diagnostics);
-            });
-            let place = format!("{name}, chunks of {lines}, {workers} workers");
-            assert_eq!(taken, chunks.len() + 1, "{place}: chunks in order");
-            parse_diagnostics.extend(structure_diagnostics);
-            parse_diagnostics.sort_by_key(|d| d.span().map_or(0, |s| s.start));
-            assert_eq!(
-                parsed.diagnostics[..],
-                parse_diagnostics,
-                "{place}: parse diagnostics differ"
-            );
-            assert!(
-                in_order == document,
-                "{place}: instructions differ from lowering in order"
-            );
-            resolve_from_dataflow(&mut document, profile, outline.is_subprogram());
-            assert_eq!(
-                whole.diagnostics[..],
-                diagnostics,
-                "{place}: diagnostics differ"
-            );
-            assert!(whole.document == document, "{place}: instructions differ");
-        }
-    }
-}
-
-/// The instructions of `chunks` lowered in order by one `ChunkLowering`.
-fn in_order(
-    name: &str,
-    src: &[u8],
-    chunks: &[gcodec_stream::Chunk],
-    profile: &gcodec_profile::Profile,
-    definitions: &Definitions,
-) -> gcodec_ail::Document {
-    let file = SourceFile::new(name, src);
-    let (outline, _) = outline_chunks(
-        &file,
-        ProgramKind::of_file(name),
-        chunks,
-        1,
-        profile,
-        definitions,
-    );
-    let mut lowering = ChunkLowering::new(&outline, profile, src);
-    let mut document = gcodec_ail::Document::new();
-    for chunk in chunks {
-        let parsed = gcodec_parser::parse_chunk(src, file.encoding(), chunk, definitions.macros());
-        let mut lowered = lowering
-            .lower(parsed.first_block, &parsed.blocks)
-            .expect("in order");
-        document.instructions.append(&mut lowered.instructions);
-    }
-    document
-        .instructions
-        .append(&mut lowering.finish().instructions);
-    document
+    assert_streamed_lowering_agrees(name, src, profile, &[1, 3, 64], &[1, 3]);
 }
 
 #[test]

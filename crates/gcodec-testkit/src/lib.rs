@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests of the gcodec crates; a
 //! dev-dependency only, never a dependency of a library.
 //!
+//! - [`agreement`]: the fast paths of lowering and running against the
+//!   general ones, for the tests and the fuzz targets.
 //! - [`paths`]: where the programs are (the repository, the shared
 //!   corpus and reference) and how a corpus program is shown.
 //! - [`fixtures`]: a fixture of `tests/fixtures/KIND/`, its `; KIND:` line
@@ -16,6 +18,7 @@
 //!   must parse cleanly, lower it for a profile). It stays thin so that
 //!   the pipeline's facade can take its place.
 
+pub mod agreement;
 pub mod compile;
 pub mod corpus;
 pub mod fixtures;
