@@ -117,6 +117,30 @@ fn flow_names_and_calls_across_chunks() {
     assert_streamed_agrees("carried.mpf", carried.as_bytes(), &profile);
 }
 
+/// An arc command other than `G2`/`G3` carried into a chunk (`INVCW`, an
+/// involute, which needs no circle data) gives the motion its empty
+/// circle data, as lowering under the known command does; so does one
+/// the dataflow finds after a label (the fuzz target `lower_paths` found
+/// the chunk's motion without it).
+#[test]
+fn an_arc_command_carried_into_a_chunk_keeps_its_circle_data() {
+    let profile = gcodec_profile::builtin().unwrap();
+    let src = b"INVCW\nZ0\nINVCCW X1\nY2\nCIP X3 I1=1 J1=1\nX4\nLBL: Z1\nGOTOB LBL\n";
+    assert_streamed_agrees("involute.mpf", src, &profile);
+    let parsed = gcodec_parser::parse_bytes("involute.mpf", src);
+    let whole = lower_in_parts(&parsed.program, &profile, &Definitions::new(), 1);
+    let circles: Vec<bool> = whole
+        .document
+        .instructions
+        .iter()
+        .filter_map(|i| match &i.op {
+            gcodec_ail::Op::Motion { circle, .. } => Some(circle.is_some()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(circles, [true; 6]);
+}
+
 #[test]
 fn fixtures_and_corpus_lower_the_same_streamed() {
     let profile = gcodec_profile::builtin().unwrap();

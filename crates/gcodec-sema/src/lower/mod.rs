@@ -223,7 +223,9 @@ fn lower_outlined(
 }
 
 /// Gives a motion whose command was open the command `kind`, moving its
-/// `I J K` to where that command reads them.
+/// `I J K` to where that command reads them: an arc's circle data (empty
+/// where the block has none, as lowering under a known arc command gives
+/// it), a thread's lead.
 fn assign_motion_command(
     motion: &mut MotionKind,
     circle: &mut Option<Box<gcodec_ail::Circle>>,
@@ -238,7 +240,9 @@ fn assign_motion_command(
                 lead_change: None,
             });
         }
-    } else if !is_arc(kind) {
+    } else if is_arc(kind) {
+        circle.get_or_insert_default();
+    } else {
         *circle = None;
     }
 }
