@@ -38,12 +38,16 @@ pub fn assert_direct_lowering_agrees(name: &str, src: &[u8], profile: &Profile) 
     assert!(
         direct.document == general.document,
         "{name}: instructions differ\n{}",
-        first_different_instruction(&direct.document, &general.document)
+        first_different_instruction(("direct", &direct.document), ("general", &general.document))
     );
 }
 
-/// The first instruction that differs, both ways, for the message.
-fn first_different_instruction(a: &Document, b: &Document) -> String {
+/// The first instruction that differs, both ways, each under its name,
+/// for the message.
+fn first_different_instruction(
+    (a_name, a): (&str, &Document),
+    (b_name, b): (&str, &Document),
+) -> String {
     let json = |d: &Document, i: usize| {
         d.instructions.get(i).map_or("(none)".to_owned(), |x| {
             serde_json::to_string(x).unwrap_or_else(|e| e.to_string())
@@ -53,7 +57,7 @@ fn first_different_instruction(a: &Document, b: &Document) -> String {
     (0..n)
         .find(|&i| a.instructions.get(i) != b.instructions.get(i))
         .map_or("(same instructions)".to_owned(), |i| {
-            format!("#{i}\n direct:  {}\n general: {}", json(a, i), json(b, i))
+            format!("#{i}\n {a_name}: {}\n {b_name}: {}", json(a, i), json(b, i))
         })
 }
 
@@ -113,7 +117,7 @@ pub fn assert_streamed_lowering_agrees(
             assert!(
                 in_order == document,
                 "{place}: instructions differ from lowering in order\n{}",
-                first_different_instruction(&document, &in_order)
+                first_different_instruction(("workers", &document), ("in order", &in_order))
             );
             resolve_from_dataflow(&mut document, profile, outline.is_subprogram());
             assert_eq!(
@@ -124,7 +128,7 @@ pub fn assert_streamed_lowering_agrees(
             assert!(
                 whole.document == document,
                 "{place}: instructions differ\n{}",
-                first_different_instruction(&document, &whole.document)
+                first_different_instruction(("streamed", &document), ("whole", &whole.document))
             );
         }
     }
