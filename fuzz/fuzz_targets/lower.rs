@@ -10,30 +10,14 @@
 use gcodec_ail::Op;
 use libfuzzer_sys::fuzz_target;
 
-/// The shipped profiles, loaded once.
-fn profiles() -> &'static [gcodec_profile::Profile] {
-    static PROFILES: std::sync::OnceLock<Vec<gcodec_profile::Profile>> = std::sync::OnceLock::new();
-    PROFILES.get_or_init(|| {
-        let texts = [
-            include_str!("../../profiles/default.toml"),
-            include_str!("../../profiles/mill_tool_management.toml"),
-            include_str!("../../profiles/lathe_828d.toml"),
-            include_str!("../../profiles/mill_g505_g599.toml"),
-            include_str!("../../profiles/mill_5axis.toml"),
-            include_str!("../../profiles/grinder_fb422.toml"),
-        ];
-        texts
-            .iter()
-            .map(|t| gcodec_profile::load(t).expect("shipped profiles load"))
-            .collect()
-    })
-}
+mod shipped;
+use shipped::shipped_profiles;
 
 fuzz_target!(|data: &[u8]| {
     let parse = gcodec_parser::parse_bytes("fuzz.mpf", data);
     let program = &parse.program;
     let len = data.len() as u32;
-    for profile in profiles() {
+    for profile in shipped_profiles() {
         let lowered = gcodec_sema::lower(program, profile);
         let instructions = &lowered.document.instructions;
         assert!(
