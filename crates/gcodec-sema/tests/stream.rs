@@ -121,9 +121,10 @@ fn flow_names_and_calls_across_chunks() {
 /// involute, which needs no circle data) gives the motion its empty
 /// circle data, as lowering under the known command does; so does one
 /// the dataflow finds after a label (the fuzz target `lower_paths` found
-/// the chunk's motion without it).
+/// the chunk's motion without it). A thread command (`G33`) likewise
+/// gives its empty lead.
 #[test]
-fn an_arc_command_carried_into_a_chunk_keeps_its_circle_data() {
+fn an_arc_or_thread_command_carried_into_a_chunk_keeps_its_data() {
     let profile = gcodec_profile::builtin().unwrap();
     let src = b"INVCW\nZ0\nINVCCW X1\nY2\nCIP X3 I1=1 J1=1\nX4\nLBL: Z1\nGOTOB LBL\n";
     assert_streamed_agrees("involute.mpf", src, &profile);
@@ -139,6 +140,22 @@ fn an_arc_command_carried_into_a_chunk_keeps_its_circle_data() {
         })
         .collect();
     assert_eq!(circles, [true; 6]);
+    let thread = b"G33 Z-0\nX03\nZ-5 K2\nLBL: X4\nGOTOB LBL\n";
+    assert_streamed_agrees("thread.mpf", thread, &profile);
+    let parsed = gcodec_parser::parse_bytes("thread.mpf", thread);
+    let whole = lower_in_parts(&parsed.program, &profile, &Definitions::new(), 1);
+    let leads: Vec<bool> = whole
+        .document
+        .instructions
+        .iter()
+        .filter_map(|i| match &i.op {
+            gcodec_ail::Op::Motion { details, .. } => {
+                Some(details.as_ref().is_some_and(|d| d.thread.is_some()))
+            }
+            _ => None,
+        })
+        .collect();
+    assert_eq!(leads, [true; 4]);
 }
 
 #[test]

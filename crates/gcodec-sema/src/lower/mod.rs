@@ -223,9 +223,9 @@ fn lower_outlined(
 }
 
 /// Gives a motion whose command was open the command `kind`, moving its
-/// `I J K` to where that command reads them: an arc's circle data (empty
-/// where the block has none, as lowering under a known arc command gives
-/// it), a thread's lead.
+/// `I J K` to where that command reads them: an arc's circle data, a
+/// thread's lead (each empty where the block has none, as lowering under
+/// a known command gives them).
 fn assign_motion_command(
     motion: &mut MotionKind,
     circle: &mut Option<Box<gcodec_ail::Circle>>,
@@ -234,12 +234,10 @@ fn assign_motion_command(
 ) {
     *motion = kind;
     if is_threaded(kind) {
-        if let Some(c) = circle.take() {
-            details.get_or_insert_default().thread = Some(gcodec_ail::Thread {
-                lead: c.centre,
-                lead_change: None,
-            });
-        }
+        details.get_or_insert_default().thread = Some(gcodec_ail::Thread {
+            lead: circle.take().map(|c| c.centre).unwrap_or_default(),
+            lead_change: None,
+        });
     } else if is_arc(kind) {
         circle.get_or_insert_default();
     } else {
