@@ -126,36 +126,37 @@ fn flow_names_and_calls_across_chunks() {
 #[test]
 fn an_arc_or_thread_command_carried_into_a_chunk_keeps_its_data() {
     let profile = gcodec_profile::builtin().unwrap();
-    let src = b"INVCW\nZ0\nINVCCW X1\nY2\nCIP X3 I1=1 J1=1\nX4\nLBL: Z1\nGOTOB LBL\n";
-    assert_streamed_agrees("involute.mpf", src, &profile);
-    let parsed = gcodec_parser::parse_bytes("involute.mpf", src);
-    let whole = lower_in_parts(&parsed.program, &profile, &Definitions::new(), 1);
-    let circles: Vec<bool> = whole
-        .document
-        .instructions
-        .iter()
-        .filter_map(|i| match &i.op {
-            gcodec_ail::Op::Motion { circle, .. } => Some(circle.is_some()),
-            _ => None,
-        })
-        .collect();
-    assert_eq!(circles, [true; 6]);
-    let thread = b"G33 Z-0\nX03\nZ-5 K2\nLBL: X4\nGOTOB LBL\n";
-    assert_streamed_agrees("thread.mpf", thread, &profile);
-    let parsed = gcodec_parser::parse_bytes("thread.mpf", thread);
-    let whole = lower_in_parts(&parsed.program, &profile, &Definitions::new(), 1);
-    let leads: Vec<bool> = whole
-        .document
-        .instructions
-        .iter()
-        .filter_map(|i| match &i.op {
-            gcodec_ail::Op::Motion { details, .. } => {
-                Some(details.as_ref().is_some_and(|d| d.thread.is_some()))
+    // Whether each motion of `src`, lowered whole, has `data`, once the
+    // streamed lowering is checked to agree.
+    let motions_with = |name: &str, src: &[u8], data: fn(&gcodec_ail::Op) -> bool| -> Vec<bool> {
+        assert_streamed_agrees(name, src, &profile);
+        let parsed = gcodec_parser::parse_bytes(name, src);
+        let whole = lower_in_parts(&parsed.program, &profile, &Definitions::new(), 1);
+        let instructions = whole.document.instructions.iter();
+        instructions
+            .filter(|i| matches!(i.op, gcodec_ail::Op::Motion { .. }))
+            .map(|i| data(&i.op))
+            .collect()
+    };
+    let circle = |op: &gcodec_ail::Op| {
+        matches!(
+            op,
+            gcodec_ail::Op::Motion {
+                circle: Some(_),
+                ..
             }
-            _ => None,
-        })
-        .collect();
-    assert_eq!(leads, [true; 4]);
+        )
+    };
+    let arcs = b"INVCW\nZ0\nINVCCW X1\nY2\nCIP X3 I1=1 J1=1\nX4\nLBL: Z1\nGOTOB LBL\n";
+    assert_eq!(motions_with("involute.mpf", arcs, circle), [true; 6]);
+    let lead = |op: &gcodec_ail::Op| match op {
+        gcodec_ail::Op::Motion { details, .. } => {
+            details.as_ref().is_some_and(|d| d.thread.is_some())
+        }
+        _ => false,
+    };
+    let threads = b"G33 Z-0\nX03\nZ-5 K2\nLBL: X4\nGOTOB LBL\n";
+    assert_eq!(motions_with("thread.mpf", threads, lead), [true; 4]);
 }
 
 #[test]
