@@ -36,6 +36,8 @@ fn assert_skim_agrees(name: &str, src: &[u8], lines: usize) -> usize {
         assert_eq!(parsed.blocks.len(), skimmed.blocks.len(), "{name}");
         assert_eq!(parsed.structure_blocks, skimmed.structure_blocks, "{name}");
         assert!(skimmed.diagnostics.is_empty(), "{name}");
+        // The skim finds the header the parse finds.
+        assert_eq!(parsed.header, skimmed.header, "{name}: the header");
         let mut skimmable = false;
         for (i, (whole, skim)) in parsed.blocks.iter().zip(&skimmed.blocks).enumerate() {
             if whole == skim {
@@ -163,6 +165,12 @@ fn edge_cases_skim_as_they_parse() {
     }
     // Blocks are left out here and others kept: the test sees both kinds.
     assert!(assert_skim_agrees("edges", src.as_bytes(), 1024) >= 5);
+    // Headers after lines a skim may leave out.
+    for src in ["; c\nX1\n%_N_T_MPF\nX2\n", "\nX1 Y2\n\n%_N_T_MPF\n"] {
+        for chunk_lines in [1, 2, 1024] {
+            assert_skim_agrees(src, src.as_bytes(), chunk_lines);
+        }
+    }
 }
 
 /// A line of pieces that are plain and pieces that are not.
