@@ -178,3 +178,21 @@ fn a_jump_to_a_string_variable_goes_to_the_label_it_names() {
     assert_eq!(codes, [("gcodec::run::jump_target_not_found", 1)]);
     assert_eq!(end, ProgramEndReason::Alarm);
 }
+
+/// Under `G34`/`G35` a motion block's `F` is the change of the thread
+/// lead, not a feed: also in a block after a label, where lowering cannot
+/// know the motion command and gives the `F` as a feed.
+#[test]
+fn a_thread_lead_change_after_a_label_leaves_the_feed() {
+    let events = events(
+        "G95 S100 M3 F0.2\nG34 Z-10 K2 F0.1\nLBL: Z-20 K2 F0.3\nR1=R1+1\nIF R1<2 GOTOB LBL\nG1 X1\nM30\n",
+    );
+    let feeds: Vec<Option<f64>> = events
+        .iter()
+        .filter_map(|e| match &e.kind {
+            EventKind::Motion(m) => Some(m.feed),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(feeds, [Some(0.2); 4]);
+}

@@ -218,6 +218,11 @@ struct BlockState {
     number: Option<u32>,
     /// A motion of the block moved in the working plane.
     moved_in_plane: bool,
+    /// The feed before the block's `F`: under `G34`/`G35` a motion
+    /// block's `F` is the change of the thread lead, not a feed, and a
+    /// block whose motion command lowering could not know (paths meet
+    /// there) gives it as a feed (`Channel::lead_change_was_fed`).
+    feed_before_f: Option<f64>,
 }
 
 /// A running channel.
@@ -651,6 +656,7 @@ impl<'r> Channel<'r> {
             level,
             number: None,
             moved_in_plane: false,
+            feed_before_f: None,
         };
         if self.observer.is_some() {
             self.block.number = program.block_number(instruction.source.line);
@@ -833,7 +839,9 @@ impl<'r> Channel<'r> {
 
     /// `F…`: the feed.
     fn feed(&mut self, value: &gcodec_ail::Value) -> Result<Flow, RunError> {
-        self.state.feed = self.real_of(value)?;
+        let feed = self.real_of(value)?;
+        self.block.feed_before_f.get_or_insert(self.state.feed);
+        self.state.feed = feed;
         Ok(Flow::Next)
     }
 

@@ -123,6 +123,12 @@ impl Channel<'_> {
             .modal_index(MOTION_GROUP)
             .and_then(|index| MotionKind::of_command(MOTION_GROUP, index))
             .unwrap_or(*motion);
+        if matches!(
+            kind,
+            MotionKind::ThreadIncreasingLead | MotionKind::ThreadDecreasingLead
+        ) {
+            self.lead_change_was_fed();
+        }
         if circle.is_none() && details.is_none() && self.direct_straight_motion(kind, targets) {
             return self.finish_direct_straight_motion(program, instruction, kind);
         }
@@ -249,6 +255,17 @@ impl Channel<'_> {
         }
         self.state.note_traversed_frame();
         self.finish_motion(program, instruction, kind, start, end, arc, arc_turns)
+    }
+
+    /// A `G34`/`G35` motion: an `F` its block ran as a feed was the change
+    /// of the thread lead (lowering gives it as a feed where it cannot
+    /// know the block's motion command: paths meet there). The feed goes
+    /// back to what it was before the block; the lead change itself is
+    /// not simulated (SPEC §11.4).
+    fn lead_change_was_fed(&mut self) {
+        if let Some(feed) = self.block.feed_before_f.take() {
+            self.state.feed = feed;
+        }
     }
 
     /// Sets up a straight motion (`G0`, `G1`) to constant end points the
