@@ -381,7 +381,7 @@ fn line_at(src: &[u8], start: usize, limit: usize) -> (usize, usize, usize) {
 }
 
 /// Whether every line of `src` is blank or a comment: nothing but blanks
-/// (the lexer's: space, tab, CR, VT, FF, `&`) before a line end or a `;`.
+/// ([`is_blank`]) before a line end or a `;`.
 /// A chunk asks this of the lines before it when it meets a header: the
 /// header is the file's only if nothing else came first, whichever chunk
 /// it falls in. The scan stops at the first other line, mostly the first.
@@ -389,7 +389,8 @@ fn blank_or_comment_lines(src: &[u8]) -> bool {
     let mut at = 0;
     while at < src.len() {
         match src[at] {
-            b' ' | b'\t' | b'\r' | 0x0b | 0x0c | b'&' | b'\n' => at += 1,
+            b'\n' => at += 1,
+            b if is_blank(b) => at += 1,
             b';' => match memchr::memchr(b'\n', &src[at..]) {
                 Some(end) => at += end + 1,
                 None => return true,

@@ -188,12 +188,6 @@ pub fn assert_direct_motions_agree(name: &str, src: &[u8], profile: &Arc<Profile
     let file = Arc::new(SourceFile::new(name, src));
     let (direct_events, direct_csv) = run_outputs(profile, &file, max_steps, true);
     let (general_events, general_csv) = run_outputs(profile, &file, max_steps, false);
-    // A generated program is shown whole: it is in no file.
-    let shown = if src.len() < 4096 {
-        String::from_utf8_lossy(src)
-    } else {
-        "".into()
-    };
     for (what, direct, general) in [
         ("events", &direct_events, &general_events),
         ("CSV", &direct_csv, &general_csv),
@@ -207,6 +201,12 @@ pub fn assert_direct_motions_agree(name: &str, src: &[u8], profile: &Arc<Profile
             .enumerate()
             .find(|(_, (a, b))| a != b)
             .unwrap_or((0, ("(a line more or less)", "")));
+        // A generated program is shown whole: it is in no file.
+        let shown = if src.len() < 4096 {
+            String::from_utf8_lossy(src)
+        } else {
+            "".into()
+        };
         panic!(
             "{name}: the {what} differ at line {}\n direct:  {a}\n general: {b}\n{shown}",
             line + 1
